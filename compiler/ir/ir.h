@@ -1,0 +1,122 @@
+// Lobe IR: the compiler's output and the runtime's input.
+//
+// A shader is a flat list of typed symbols and a list of operations over them, in the spirit of
+// OSL's .oso: every value lives in a named symbol (no SSA; codegen turns symbols into allocas
+// and LLVM's mem2reg makes SSA), user functions are inlined by the front end, structs are
+// flattened into one symbol per field ("s.a", "s.b"; arrays of structs into arrays per field),
+// and control flow is explicit jumps between op indices. This keeps the IR easy to print, parse,
+// hash, specialise (an instance value is a Param turned Const) and lower to LLVM.
+//
+// The text form (printed by `lobe compile --emit=ir`, parsed back by ir_parse) is described in
+// docs/ir.md. print(parse(print(ir))) == print(ir) is a tested invariant.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lobe::ir {
+
+// Base types of symbols. Point/Vector/Normal/Color are all three floats but transform
+// differently; Matrix is 16 floats, row-major (OSL's convention: points are row vectors).
+enum class BaseType : uint8_t { Int, Float, Color, Point, Vector, Normal, Matrix, String, Closure };
+
+const char* to_string(BaseType t);
+std::optional<BaseType> base_type_from_string(const std::string& s);
+
+struct Type {
+  BaseType base = BaseType::Float;
+  int arraylen = 0; // 0: not an array; > 0: fixed length; -1: unsized array parameter
+
+  bool is_array() const { return arraylen != 0; }
+  bool is_triple() const {
+    return base == BaseType::Color || base == BaseType::Point || base == BaseType::Vector ||
+           base == BaseType::Normal;
+  }
+  int components() const; // floats/ints per element: 1, 3, 16; strings and closures: 1
+  friend bool operator==(const Type&, const Type&) = default;
+};
+std::string to_string(const Type& t); // "float", "color[3]", "float[]"
+
+enum class SymKind : uint8_t {
+  Param,       // shader parameter (instance value, connection or default)
+  OutputParam, // `output` shader parameter
+  Global,      // shading global (P, N, Ci, u, ...): name is the global's name
+  Local,       // named local variable (possibly a flattened struct field, "s.a")
+  Temp,        // compiler temporary ("$t12")
+  Const,       // literal constant ("$c3"), value in `init`
+};
+const char* to_string(SymKind k);
+
+// A constant element: ints and floats are stored in `f`/`i` by the symbol's base type, strings
+// in `s`. A triple/matrix/array constant has one ConstValue per scalar component, in order.
+struct ConstValue {
+  int32_t i = 0;
+  float f = 0.0f;
+  std::string s;
+  friend bool operator==(const ConstValue&, const ConstValue&) = default;
+};
+
+// One metadata item: `[[ string help = "text", float min = 0 ]]`, values kept as given.
+struct Metadata {
+  Type type;
+  std::string name;
+  std::vector<ConstValue> value;
+  friend bool operator==(const Metadata&, const Metadata&) = default;
+};
+
+struct SourceLoc {
+  std::string file; // empty: unknown
+  int line = 0;
+  int column = 0;
+  friend bool operator==(const SourceLoc&, const SourceLoc&) = default;
+};
+
+struct Symbol {
+  std::string name;
+  Type type;
+  SymKind kind = SymKind::Temp;
+  bool derivs = false;          // carries d/dx and d/dy (set by the derivative analysis)
+  std::vector<ConstValue> init; // Const: the value. Param/OutputParam: the constant default,
+                                // when the default is a constant expression.
+  // Params whose default is not a constant: ops [init_begin, init_end) of Shader::ops compute
+  // it; they run only when the parameter gets neither a connection nor an instance value.
+  int init_begin = -1, init_end = -1;
+  std::vector<Metadata> metadata;
+  std::string struct_name; // the flattened struct's type name for a struct-field param ("" otherwise)
+  SourceLoc loc;
+};
+
+// An operation: `opcode dst src...`. The opcode is a name: the core ops listed in
+// docs/ir.md (assign, add, sub, mul, div, mod, neg, eq, neq, lt, le, gt, ge, not, compl,
+// bitand, bitor, xor, shl, shr, compref, compassign, mxcompref, mxcompassign, aref, aassign,
+// arraycopy, construct, closure, br, cbr, exit, nop, ...) or the name of a standard-library
+// function (sin, noise, printf, ...) resolved by codegen from the argument types.
+struct Op {
+  std::string opcode;
+  std::vector<int> args;       // symbol indices; by convention written args come first
+  uint32_t written_mask = 0;   // bit i set: args[i] is written by this op
+  std::vector<int> jumps;      // op indices (br: {target}; cbr: {if_true, if_false})
+  SourceLoc loc;
+
+  bool writes(int argi) const { return (written_mask >> argi) & 1u; }
+};
+
+enum class ShaderType : uint8_t { Surface, Displacement, Volume, Shader };
+const char* to_string(ShaderType t);
+
+struct Shader {
+  ShaderType type = ShaderType::Surface;
+  std::string name;
+  std::vector<Metadata> metadata; // shader-level metadata
+  std::vector<Symbol> symbols;
+  // The main body starts at op `main_begin` and runs to the end; ops before it are the
+  // parameter default initialisers referenced by Symbol::init_begin/init_end.
+  std::vector<Op> ops;
+  int main_begin = 0;
+
+  int find_symbol(const std::string& name) const; // -1 if absent
+};
+
+} // namespace lobe::ir

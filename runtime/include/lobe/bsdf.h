@@ -1,0 +1,95 @@
+// The flattened closure of one shading point, and what a light-transport integrator asks of it.
+//
+// A closure tree (sums and weights of components, layer()) is flattened into a list of
+// weighted lobes. The mixture samples one lobe with probability proportional to
+// luminance(weight x albedo) and reports the mixture's pdf (the selection-weighted sum over
+// all non-delta lobes), so multiple importance sampling stays correct. Zero-weight lobes are
+// never created.
+//
+// Conventions: all directions point away from the surface, world space, normalised. `wo` is
+// towards the viewer (-I), `wi` towards the light. eval() returns f(wo, wi) * |cos(N, wi)|,
+// already multiplied by the lobe weights. Delta lobes (perfect mirror/refraction) never
+// contribute to eval()/pdf(); sample() returns them flagged kLobeSpecular, with `pdf` the
+// discrete probability of having picked that lobe and `weight` the throughput factor.
+// Nothing returned is ever NaN or Inf, and every value is >= 0.
+#pragma once
+
+#include "lobe/shading.h"
+#include "lobe/vec.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace lobe {
+
+enum class Transport : uint8_t { Radiance, Importance };
+
+enum LobeFlags : uint32_t {
+  kLobeReflect = 1u << 0,
+  kLobeTransmit = 1u << 1,
+  kLobeDiffuse = 1u << 2,
+  kLobeGlossy = 1u << 3,
+  kLobeSpecular = 1u << 4, // a delta lobe
+};
+
+struct BsdfEval {
+  Color3 value; // f * |cos theta_i|, weighted
+  float pdf = 0; // solid-angle pdf of sample() producing wi
+};
+
+struct BsdfSample {
+  Vec3 wi;
+  Color3 weight;      // value / pdf (for delta lobes: the throughput factor)
+  float pdf = 0;      // > 0 always
+  uint32_t flags = 0; // LobeFlags of the lobe that was sampled
+  float eta = 1;      // relative IOR crossed by a transmission sample (1 for reflection)
+};
+
+// One weighted lobe: a registry component plus its weight and a pointer to its parameter
+// block (owned by the ShadingContext arena the closure was built in).
+struct Lobe {
+  int32_t id = -1;
+  Color3 weight;
+  const unsigned char* params = nullptr;
+  float select_weight = 0; // luminance(weight * albedo(wo)), set by prepare()
+};
+
+class Bsdf {
+public:
+  static constexpr int kMaxLobes = 16;
+
+  // Flattens `closure` (may be null: black) for a point with geometric normal `Ng`, viewed
+  // from `wo`. Emission, transparency, holdout and debug components are collected separately.
+  void build(const ClosureNode* closure, const Vec3& wo, const Vec3& Ng);
+
+  BsdfEval eval(const Vec3& wo, const Vec3& wi, Transport mode = Transport::Radiance) const;
+  float pdf(const Vec3& wo, const Vec3& wi) const;
+  // u: three uniform numbers in [0,1); the first selects the lobe and is re-used.
+  std::optional<BsdfSample> sample(const Vec3& wo, const Vec3& u,
+                                   Transport mode = Transport::Radiance) const;
+  // Directional albedo estimate (sum over lobes of weight * albedo(wo)).
+  Color3 albedo(const Vec3& wo) const;
+
+  int lobe_count() const { return n_lobes_; }
+  const Lobe& lobe(int i) const { return lobes_[i]; }
+  bool has_non_delta() const;
+
+  Color3 emission;     // radiance emitted towards wo
+  Color3 transparency; // pass-through weight (transparent closures)
+  Color3 holdout;
+  Color3 background;   // background() closure weight (environment shaders)
+  const char* debug_tag = nullptr;
+  Color3 debug_weight;
+
+private:
+  Lobe lobes_[kMaxLobes];
+  int n_lobes_ = 0;
+  float total_select_ = 0;
+};
+
+// Human-readable form of a closure tree in OSL's print format:
+// `(w0, w1, w2) * name ((Nx, Ny, Nz), arg, "kw", value)`, terms joined by "\n\t+ ".
+std::string closure_to_string(const ClosureNode* closure);
+
+} // namespace lobe
