@@ -1,0 +1,41 @@
+// Per-thread shading state: the arena closures are built in, and error/warning reporting for
+// shader run-time events (out-of-range index, division by zero, ...). One ShadingContext per
+// thread; reset() between shading points. Never shared between threads.
+#pragma once
+
+#include "lobe/shading.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lobe {
+
+class ShadingContext {
+public:
+  explicit ShadingContext(size_t arena_bytes = 64 * 1024);
+
+  // Frees every closure allocated since the last reset (O(1): rewinds the arena).
+  void reset() { used_ = 0; }
+
+  // 8-byte-aligned storage from the arena; null when the arena is exhausted (the closure
+  // builder then drops the component and counts it in closures_dropped).
+  void* allocate(size_t bytes);
+
+  // Message sink for printf/warning/error from shader code. Default: append to `output`.
+  std::function<void(const std::string&)> print;
+  std::string output;
+  int errors = 0;
+  int warnings = 0;
+  uint64_t closures_dropped = 0;
+
+private:
+  std::unique_ptr<unsigned char[]> arena_;
+  size_t capacity_ = 0;
+  size_t used_ = 0;
+};
+
+} // namespace lobe
