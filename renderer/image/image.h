@@ -1,0 +1,58 @@
+// Lobe's image I/O: the one place OpenImageIO is linked (lobe_image).
+//
+// An Image is a float buffer of named channels, interleaved, rows top to bottom. EXR output
+// keeps every channel in linear 32-bit float (extra channels are AOVs, e.g. "albedo.R");
+// PNG/JPEG/TIFF-8 output takes the first three channels (or one, repeated), applies exposure
+// and a tone curve, and encodes sRGB 8-bit. Reading accepts anything OpenImageIO reads
+// (.exr, .hdr, .png, ...) and returns linear float (8-bit sRGB files are decoded to linear).
+//
+// Errors are values: each call returns an empty string on success, a message otherwise.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace lobe::image {
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<std::string> channels; // e.g. {"R","G","B"}; size = channels per pixel
+  std::vector<float> pixels;         // width * height * channels.size(), interleaved
+
+  Image() = default;
+  Image(int w, int h, std::vector<std::string> names);
+  int nchannels() const { return static_cast<int>(channels.size()); }
+  float* pixel(int x, int y) { return pixels.data() + (size_t(y) * width + x) * nchannels(); }
+  const float* pixel(int x, int y) const {
+    return pixels.data() + (size_t(y) * width + x) * nchannels();
+  }
+  // Index of the channel called `name`, or -1.
+  int channel(const std::string& name) const;
+};
+
+// How linear radiance becomes a display value in 8-bit outputs.
+enum class ToneMap {
+  Clamp,  // min(x, 1): exact for values in [0,1] (shader grids, albedo maps)
+  Filmic, // smooth highlight roll-off (ACES fit by Narkowicz), for rendered images
+};
+
+struct WriteOptions {
+  float exposure = 0; // stops; 8-bit outputs only
+  ToneMap tonemap = ToneMap::Clamp;
+};
+
+// True when `path`'s extension names a floating-point format we write linearly (.exr, .hdr).
+bool is_float_format(const std::string& path);
+
+// Writes `img` to `path`, format chosen from the extension.
+std::string write_image(const std::string& path, const Image& img, const WriteOptions& opt = {});
+
+// Reads `path` into `out` as linear float, all channels.
+std::string read_image(const std::string& path, Image& out);
+
+// Display encoding used by 8-bit outputs, exposed for tests: linear -> sRGB in [0,1].
+float srgb_encode(float linear);
+float srgb_decode(float encoded);
+float tonemap_value(float linear, ToneMap tm);
+
+} // namespace lobe::image
