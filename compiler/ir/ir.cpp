@@ -1,0 +1,90 @@
+// Small helpers of the IR data structures: names of enums, type strings, symbol look-up, and
+// the opcode table look-up (the table itself is in opcodes.h).
+#include "ir/ir.h"
+#include "ir/opcodes.h"
+
+#include <string_view>
+#include <unordered_map>
+
+namespace lobe::ir {
+
+const char* to_string(BaseType t) {
+  switch (t) {
+  case BaseType::Int: return "int";
+  case BaseType::Float: return "float";
+  case BaseType::Color: return "color";
+  case BaseType::Point: return "point";
+  case BaseType::Vector: return "vector";
+  case BaseType::Normal: return "normal";
+  case BaseType::Matrix: return "matrix";
+  case BaseType::String: return "string";
+  case BaseType::Closure: return "closure";
+  }
+  return "?";
+}
+
+std::optional<BaseType> base_type_from_string(const std::string& s) {
+  static constexpr BaseType kAll[] = {BaseType::Int,    BaseType::Float,  BaseType::Color,
+                                      BaseType::Point,  BaseType::Vector, BaseType::Normal,
+                                      BaseType::Matrix, BaseType::String, BaseType::Closure};
+  for (BaseType t : kAll)
+    if (s == to_string(t)) return t;
+  return std::nullopt;
+}
+
+int Type::components() const {
+  if (is_triple()) return 3;
+  if (base == BaseType::Matrix) return 16;
+  return 1;
+}
+
+std::string to_string(const Type& t) {
+  std::string s = to_string(t.base);
+  if (t.arraylen != 0) {
+    s.push_back('[');
+    if (t.arraylen > 0) s.append(std::to_string(t.arraylen));
+    s.push_back(']');
+  }
+  return s;
+}
+
+const char* to_string(SymKind k) {
+  switch (k) {
+  case SymKind::Param: return "param";
+  case SymKind::OutputParam: return "oparam";
+  case SymKind::Global: return "global";
+  case SymKind::Local: return "local";
+  case SymKind::Temp: return "temp";
+  case SymKind::Const: return "const";
+  }
+  return "?";
+}
+
+const char* to_string(ShaderType t) {
+  switch (t) {
+  case ShaderType::Surface: return "surface";
+  case ShaderType::Displacement: return "displacement";
+  case ShaderType::Volume: return "volume";
+  case ShaderType::Shader: return "shader";
+  }
+  return "?";
+}
+
+int Shader::find_symbol(const std::string& n) const {
+  for (size_t i = 0; i < symbols.size(); ++i)
+    if (symbols[i].name == n) return static_cast<int>(i);
+  return -1;
+}
+
+// A linear scan would do (about 130 entries), but codegen and the verifier look up every op.
+const OpcodeInfo* find_opcode(std::string_view name) {
+  static const std::unordered_map<std::string_view, const OpcodeInfo*> index = [] {
+    std::unordered_map<std::string_view, const OpcodeInfo*> m;
+    for (const OpcodeInfo& o : kOpcodes) m.emplace(o.name, &o);
+    return m;
+  }();
+  auto it = index.find(name);
+  return it == index.end() ? nullptr : it->second;
+}
+
+} // namespace lobe::ir
