@@ -10,6 +10,7 @@ PKGS=(
   nlohmann-json3-dev libcli11-dev libfmt-dev libtinyobjloader-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox                          # plots for `lobe brdf` and bench/
+  libpugixml-dev                       # OSL testrender XML scenes (renderer/scene)
 )
 missing=()
 for p in "${PKGS[@]}"; do

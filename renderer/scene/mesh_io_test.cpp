@@ -1,0 +1,98 @@
+// Mesh files: OBJ through tinyobjloader and our PLY reader (ascii and binary), written here
+// by hand so the expected values are known.
+#include "mesh_io.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+using namespace lobe;
+using namespace lobe::scene;
+
+namespace {
+std::string write_file(const std::string& name, const std::string& content) {
+  auto p = std::filesystem::temp_directory_path() / ("lobe_mesh_test_" + name);
+  std::ofstream(p, std::ios::binary) << content;
+  return p.string();
+}
+} // namespace
+
+TEST(MeshIo, ObjQuadIsTriangulatedWithNormals) {
+  std::string path = write_file("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\n"
+                                            "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                            "f 1/1/1 2/2/1 3/3/1 4/4/1\n");
+  Mesh m;
+  ASSERT_EQ(load_mesh(path, m), "");
+  EXPECT_EQ(m.indices.size(), 6u);
+  EXPECT_EQ(m.positions.size(), 4u);
+  ASSERT_EQ(m.normals.size(), 4u);
+  EXPECT_FLOAT_EQ(m.normals[0].z, 1.0f);
+  ASSERT_EQ(m.uvs.size(), 8u);
+}
+
+TEST(MeshIo, AsciiPly) {
+  std::string path =
+      write_file("a.ply", "ply\nformat ascii 1.0\ncomment hi\n"
+                          "element vertex 4\nproperty float x\nproperty float y\n"
+                          "property float z\nproperty uchar red\n"
+                          "element face 1\nproperty list uchar int vertex_indices\n"
+                          "end_header\n0 0 0 9\n2 0 0 9\n2 3 0 9\n0 3 0 9\n4 0 1 2 3\n");
+  Mesh m;
+  ASSERT_EQ(load_mesh(path, m), "");
+  ASSERT_EQ(m.positions.size(), 4u);
+  EXPECT_FLOAT_EQ(m.positions[2].y, 3.0f);
+  ASSERT_EQ(m.indices.size(), 6u); // fan: 0 1 2, 0 2 3
+  EXPECT_EQ(m.indices[3], 0u);
+  EXPECT_EQ(m.indices[5], 3u);
+  EXPECT_TRUE(m.normals.empty());
+}
+
+TEST(MeshIo, BinaryLittleEndianPly) {
+  std::string data = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+                     "property float y\nproperty float z\nproperty float nx\nproperty float ny\n"
+                     "property float nz\nelement face 1\nproperty list uchar uint vertex_indices\n"
+                     "end_header\n";
+  float v[3][6] = {{0, 0, 0, 0, 0, 1}, {1, 0, 0, 0, 0, 1}, {0, 1, 0, 0, 0, 1}};
+  data.append(reinterpret_cast<const char*>(v), sizeof v); // this machine is little-endian
+  unsigned char n = 3;
+  uint32_t idx[3] = {0, 1, 2};
+  data.append(reinterpret_cast<const char*>(&n), 1);
+  data.append(reinterpret_cast<const char*>(idx), sizeof idx);
+  Mesh m;
+  ASSERT_EQ(load_mesh(write_file("b.ply", data), m), "");
+  ASSERT_EQ(m.positions.size(), 3u);
+  EXPECT_FLOAT_EQ(m.positions[1].x, 1.0f);
+  ASSERT_EQ(m.normals.size(), 3u);
+  EXPECT_FLOAT_EQ(m.normals[2].z, 1.0f);
+  EXPECT_EQ(m.indices.size(), 3u);
+}
+
+TEST(MeshIo, PlyErrorsAreLocated) {
+  Mesh m;
+  std::string bad = write_file("bad.ply", "ply\nformat ascii 1.0\nelement vertex 2\n"
+                                          "property float x\nproperty float y\nproperty float z\n"
+                                          "element face 1\nproperty list uchar int vertex_indices\n"
+                                          "end_header\n0 0 0\n1 0 0\n3 0 1 7\n");
+  EXPECT_NE(load_mesh(bad, m).find("face index 7 out of range"), std::string::npos);
+  std::string trunc = write_file("trunc.ply", "ply\nformat ascii 1.0\nelement vertex 2\n"
+                                              "property float x\nend_header\n1\n");
+  EXPECT_NE(load_mesh(trunc, m).find("element 'vertex' 1, property 'x': unexpected end of data"),
+            std::string::npos);
+  EXPECT_NE(load_mesh(write_file("x.stl", ""), m).find("unknown mesh format"), std::string::npos);
+}
+
+TEST(MeshIo, TransformRotatesNormals) {
+  Mesh m;
+  m.positions = {{1, 0, 0}};
+  m.normals = {{1, 0, 0}};
+  // Non-uniform scale: a normal of the plane x + y = const must stay perpendicular to it.
+  m.normals = {{0.70710678f, 0.70710678f, 0}};
+  transform_mesh(m, Mat4::scale({2, 1, 1}));
+  // Plane x + y = c scaled by 2 in x becomes x/2 + y = c, normal ~ (1/2, 1, 0) normalised.
+  EXPECT_NEAR(m.normals[0].x, 0.5f / std::sqrt(1.25f), 1e-6);
+  EXPECT_NEAR(m.normals[0].y, 1.0f / std::sqrt(1.25f), 1e-6);
+  EXPECT_FLOAT_EQ(m.positions[0].x, 2.0f);
+}

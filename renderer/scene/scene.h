@@ -1,0 +1,107 @@
+// The scene description: what a scene file says, before anything is compiled or built.
+//
+// Loaders (JSON: scene_json.cpp, OSL testrender XML: scene_xml.cpp) fill a SceneDesc; the
+// renderer (renderer/render) turns it into an Embree scene, compiled materials and lights.
+// Nothing here touches Embree, LLVM or images, so loading is cheap and testable alone. Every
+// element keeps `where` (file and JSON pointer or line) so later stages can name it in errors.
+#pragma once
+
+#include "transform.h"
+
+#include "lobe/shadingsys.h"
+#include "lobe/vec.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lobe::scene {
+
+struct Camera {
+  Vec3 eye{0, 1, 5}, look_at{0, 0, 0}, up{0, 1, 0};
+  float fov = 40;           // vertical field of view, degrees
+  float aperture = 0;       // lens radius in scene units; 0 = pinhole
+  float focus_distance = 0; // 0 = distance from eye to look_at
+};
+
+// A material is a shader group; the last layer's Ci is the surface closure.
+struct MaterialDesc {
+  std::string name;
+  std::string where;
+  ShaderGroup group;
+};
+
+// Triangle mesh in world space (transforms are applied at load).
+struct Mesh {
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;     // per vertex, or empty
+  std::vector<float> uvs;        // 2 per vertex, or empty
+  std::vector<uint32_t> indices; // 3 per triangle
+};
+
+struct Shape {
+  enum class Kind { Mesh, Sphere, Quad } kind = Kind::Sphere;
+  Mesh mesh;   // Kind::Mesh
+  Vec3 center; // Kind::Sphere
+  float radius = 1;
+  Vec3 corner, edge_x, edge_y; // Kind::Quad: corner + s*edge_x + t*edge_y, s,t in [0,1]
+  int material = -1;           // index into SceneDesc::materials; -1 = default grey matte
+  std::string where;
+};
+
+struct Light {
+  enum class Kind { Point, Spot } kind = Kind::Point;
+  Vec3 position;
+  Vec3 direction{0, -1, 0};  // spot axis
+  Color3 intensity{1, 1, 1}; // radiant intensity (W/sr per channel) along the axis
+  float cone_angle = 30;     // spot: half-angle where the light ends, degrees
+  float falloff_angle = 5;   // spot: width of the smooth edge inside the cone, degrees
+  std::string where;
+};
+
+struct Environment {
+  enum class Kind { None, Constant, Map, Sky, Shader } kind = Kind::None;
+  Color3 color{1, 1, 1}; // Constant
+  std::string file;      // Map: lat-long .exr/.hdr, +Y up, u = 0 towards -Z... see docs
+  float intensity = 1;   // multiplies every kind
+  float rotation = 0;    // degrees about +Y
+  Vec3 sun_direction{0.4f, 0.7f, 0.3f}; // Sky: towards the sun
+  float sun_size = 2.0f;                // Sky: sun's angular diameter, degrees
+  int material = -1;                    // Shader: a material whose Ci holds background()
+  int resolution = 256;                 // Shader/Sky: lat-long table height (width = 2x)
+  std::string where;
+};
+
+struct Settings {
+  int width = 640, height = 360;
+  int spp = 16;
+  int max_depth = 8;
+  uint64_t seed = 0;
+  float exposure = 0;
+  std::string output;
+};
+
+struct SceneDesc {
+  std::string path; // file the scene came from ("<built-in>" for the default scene)
+  Camera camera;
+  Settings settings;
+  std::vector<MaterialDesc> materials;
+  std::vector<Shape> shapes;
+  std::vector<Light> lights;
+  Environment environment;
+  std::vector<std::string> warnings; // things the file said that the loader did not use
+};
+
+// Loads a .json or .xml scene. On failure returns nullopt and sets `error` to
+// "file: place: what was expected".
+std::optional<SceneDesc> load_scene(const std::string& path, std::string& error);
+std::optional<SceneDesc> load_json_scene(const std::string& path, std::string& error);
+std::optional<SceneDesc> load_xml_scene(const std::string& path, std::string& error);
+// Same, from text in memory (`path` is used for messages and relative file names).
+std::optional<SceneDesc> parse_json_scene(const std::string& text, const std::string& path,
+                                          std::string& error);
+std::optional<SceneDesc> parse_xml_scene(const std::string& text, const std::string& path,
+                                         std::string& error);
+
+} // namespace lobe::scene

@@ -1,0 +1,115 @@
+// JSON scene loading: values land where the format says, and errors name file, JSON pointer
+// and what was expected.
+#include "scene.h"
+
+#include <gtest/gtest.h>
+
+using namespace lobe;
+using namespace lobe::scene;
+
+namespace {
+SceneDesc ok(const std::string& text) {
+  std::string err;
+  auto s = parse_json_scene(text, "t.json", err);
+  EXPECT_TRUE(s.has_value()) << err;
+  return s ? *s : SceneDesc{};
+}
+std::string error_of(const std::string& text) {
+  std::string err;
+  auto s = parse_json_scene(text, "t.json", err);
+  EXPECT_FALSE(s.has_value());
+  return err;
+}
+} // namespace
+
+TEST(SceneJson, FullSceneLoads) {
+  SceneDesc s = ok(R"({
+    "camera": {"eye": [0, 2, 6], "look_at": [0, 1, 0], "fov": 35, "aperture": 0.05},
+    "settings": {"resolution": [320, 200], "spp": 8, "max_depth": 5, "seed": 7},
+    "materials": {
+      "red": {"shader": "matte", "params": {"Kd": 0.8, "Cs": [0.8, 0.1, 0.1],
+                                            "n": {"type": "int", "value": 3}}},
+      "glass": {"group": "param float ior 1.5 ; shader glass g1 ;"}
+    },
+    "shapes": [
+      {"type": "sphere", "center": [0, 1, 0], "radius": 0.5, "material": "red",
+       "transform": {"translate": [1, 0, 0], "scale": 2}},
+      {"type": "quad", "corner": [-5, 0, -5], "edge_x": [10, 0, 0], "edge_y": [0, 0, 10],
+       "material": "glass"}
+    ],
+    "lights": [{"type": "spot", "position": [0, 5, 0], "look_at": [0, 0, 0],
+                "intensity": 10, "cone_angle": 20, "falloff_angle": 5}],
+    "environment": {"type": "sky", "sun_direction": [0, 1, 1]}
+  })");
+  EXPECT_EQ(s.settings.width, 320);
+  EXPECT_EQ(s.settings.spp, 8);
+  EXPECT_EQ(s.settings.seed, 7u);
+  EXPECT_FLOAT_EQ(s.camera.aperture, 0.05f);
+  ASSERT_EQ(s.materials.size(), 2u);
+  const auto& layer = s.materials[0].group.layers.at(0);
+  EXPECT_EQ(layer.shader, "matte");
+  ASSERT_EQ(layer.values.size(), 3u);
+  EXPECT_EQ(layer.values[0].type, "float"); // file order: Kd, Cs, n
+  EXPECT_EQ(layer.values[1].type, "color");
+  EXPECT_EQ(layer.values[1].value, "0.8 0.1 0.1");
+  EXPECT_EQ(layer.values[2].type, "int");
+  EXPECT_EQ(layer.values[2].value, "3");
+  EXPECT_EQ(s.materials[1].group.layers.at(0).values.at(0).name, "ior");
+  ASSERT_EQ(s.shapes.size(), 2u);
+  // scale 2 first, then translate by 1: centre (0,1,0) -> (0,2,0) -> (1,2,0), radius 1.
+  EXPECT_FLOAT_EQ(s.shapes[0].center.x, 1.0f);
+  EXPECT_FLOAT_EQ(s.shapes[0].center.y, 2.0f);
+  EXPECT_FLOAT_EQ(s.shapes[0].radius, 1.0f);
+  EXPECT_EQ(s.shapes[1].material, 1);
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_FLOAT_EQ(s.lights[0].direction.y, -1.0f);
+  EXPECT_EQ(s.environment.kind, Environment::Kind::Sky);
+}
+
+TEST(SceneJson, LayersAndConnections) {
+  SceneDesc s = ok(R"({"materials": {"m": {
+    "layers": [{"shader": "checker", "name": "tex", "params": {"scale": 4}},
+               {"shader": "matte", "name": "surf"}],
+    "connections": [["tex.Cout", "surf.Cs"]]}}})");
+  const ShaderGroup& g = s.materials.at(0).group;
+  ASSERT_EQ(g.layers.size(), 2u);
+  ASSERT_EQ(g.connections.size(), 1u);
+  EXPECT_EQ(g.connections[0].src_layer, "tex");
+  EXPECT_EQ(g.connections[0].dst_param, "Cs");
+}
+
+TEST(SceneJson, RotationTransformsQuadEdges) {
+  SceneDesc s = ok(R"({"shapes": [{"type": "quad", "corner": [1, 0, 0], "edge_x": [1, 0, 0],
+    "edge_y": [0, 1, 0], "transform": {"rotate": [90, 0, 0, 1]}}]})");
+  // 90 degrees about +Z maps +X to +Y and +Y to -X.
+  EXPECT_NEAR(s.shapes[0].corner.y, 1.0f, 1e-6);
+  EXPECT_NEAR(s.shapes[0].edge_x.y, 1.0f, 1e-6);
+  EXPECT_NEAR(s.shapes[0].edge_y.x, -1.0f, 1e-6);
+}
+
+TEST(SceneJson, ErrorsNamePointerAndExpectation) {
+  EXPECT_EQ(error_of(R"({"shapes": [{"type": "sphere", "radius": "big"}]})"),
+            "t.json: /shapes/0/radius: expected a number, found string");
+  EXPECT_EQ(error_of(R"({"shapes": [{"type": "sphere", "material": "nope"}]})"),
+            "t.json: /shapes/0/material: no material named 'nope' in /materials");
+  EXPECT_NE(
+      error_of(R"({"settings": {"spp": 0}})").find("/settings/spp: expected an integer in [1,"),
+      std::string::npos);
+  EXPECT_NE(error_of(R"({"camera": {"fvo": 3}})").find("/camera/fvo: unknown key"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"shapes": [{"type": "cone"}]})").find("/shapes/0/type: expected"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"shapes": [{"type": "sphere", "transform": {"scale": [1, 2, 1]}}]})")
+                .find("uniform"),
+            std::string::npos);
+}
+
+TEST(SceneJson, SyntaxErrorsGiveLineAndColumn) {
+  std::string err = error_of("{\n  \"camera\": {\n    \"fov\": ,\n  }\n}");
+  EXPECT_EQ(err.rfind("t.json:3:", 0), 0u) << err;
+}
+
+TEST(SceneJson, GroupTextErrorsAreLocated) {
+  std::string err = error_of(R"({"materials": {"m": {"group": "shader ; param"}}})");
+  EXPECT_NE(err.find("/materials/m/group"), std::string::npos) << err;
+}

@@ -1,0 +1,86 @@
+// OSL testrender XML scenes: shader groups bind to the shapes after them, the group before
+// <Background> is the background shader, and errors carry the line number.
+#include "group_text.h"
+#include "scene.h"
+
+#include <gtest/gtest.h>
+
+using namespace lobe;
+using namespace lobe::scene;
+
+TEST(SceneXml, TestrenderSceneLoads) {
+  const char* xml = R"(<World>
+  <Camera eye="0, 1, 5" look_at="0,0.5,0" fov="30" />
+  <ShaderGroup>
+    color Cs 0.7 0.2 0.2;
+    shader matte layer1;
+  </ShaderGroup>
+  <Sphere center="0,0.5,0" radius="0.5" />
+  <Quad corner="-3,0,-3" edge_x="6,0,0" edge_y="0,0,6" />
+  <ShaderGroup>param float Kd 1; shader envmap bg;</ShaderGroup>
+  <Background resolution="128" />
+</World>)";
+  std::string err;
+  auto s = parse_xml_scene(xml, "t.xml", err);
+  ASSERT_TRUE(s) << err;
+  EXPECT_FLOAT_EQ(s->camera.fov, 30.0f);
+  EXPECT_FLOAT_EQ(s->camera.look_at.y, 0.5f);
+  ASSERT_EQ(s->materials.size(), 2u);
+  ASSERT_EQ(s->materials[0].group.layers.size(), 1u);
+  const auto& v = s->materials[0].group.layers[0].values;
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_EQ(v[0].type, "color");
+  EXPECT_EQ(v[0].value, "0.7 0.2 0.2");
+  ASSERT_EQ(s->shapes.size(), 2u);
+  EXPECT_EQ(s->shapes[0].material, 0);
+  EXPECT_EQ(s->shapes[1].material, 0);
+  EXPECT_FLOAT_EQ(s->shapes[1].edge_y.z, 6.0f);
+  EXPECT_EQ(s->environment.kind, Environment::Kind::Shader);
+  EXPECT_EQ(s->environment.material, 1);
+  EXPECT_EQ(s->environment.resolution, 128);
+}
+
+TEST(SceneXml, ErrorsCarryLines) {
+  std::string err;
+  EXPECT_FALSE(
+      parse_xml_scene("<World>\n<Sphere center=\"0 0\" radius=\"1\"/>\n</World>", "t.xml", err));
+  EXPECT_EQ(err, "t.xml:2: attribute 'center' expects 3 number(s), found \"0 0\"");
+  EXPECT_FALSE(parse_xml_scene("<World>\n\n<Cone/>\n</World>", "t.xml", err));
+  EXPECT_EQ(err.rfind("t.xml:3: unknown element <Cone>", 0), 0u) << err;
+  EXPECT_FALSE(parse_xml_scene("<World>\n<Background/>\n</World>", "t.xml", err));
+  EXPECT_NE(err.find("needs a <ShaderGroup>"), std::string::npos);
+  EXPECT_FALSE(parse_xml_scene("<World><Sphere", "t.xml", err));
+  EXPECT_NE(err.find("invalid XML"), std::string::npos);
+}
+
+TEST(SceneXml, UnknownAttributesAreWarnings) {
+  std::string err;
+  auto s = parse_xml_scene("<World><Sphere center=\"0 0 0\" radius=\"1\" shiny=\"yes\"/></World>",
+                           "t.xml", err);
+  ASSERT_TRUE(s) << err;
+  ASSERT_EQ(s->warnings.size(), 1u);
+  EXPECT_NE(s->warnings[0].find("'shiny'"), std::string::npos);
+}
+
+TEST(GroupText, ParamsShadersAndConnections) {
+  std::string err;
+  auto g = parse_group_text(
+      "param string name \"a b\" ; param float[2] w 1 2; shader tex t1;\n shader matte m;"
+      " connect t1.Cout m.Cs ;",
+      "x", false, err);
+  ASSERT_TRUE(g) << err;
+  ASSERT_EQ(g->layers.size(), 2u);
+  ASSERT_EQ(g->layers[0].values.size(), 2u);
+  EXPECT_EQ(g->layers[0].values[0].value, "a b");
+  EXPECT_EQ(g->layers[0].values[1].type, "float[2]");
+  EXPECT_EQ(g->layers[0].values[1].value, "1 2");
+  EXPECT_TRUE(g->layers[1].values.empty());
+  ASSERT_EQ(g->connections.size(), 1u);
+  EXPECT_EQ(g->connections[0].src_param, "Cout");
+  // Bare form only where allowed.
+  EXPECT_FALSE(parse_group_text("float Kd 1; shader m l;", "x", false, err));
+  EXPECT_EQ(err, "x: line 1: expected `param`, `shader` or `connect`, found `float`");
+  EXPECT_TRUE(parse_group_text("float Kd 1; shader m l;", "x", true, err));
+  EXPECT_FALSE(parse_group_text("shader m l;\nparam float Kd 1;", "x", false, err));
+  EXPECT_EQ(err, "x: line 2: parameter values after the last `shader`");
+}
