@@ -1,0 +1,45 @@
+// Shared settings and helpers of the closure property suites. The same test sources build
+// twice: closure_properties_test (quick level, default suite) and closure_properties_heavy_test
+// (full grids and 1e6-sample chi-square, CTest label `heavy`), selected by LOBE_VERIFY_FULL.
+#pragma once
+
+#include "closure_lobe.h"
+#include "closure_registry.h"
+#include "configs.h"
+
+#include <string>
+#include <vector>
+
+namespace lobe::verify::suite {
+
+struct Settings {
+  Level level;
+  uint64_t chi2_samples;
+  int chi2_max_sub;
+  uint64_t consistency_samples;
+  uint64_t albedo_samples;
+  uint64_t quadrature_evals;
+  uint64_t reciprocity_pairs;
+  uint64_t stress_random;
+  uint64_t param_stress_random;
+};
+
+#ifdef LOBE_VERIFY_FULL
+inline constexpr Settings kSettings{Level::Full, 1000000, 32,     200000, 1000000,
+                                    3000000,     100000,  100000, 1000};
+#else
+inline constexpr Settings kSettings{Level::Quick, 100000, 16, 10000, 50000, 400000, 5000, 5000, 0};
+#endif
+
+// Registry ids of every testable closure (a BSDF entry with an implementation).
+inline std::vector<int> testable_ids() {
+  std::vector<int> ids;
+  for (int id = 0; id < static_cast<int>(registry::closures().size()); ++id)
+    if (is_testable(id)) ids.push_back(id);
+  return ids;
+}
+
+// gtest parameter names: the registry key.
+inline std::string key_name(int id) { return registry::closures()[id].key; }
+
+} // namespace lobe::verify::suite
