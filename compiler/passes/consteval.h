@@ -1,0 +1,29 @@
+// Compile-time evaluation of one op over constant operands, with the run-time semantics of
+// docs/ir.md (conversion to the destination type, division by zero gives 0, ...). Used by
+// constant folding. Covers the core arithmetic, comparison, integer, component and common
+// math ops; anything else is "not evaluable" (std::nullopt), never a guess.
+#pragma once
+
+#include "ir/ir.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lobe::passes {
+
+struct ConstArg {
+  ir::Type type;
+  const std::vector<ir::ConstValue>* value;
+};
+
+// Converts a constant by the `assign` rules; nullopt if not a defined conversion.
+std::optional<std::vector<ir::ConstValue>> convert_const(const ir::Type& from,
+                                                         const std::vector<ir::ConstValue>& v,
+                                                         const ir::Type& to);
+
+// The value the op `opcode dst srcs...` writes to dst (of type `dst`), or nullopt.
+std::optional<std::vector<ir::ConstValue>> evaluate(const std::string& opcode, const ir::Type& dst,
+                                                    const std::vector<ConstArg>& srcs);
+
+} // namespace lobe::passes

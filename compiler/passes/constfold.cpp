@@ -1,0 +1,158 @@
+// Implements fold_constants: one forward walk over the ops with a per-block map from symbol to
+// the Const symbol holding its current value (cleared at jump targets, region starts and after
+// jumps, where values from other paths could arrive).
+#include "passes/constfold.h"
+#include "ir/edit.h"
+#include "ir/opcodes.h"
+#include "passes/consteval.h"
+
+#include <set>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace lobe::passes {
+
+using namespace ir;
+
+namespace {
+
+class Folder {
+public:
+  explicit Folder(Shader& sh) : sh_(sh) {}
+  bool run();
+
+private:
+  bool is_const(int s) const { return sh_.symbols[s].kind == SymKind::Const; }
+  bool is_closure(int s) const { return sh_.symbols[s].type == Type{BaseType::Closure}; }
+  bool is_null(int s) const {
+    return null_.count(s) || (is_const(s) && sh_.symbols[s].type == Type{BaseType::Int});
+  }
+  void substitute(Op& op);
+  bool fold(Op& op);
+  bool fold_closure(Op& op);
+  bool all_zero(int s) const;
+  void make_assign(Op& op, int dst, int src);
+  void record(const Op& op);
+
+  Shader& sh_;
+  std::unordered_map<int, int> known_; // symbol -> Const symbol with its value
+  std::unordered_set<int> null_;       // closure symbols known to hold the null closure
+  bool changed_ = false;
+};
+
+void Folder::substitute(Op& op) {
+  if (op.opcode == "useparam" || op.opcode == "isconnected" || op.opcode == "isconstant")
+    return;
+  for (size_t i = 0; i < op.args.size(); ++i) {
+    if (op.writes(int(i))) continue;
+    auto it = known_.find(op.args[i]);
+    if (it == known_.end()) continue;
+    op.args[i] = it->second;
+    changed_ = true;
+  }
+}
+
+bool Folder::all_zero(int s) const {
+  if (!is_const(s)) return false;
+  const Symbol& sym = sh_.symbols[s];
+  for (const ConstValue& c : sym.init)
+    if ((sym.type.base == BaseType::Int ? c.i != 0 : c.f != 0.0f)) return false;
+  return !sym.init.empty();
+}
+
+void Folder::make_assign(Op& op, int dst, int src) {
+  op.opcode = "assign";
+  op.args = {dst, src};
+  op.written_mask = 1;
+  op.jumps.clear();
+  changed_ = true;
+}
+
+// add/mul/neg on closures with a null operand or a zero weight.
+bool Folder::fold_closure(Op& op) {
+  int dst = op.args[0];
+  if (op.opcode == "add" && op.args.size() == 3) {
+    int a = op.args[1], b = op.args[2];
+    if (is_null(a)) return make_assign(op, dst, b), true;
+    if (is_null(b)) return make_assign(op, dst, a), true;
+  } else if (op.opcode == "mul" && op.args.size() == 3) {
+    int a = op.args[1], b = op.args[2];
+    int k = is_closure(a) ? a : b, w = is_closure(a) ? b : a;
+    if (is_null(k) || all_zero(w)) return make_assign(op, dst, intern_int(sh_, 0)), true;
+  } else if (op.opcode == "neg" && op.args.size() == 2 && is_null(op.args[1])) {
+    return make_assign(op, dst, intern_int(sh_, 0)), true;
+  }
+  return false;
+}
+
+bool Folder::fold(Op& op) {
+  if (op.opcode == "cbr" && !op.args.empty() && is_const(op.args[0]) && op.jumps.size() == 2) {
+    const Symbol& c = sh_.symbols[op.args[0]];
+    bool taken = c.type.base == BaseType::Int ? c.init[0].i != 0 : c.init[0].f != 0.0f;
+    op.opcode = "br";
+    op.jumps = {op.jumps[taken ? 0 : 1]};
+    op.args.clear();
+    op.written_mask = 0;
+    changed_ = true;
+    return true;
+  }
+  if (op.args.empty() || op.written_mask != 1 || is_const(op.args[0])) return false;
+  if (is_closure(op.args[0])) return fold_closure(op);
+  const OpcodeInfo* info = find_opcode(op.opcode);
+  if (!info || !(info->flags & kPure)) return false;
+  std::vector<ConstArg> srcs;
+  for (size_t i = 1; i < op.args.size(); ++i) {
+    if (!is_const(op.args[i])) return false;
+    const Symbol& s = sh_.symbols[op.args[i]];
+    srcs.push_back({s.type, &s.init});
+  }
+  Type dt = sh_.symbols[op.args[0]].type;
+  auto v = evaluate(op.opcode, dt, srcs);
+  if (!v) return false;
+  int c = intern_const(sh_, dt, *v);
+  if (op.opcode == "assign" && op.args[1] == c) return false;
+  make_assign(op, op.args[0], c);
+  return true;
+}
+
+// Updates the known values after `op` ran.
+void Folder::record(const Op& op) {
+  for (size_t i = 0; i < op.args.size(); ++i) {
+    if (!op.writes(int(i))) continue;
+    known_.erase(op.args[i]);
+    null_.erase(op.args[i]);
+  }
+  if (op.opcode != "assign" || op.args.size() != 2 || !is_const(op.args[1])) return;
+  int dst = op.args[0], src = op.args[1];
+  if (is_closure(dst)) {
+    null_.insert(dst);
+    return;
+  }
+  const Symbol& s = sh_.symbols[src];
+  Type dt = sh_.symbols[dst].type;
+  auto v = convert_const(s.type, s.init, dt);
+  if (v && !dt.is_array()) known_[dst] = intern_const(sh_, dt, *v);
+}
+
+bool Folder::run() {
+  std::set<int> starts = {sh_.main_begin};
+  for (const Op& op : sh_.ops) starts.insert(op.jumps.begin(), op.jumps.end());
+  for (const Symbol& s : sh_.symbols)
+    if (s.init_begin >= 0) starts.insert(s.init_begin);
+  for (size_t i = 0; i < sh_.ops.size(); ++i) {
+    if (starts.count(int(i))) known_.clear(), null_.clear();
+    Op& op = sh_.ops[i];
+    substitute(op);
+    fold(op);
+    record(sh_.ops[i]);
+    const OpcodeInfo* info = find_opcode(sh_.ops[i].opcode);
+    if (info && (info->flags & kJump)) known_.clear(), null_.clear();
+  }
+  return changed_;
+}
+
+} // namespace
+
+bool fold_constants(Shader& shader) { return Folder(shader).run(); }
+
+} // namespace lobe::passes

@@ -1,0 +1,20 @@
+// Constant folding and propagation, on any ir::Shader (the runtime re-runs it after turning
+// instance values into Const symbols):
+//  * within a basic block, a symbol last assigned a constant is replaced by that constant in
+//    the ops that read it;
+//  * a pure op whose inputs are all constants becomes `assign dst $c` (values computed with
+//    the run-time semantics, consteval.h);
+//  * `cbr` on a constant becomes `br` to the taken target;
+//  * closure algebra: a closure scaled by a zero weight becomes the null closure, adding a null
+//    closure becomes a copy of the other operand.
+// Leaves dead ops and unreachable code for dead-code elimination (dce.h).
+#pragma once
+
+#include "ir/ir.h"
+
+namespace lobe::passes {
+
+// Returns whether the shader changed.
+bool fold_constants(ir::Shader& shader);
+
+} // namespace lobe::passes

@@ -1,0 +1,17 @@
+// Dead-code elimination, on any ir::Shader (the runtime re-runs it after specialisation):
+//  * ops no path reaches (from main_begin, or from a parameter's init_begin) are removed;
+//  * jumps to the next op, `nop`s and self-assignments are removed; a `cbr` whose targets are
+//    equal becomes a `br`;
+//  * ops without effects (not kEffect, not a jump) whose written symbols are never read, and
+//    are not observable (globals, parameters), are removed, to a fixed point;
+//  * Temp, Local and Const symbols no op references any more are removed.
+#pragma once
+
+#include "ir/ir.h"
+
+namespace lobe::passes {
+
+// Returns whether the shader changed.
+bool eliminate_dead_code(ir::Shader& shader);
+
+} // namespace lobe::passes

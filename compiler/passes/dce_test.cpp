@@ -1,0 +1,162 @@
+// Dead-code elimination on hand-written IR, text in and text out.
+#include "passes/constfold.h"
+#include "passes/dce.h"
+#include "passes/pass_test_util.h"
+
+using lobe::passes::eliminate_dead_code;
+using lobe::passes::fold_constants;
+using lobe::passes::testing::run_pass;
+
+namespace {
+
+TEST(Dce, RemovesUnreadTempsUnreachableOpsAndUnusedSymbols) {
+  const char* in = R"(lobe-ir 1
+surface s
+symbols
+  oparam float f = 0
+  global float u
+  temp float $t0
+  temp float $t1
+  local int t
+  const int $c0 = 0
+  const float $c1 = 2
+main
+  mul $t0 u $c1
+  mul $t1 $t0 $c1
+  assign f $t0
+  br -> Lend
+  assign f u
+  nop
+Lend:
+  assign f f
+  printf $c2 $t1
+end
+)";
+  std::string text = in;
+  text.replace(text.find("main\n"), 5, "  const string $c2 = \"%g\"\nmain\n");
+  bool changed = false;
+  std::string out = run_pass(text, eliminate_dead_code, &changed);
+  EXPECT_TRUE(changed);
+  EXPECT_EQ(out, R"(lobe-ir 1
+surface s
+symbols
+  oparam float f = 0
+  global float u
+  temp float $t0
+  temp float $t1
+  const float $c1 = 2
+  const string $c2 = "%g"
+main
+  mul $t0 u $c1
+  mul $t1 $t0 $c1
+  assign f $t0
+  printf $c2 $t1
+end
+)");
+}
+
+TEST(Dce, KeepsLoopsAndRemapsJumps) {
+  const char* in = R"(lobe-ir 1
+surface s
+symbols
+  oparam float f = 0
+  local int i
+  local int t
+  local float dead
+  const int $c0 = 0
+  const int $c1 = 4
+  const int $c2 = 1
+main
+  assign i $c0
+  assign dead $c2
+Lc:
+  lt t i $c1
+  cbr t -> Lb Ld
+Lb:
+  add f f i
+  add i i $c2
+  br -> Lc
+Ld:
+end
+)";
+  std::string out = run_pass(in, eliminate_dead_code);
+  EXPECT_NE(out.find(R"(main
+  assign i $c0
+L1:
+  lt t i $c1
+  cbr t -> L3 L6
+L3:
+  add f f i
+  add i i $c2
+  br -> L1
+L6:
+end
+)"), std::string::npos) << out;
+  EXPECT_EQ(out.find("dead"), std::string::npos);
+}
+
+TEST(Dce, InitRangesShrinkWithRemovedOps) {
+  const char* in = R"(lobe-ir 1
+surface s
+symbols
+  param float a init=0:3
+  param float b init=3:4
+  global float u
+  temp float $t0
+init
+  assign $t0 u
+  nop
+  assign a u
+  assign b a
+main
+  nop
+  assign u b
+end
+)";
+  std::string out = run_pass(in, eliminate_dead_code);
+  EXPECT_EQ(out, R"(lobe-ir 1
+surface s
+symbols
+  param float a init=0:1
+  param float b init=1:2
+  global float u
+init
+  assign a u
+  assign b a
+main
+  assign u b
+end
+)");
+}
+
+TEST(Dce, FoldThenDceRemovesDeadBranch) {
+  const char* in = R"(lobe-ir 1
+surface s
+symbols
+  const int On = 0
+  global closure Ci
+  global normal N
+  local closure c
+  const string $c0 = "diffuse"
+  const string $c1 = "emission"
+main
+  cbr On -> Lyes Lno
+Lyes:
+  closure c $c1
+  br -> Ldone
+Lno:
+  closure c $c0 N
+Ldone:
+  assign Ci c
+end
+)";
+  std::string folded = run_pass(in, fold_constants);
+  std::string out = run_pass(folded, eliminate_dead_code);
+  EXPECT_NE(out.find("main\n  closure c $c0 N\n  assign Ci c\nend\n"), std::string::npos) << out;
+  EXPECT_EQ(out.find("emission"), std::string::npos) << out;
+  bool changed = true;
+  run_pass(out, eliminate_dead_code, &changed);
+  EXPECT_FALSE(changed);
+}
+
+} // namespace

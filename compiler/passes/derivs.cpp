@@ -1,0 +1,55 @@
+// Implements analyze_derivatives: seeds from the opcode table's `derivs` masks, then a
+// fixed-point backward propagation over all ops (control flow does not matter: a symbol
+// needs derivatives if any write of it feeds a derivative read on some path, and symbols are
+// not SSA, so the flag is per symbol, as in OSL).
+#include "passes/derivs.h"
+#include "ir/edit.h"
+#include "ir/opcodes.h"
+
+#include <vector>
+
+namespace lobe::passes {
+
+using namespace ir;
+
+static bool can_carry(const Symbol& s) {
+  if (s.kind == SymKind::Const) return false;
+  BaseType b = s.type.base;
+  return b == BaseType::Float || s.type.is_triple();
+}
+
+bool analyze_derivatives(Shader& sh) {
+  std::vector<bool> need(sh.symbols.size(), false);
+  auto mark = [&](int sym) {
+    if (need[sym] || !can_carry(sh.symbols[sym])) return false;
+    need[sym] = true;
+    return true;
+  };
+  for (const Op& op : sh.ops) {
+    const OpcodeInfo* info = find_opcode(op.opcode);
+    if (!info) continue;
+    for (size_t i = 0; i < op.args.size() && i < 32; ++i)
+      if ((info->derivs >> i) & 1u) mark(op.args[i]);
+  }
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const Op& op : sh.ops) {
+      const OpcodeInfo* info = find_opcode(op.opcode);
+      if (!info || !(info->flags & kPropagates)) continue;
+      bool result_needs = false;
+      for (size_t i = 0; i < op.args.size(); ++i)
+        if (op.writes(int(i)) && need[op.args[i]]) result_needs = true;
+      if (!result_needs) continue;
+      for (size_t i = 0; i < op.args.size(); ++i)
+        if (op_reads(op, int(i))) grew |= mark(op.args[i]);
+    }
+  }
+  bool changed = false;
+  for (size_t i = 0; i < sh.symbols.size(); ++i) {
+    changed |= sh.symbols[i].derivs != need[i];
+    sh.symbols[i].derivs = need[i];
+  }
+  return changed;
+}
+
+} // namespace lobe::passes
