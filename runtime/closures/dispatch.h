@@ -16,7 +16,7 @@
 
 namespace lobe::closures {
 
-template <class P> const P& as(const unsigned char* p) { return *reinterpret_cast<const P*>(p); }
+template <class P> const P& as(const unsigned char* p) { return as_params<P>(p); }
 
 // Calls fn(lobe, frame) for closure `id` and returns true; false when `id` has no BSDF lobe or
 // its parameters are degenerate (zero/NaN normal).

@@ -126,6 +126,10 @@ struct MeasuredParams {
   Str label;
 };
 
+template <class P> const P& as_params(const unsigned char* p) {
+  return *reinterpret_cast<const P*>(p);
+}
+
 // Registry ids, resolved at compile time.
 #define LOBE_ID(name, key) inline constexpr int name = registry::table::index_of(key)
 LOBE_ID(kDiffuseId, "diffuse");

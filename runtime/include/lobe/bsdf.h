@@ -52,7 +52,8 @@ struct Lobe {
   int32_t id = -1;
   Color3 weight;
   const unsigned char* params = nullptr;
-  float select_weight = 0; // luminance(weight * albedo(wo)), set by prepare()
+  float select_weight = 0; // luminance(weight * albedo(wo)), set by build()
+  uint32_t flags = 0;      // LobeFlags of this lobe (set by build())
 };
 
 class Bsdf {
@@ -86,6 +87,7 @@ private:
   Lobe lobes_[kMaxLobes];
   int n_lobes_ = 0;
   float total_select_ = 0;
+  Vec3 ng_; // normalised geometric normal, (0,0,0) when unknown: no side test
 };
 
 // Human-readable form of a closure tree in OSL's print format:

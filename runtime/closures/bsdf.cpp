@@ -1,0 +1,165 @@
+// Bsdf (bsdf.h): a closure tree flattened into weighted lobes, sampled as a mixture.
+//
+// Layering model, layer(top, base): the top's lobes keep their weight; the base's weight is
+// multiplied, per channel, by 1 - A_top(wo), where A_top is the top's directional albedo at
+// the viewing direction (clamped to [0, 1]). The total albedo is then A_top + (1 - A_top)
+// A_base <= 1, so layering never creates energy. The attenuation uses wo only: the model is
+// not reciprocal (documented in docs/closures.md). Base emission is attenuated the same way.
+//
+// Geometric-normal side test: when Ng is given, a direction pair on the same side of Ng
+// counts as reflection and only reflecting lobes see it; opposite sides only transmitting
+// lobes. This is what stops light leaks through shading normals.
+#include "lobe/bsdf.h"
+#include "closure_registry.h"
+#include "closures.h"
+#include "common.h"
+#include "params.h"
+
+namespace lobe {
+namespace {
+
+using closures::luminance;
+
+bool usable_weight(const Color3& w) {
+  return is_finite(w) && (w.x > 0.0f || w.y > 0.0f || w.z > 0.0f);
+}
+
+// Collects a tree into a Bsdf; one instance per build() call.
+struct Flattener {
+  Bsdf& bsdf;
+  Lobe* lobes;
+  int& n;
+  const Vec3& wo;
+
+  void visit(const ClosureNode* node, const Color3& w, int depth) {
+    if (!node || depth > 64 || !is_finite(w)) return;
+    if (node->id == kClosureAdd) {
+      const auto* a = static_cast<const ClosureAdd*>(node);
+      visit(a->a, w, depth + 1);
+      visit(a->b, w, depth + 1);
+    } else if (node->id == kClosureMul) {
+      const auto* m = static_cast<const ClosureMul*>(node);
+      visit(m->closure, w * m->weight, depth + 1);
+    } else if (node->id >= 0 && node->id < static_cast<int>(registry::closures().size())) {
+      const auto* c = static_cast<const ClosureComponent*>(node);
+      component(c->id, c->params(), w * c->weight, depth);
+    }
+  }
+
+  void component(int id, const unsigned char* p, const Color3& w, int depth) {
+    uint32_t fl = registry::closures()[id].flags;
+    if (fl & registry::kLayer) return layer(p, w, depth);
+    if (!usable_weight(w)) return;
+    if (fl & registry::kEmission) {
+      Color3 e =
+          id == closures::kUniformEdfId
+              ? closures::sanitize(closures::as_params<closures::EmittanceParams>(p).emittance)
+              : Color3{1, 1, 1};
+      bsdf.emission += w * e;
+    }
+    if (fl & registry::kTransparent) bsdf.transparency += w;
+    if (fl & registry::kHoldout) bsdf.holdout += w;
+    if (fl & registry::kBackground) bsdf.background += w;
+    if (fl & registry::kDebug) {
+      bsdf.debug_tag = closures::as_params<closures::DebugParams>(p).tag;
+      bsdf.debug_weight += w;
+    }
+    if (!(fl & (registry::kReflect | registry::kTransmit))) return;
+    if (n >= Bsdf::kMaxLobes || closures::lobe_flags(id, p) == 0) return;
+    lobes[n++] = Lobe{id, w, p, 0.0f};
+  }
+
+  void layer(const unsigned char* p, const Color3& w, int depth) {
+    const auto& q = closures::as_params<closures::LayerParams>(p);
+    int first = n;
+    visit(q.top, w, depth + 1);
+    Color3 a; // top albedo per unit weight
+    for (int i = first; i < n; ++i)
+      a += lobes[i].weight * closures::albedo(lobes[i].id, lobes[i].params, wo);
+    auto frac = [](float x, float wc) {
+      return wc > 0.0f ? closures::clampf(x / wc, 0.0f, 1.0f) : 1.0f;
+    };
+    Color3 t = {1.0f - frac(a.x, w.x), 1.0f - frac(a.y, w.y), 1.0f - frac(a.z, w.z)};
+    visit(q.base, w * t, depth + 1);
+  }
+};
+
+// Lobe i sees the pair (wo, wi) given the geometric side test.
+bool side_ok(uint32_t flags, const Vec3& wo, const Vec3& wi, const Vec3& ng) {
+  if (is_zero(ng)) return true;
+  bool reflect = dot(wo, ng) * dot(wi, ng) > 0.0f;
+  return reflect ? (flags & kLobeReflect) != 0 : (flags & kLobeTransmit) != 0;
+}
+
+} // namespace
+
+void Bsdf::build(const ClosureNode* closure, const Vec3& wo, const Vec3& Ng) {
+  *this = Bsdf{};
+  ng_ = normalize(Ng);
+  Flattener f{*this, lobes_, n_lobes_, wo};
+  f.visit(closure, Color3{1, 1, 1}, 0);
+  total_select_ = 0.0f;
+  for (int i = 0; i < n_lobes_; ++i) {
+    Lobe& l = lobes_[i];
+    l.flags = closures::lobe_flags(l.id, l.params);
+    float s = luminance(l.weight * closures::albedo(l.id, l.params, wo));
+    // A lobe with no albedo estimate at wo still gets a small share, so that it is sampled.
+    l.select_weight = closures::maxf(s, 1e-3f * luminance(l.weight));
+    total_select_ += l.select_weight;
+  }
+}
+
+bool Bsdf::has_non_delta() const {
+  for (int i = 0; i < n_lobes_; ++i)
+    if (!(lobes_[i].flags & kLobeSpecular)) return true;
+  return false;
+}
+
+BsdfEval Bsdf::eval(const Vec3& wo, const Vec3& wi, Transport mode) const {
+  BsdfEval r;
+  if (!(total_select_ > 0.0f)) return r;
+  for (int i = 0; i < n_lobes_; ++i) {
+    const Lobe& l = lobes_[i];
+    if ((l.flags & kLobeSpecular) || !side_ok(l.flags, wo, wi, ng_)) continue;
+    BsdfEval e = closures::eval(l.id, l.params, wo, wi, mode);
+    r.value += l.weight * e.value;
+    r.pdf += (l.select_weight / total_select_) * e.pdf;
+  }
+  r.value = closures::sanitize(r.value);
+  if (!(r.pdf > 0.0f && r.pdf < INFINITY)) r.pdf = 0.0f;
+  return r;
+}
+
+float Bsdf::pdf(const Vec3& wo, const Vec3& wi) const { return eval(wo, wi).pdf; }
+
+std::optional<BsdfSample> Bsdf::sample(const Vec3& wo, const Vec3& u, Transport mode) const {
+  if (!(total_select_ > 0.0f)) return std::nullopt;
+  // Pick lobe i with probability select_weight / total; re-use u.x within the chosen slice.
+  float x = closures::clampf(u.x, 0.0f, closures::kOneMinusEpsilon) * total_select_;
+  int i = 0;
+  while (i < n_lobes_ - 1 && x >= lobes_[i].select_weight) x -= lobes_[i++].select_weight;
+  const Lobe& l = lobes_[i];
+  float p_pick = l.select_weight / total_select_;
+  float ux = closures::clampf(x / l.select_weight, 0.0f, closures::kOneMinusEpsilon);
+  auto s = closures::sample(l.id, l.params, wo, {ux, u.y, u.z}, mode);
+  if (!s || !side_ok(s->flags, wo, s->wi, ng_)) return std::nullopt;
+  if (s->flags & kLobeSpecular) {
+    s->weight = closures::sanitize(l.weight * s->weight / p_pick);
+    s->pdf = p_pick;
+    return s;
+  }
+  BsdfEval e = eval(wo, s->wi, mode);
+  if (!(e.pdf > 0.0f)) return std::nullopt;
+  s->weight = closures::sanitize(e.value / e.pdf);
+  s->pdf = e.pdf;
+  return s;
+}
+
+Color3 Bsdf::albedo(const Vec3& wo) const {
+  Color3 a;
+  for (int i = 0; i < n_lobes_; ++i)
+    a += lobes_[i].weight * closures::albedo(lobes_[i].id, lobes_[i].params, wo);
+  return a;
+}
+
+} // namespace lobe
