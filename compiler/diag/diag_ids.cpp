@@ -1,0 +1,137 @@
+// The diagnostic table. Columns: id, name (for tests), severity, message template.
+// Entries are in enum order; diag_test checks that every id maps to its own row.
+#include "diag/diag_ids.h"
+
+namespace lobe::diag {
+namespace {
+
+struct Row {
+  DiagId id;
+  const char* name;
+  DiagInfo info;
+};
+#define ROW(ID, SEV, FMT)                                                                          \
+  {                                                                                                \
+    DiagId::ID, #ID, { DiagId::ID, Severity::SEV, FMT }                                            \
+  }
+
+const Row kTable[] = {
+    ROW(err_file_not_found, Error, "cannot open file '%0'"),
+    ROW(fatal_too_many_errors, Fatal, "too many errors emitted, stopping now"),
+    // lexer
+    ROW(err_invalid_char, Error, "invalid character '%0' in source"),
+    ROW(err_binary_input, Error, "source contains a NUL byte (binary input?)"),
+    ROW(err_unterminated_string, Error, "missing terminating '\"' character"),
+    ROW(err_unterminated_comment, Error, "unterminated /* comment"),
+    ROW(warn_unknown_escape, Warning, "unknown escape sequence '\\%0'"),
+    ROW(err_bad_number, Error, "invalid numeric literal '%0'"),
+    ROW(err_int_too_large, Error, "integer literal '%0' is too large for int"),
+    ROW(err_unterminated_metadata, Error, "unterminated metadata block '[['"),
+    // preprocessor
+    ROW(err_include_not_found, Error, "'%0' file not found"),
+    ROW(err_include_depth, Error, "#include nested too deeply (limit %0)"),
+    ROW(err_include_cycle, Error, "#include cycle: '%0' is already being included"),
+    ROW(err_include_syntax, Error, "#include expects \"FILENAME\" or <FILENAME>"),
+    ROW(err_unknown_directive, Error, "invalid preprocessing directive '#%0'"),
+    ROW(warn_macro_redefined, Warning, "'%0' macro redefined"),
+    ROW(note_previous_definition, Note, "previous definition is here"),
+    ROW(err_macro_name_missing, Error, "macro name missing"),
+    ROW(err_macro_param_list, Error, "invalid macro parameter list: %0"),
+    ROW(err_macro_arg_count, Error, "macro '%0' requires %1 arguments, but %2 given"),
+    ROW(err_macro_unterminated_call, Error, "unterminated argument list invoking macro '%0'"),
+    ROW(err_hash_not_param, Error, "'#' is not followed by a macro parameter"),
+    ROW(err_paste_at_edge, Error, "'##' cannot appear at either end of a macro expansion"),
+    ROW(err_macro_expansion_too_large, Error, "macro expansion of '%0' is too deep or too large"),
+    ROW(note_expanded_from, Note, "expanded from macro '%0'"),
+    ROW(err_else_without_if, Error, "#%0 without #if"),
+    ROW(err_endif_without_if, Error, "#endif without #if"),
+    ROW(err_elif_after_else, Error, "#elif after #else"),
+    ROW(err_else_after_else, Error, "#else after #else"),
+    ROW(err_unterminated_conditional, Error, "unterminated conditional directive"),
+    ROW(err_pp_expr, Error, "invalid #if expression: %0"),
+    ROW(err_pragma_error, Error, "%0"),
+    ROW(warn_pragma_warning, Warning, "%0"),
+    ROW(err_bad_line_directive, Error, "#line directive requires a positive line number"),
+    ROW(warn_extra_tokens, Warning, "extra tokens at end of #%0 directive"),
+    // parser
+    ROW(err_expected, Error, "expected %0"),
+    ROW(err_expected_found, Error, "expected %0, found '%1'"),
+    ROW(err_expected_expression, Error, "expected expression, found '%0'"),
+    ROW(err_expected_declaration, Error,
+        "expected a shader, function or struct declaration, found '%0'"),
+    ROW(err_expected_type, Error, "expected a type name, found '%0'"),
+    ROW(err_nesting_too_deep, Error, "nesting too deep (limit %0)"),
+    ROW(err_param_needs_default, Error, "shader parameter '%0' needs a default value"),
+    ROW(note_to_match, Note, "to match this '%0'"),
+    ROW(err_unknown_type, Error, "unknown type name '%0'"),
+    ROW(err_array_size, Error, "array size must be a positive integer literal"),
+    // sema
+    ROW(err_undeclared, Error, "use of undeclared identifier '%0'"),
+    ROW(err_redefinition, Error, "redefinition of '%0'"),
+    ROW(note_previous_decl, Note, "previous definition is here"),
+    ROW(err_unknown_function, Error, "use of undeclared function '%0'"),
+    ROW(err_no_matching_call, Error, "no matching function for call to '%0(%1)'"),
+    ROW(err_ambiguous_call, Error, "call to '%0(%1)' is ambiguous"),
+    ROW(note_candidate, Note, "candidate: %0"),
+    ROW(err_bad_binary, Error, "invalid operands to binary '%0' ('%1' and '%2')"),
+    ROW(err_bad_unary, Error, "invalid operand to unary '%0' ('%1')"),
+    ROW(err_cannot_assign, Error, "cannot assign '%0' to '%1'"),
+    ROW(err_not_assignable, Error, "expression is not assignable"),
+    ROW(err_write_readonly_param, Error,
+        "cannot write to parameter '%0': it is not declared 'output'"),
+    ROW(err_write_readonly_global, Error, "cannot write to global '%0' in a %1"),
+    ROW(err_output_arg_not_lvalue, Error,
+        "argument %0 of '%1' is an output parameter and needs a writable variable"),
+    ROW(err_missing_return, Error, "non-void function '%0' does not return a value"),
+    ROW(err_return_value_in_void, Error, "void function '%0' should not return a value"),
+    ROW(err_return_without_value, Error, "non-void function '%0' should return a value"),
+    ROW(err_recursion, Error, "recursive call to '%0': recursion is not allowed"),
+    ROW(err_not_subscriptable, Error,
+        "subscripted value of type '%0' is not an array, triple or matrix"),
+    ROW(err_index_not_int, Error, "index must be an int, not '%0'"),
+    ROW(err_no_member, Error, "no member named '%1' in '%0'"),
+    ROW(err_bad_condition, Error, "condition of type '%0' is not int or float"),
+    ROW(err_break_outside_loop, Error, "'%0' statement not in a loop"),
+    ROW(err_unknown_keyword, Error, "unknown keyword argument '%0' for '%1'"),
+    ROW(err_keyword_type, Error, "keyword argument '%0' of '%1' needs '%2', not '%3'"),
+    ROW(err_keyword_name, Error, "expected a keyword name string in the arguments of '%0'"),
+    ROW(err_init_count, Error, "too many initializers for '%0'"),
+    ROW(err_init_list_context, Error, "cannot infer the type of '{...}' here"),
+    ROW(err_bad_cast, Error, "cannot convert '%0' to '%1'"),
+    ROW(err_bad_constructor, Error, "no constructor '%0(%1)'"),
+    ROW(err_metadata_not_const, Error, "metadata '%0' needs a constant value"),
+    ROW(err_void_variable, Error, "variable '%0' declared void"),
+    ROW(err_not_a_function, Error, "'%0' is not a function"),
+    ROW(err_struct_ctor_args, Error, "constructor of struct '%0' needs %1 arguments, %2 given"),
+    ROW(err_wrong_arg_count, Error, "'%0' takes %1 arguments, %2 given"),
+    ROW(err_array_assign_size, Error, "cannot assign '%0' to '%1': array lengths differ"),
+    ROW(err_shader_redefinition, Error,
+        "a file may declare only one shader ('%0' already declared)"),
+    ROW(warn_no_shader, Warning, "no shader declared in this file"),
+    ROW(err_operator_not_struct, Error, "operator function '%0' needs a struct parameter"),
+    ROW(warn_unused_keyword, Warning, "keyword argument '%0' given twice; the last one wins"),
+};
+#undef ROW
+static_assert(sizeof(kTable) / sizeof(kTable[0]) == size_t(DiagId::kCount),
+              "one row per diagnostic id");
+
+} // namespace
+
+const DiagInfo& diag_info(DiagId id) { return kTable[size_t(id)].info; }
+const char* diag_name(DiagId id) { return kTable[size_t(id)].name; }
+
+std::string format_message(const char* format, const std::vector<std::string>& args) {
+  std::string out;
+  for (const char* p = format; *p; ++p) {
+    if (p[0] == '%' && p[1] >= '0' && p[1] <= '9') {
+      size_t i = size_t(p[1] - '0');
+      if (i < args.size()) out += args[i];
+      ++p;
+    } else {
+      out += *p;
+    }
+  }
+  return out;
+}
+
+} // namespace lobe::diag

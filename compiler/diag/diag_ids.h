@@ -1,0 +1,122 @@
+// The one table of named diagnostics: every message the front end can report.
+//
+// Each entry has an id (the enum), a default severity and a message template where %0, %1, ...
+// are replaced by the arguments given when the diagnostic is reported. Naming the messages in
+// one place keeps wording consistent and lets tests refer to a diagnostic by id.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lobe::diag {
+
+enum class Severity : uint8_t { Note, Warning, Error, Fatal };
+
+enum class DiagId : uint16_t {
+  // driver / files
+  err_file_not_found,
+  fatal_too_many_errors,
+  // lexer
+  err_invalid_char,
+  err_binary_input,
+  err_unterminated_string,
+  err_unterminated_comment,
+  warn_unknown_escape,
+  err_bad_number,
+  err_int_too_large,
+  err_unterminated_metadata,
+  // preprocessor
+  err_include_not_found,
+  err_include_depth,
+  err_include_cycle,
+  err_include_syntax,
+  err_unknown_directive,
+  warn_macro_redefined,
+  note_previous_definition,
+  err_macro_name_missing,
+  err_macro_param_list,
+  err_macro_arg_count,
+  err_macro_unterminated_call,
+  err_hash_not_param,
+  err_paste_at_edge,
+  err_macro_expansion_too_large,
+  note_expanded_from,
+  err_else_without_if,
+  err_endif_without_if,
+  err_elif_after_else,
+  err_else_after_else,
+  err_unterminated_conditional,
+  err_pp_expr,
+  err_pragma_error,
+  warn_pragma_warning,
+  err_bad_line_directive,
+  warn_extra_tokens,
+  // parser
+  err_expected,
+  err_expected_found,
+  err_expected_expression,
+  err_expected_declaration,
+  err_expected_type,
+  err_nesting_too_deep,
+  err_param_needs_default,
+  note_to_match,
+  err_unknown_type,
+  err_array_size,
+  // sema
+  err_undeclared,
+  err_redefinition,
+  note_previous_decl,
+  err_unknown_function,
+  err_no_matching_call,
+  err_ambiguous_call,
+  note_candidate,
+  err_bad_binary,
+  err_bad_unary,
+  err_cannot_assign,
+  err_not_assignable,
+  err_write_readonly_param,
+  err_write_readonly_global,
+  err_output_arg_not_lvalue,
+  err_missing_return,
+  err_return_value_in_void,
+  err_return_without_value,
+  err_recursion,
+  err_not_subscriptable,
+  err_index_not_int,
+  err_no_member,
+  err_bad_condition,
+  err_break_outside_loop,
+  err_unknown_keyword,
+  err_keyword_type,
+  err_keyword_name,
+  err_init_count,
+  err_init_list_context,
+  err_bad_cast,
+  err_bad_constructor,
+  err_metadata_not_const,
+  err_void_variable,
+  err_not_a_function,
+  err_struct_ctor_args,
+  err_wrong_arg_count,
+  err_array_assign_size,
+  err_shader_redefinition,
+  warn_no_shader,
+  err_operator_not_struct,
+  warn_unused_keyword,
+  kCount
+};
+
+struct DiagInfo {
+  DiagId id;
+  Severity severity;
+  const char* format; // %0 %1 ... are arguments
+};
+
+const DiagInfo& diag_info(DiagId id);
+const char* diag_name(DiagId id); // "err_undeclared", for tests and dumps
+
+// Substitutes %0.. in `format` with `args` (missing args become "").
+std::string format_message(const char* format, const std::vector<std::string>& args);
+
+} // namespace lobe::diag

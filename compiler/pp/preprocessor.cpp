@@ -1,0 +1,457 @@
+// Preprocessor: the file loop, directives and output with its location segments.
+#include "pp/preprocessor.h"
+
+#include "pp/pp_expr.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace lobe::pp {
+
+using diag::DiagId;
+using diag::SourceLoc;
+using diag::SourceRange;
+
+Preprocessor::Preprocessor(diag::SourceManager& sm, diag::DiagnosticEngine& diags, PPOptions o)
+    : sm_(sm), diags_(diags), opts_(std::move(o)) {
+  define_predefined();
+}
+
+Preprocessor::~Preprocessor() = default;
+
+// OSL's predefined macros and -D/-U, written as a small "<built-in>" file so that macro
+// definitions have a location like any other.
+void Preprocessor::define_predefined() {
+  std::string text = "#define OSL_VERSION_MAJOR 1\n#define OSL_VERSION_MINOR 13\n"
+                     "#define OSL_VERSION_PATCH 0\n#define OSL_VERSION 11300\n";
+  for (const auto& d : opts_.defines) {
+    auto eq = d.find('=');
+    text += "#define " +
+            (eq == std::string::npos ? d + " 1" : d.substr(0, eq) + " " + d.substr(eq + 1)) + "\n";
+  }
+  for (const auto& u : opts_.undefines) text += "#undef " + u + "\n";
+  int id = sm_.add_file("<built-in>", text);
+  auto toks = tokenize(sm_.buffer_text(id), sm_.buffer_start(id), diags_);
+  Cursor cur{&toks, 0, id};
+  run(cur);
+}
+
+std::optional<std::string> Preprocessor::read(const std::string& path) const {
+  if (opts_.read_file) return opts_.read_file(path);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+bool Preprocessor::process_file(const std::string& path) {
+  auto text = read(path);
+  if (!text) {
+    diags_.report(DiagId::err_file_not_found, SourceLoc{}, {path});
+    return false;
+  }
+  include_stack_.push_back(path);
+  process_buffer(sm_.add_file(path, std::move(*text)));
+  include_stack_.pop_back();
+  return true;
+}
+
+void Preprocessor::process_buffer(int id) {
+  auto toks = tokenize(sm_.buffer_text(id), sm_.buffer_start(id), diags_);
+  Cursor cur{&toks, 0, id};
+  contiguous_ = false;
+  run(cur);
+  contiguous_ = false;
+  if (!out_.empty() && out_.back() != '\n') out_ += '\n';
+}
+
+int Preprocessor::finish() { return sm_.add_output(std::move(out_), std::move(segs_)); }
+
+const Macro* Preprocessor::find_macro(const std::string& name) const {
+  auto it = macros_.find(name);
+  return it == macros_.end() ? nullptr : it->second.get();
+}
+
+// The file loop: directives at the start of a line, text lines expanded and emitted, inactive
+// lines skipped. Conditionals left open at the end of the file are errors.
+void Preprocessor::run(Cursor& cur) {
+  size_t depth_at_entry = conds_.size();
+  while (!cur.at_eof() && !diags_.stopped()) {
+    const PPToken& t = cur.peek();
+    if (t.at_line_start && t.is_punct("#")) {
+      directive(cur);
+    } else if (!active()) {
+      ++cur.pos;
+      contiguous_ = false;
+    } else if (t.kind == PPKind::Newline) {
+      emit_file_token(t);
+      ++cur.pos;
+    } else {
+      expand_from_file(cur);
+    }
+  }
+  while (conds_.size() > depth_at_entry) {
+    diags_.report(DiagId::err_unterminated_conditional, conds_.back().loc);
+    conds_.pop_back();
+  }
+}
+
+// The rest of the current line (the newline is consumed, not returned).
+std::vector<PPToken> Preprocessor::take_line(Cursor& cur) {
+  std::vector<PPToken> line;
+  while (cur.peek().kind != PPKind::Newline && !cur.at_eof())
+    line.push_back((*cur.toks)[cur.pos++]);
+  if (cur.peek().kind == PPKind::Newline) ++cur.pos;
+  return line;
+}
+
+void Preprocessor::directive(Cursor& cur) {
+  const PPToken hash = (*cur.toks)[cur.pos++];
+  std::vector<PPToken> line = take_line(cur);
+  contiguous_ = false;
+  if (line.empty()) return; // the null directive
+  const std::string& name = line[0].text;
+  if (name == "if" || name == "ifdef" || name == "ifndef" || name == "elif" || name == "else" ||
+      name == "endif") {
+    conditional_directive(name, line);
+    return;
+  }
+  if (!active()) return;
+  if (name == "include")
+    do_include(line, cur);
+  else if (name == "define")
+    do_define(line);
+  else if (name == "undef")
+    do_undef(line);
+  else if (name == "pragma")
+    do_pragma(line, false);
+  else if (name == "error" || name == "warning")
+    do_pragma(line, true);
+  else if (name == "line" || line[0].kind == PPKind::Number)
+    do_line(line, cur);
+  else
+    diags_.report(DiagId::err_unknown_directive,
+                  SourceRange(line[0].loc, SourceLoc{line[0].end_offset()}), {name});
+}
+
+void Preprocessor::conditional_directive(const std::string& name,
+                                         const std::vector<PPToken>& line) {
+  SourceLoc loc = line[0].loc;
+  auto extra = [&](size_t expected) {
+    if (active() && line.size() > expected)
+      diags_.report(DiagId::warn_extra_tokens, line[expected].loc, {name});
+  };
+  if (name == "if" || name == "ifdef" || name == "ifndef") {
+    bool parent = active();
+    bool v = false;
+    if (parent && name == "if") {
+      v = eval_condition(line, 1);
+    } else if (parent) {
+      if (line.size() < 2 || line[1].kind != PPKind::Ident)
+        diags_.report(DiagId::err_macro_name_missing, loc);
+      else
+        v = (find_macro(line[1].text) != nullptr) == (name == "ifdef");
+      extra(2);
+    }
+    conds_.push_back({loc, parent, parent && v, parent && v, false});
+    return;
+  }
+  if (conds_.empty()) {
+    diags_.report(name == "endif" ? DiagId::err_endif_without_if : DiagId::err_else_without_if, loc,
+                  {name});
+    return;
+  }
+  Conditional& c = conds_.back();
+  if (name == "endif") {
+    extra(1);
+    conds_.pop_back();
+  } else if (name == "else") {
+    if (c.seen_else) diags_.report(DiagId::err_else_after_else, loc);
+    c.seen_else = true;
+    c.taking = c.parent_active && !c.taken;
+    c.taken = c.taken || c.taking;
+    extra(1);
+  } else { // elif
+    if (c.seen_else) diags_.report(DiagId::err_elif_after_else, loc);
+    c.taking = false;
+    if (c.parent_active && !c.taken) {
+      bool v = eval_condition(line, 1);
+      conds_.back().taking = v;
+      conds_.back().taken = v;
+    }
+  }
+}
+
+// `defined X` / `defined(X)` are replaced before macro expansion; the rest is expanded and
+// evaluated as a C integer expression.
+bool Preprocessor::eval_condition(const std::vector<PPToken>& line, size_t from) {
+  std::vector<PPToken> toks;
+  for (size_t i = from; i < line.size(); ++i) {
+    if (line[i].kind == PPKind::Ident && line[i].text == "defined") {
+      size_t j = i + 1;
+      bool paren = j < line.size() && line[j].is_punct("(");
+      if (paren) ++j;
+      if (j >= line.size() || line[j].kind != PPKind::Ident) {
+        diags_.report(DiagId::err_macro_name_missing, line[i].loc);
+        return false;
+      }
+      PPToken n = line[i];
+      n.kind = PPKind::Number;
+      n.text.assign(1, find_macro(line[j].text) ? '1' : '0');
+      toks.push_back(n);
+      i = j;
+      if (paren) {
+        if (i + 1 < line.size() && line[i + 1].is_punct(")"))
+          ++i;
+        else
+          diags_.report(DiagId::err_pp_expr, line[i].loc, {"expected ')' after 'defined'"});
+      }
+    } else {
+      toks.push_back(line[i]);
+    }
+  }
+  auto r = evaluate_pp_expr(expand_list(std::move(toks)));
+  if (!r.value) {
+    diags_.report(DiagId::err_pp_expr, r.where.valid() ? r.where : line[0].loc, {r.error});
+    return false;
+  }
+  return *r.value != 0;
+}
+
+namespace {
+// Decodes the escapes of a string literal token's text (quotes included).
+std::string unquote(const std::string& s) {
+  std::string out;
+  for (size_t i = 1; i + 1 < s.size(); ++i) {
+    if (s[i] == '\\' && i + 2 < s.size()) {
+      char e = s[++i];
+      out += e == 'n' ? '\n' : e == 't' ? '\t' : e;
+    } else {
+      out += s[i];
+    }
+  }
+  return out;
+}
+std::string dirname(const std::string& p) {
+  auto slash = p.find_last_of('/');
+  return slash == std::string::npos ? "" : p.substr(0, slash + 1);
+}
+} // namespace
+
+void Preprocessor::do_include(const std::vector<PPToken>& raw, Cursor& cur) {
+  std::vector<PPToken> line(raw.begin() + 1, raw.end());
+  if (!line.empty() && line[0].kind == PPKind::Ident) line = expand_list(line);
+  std::string name;
+  bool angled = false;
+  if (!line.empty() && line[0].kind == PPKind::String && line[0].text.size() >= 2 &&
+      line[0].text.back() == '"') {
+    name = unquote(line[0].text);
+  } else if (!line.empty() && line[0].is_punct("<")) {
+    angled = true;
+    size_t i = 1;
+    for (; i < line.size() && !line[i].is_punct(">"); ++i) name += line[i].text;
+    if (i == line.size()) name.clear();
+  }
+  SourceLoc loc = raw[0].loc;
+  if (name.empty()) {
+    diags_.report(DiagId::err_include_syntax, loc);
+    return;
+  }
+  if (int(include_stack_.size()) >= opts_.max_include_depth) {
+    diags_.report(DiagId::err_include_depth, loc, {std::to_string(opts_.max_include_depth)});
+    return;
+  }
+  std::vector<std::string> candidates;
+  if (!angled) candidates.push_back(dirname(sm_.buffer_name(cur.buffer)) + name);
+  for (const auto& d : opts_.include_dirs)
+    candidates.push_back(d + (d.empty() || d.back() == '/' ? "" : "/") + name);
+  for (const auto& path : candidates) {
+    auto text = read(path);
+    if (!text) continue;
+    if (once_.count(path)) return;
+    for (const auto& open : include_stack_) {
+      if (open == path) {
+        diags_.report(DiagId::err_include_cycle,
+                      SourceRange(line[0].loc, SourceLoc{line.back().end_offset()}), {path});
+        return;
+      }
+    }
+    int id = sm_.add_file(path, std::move(*text), loc);
+    include_stack_.push_back(path);
+    process_buffer(id);
+    include_stack_.pop_back();
+    return;
+  }
+  diags_.report(DiagId::err_include_not_found,
+                SourceRange(line[0].loc, SourceLoc{line.back().end_offset()}), {name});
+}
+
+void Preprocessor::do_define(const std::vector<PPToken>& line) {
+  if (line.size() < 2 || line[1].kind != PPKind::Ident) {
+    diags_.report(DiagId::err_macro_name_missing, line[0].loc);
+    return;
+  }
+  auto m = std::make_unique<Macro>();
+  m->name = line[1].text;
+  m->def_loc = line[1].loc;
+  size_t i = 2;
+  if (i < line.size() && line[i].is_punct("(") && !line[i].space_before) {
+    m->function_like = true;
+    ++i;
+    bool closed = false;
+    while (i < line.size()) {
+      if (line[i].is_punct(")")) {
+        closed = true;
+        ++i;
+        break;
+      }
+      if (line[i].is_punct(".") && i + 2 < line.size() && line[i + 1].is_punct(".") &&
+          line[i + 2].is_punct(".")) {
+        m->variadic = true;
+        m->params.push_back("__VA_ARGS__");
+        i += 3;
+      } else if (line[i].kind == PPKind::Ident && !m->variadic) {
+        m->params.push_back(line[i++].text);
+      } else {
+        break;
+      }
+      if (i < line.size() && line[i].is_punct(","))
+        ++i;
+      else if (!(i < line.size() && line[i].is_punct(")")))
+        break;
+    }
+    if (!closed) {
+      diags_.report(DiagId::err_macro_param_list, i < line.size() ? line[i].loc : line[1].loc,
+                    {"expected a parameter name, '...' or ')'"});
+      return;
+    }
+  }
+  m->body.assign(line.begin() + long(i), line.end());
+  if (!m->body.empty()) m->body[0].space_before = false;
+  for (size_t k = 0; k < m->body.size(); ++k) {
+    const PPToken& t = m->body[k];
+    if ((k == 0 || k + 1 == m->body.size()) && t.is_punct("##")) {
+      diags_.report(DiagId::err_paste_at_edge, t.loc);
+      return;
+    }
+    if (m->function_like && t.is_punct("#")) {
+      bool ok =
+          k + 1 < m->body.size() && m->body[k + 1].kind == PPKind::Ident &&
+          std::find(m->params.begin(), m->params.end(), m->body[k + 1].text) != m->params.end();
+      if (!ok) {
+        diags_.report(DiagId::err_hash_not_param, t.loc);
+        return;
+      }
+    }
+  }
+  define_macro(std::move(m));
+}
+
+void Preprocessor::define_macro(std::unique_ptr<Macro> m) {
+  auto it = macros_.find(m->name);
+  if (it != macros_.end()) {
+    const Macro& old = *it->second;
+    bool same = old.function_like == m->function_like && old.params == m->params &&
+                spell(old.body) == spell(m->body);
+    if (!same) {
+      diags_.report(DiagId::warn_macro_redefined, m->def_loc, {m->name});
+      diags_.report(DiagId::note_previous_definition, old.def_loc);
+    }
+    retired_.push_back(std::move(it->second));
+    it->second = std::move(m);
+  } else {
+    std::string name = m->name;
+    macros_.emplace(std::move(name), std::move(m));
+  }
+}
+
+void Preprocessor::do_undef(const std::vector<PPToken>& line) {
+  if (line.size() < 2 || line[1].kind != PPKind::Ident) {
+    diags_.report(DiagId::err_macro_name_missing, line[0].loc);
+    return;
+  }
+  auto it = macros_.find(line[1].text);
+  if (it != macros_.end()) {
+    retired_.push_back(std::move(it->second));
+    macros_.erase(it);
+  }
+  if (line.size() > 2) diags_.report(DiagId::warn_extra_tokens, line[2].loc, {"undef"});
+}
+
+// #pragma error "msg" / #pragma warning "msg" / #pragma once (others are ignored, as OSL
+// ignores pragmas it does not know); C-style #error / #warning take the rest of the line.
+void Preprocessor::do_pragma(const std::vector<PPToken>& line, bool c_style) {
+  size_t k = c_style ? 0 : 1;
+  if (k >= line.size()) return;
+  const std::string& what = line[k].text;
+  if (what == "once" && !include_stack_.empty()) {
+    once_.insert(include_stack_.back());
+    return;
+  }
+  if (what != "error" && what != "warning") return;
+  std::vector<PPToken> rest(line.begin() + long(k) + 1, line.end());
+  std::string msg =
+      rest.size() == 1 && rest[0].kind == PPKind::String ? unquote(rest[0].text) : spell(rest);
+  SourceRange r(line[k].loc, SourceLoc{line.back().end_offset()});
+  diags_.report(what == "error" ? DiagId::err_pragma_error : DiagId::warn_pragma_warning, r, {msg});
+}
+
+// #line N ["file"] (and the GNU form `# N "file"`): renumbers the lines that follow.
+void Preprocessor::do_line(const std::vector<PPToken>& raw, Cursor& cur) {
+  size_t k = raw[0].kind == PPKind::Number ? 0 : 1;
+  std::vector<PPToken> line = expand_list(std::vector<PPToken>(raw.begin() + long(k), raw.end()));
+  long n = 0;
+  if (!line.empty() && line[0].kind == PPKind::Number)
+    n = std::strtol(line[0].text.c_str(), nullptr, 10);
+  if (n <= 0) {
+    diags_.report(DiagId::err_bad_line_directive, raw[0].loc);
+    return;
+  }
+  std::string file = line.size() > 1 && line[1].kind == PPKind::String ? unquote(line[1].text) : "";
+  // The directive applies from the start of the next line.
+  const std::string& text = sm_.buffer_text(cur.buffer);
+  size_t nl = text.find('\n', raw.back().end_offset() - sm_.buffer_start(cur.buffer).offset);
+  uint32_t line_start = uint32_t(nl == std::string::npos ? text.size() : nl + 1);
+  sm_.add_line_directive(cur.buffer, line_start, int(n), file);
+}
+
+// A token spelled in the current file: copy the text since the previous one (whitespace and
+// comments included) when nothing intervened, so one linear segment covers long stretches.
+void Preprocessor::emit_file_token(const PPToken& t) {
+  if (contiguous_ && t.loc.offset >= last_end_) {
+    const std::string& text = sm_.buffer_text(sm_.buffer_of(t.loc));
+    uint32_t base = sm_.buffer_start(sm_.buffer_of(t.loc)).offset;
+    out_.append(text, last_end_ - base, t.end_offset() - last_end_);
+  } else {
+    if (!out_.empty() && out_.back() != '\n') out_ += t.at_line_start ? '\n' : ' ';
+    segs_.push_back({uint32_t(out_.size()), t.loc, true, "", {}});
+    out_ += t.text;
+  }
+  contiguous_ = true;
+  last_end_ = t.end_offset();
+}
+
+// Tokens produced by macro expansion: macro body tokens map to the invocation, argument
+// tokens to where they are spelled.
+void Preprocessor::emit_expanded(const std::vector<PPToken>& toks) {
+  for (const auto& t : toks) {
+    out_ += ' ';
+    if (t.from_macro) {
+      const auto* last = segs_.empty() ? nullptr : &segs_.back();
+      if (!last || last->linear || last->loc != t.exp_loc || last->macro != t.from_macro->name)
+        segs_.push_back(
+            {uint32_t(out_.size()), t.exp_loc, false, t.from_macro->name, t.from_macro->def_loc});
+    } else {
+      segs_.push_back({uint32_t(out_.size()), t.loc, true, "", {}});
+    }
+    out_ += t.text;
+  }
+  contiguous_ = false;
+}
+
+} // namespace lobe::pp
