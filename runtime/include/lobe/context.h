@@ -25,6 +25,14 @@ public:
   // builder then drops the component and counts it in closures_dropped).
   void* allocate(size_t bytes);
 
+  // Sends text from shader code to `print` if set, else appends it to `output`.
+  void message(const std::string& text);
+
+  // Per-thread scratch for a material's group data (layer parameters and outputs) during
+  // shade(); Material::read_output reads the most recent shade() from here.
+  std::vector<unsigned char> groupdata;
+  const void* groupdata_owner = nullptr; // the Material that last wrote `groupdata`
+
   // Message sink for printf/warning/error from shader code. Default: append to `output`.
   std::function<void(const std::string&)> print;
   std::string output;

@@ -1,0 +1,66 @@
+// Lobe IR -> LLVM IR for a shader group.
+//
+// Input: a GroupPlan (layers in execution order, each an ir::Shader plus where its parameters
+// live in the group-data block and which of them are connected upstream). Output: one LLVM
+// function per layer, `void <layer>(ShaderGlobals*, char* groupdata)`, and the entry
+// `void <entry>(ShaderGlobals*, char* groupdata)` that runs the last layer; upstream layers run
+// lazily, the first time a connected parameter is used (`useparam`).
+//
+// Group-data block (laid out by the group compiler): per layer a 4-byte "ran" flag, then every
+// parameter's storage. A symbol's storage is [planes][elements][components] of 4-byte scalars
+// (8-byte pointers for strings and closures), planes = 3 (value, d/dx, d/dy) for symbols with
+// derivatives, else 1.
+//
+// No exceptions, no LLVM fatal errors: failures come back as a message.
+#pragma once
+
+#include "ir/ir.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace llvm {
+class LLVMContext;
+class Module;
+} // namespace llvm
+
+namespace lobe::shadeops {
+struct RuntimeEnv;
+}
+
+namespace lobe::codegen {
+
+// A connection into one parameter (or an element/component of it) of the layer that owns it.
+struct ConnectionPlan {
+  int dst_symbol = -1;
+  int dst_element = -1, dst_component = -1; // -1: whole
+  int src_layer = -1;
+  int src_symbol = -1;
+  int src_element = -1, src_component = -1; // -1: whole
+};
+
+struct LayerPlan {
+  const ir::Shader* shader = nullptr;
+  std::string function_name;
+  int ran_offset = 0;             // byte offset of the layer's "ran" flag in group data
+  std::vector<int> symbol_offset; // per symbol: group-data byte offset, or -1 (not stored)
+  std::vector<bool> run_default;  // per symbol: the param's default ops must run
+  std::vector<ConnectionPlan> connections;
+};
+
+struct GroupPlan {
+  std::vector<LayerPlan> layers;
+  std::string entry_name = "group_entry";
+  shadeops::RuntimeEnv* env = nullptr; // baked into the code as a constant pointer
+};
+
+// Storage size in bytes of a symbol (all planes), as laid out in group data and allocas.
+size_t storage_bytes(const ir::Symbol& s);
+// Byte offset of plane `plane`, element `elem`, component `comp` within a symbol's storage.
+size_t storage_offset(const ir::Symbol& s, int plane, int elem, int comp);
+
+// Emits the group into `module`. Returns "" on success, else the reason it failed.
+std::string emit_group(const GroupPlan& plan, llvm::Module& module);
+
+} // namespace lobe::codegen

@@ -1,0 +1,126 @@
+// LayerEmitter: turns one layer's ops into the body of its LLVM function. Internal to codegen.
+//
+// Values are handled per component as dual numbers (value, d/dx, d/dy; a null derivative
+// means zero), so that every op writes its chain rule once, per scalar. Symbols live in
+// allocas (params and outputs also in group data); LLVM's SROA/mem2reg turns them into SSA.
+#pragma once
+
+#include "codegen.h"
+#include "ir/opcodes.h"
+
+#include <llvm/IR/IRBuilder.h>
+#include <llvm/IR/Module.h>
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace lobe::codegen {
+
+struct Dual {
+  llvm::Value* v = nullptr;
+  llvm::Value* dx = nullptr; // null: zero
+  llvm::Value* dy = nullptr;
+};
+using Val = std::vector<Dual>; // one element of a symbol: its components
+
+class LayerEmitter;
+using OpEmitFn = void (*)(LayerEmitter&, const ir::Op&);
+
+class LayerEmitter {
+public:
+  LayerEmitter(const GroupPlan& group, int layer, llvm::Module& module,
+               std::vector<llvm::Function*>& layer_fns);
+  // Emits the layer function's body; false with error() set on failure.
+  bool emit();
+  const std::string& error() const { return error_; }
+
+  // ---- used by the op emitters (ops_*.cpp) ----
+  llvm::IRBuilder<>& b() { return b_; }
+  llvm::LLVMContext& ctx() { return module_.getContext(); }
+  const ir::Shader& shader() const { return *plan().shader; }
+  const GroupPlan& group() const { return group_; }
+  int layer() const { return layer_; }
+  const ir::Symbol& sym(int i) const { return shader().symbols[size_t(i)]; }
+  const ir::Symbol& arg(const ir::Op& op, int i) const { return sym(op.args[size_t(i)]); }
+  void fail(const ir::Op& op, const std::string& msg);
+  bool failed() const { return !error_.empty(); }
+
+  llvm::Type* f32() { return b_.getFloatTy(); }
+  llvm::Type* i32() { return b_.getInt32Ty(); }
+  llvm::Type* ptr() { return b_.getPtrTy(); }
+  llvm::Value* fconst(float f) { return llvm::ConstantFP::get(f32(), f); }
+  llvm::Value* iconst(int i) { return b_.getInt32(uint32_t(i)); }
+  llvm::Value* sg() { return sg_; }
+  llvm::Value* env_ptr();
+  llvm::Value* string_const(const std::string& s); // interned, as a pointer constant
+  llvm::FunctionCallee shadeop(const char* name);  // declared from the shadeop table
+  llvm::Value* call(const char* name, std::vector<llvm::Value*> args);
+
+  // Whole-element access. `elem` null means element 0 (scalars). Loading a symbol without
+  // derivatives gives null derivatives; derivatives are loaded only if `derivs`.
+  Val load(int symbol, llvm::Value* elem = nullptr, bool derivs = true);
+  void store(int symbol, const Val& v, llvm::Value* elem = nullptr);
+  llvm::Value* address(int symbol, int plane, llvm::Value* elem, int comp);
+  // Converts an element value of base type `from` to base type `to` (docs/ir.md conversions).
+  Val convert(const Val& v, ir::BaseType from, ir::BaseType to);
+  // Loads operand i of op converted to base type `to` (element 0).
+  Val load_as(const ir::Op& op, int i, ir::BaseType to, bool derivs = true);
+  bool wants_derivs(int symbol) const { return sym(symbol).derivs; }
+  // Spills float components into a temporary array; returns its address.
+  llvm::Value* spill(const std::vector<llvm::Value*>& comps, llvm::Type* ty = nullptr);
+  std::vector<llvm::Value*> reload(llvm::Value* p, int n, llvm::Type* ty = nullptr);
+  llvm::AllocaInst* entry_alloca(llvm::Type* ty, unsigned count, const char* name = "");
+  // An in-range index: constant indices are checked at compile time, others clamped at run
+  // time with a range error reported through the ShadingContext.
+  llvm::Value* checked_index(const ir::Op& op, int symbol_arg, int index_arg, int length,
+                             const std::string& what);
+  llvm::Value* truthy(const Val& v, ir::BaseType t); // i1: v != 0
+  void emit_exit();                                  // branch to the layer's exit block
+  void run_useparam(int symbol);                     // fetch a connected param once
+
+  static ir::BaseType base_of(const ir::Symbol& s) { return s.type.base; }
+  static bool is_float_based(ir::BaseType t) {
+    return t != ir::BaseType::Int && t != ir::BaseType::String && t != ir::BaseType::Closure;
+  }
+  static int comps_of(ir::BaseType t) { return ir::Type{t, 0}.components(); }
+
+private:
+  const LayerPlan& plan() const { return group_.layers[size_t(layer_)]; }
+  llvm::Type* scalar_type(const ir::Symbol& s);
+  llvm::Type* storage_type(const ir::Symbol& s);
+  void create_storage();
+  void init_symbols();
+  void init_params();
+  void fetch_connection(const ConnectionPlan& c);
+  void emit_region(int begin, int end, llvm::BasicBlock* after);
+  void emit_op(int index);
+  void finish_exit_block();
+  llvm::BasicBlock* block_at(int op_index);
+  bool is_leader(int op_index) const;
+  llvm::Value* groupdata_address(int layer, int symbol, int plane, int elem, int comp);
+
+  const GroupPlan& group_;
+  int layer_;
+  llvm::Module& module_;
+  std::vector<llvm::Function*>& layer_fns_;
+  llvm::IRBuilder<> b_;
+  llvm::Function* fn_ = nullptr;
+  llvm::Value* sg_ = nullptr;
+  llvm::Value* gd_ = nullptr;
+  llvm::BasicBlock* alloca_block_ = nullptr;
+  llvm::BasicBlock* exit_block_ = nullptr;
+  std::vector<llvm::Value*> storage_;       // per symbol: alloca (null for scalar consts)
+  std::vector<llvm::Value*> fetched_flag_;  // per symbol: i1 alloca "connection fetched"
+  std::vector<char> leader_;                // per op: starts a basic block
+  std::map<int, llvm::BasicBlock*> blocks_; // op index -> block
+  int region_end_ = 0;
+  llvm::BasicBlock* region_after_ = nullptr;
+  std::string error_;
+};
+
+// Op emitters, by family (ops_*.cpp); returns null for an unknown opcode.
+OpEmitFn find_op_emitter(const std::string& opcode);
+
+} // namespace lobe::codegen

@@ -1,0 +1,307 @@
+// LayerEmitter: the layer function's frame (entry, parameter set-up, exit), control flow
+// (basic blocks at jump targets, `br`/`cbr`/`exit`), lazy upstream layers (`useparam`), and
+// emit_group, which creates one function per layer plus the group entry.
+#include "emitter.h"
+
+#include "lobe/shading.h"
+
+#include <llvm/IR/Constants.h>
+#include <llvm/IR/Verifier.h>
+#include <llvm/Support/raw_ostream.h>
+
+namespace lobe::codegen {
+
+using ir::BaseType;
+using ir::SymKind;
+
+namespace {
+const GlobalField* find_global(const std::string& name) {
+  for (const GlobalField& g : kGlobalFields)
+    if (name == g.name) return &g;
+  return nullptr;
+}
+bool is_jump(const std::string& opcode) {
+  return opcode == "br" || opcode == "cbr" || opcode == "exit";
+}
+} // namespace
+
+bool LayerEmitter::is_leader(int i) const {
+  return i >= 0 && size_t(i) < leader_.size() && leader_[size_t(i)];
+}
+
+llvm::BasicBlock* LayerEmitter::block_at(int i) {
+  if (i == region_end_) return region_after_;
+  auto it = blocks_.find(i);
+  if (it != blocks_.end()) return it->second;
+  auto* bb = llvm::BasicBlock::Create(ctx(), "op" + std::to_string(i), fn_);
+  blocks_[i] = bb;
+  return bb;
+}
+
+void LayerEmitter::emit_exit() { b_.CreateBr(exit_block_); }
+
+// Locals and temps start zeroed (strings ""), globals are read from ShaderGlobals.
+void LayerEmitter::init_symbols() {
+  const auto& syms = shader().symbols;
+  for (size_t i = 0; i < syms.size(); ++i) {
+    const ir::Symbol& s = syms[i];
+    int si = int(i);
+    if (s.kind == SymKind::Local || s.kind == SymKind::Temp) {
+      b_.CreateMemSet(storage_[i], b_.getInt8(0), storage_bytes(s), llvm::MaybeAlign(8));
+      if (s.type.base == BaseType::String) {
+        int n = int(storage_bytes(s) / 8);
+        for (int k = 0; k < n; ++k)
+          b_.CreateStore(string_const(""),
+                         b_.CreateConstInBoundsGEP2_32(llvm::ArrayType::get(ptr(), unsigned(n)),
+                                                       storage_[i], 0, unsigned(k)));
+      }
+    } else if (s.kind == SymKind::Global) {
+      const GlobalField* g = find_global(s.name);
+      if (!g) {
+        error_ = shader().name + ": unknown global '" + s.name + "'";
+        return;
+      }
+      auto field = [&](size_t off, int comp, llvm::Type* t) {
+        return b_.CreateLoad(
+            t, b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), sg_, off + 4 * size_t(comp)));
+      };
+      int comps = s.type.components();
+      Val v(static_cast<size_t>(comps));
+      llvm::Type* t =
+          g->kind == GlobalKind::Closure ? ptr() : (g->kind == GlobalKind::Int ? i32() : f32());
+      for (int c = 0; c < comps; ++c) {
+        v[size_t(c)].v = field(g->offset, c, t);
+        if (s.derivs && g->dx) {
+          v[size_t(c)].dx = field(find_global(g->dx)->offset, c, t);
+          v[size_t(c)].dy = field(find_global(g->dy)->offset, c, t);
+        }
+      }
+      store(si, v);
+    }
+  }
+}
+
+// Params: the value in group data (instance value or constant default), then computed
+// defaults; connections are fetched eagerly when the layer has no `useparam` ops.
+void LayerEmitter::init_params() {
+  const auto& syms = shader().symbols;
+  for (size_t i = 0; i < syms.size(); ++i) {
+    const ir::Symbol& s = syms[i];
+    if (s.kind != SymKind::Param && s.kind != SymKind::OutputParam) continue;
+    if (plan().symbol_offset[i] >= 0) {
+      b_.CreateMemCpy(storage_[i], llvm::MaybeAlign(8), groupdata_address(layer_, int(i), 0, 0, 0),
+                      llvm::MaybeAlign(4), storage_bytes(s));
+    } else {
+      b_.CreateMemSet(storage_[i], b_.getInt8(0), storage_bytes(s), llvm::MaybeAlign(8));
+    }
+  }
+  for (const ConnectionPlan& c : plan().connections)
+    b_.CreateStore(b_.getFalse(), fetched_flag_[size_t(c.dst_symbol)]);
+  for (size_t i = 0; i < syms.size(); ++i) {
+    const ir::Symbol& s = syms[i];
+    if (i < plan().run_default.size() && plan().run_default[i] && s.init_begin >= 0) {
+      auto* after = llvm::BasicBlock::Create(ctx(), "default_done", fn_);
+      emit_region(s.init_begin, s.init_end, after);
+      b_.SetInsertPoint(after);
+    }
+  }
+  bool lazy = false;
+  for (const ir::Op& op : shader().ops) lazy |= op.opcode == "useparam";
+  if (!lazy)
+    for (const ConnectionPlan& c : plan().connections) run_useparam(c.dst_symbol);
+}
+
+// Runs the upstream layer if it has not run yet and copies the connected value, once.
+void LayerEmitter::run_useparam(int symbol) {
+  llvm::Value* flag = fetched_flag_[size_t(symbol)];
+  if (!flag) return;
+  auto* fetch = llvm::BasicBlock::Create(ctx(), "fetch", fn_);
+  auto* done = llvm::BasicBlock::Create(ctx(), "fetched", fn_);
+  b_.CreateCondBr(b_.CreateLoad(b_.getInt1Ty(), flag), done, fetch);
+  b_.SetInsertPoint(fetch);
+  for (const ConnectionPlan& c : plan().connections)
+    if (c.dst_symbol == symbol) fetch_connection(c);
+  b_.CreateStore(b_.getTrue(), flag);
+  b_.CreateBr(done);
+  b_.SetInsertPoint(done);
+}
+
+void LayerEmitter::fetch_connection(const ConnectionPlan& c) {
+  const LayerPlan& up = group_.layers[size_t(c.src_layer)];
+  llvm::Value* ran = b_.CreateLoad(
+      i32(), b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), gd_, size_t(up.ran_offset)));
+  auto* run = llvm::BasicBlock::Create(ctx(), "run_upstream", fn_);
+  auto* have = llvm::BasicBlock::Create(ctx(), "upstream_done", fn_);
+  b_.CreateCondBr(b_.CreateICmpEQ(ran, iconst(0)), run, have);
+  b_.SetInsertPoint(run);
+  b_.CreateCall(layer_fns_[size_t(c.src_layer)], {sg_, gd_});
+  b_.CreateBr(have);
+  b_.SetInsertPoint(have);
+
+  const ir::Symbol& src = up.shader->symbols[size_t(c.src_symbol)];
+  const ir::Symbol& dst = sym(c.dst_symbol);
+  int src_comps = src.type.components();
+  llvm::Type* st = src.type.base == BaseType::Int ? i32()
+                   : (src.type.base == BaseType::String || src.type.base == BaseType::Closure)
+                       ? ptr()
+                       : f32();
+  int selem = c.src_element < 0 ? 0 : c.src_element;
+  int c0 = c.src_component < 0 ? 0 : c.src_component;
+  int nc = c.src_component < 0 ? src_comps : 1;
+  BaseType from = c.src_component < 0 ? src.type.base : BaseType::Float;
+  // Whole arrays are copied element by element; otherwise one element (or component).
+  int nelem = (c.src_element < 0 && src.type.is_array() && c.dst_element < 0)
+                  ? std::min(std::max(1, src.type.arraylen), std::max(1, dst.type.arraylen))
+                  : 1;
+  for (int e = 0; e < nelem; ++e) {
+    Val v(static_cast<size_t>(nc));
+    for (int k = 0; k < nc; ++k) {
+      v[size_t(k)].v =
+          b_.CreateLoad(st, groupdata_address(c.src_layer, c.src_symbol, 0, selem + e, c0 + k));
+      if (src.derivs) {
+        v[size_t(k)].dx =
+            b_.CreateLoad(st, groupdata_address(c.src_layer, c.src_symbol, 1, selem + e, c0 + k));
+        v[size_t(k)].dy =
+            b_.CreateLoad(st, groupdata_address(c.src_layer, c.src_symbol, 2, selem + e, c0 + k));
+      }
+    }
+    llvm::Value* delem = iconst(c.dst_element < 0 ? e : c.dst_element);
+    if (c.dst_component >= 0) {
+      Val whole = load(c.dst_symbol, delem);
+      whole[size_t(c.dst_component)] = convert(v, from, BaseType::Float)[0];
+      store(c.dst_symbol, whole, delem);
+    } else {
+      store(c.dst_symbol, convert(v, from, dst.type.base), delem);
+    }
+  }
+}
+
+// Emits ops [begin, end) starting in a new block; falls through (or jumps to `end`) to `after`.
+void LayerEmitter::emit_region(int begin, int end, llvm::BasicBlock* after) {
+  int saved_end = region_end_;
+  llvm::BasicBlock* saved_after = region_after_;
+  region_end_ = end;
+  region_after_ = after;
+  llvm::BasicBlock* first = block_at(begin);
+  if (begin == end) first = after;
+  b_.CreateBr(first);
+  for (int i = begin; i < end && !failed(); ++i) {
+    if (i == begin || is_leader(i)) {
+      llvm::BasicBlock* bb = block_at(i);
+      if (!b_.GetInsertBlock()->getTerminator()) b_.CreateBr(bb);
+      b_.SetInsertPoint(bb);
+    }
+    emit_op(i);
+  }
+  if (!b_.GetInsertBlock()->getTerminator()) b_.CreateBr(after);
+  region_end_ = saved_end;
+  region_after_ = saved_after;
+}
+
+void LayerEmitter::emit_op(int index) {
+  const ir::Op& op = shader().ops[size_t(index)];
+  if (op.opcode == "nop") return;
+  if (op.opcode == "br") {
+    b_.CreateBr(block_at(op.jumps.at(0)));
+  } else if (op.opcode == "cbr") {
+    llvm::Value* c = truthy(load(op.args[0], nullptr, false), arg(op, 0).type.base);
+    b_.CreateCondBr(c, block_at(op.jumps.at(0)), block_at(op.jumps.at(1)));
+  } else if (op.opcode == "exit") {
+    emit_exit();
+  } else if (op.opcode == "useparam") {
+    for (int a : op.args) run_useparam(a);
+  } else if (OpEmitFn fn = find_op_emitter(op.opcode)) {
+    fn(*this, op);
+  } else {
+    fail(op, "not supported by codegen");
+  }
+  // Code after a terminator (an op following `exit` in the same block) goes to a dead block.
+  if (b_.GetInsertBlock()->getTerminator() && !is_leader(index + 1))
+    b_.SetInsertPoint(llvm::BasicBlock::Create(ctx(), "dead", fn_));
+}
+
+// Stores output params (and every param another layer reads) to group data and the written
+// globals back to ShaderGlobals.
+void LayerEmitter::finish_exit_block() {
+  b_.SetInsertPoint(exit_block_);
+  const auto& syms = shader().symbols;
+  std::vector<bool> is_source(syms.size(), false), written(syms.size(), false);
+  for (const LayerPlan& lp : group_.layers)
+    for (const ConnectionPlan& c : lp.connections)
+      if (c.src_layer == layer_) is_source[size_t(c.src_symbol)] = true;
+  for (const ir::Op& op : shader().ops)
+    for (size_t a = 0; a < op.args.size(); ++a)
+      if (op.writes(int(a))) written[size_t(op.args[a])] = true;
+  for (size_t i = 0; i < syms.size(); ++i) {
+    const ir::Symbol& s = syms[i];
+    bool param = s.kind == SymKind::Param || s.kind == SymKind::OutputParam;
+    if (param && plan().symbol_offset[i] >= 0 && (s.kind == SymKind::OutputParam || is_source[i]))
+      b_.CreateMemCpy(groupdata_address(layer_, int(i), 0, 0, 0), llvm::MaybeAlign(4), storage_[i],
+                      llvm::MaybeAlign(8), storage_bytes(s));
+    if (s.kind == SymKind::Global && written[i]) {
+      const GlobalField* g = find_global(s.name);
+      Val v = load(int(i), nullptr, false);
+      for (size_t c = 0; c < v.size(); ++c)
+        b_.CreateStore(v[c].v,
+                       b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), sg_, g->offset + 4 * c));
+    }
+  }
+  b_.CreateRetVoid();
+}
+
+bool LayerEmitter::emit() {
+  fn_ = layer_fns_[size_t(layer_)];
+  sg_ = fn_->getArg(0);
+  gd_ = fn_->getArg(1);
+  alloca_block_ = llvm::BasicBlock::Create(ctx(), "entry", fn_);
+  auto* start = llvm::BasicBlock::Create(ctx(), "start", fn_);
+  exit_block_ = llvm::BasicBlock::Create(ctx(), "exit", fn_);
+  const auto& ops = shader().ops;
+  leader_.assign(ops.size() + 1, 0);
+  for (size_t i = 0; i < ops.size(); ++i) {
+    if (is_jump(ops[i].opcode)) {
+      leader_[i + 1] = 1;
+      for (int t : ops[i].jumps)
+        if (t >= 0 && size_t(t) <= ops.size()) leader_[size_t(t)] = 1;
+    }
+  }
+  b_.SetInsertPoint(start);
+  create_storage();
+  b_.CreateStore(iconst(1),
+                 b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), gd_, size_t(plan().ran_offset)));
+  init_symbols();
+  if (!failed()) init_params();
+  if (!failed()) emit_region(shader().main_begin, int(ops.size()), exit_block_);
+  finish_exit_block();
+  llvm::IRBuilder<> eb(alloca_block_);
+  eb.CreateBr(start);
+  return !failed();
+}
+
+std::string emit_group(const GroupPlan& plan, llvm::Module& module) {
+  llvm::LLVMContext& ctx = module.getContext();
+  auto* ptr = llvm::PointerType::get(ctx, 0);
+  auto* fty = llvm::FunctionType::get(llvm::Type::getVoidTy(ctx), {ptr, ptr}, false);
+  std::vector<llvm::Function*> fns;
+  for (const LayerPlan& lp : plan.layers) {
+    auto* f =
+        llvm::Function::Create(fty, llvm::Function::InternalLinkage, lp.function_name, module);
+    f->addFnAttr(llvm::Attribute::NoUnwind);
+    fns.push_back(f);
+  }
+  for (size_t i = 0; i < plan.layers.size(); ++i) {
+    LayerEmitter e(plan, int(i), module, fns);
+    if (!e.emit()) return e.error();
+  }
+  auto* entry =
+      llvm::Function::Create(fty, llvm::Function::ExternalLinkage, plan.entry_name, module);
+  llvm::IRBuilder<> b(llvm::BasicBlock::Create(ctx, "entry", entry));
+  if (!fns.empty()) b.CreateCall(fns.back(), {entry->getArg(0), entry->getArg(1)});
+  b.CreateRetVoid();
+  std::string err;
+  llvm::raw_string_ostream os(err);
+  if (llvm::verifyModule(module, &os)) return "internal: invalid LLVM IR: " + os.str();
+  return "";
+}
+
+} // namespace lobe::codegen

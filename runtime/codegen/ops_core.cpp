@@ -1,0 +1,267 @@
+// Core ops: assignment and conversion, arithmetic (floats as dual numbers, ints with OSL's
+// division rules, matrices, closures), comparisons and integer bit ops.
+#include "duals.h"
+#include "op_tables.h"
+
+#include <llvm/IR/Constants.h>
+
+namespace lobe::codegen {
+namespace {
+
+using ir::BaseType;
+
+bool is_closure(const ir::Symbol& s) { return s.type.base == BaseType::Closure; }
+
+void op_assign(LayerEmitter& e, const ir::Op& op) {
+  e.store(op.args[0], e.load_as(op, 1, e.arg(op, 0).type.base, e.wants_derivs(op.args[0])));
+}
+
+// Integer a / b and a % b without UB: 0 where b == 0, and b == -1 handled without overflow.
+llvm::Value* int_divmod(LayerEmitter& e, llvm::Value* a, llvm::Value* b, bool mod) {
+  auto& B = e.b();
+  llvm::Value* zero = B.CreateICmpEQ(b, e.iconst(0));
+  llvm::Value* m1 = B.CreateICmpEQ(b, e.iconst(-1));
+  llvm::Value* safe = B.CreateSelect(B.CreateOr(zero, m1), e.iconst(1), b);
+  llvm::Value* r = mod ? B.CreateSRem(a, safe) : B.CreateSDiv(a, safe);
+  llvm::Value* at_m1 = mod ? e.iconst(0) : B.CreateSub(e.iconst(0), a);
+  return B.CreateSelect(zero, e.iconst(0), B.CreateSelect(m1, at_m1, r));
+}
+
+// Closure arithmetic: sums and weights built at run time by shadeops.
+void closure_arith(LayerEmitter& e, const ir::Op& op) {
+  auto& B = e.b();
+  auto weight_ptr = [&](int argi) {
+    Val w = e.load_as(op, argi, BaseType::Color, false);
+    return e.spill({w[0].v, w[1].v, w[2].v});
+  };
+  llvm::Value* r = nullptr;
+  if (op.opcode == "add") {
+    r = e.call("lobe_closure_add", {e.sg(), e.load(op.args[1])[0].v, e.load(op.args[2])[0].v});
+  } else if (op.opcode == "mul" || op.opcode == "div") {
+    int ci = is_closure(e.arg(op, 1)) ? 1 : 2, wi = 3 - ci;
+    llvm::Value* w = weight_ptr(wi);
+    if (op.opcode == "div") { // closure / w: scale by 1/w (0 where w == 0)
+      Val wv = e.load_as(op, wi, BaseType::Color, false);
+      DualOps d(e);
+      std::vector<llvm::Value*> inv;
+      for (const Dual& c : wv) inv.push_back(d.div(d.constant(1), c).v);
+      w = e.spill(inv);
+    }
+    r = e.call("lobe_closure_mul", {e.sg(), e.load(op.args[size_t(ci)])[0].v, w});
+  } else if (op.opcode == "neg") {
+    llvm::Value* w = e.spill({e.fconst(-1), e.fconst(-1), e.fconst(-1)});
+    r = e.call("lobe_closure_mul", {e.sg(), e.load(op.args[1])[0].v, w});
+  } else {
+    e.fail(op, "not defined on closures");
+    return;
+  }
+  (void)B;
+  e.store(op.args[0], Val{Dual{r}});
+}
+
+// Matrix arithmetic: products and inverses through shadeops, the rest per element.
+void matrix_arith(LayerEmitter& e, const ir::Op& op) {
+  bool am = e.arg(op, 1).type.base == BaseType::Matrix;
+  bool bm = op.args.size() > 2 && e.arg(op, 2).type.base == BaseType::Matrix;
+  if ((op.opcode == "mul" || op.opcode == "div") && am && bm) {
+    auto to_ptr = [&](int i) {
+      Val v = e.load_as(op, i, BaseType::Matrix, false);
+      std::vector<llvm::Value*> c;
+      for (auto& d : v) c.push_back(d.v);
+      return e.spill(c);
+    };
+    llvm::Value* out = e.spill(std::vector<llvm::Value*>(16, e.fconst(0)));
+    e.call(op.opcode == "mul" ? "lobe_mat_mul" : "lobe_mat_div", {out, to_ptr(1), to_ptr(2)});
+    Val r;
+    for (llvm::Value* v : e.reload(out, 16)) r.push_back(Dual{v});
+    e.store(op.args[0], r);
+    return;
+  }
+  if (op.opcode == "div" && !am && bm) { // float / matrix = diag(float) * inverse(matrix)
+    Val a = e.load_as(op, 1, BaseType::Matrix, false),
+        b = e.load_as(op, 2, BaseType::Matrix, false);
+    std::vector<llvm::Value*> ac, bc;
+    for (int i = 0; i < 16; ++i) {
+      ac.push_back(a[size_t(i)].v);
+      bc.push_back(b[size_t(i)].v);
+    }
+    llvm::Value* out = e.spill(std::vector<llvm::Value*>(16, e.fconst(0)));
+    e.call("lobe_mat_div", {out, e.spill(ac), e.spill(bc)});
+    Val r;
+    for (llvm::Value* v : e.reload(out, 16)) r.push_back(Dual{v});
+    e.store(op.args[0], r);
+    return;
+  }
+  // Per element: matrix +-* float or matrix, matrix / float, -matrix. A float operand of
+  // add/sub acts as a diagonal matrix (conversion rule), of mul/div as a scalar.
+  DualOps d(e);
+  bool scalar_b = op.args.size() > 2 && !bm && (op.opcode == "mul" || op.opcode == "div");
+  bool scalar_a = !am && op.opcode == "mul";
+  Val a = scalar_a ? e.load_as(op, 1, BaseType::Float, false)
+                   : e.load_as(op, 1, BaseType::Matrix, false);
+  Val b;
+  if (op.args.size() > 2)
+    b = scalar_b ? e.load_as(op, 2, BaseType::Float, false)
+                 : e.load_as(op, 2, BaseType::Matrix, false);
+  Val r(16);
+  for (size_t i = 0; i < 16; ++i) {
+    Dual x = scalar_a ? a[0] : a[i];
+    if (op.opcode == "neg") {
+      r[i] = d.neg(x);
+      continue;
+    }
+    Dual y = scalar_b ? b[0] : b[i];
+    if (op.opcode == "add")
+      r[i] = d.add(x, y);
+    else if (op.opcode == "sub")
+      r[i] = d.sub(x, y);
+    else if (op.opcode == "mul")
+      r[i] = d.mul(x, y);
+    else
+      r[i] = d.div(x, y);
+  }
+  e.store(op.args[0], r);
+}
+
+void arith(LayerEmitter& e, const ir::Op& op) {
+  const ir::Symbol& dst = e.arg(op, 0);
+  BaseType t = dst.type.base;
+  if (t == BaseType::Closure) return closure_arith(e, op);
+  if (t == BaseType::Matrix) return matrix_arith(e, op);
+  auto& B = e.b();
+  bool unary = op.opcode == "neg";
+  if (t == BaseType::Int) {
+    llvm::Value* a = e.load_as(op, 1, t)[0].v;
+    llvm::Value* r = nullptr;
+    if (unary)
+      r = B.CreateSub(e.iconst(0), a);
+    else {
+      llvm::Value* b = e.load_as(op, 2, t)[0].v;
+      if (op.opcode == "add")
+        r = B.CreateAdd(a, b);
+      else if (op.opcode == "sub")
+        r = B.CreateSub(a, b);
+      else if (op.opcode == "mul")
+        r = B.CreateMul(a, b);
+      else
+        r = int_divmod(e, a, b, op.opcode == "mod");
+    }
+    e.store(op.args[0], Val{Dual{r}});
+    return;
+  }
+  bool derivs = e.wants_derivs(op.args[0]);
+  Val a = e.load_as(op, 1, t, derivs);
+  Val b = unary ? Val{} : e.load_as(op, 2, t, derivs);
+  DualOps d(e);
+  Val r(a.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (unary)
+      r[i] = d.neg(a[i]);
+    else if (op.opcode == "add")
+      r[i] = d.add(a[i], b[i]);
+    else if (op.opcode == "sub")
+      r[i] = d.sub(a[i], b[i]);
+    else if (op.opcode == "mul")
+      r[i] = d.mul(a[i], b[i]);
+    else if (op.opcode == "div")
+      r[i] = d.div(a[i], b[i]);
+    else { // fmod, 0 where b == 0; d(fmod(a,b)) = da - trunc(a/b) db
+      llvm::Value* b0 = B.CreateFCmpOEQ(b[i].v, e.fconst(0));
+      llvm::Value* m = B.CreateFRem(a[i].v, B.CreateSelect(b0, e.fconst(1), b[i].v));
+      Dual q = d.div(a[i], b[i]);
+      llvm::Value* tq = B.CreateUnaryIntrinsic(llvm::Intrinsic::trunc, q.v);
+      Dual res{B.CreateSelect(b0, e.fconst(0), m)};
+      res.dx = d.dsub(a[i].dx, d.scale(b[i].dx, tq));
+      res.dy = d.dsub(a[i].dy, d.scale(b[i].dy, tq));
+      r[i] = res;
+    }
+  }
+  e.store(op.args[0], r);
+}
+
+// The type two operands are compared in: the wider of the two (int < float < triple).
+BaseType compare_type(const ir::Symbol& a, const ir::Symbol& b) {
+  auto rank = [](BaseType t) {
+    if (t == BaseType::Int) return 0;
+    if (t == BaseType::Float) return 1;
+    if (t == BaseType::Matrix) return 3;
+    if (t == BaseType::String || t == BaseType::Closure) return 4;
+    return 2;
+  };
+  return rank(a.type.base) >= rank(b.type.base) ? a.type.base : b.type.base;
+}
+
+void compare(LayerEmitter& e, const ir::Op& op) {
+  auto& B = e.b();
+  BaseType t = compare_type(e.arg(op, 1), e.arg(op, 2));
+  Val a = e.load_as(op, 1, t, false), b = e.load_as(op, 2, t, false);
+  const std::string& o = op.opcode;
+  llvm::Value* r = nullptr;
+  if (o == "eq" || o == "neq") {
+    for (size_t i = 0; i < a.size(); ++i) {
+      llvm::Value* c;
+      if (t == BaseType::Int || t == BaseType::String || t == BaseType::Closure)
+        c = B.CreateICmpEQ(a[i].v, b[i].v);
+      else
+        c = B.CreateFCmpOEQ(a[i].v, b[i].v);
+      r = r ? B.CreateAnd(r, c) : c;
+    }
+    if (o == "neq") r = B.CreateNot(r);
+  } else if (t == BaseType::Int) {
+    auto p = o == "lt"   ? llvm::CmpInst::ICMP_SLT
+             : o == "le" ? llvm::CmpInst::ICMP_SLE
+             : o == "gt" ? llvm::CmpInst::ICMP_SGT
+                         : llvm::CmpInst::ICMP_SGE;
+    r = B.CreateICmp(p, a[0].v, b[0].v);
+  } else {
+    auto p = o == "lt"   ? llvm::CmpInst::FCMP_OLT
+             : o == "le" ? llvm::CmpInst::FCMP_OLE
+             : o == "gt" ? llvm::CmpInst::FCMP_OGT
+                         : llvm::CmpInst::FCMP_OGE;
+    r = B.CreateFCmp(p, a[0].v, b[0].v);
+  }
+  e.store(op.args[0],
+          e.convert(Val{Dual{B.CreateZExt(r, e.i32())}}, BaseType::Int, e.arg(op, 0).type.base));
+}
+
+void logic_not(LayerEmitter& e, const ir::Op& op) {
+  llvm::Value* nz = e.truthy(e.load(op.args[1], nullptr, false), e.arg(op, 1).type.base);
+  Val r{Dual{e.b().CreateZExt(e.b().CreateNot(nz), e.i32())}};
+  e.store(op.args[0], e.convert(r, BaseType::Int, e.arg(op, 0).type.base));
+}
+
+void bits(LayerEmitter& e, const ir::Op& op) {
+  auto& B = e.b();
+  llvm::Value* a = e.load_as(op, 1, BaseType::Int)[0].v;
+  llvm::Value* r;
+  if (op.opcode == "compl")
+    r = B.CreateNot(a);
+  else {
+    llvm::Value* b = e.load_as(op, 2, BaseType::Int)[0].v;
+    const std::string& o = op.opcode;
+    if (o == "bitand")
+      r = B.CreateAnd(a, b);
+    else if (o == "bitor")
+      r = B.CreateOr(a, b);
+    else if (o == "xor")
+      r = B.CreateXor(a, b);
+    else { // shift counts are taken modulo 32 (C leaves larger ones undefined)
+      llvm::Value* n = B.CreateAnd(b, e.iconst(31));
+      r = o == "shl" ? B.CreateShl(a, n) : B.CreateAShr(a, n);
+    }
+  }
+  e.store(op.args[0], Val{Dual{r}});
+}
+
+const OpEntry kCoreOps[] = {
+    {"assign", op_assign}, {"add", arith},  {"sub", arith},  {"mul", arith},     {"div", arith},
+    {"mod", arith},        {"neg", arith},  {"eq", compare}, {"neq", compare},   {"lt", compare},
+    {"le", compare},       {"gt", compare}, {"ge", compare}, {"not", logic_not}, {"compl", bits},
+    {"bitand", bits},      {"bitor", bits}, {"xor", bits},   {"shl", bits},      {"shr", bits},
+};
+
+} // namespace
+
+std::span<const OpEntry> core_ops() { return kCoreOps; }
+
+} // namespace lobe::codegen

@@ -1,0 +1,262 @@
+// Geometry, colour and matrix functions (dot, cross, normalize, transform, luminance,
+// blackbody, determinant, ...) and the derivative ops (Dx, Dy, Dz, filterwidth, area,
+// calculatenormal).
+#include "duals.h"
+#include "op_tables.h"
+
+#include "lobe/shading.h"
+
+#include <llvm/IR/Constants.h>
+#include <llvm/IR/Intrinsics.h>
+
+namespace lobe::codegen {
+namespace {
+
+using ir::BaseType;
+
+Dual dot3(DualOps& d, const Val& a, const Val& b) {
+  return d.add(d.add(d.mul(a[0], b[0]), d.mul(a[1], b[1])), d.mul(a[2], b[2]));
+}
+Val cross3(DualOps& d, const Val& a, const Val& b) {
+  return {d.sub(d.mul(a[1], b[2]), d.mul(a[2], b[1])), d.sub(d.mul(a[2], b[0]), d.mul(a[0], b[2])),
+          d.sub(d.mul(a[0], b[1]), d.mul(a[1], b[0]))};
+}
+Dual sqrt_dual(LayerEmitter& e, DualOps& d, const Dual& x) {
+  auto& B = e.b();
+  llvm::Value* pos = B.CreateFCmpOGT(x.v, e.fconst(0));
+  llvm::Value* s =
+      B.CreateUnaryIntrinsic(llvm::Intrinsic::sqrt, B.CreateSelect(pos, x.v, e.fconst(0)));
+  return d.chain(x, s, [&] {
+    return B.CreateSelect(pos, B.CreateFDiv(e.fconst(0.5f), B.CreateSelect(pos, s, e.fconst(1))),
+                          e.fconst(0));
+  });
+}
+std::vector<llvm::Value*> values(const Val& v) {
+  std::vector<llvm::Value*> out;
+  for (const Dual& x : v) out.push_back(x.v);
+  return out;
+}
+Val from_values(const std::vector<llvm::Value*>& v) {
+  Val out;
+  for (llvm::Value* x : v) out.push_back(Dual{x});
+  return out;
+}
+
+Val load3(LayerEmitter& e, const ir::Op& op, int i) {
+  return e.load_as(op, i, BaseType::Vector, e.wants_derivs(op.args[0]));
+}
+
+void op_dot(LayerEmitter& e, const ir::Op& op) {
+  DualOps d(e);
+  e.store(op.args[0], Val{dot3(d, load3(e, op, 1), load3(e, op, 2))});
+}
+void op_cross(LayerEmitter& e, const ir::Op& op) {
+  DualOps d(e);
+  e.store(op.args[0], cross3(d, load3(e, op, 1), load3(e, op, 2)));
+}
+void op_length(LayerEmitter& e, const ir::Op& op) {
+  DualOps d(e);
+  Val a = load3(e, op, 1);
+  e.store(op.args[0], Val{sqrt_dual(e, d, dot3(d, a, a))});
+}
+void op_distance(LayerEmitter& e, const ir::Op& op) {
+  DualOps d(e);
+  Val a = load3(e, op, 1), b = load3(e, op, 2), diff(3);
+  if (op.args.size() == 4) { // distance from point q to segment a-b
+    Val q = load3(e, op, 3), ab(3), aq(3);
+    for (size_t i = 0; i < 3; ++i) {
+      ab[i] = d.sub(b[i], a[i]);
+      aq[i] = d.sub(q[i], a[i]);
+    }
+    Dual t = d.div(dot3(d, aq, ab), dot3(d, ab, ab));
+    auto& B = e.b();
+    t = d.select(B.CreateFCmpOLT(t.v, e.fconst(0)), d.constant(0), t);
+    t = d.select(B.CreateFCmpOGT(t.v, e.fconst(1)), d.constant(1), t);
+    for (size_t i = 0; i < 3; ++i) diff[i] = d.sub(aq[i], d.mul(t, ab[i]));
+  } else {
+    for (size_t i = 0; i < 3; ++i) diff[i] = d.sub(a[i], b[i]);
+  }
+  e.store(op.args[0], Val{sqrt_dual(e, d, dot3(d, diff, diff))});
+}
+void op_normalize(LayerEmitter& e, const ir::Op& op) {
+  DualOps d(e);
+  Val a = load3(e, op, 1), r;
+  Dual len = sqrt_dual(e, d, dot3(d, a, a));
+  for (const Dual& c : a) r.push_back(d.div(c, len)); // 0 for a zero vector
+  e.store(op.args[0], r);
+}
+
+// transform: (to, p) from common; (from, to, p); (M, p). The last operand's type decides the
+// rule (point, vector, normal). Derivatives transform as vectors (normals as normals).
+void op_transform(LayerEmitter& e, const ir::Op& op) {
+  size_t last = op.args.size() - 1;
+  const ir::Symbol& p = e.arg(op, int(last));
+  int kind = p.type.base == BaseType::Point ? 0 : (p.type.base == BaseType::Normal ? 2 : 1);
+  llvm::Value* m;
+  if (e.arg(op, 1).type.base == BaseType::Matrix) {
+    m = e.spill(values(e.load_as(op, 1, BaseType::Matrix, false)));
+  } else {
+    m = e.spill(std::vector<llvm::Value*>(16, e.fconst(0)));
+    llvm::Value* from = last == 3 ? e.load(op.args[1])[0].v : e.string_const("common");
+    llvm::Value* to = e.load(op.args[last - 1])[0].v;
+    e.call("lobe_get_matrix", {e.sg(), from, to, m});
+  }
+  Val x = e.load_as(op, int(last), BaseType::Vector, e.wants_derivs(op.args[0]));
+  auto apply = [&](std::vector<llvm::Value*> comps, int k) {
+    llvm::Value* in = e.spill(comps);
+    llvm::Value* out = e.spill(comps);
+    e.call("lobe_transform", {out, m, in, e.iconst(k)});
+    return e.reload(out, 3);
+  };
+  Val r = from_values(apply(values(x), kind));
+  if (e.wants_derivs(op.args[0]) && x[0].dx) {
+    std::vector<llvm::Value*> dx, dy;
+    for (const Dual& c : x) {
+      dx.push_back(c.dx ? c.dx : e.fconst(0));
+      dy.push_back(c.dy ? c.dy : e.fconst(0));
+    }
+    auto rx = apply(dx, kind == 0 ? 1 : kind), ry = apply(dy, kind == 0 ? 1 : kind);
+    for (size_t i = 0; i < 3; ++i) {
+      r[i].dx = rx[i];
+      r[i].dy = ry[i];
+    }
+  }
+  e.store(op.args[0], r);
+}
+
+// Length units, in metres; only constant unit names are supported.
+double unit_scale(const std::string& u) {
+  if (u == "m" || u == "meter" || u == "meters") return 1;
+  if (u == "cm") return 0.01;
+  if (u == "mm") return 0.001;
+  if (u == "km") return 1000;
+  if (u == "in" || u == "inch") return 0.0254;
+  if (u == "ft" || u == "foot" || u == "feet") return 0.3048;
+  if (u == "mi" || u == "mile") return 1609.344;
+  return 0;
+}
+void op_transformu(LayerEmitter& e, const ir::Op& op) {
+  const ir::Symbol& from = e.arg(op, 1);
+  const ir::Symbol& to = e.arg(op, 2);
+  if (from.kind != ir::SymKind::Const || to.kind != ir::SymKind::Const || op.args.size() != 4)
+    return e.fail(op, "transformu needs constant unit names");
+  double a = unit_scale(from.init[0].s), b = unit_scale(to.init[0].s);
+  if (a == 0 || b == 0) return e.fail(op, "unknown unit");
+  DualOps d(e);
+  Val x = e.load_as(op, 3, BaseType::Float);
+  e.store(op.args[0], Val{d.mul(x[0], d.constant(float(a / b)))});
+}
+
+void op_transformc(LayerEmitter& e, const ir::Op& op) {
+  size_t last = op.args.size() - 1;
+  llvm::Value* from = last == 3 ? e.load(op.args[1])[0].v : e.string_const("rgb");
+  llvm::Value* to = e.load(op.args[last - 1])[0].v;
+  llvm::Value* in = e.spill(values(e.load_as(op, int(last), BaseType::Color, false)));
+  llvm::Value* out = e.spill({e.fconst(0), e.fconst(0), e.fconst(0)});
+  e.call("lobe_transformc", {e.sg(), from, to, out, in});
+  e.store(op.args[0], from_values(e.reload(out, 3)));
+}
+
+void op_luminance(LayerEmitter& e, const ir::Op& op) {
+  DualOps d(e);
+  Val c = e.load_as(op, 1, BaseType::Color, e.wants_derivs(op.args[0]));
+  Val w{d.constant(0.2126729f), d.constant(0.7151522f), d.constant(0.0721750f)};
+  e.store(op.args[0], Val{dot3(d, c, w)});
+}
+
+void op_spectral(LayerEmitter& e, const ir::Op& op) {
+  llvm::Value* out = e.spill({e.fconst(0), e.fconst(0), e.fconst(0)});
+  e.call(op.opcode == "blackbody" ? "lobe_blackbody" : "lobe_wavelength_color",
+         {out, e.load_as(op, 1, BaseType::Float, false)[0].v});
+  e.store(op.args[0], from_values(e.reload(out, 3)));
+}
+
+void op_matrix_fn(LayerEmitter& e, const ir::Op& op) {
+  llvm::Value* m = e.spill(values(e.load_as(op, 1, BaseType::Matrix, false)));
+  if (op.opcode == "determinant") {
+    e.store(op.args[0], Val{Dual{e.call("lobe_mat_det", {m})}});
+    return;
+  }
+  llvm::Value* out = e.spill(std::vector<llvm::Value*>(16, e.fconst(0)));
+  e.call("lobe_mat_transpose", {out, m});
+  e.store(op.args[0], from_values(e.reload(out, 16)));
+}
+
+// getmatrix ok M "from" "to" (M is written too).
+void op_getmatrix(LayerEmitter& e, const ir::Op& op) {
+  llvm::Value* out = e.spill(std::vector<llvm::Value*>(16, e.fconst(0)));
+  llvm::Value* ok =
+      e.call("lobe_get_matrix", {e.sg(), e.load(op.args[2])[0].v, e.load(op.args[3])[0].v, out});
+  e.store(op.args[1], from_values(e.reload(out, 16)));
+  e.store(op.args[0], Val{Dual{ok}});
+}
+
+// Dx, Dy, Dz, filterwidth, area, calculatenormal: read derivatives, write plain values.
+void op_deriv(LayerEmitter& e, const ir::Op& op) {
+  const std::string& o = op.opcode;
+  BaseType t = e.arg(op, 1).type.base;
+  Val x = e.load(op.args[1]);
+  auto dxv = [&](const Dual& c) { return c.dx ? c.dx : e.fconst(0); };
+  auto dyv = [&](const Dual& c) { return c.dy ? c.dy : e.fconst(0); };
+  DualOps d(e);
+  Val r;
+  if (o == "Dx" || o == "Dy" || o == "Dz") {
+    for (const Dual& c : x)
+      r.push_back(Dual{o == "Dx" ? dxv(c) : o == "Dy" ? dyv(c) : e.fconst(0)});
+  } else if (o == "filterwidth") {
+    for (const Dual& c : x) {
+      Dual fx{dxv(c)}, fy{dyv(c)};
+      r.push_back(sqrt_dual(e, d, d.add(d.mul(fx, fx), d.mul(fy, fy))));
+    }
+  } else {
+    Val px, py;
+    for (const Dual& c : x) {
+      px.push_back(Dual{dxv(c)});
+      py.push_back(Dual{dyv(c)});
+    }
+    Val n = cross3(d, px, py);
+    if (o == "area") {
+      r = Val{sqrt_dual(e, d, dot3(d, n, n))};
+    } else {
+      llvm::Value* flip = e.b().CreateLoad(
+          e.i32(), e.b().CreateConstInBoundsGEP1_64(e.b().getInt8Ty(), e.sg(),
+                                                    offsetof(ShaderGlobals, flip_handedness)));
+      llvm::Value* f = e.b().CreateICmpNE(flip, e.iconst(0));
+      for (const Dual& c : n) r.push_back(d.select(f, d.neg(c), c));
+    }
+  }
+  for (Dual& c : r) c.dx = c.dy = nullptr;
+  e.store(op.args[0],
+          e.convert(r,
+                    t == BaseType::Float || t == BaseType::Int ? BaseType::Float : BaseType::Vector,
+                    e.arg(op, 0).type.base));
+}
+
+const OpEntry kGeometryOps[] = {
+    {"dot", op_dot},
+    {"cross", op_cross},
+    {"length", op_length},
+    {"distance", op_distance},
+    {"normalize", op_normalize},
+    {"transform", op_transform},
+    {"transformu", op_transformu},
+    {"transformc", op_transformc},
+    {"luminance", op_luminance},
+    {"blackbody", op_spectral},
+    {"wavelength_color", op_spectral},
+    {"determinant", op_matrix_fn},
+    {"transpose", op_matrix_fn},
+    {"getmatrix", op_getmatrix},
+    {"Dx", op_deriv},
+    {"Dy", op_deriv},
+    {"Dz", op_deriv},
+    {"filterwidth", op_deriv},
+    {"area", op_deriv},
+    {"calculatenormal", op_deriv},
+};
+
+} // namespace
+
+std::span<const OpEntry> geometry_ops() { return kGeometryOps; }
+
+} // namespace lobe::codegen

@@ -1,0 +1,380 @@
+// Library ops that call into the runtime: printf/format/error, strings, closures (registry
+// parameter blocks), the noise family, and shading-state queries.
+#include "duals.h"
+#include "op_tables.h"
+
+#include "closure_registry.h"
+#include "lobe/shading.h"
+#include "shadeops.h"
+
+#include <llvm/IR/Constants.h>
+
+#include <cstdlib>
+#include <sstream>
+
+namespace lobe::codegen {
+namespace {
+
+using ir::BaseType;
+
+std::string const_string(const ir::Symbol& s) {
+  return (s.kind == ir::SymKind::Const && !s.init.empty()) ? s.init[0].s : std::string();
+}
+bool is_const_string(const ir::Symbol& s) {
+  return s.kind == ir::SymKind::Const && s.type.base == BaseType::String && !s.type.is_array();
+}
+
+// ---- printf family --------------------------------------------------------------------------
+
+// Type codes and value pointers for the format shadeops (see shadeops/format.h).
+void format_args(LayerEmitter& e, const ir::Op& op, size_t first, std::string& codes,
+                 llvm::Value*& argv) {
+  std::vector<llvm::Value*> ptrs;
+  for (size_t i = first; i < op.args.size(); ++i) {
+    const ir::Symbol& s = e.arg(op, int(i));
+    char c = 'f';
+    switch (s.type.base) {
+    case BaseType::Int:
+      c = 'i';
+      break;
+    case BaseType::String:
+      c = 's';
+      break;
+    case BaseType::Closure:
+      c = 'c';
+      break;
+    case BaseType::Matrix:
+      c = 'm';
+      break;
+    case BaseType::Float:
+      c = 'f';
+      break;
+    default:
+      c = 't';
+    }
+    codes += c;
+    int n = std::max(1, s.type.arraylen);
+    if (s.type.is_array()) codes += "{" + std::to_string(n) + "}";
+    llvm::Type* t = c == 'i' ? e.i32() : (c == 's' || c == 'c') ? e.ptr() : e.f32();
+    std::vector<llvm::Value*> comps;
+    for (int k = 0; k < n; ++k)
+      for (const Dual& d : e.load(op.args[i], e.iconst(k), false)) comps.push_back(d.v);
+    ptrs.push_back(e.spill(comps, t));
+  }
+  argv = e.spill(ptrs, e.ptr());
+}
+
+void op_printf(LayerEmitter& e, const ir::Op& op) {
+  const std::string& o = op.opcode;
+  bool to_file = o == "fprintf", returns = o == "format";
+  size_t fmt_i = returns || to_file ? 1 : 0;
+  std::string codes;
+  llvm::Value* argv = nullptr;
+  format_args(e, op, fmt_i + 1, codes, argv);
+  llvm::Value* fmt = e.load(op.args[fmt_i])[0].v;
+  if (returns) {
+    e.store(op.args[0],
+            Val{Dual{e.call("lobe_format", {e.env_ptr(), fmt, e.string_const(codes), argv})}});
+    return;
+  }
+  if (to_file) { // the file name is ignored: text goes to the context like printf
+    e.call("lobe_printf", {e.sg(), e.env_ptr(), fmt, e.string_const(codes), argv});
+    return;
+  }
+  const char* fn = o == "printf" ? "lobe_printf" : (o == "error" ? "lobe_error" : "lobe_warning");
+  e.call(fn, {e.sg(), e.env_ptr(), fmt, e.string_const(codes), argv});
+}
+
+// ---- strings --------------------------------------------------------------------------------
+
+llvm::Value* str(LayerEmitter& e, const ir::Op& op, int i) {
+  return e.load(op.args[size_t(i)])[0].v;
+}
+
+void op_string(LayerEmitter& e, const ir::Op& op) {
+  const std::string& o = op.opcode;
+  llvm::Value* r = nullptr;
+  if (o == "concat") {
+    r = str(e, op, 1);
+    for (size_t i = 2; i < op.args.size(); ++i)
+      r = e.call("lobe_concat", {e.env_ptr(), r, str(e, op, int(i))});
+  } else if (o == "strlen")
+    r = e.call("lobe_strlen", {str(e, op, 1)});
+  else if (o == "startswith")
+    r = e.call("lobe_startswith", {str(e, op, 1), str(e, op, 2)});
+  else if (o == "endswith")
+    r = e.call("lobe_endswith", {str(e, op, 1), str(e, op, 2)});
+  else if (o == "stoi")
+    r = e.call("lobe_stoi", {str(e, op, 1)});
+  else if (o == "stof")
+    r = e.call("lobe_stof", {str(e, op, 1)});
+  else if (o == "getchar")
+    r = e.call("lobe_getchar", {str(e, op, 1), e.load_as(op, 2, BaseType::Int)[0].v});
+  else if (o == "substr") {
+    llvm::Value* len =
+        op.args.size() > 3 ? e.load_as(op, 3, BaseType::Int)[0].v : e.iconst(0x7fffffff);
+    r = e.call("lobe_substr",
+               {e.env_ptr(), str(e, op, 1), e.load_as(op, 2, BaseType::Int)[0].v, len});
+  } else if (o == "regex_search" || o == "regex_match") {
+    r = e.call("lobe_regex", {str(e, op, 1), str(e, op, int(op.args.size()) - 1),
+                              e.iconst(o == "regex_match" ? 1 : 0)});
+  }
+  e.store(op.args[0], e.convert(Val{Dual{r}},
+                                o == "stof"                        ? BaseType::Float
+                                : (o == "concat" || o == "substr") ? BaseType::String
+                                                                   : BaseType::Int,
+                                e.arg(op, 0).type.base));
+}
+
+// hash(string) is FNV-1a (shadeop); hash of numbers mixes their bits.
+void op_hash(LayerEmitter& e, const ir::Op& op) {
+  auto& B = e.b();
+  if (e.arg(op, 1).type.base == BaseType::String) {
+    e.store(op.args[0], Val{Dual{e.call("lobe_strhash", {str(e, op, 1)})}});
+    return;
+  }
+  llvm::Value* h = e.iconst(int(0x811c9dc5u));
+  for (size_t i = 1; i < op.args.size(); ++i)
+    for (const Dual& d : e.load(op.args[i], nullptr, false)) {
+      llvm::Value* bits = d.v->getType()->isFloatTy() ? B.CreateBitCast(d.v, e.i32()) : d.v;
+      h = B.CreateMul(B.CreateXor(h, bits), e.iconst(0x01000193));
+      h = B.CreateXor(h, B.CreateLShr(h, e.iconst(15)));
+    }
+  e.store(op.args[0], Val{Dual{h}});
+}
+
+// ---- closures -------------------------------------------------------------------------------
+
+// Parses a registry keyword default ("0", "1 1 1", "\"\"") into the block.
+void store_default(LayerEmitter& e, llvm::Value* at, const registry::ClosureParam& p) {
+  auto& B = e.b();
+  std::string text = p.default_value ? p.default_value : "";
+  std::istringstream in(text);
+  switch (p.type) {
+  case registry::ArgType::Int: {
+    int v = 0;
+    in >> v;
+    B.CreateStore(e.iconst(v), at);
+    break;
+  }
+  case registry::ArgType::Float: {
+    float v = 0;
+    in >> v;
+    B.CreateStore(e.fconst(v), at);
+    break;
+  }
+  case registry::ArgType::Color:
+  case registry::ArgType::Vector: {
+    float v[3] = {0, 0, 0};
+    int n = 0;
+    while (n < 3 && (in >> v[n])) ++n;
+    if (n == 1) v[1] = v[2] = v[0];
+    for (int k = 0; k < 3; ++k)
+      B.CreateStore(e.fconst(v[k]),
+                    B.CreateConstInBoundsGEP1_64(B.getInt8Ty(), at, 4 * unsigned(k)));
+    break;
+  }
+  case registry::ArgType::String: {
+    if (text.size() >= 2 && text.front() == '"') text = text.substr(1, text.size() - 2);
+    B.CreateStore(e.string_const(text), at);
+    break;
+  }
+  case registry::ArgType::Closure:
+    B.CreateStore(llvm::ConstantPointerNull::get(e.b().getPtrTy()), at);
+    break;
+  }
+}
+
+void store_arg(LayerEmitter& e, llvm::Value* at, const registry::ClosureParam& p, const ir::Op& op,
+               int i) {
+  auto& B = e.b();
+  BaseType to = p.type == registry::ArgType::Int      ? BaseType::Int
+                : p.type == registry::ArgType::Float  ? BaseType::Float
+                : p.type == registry::ArgType::Color  ? BaseType::Color
+                : p.type == registry::ArgType::Vector ? BaseType::Vector
+                : p.type == registry::ArgType::String ? BaseType::String
+                                                      : BaseType::Closure;
+  Val v = e.load_as(op, i, to, false);
+  for (size_t k = 0; k < v.size(); ++k)
+    B.CreateStore(v[k].v, B.CreateConstInBoundsGEP1_64(B.getInt8Ty(), at, 4 * k));
+}
+
+void op_closure(LayerEmitter& e, const ir::Op& op) {
+  std::string key = const_string(e.arg(op, 1));
+  const registry::ClosureEntry* entry = registry::find_by_key(key);
+  if (!entry) return e.fail(op, "unknown closure '" + key + "'");
+  auto params = entry->params;
+  size_t size = registry::param_block_size(params);
+  auto* block =
+      e.entry_alloca(llvm::ArrayType::get(e.b().getInt8Ty(), unsigned(std::max<size_t>(size, 8))),
+                     1, "closure_params");
+  auto at = [&](size_t pi) {
+    return e.b().CreateConstInBoundsGEP1_64(e.b().getInt8Ty(), block,
+                                            registry::param_offset(params, pi));
+  };
+  size_t argi = 2;
+  for (size_t pi = 0; pi < params.size(); ++pi) {
+    if (params[pi].keyword) {
+      store_default(e, at(pi), params[pi]);
+      continue;
+    }
+    if (argi >= op.args.size()) return e.fail(op, "too few arguments for closure '" + key + "'");
+    store_arg(e, at(pi), params[pi], op, int(argi++));
+  }
+  for (; argi + 1 < op.args.size(); argi += 2) { // "keyword", value pairs; the last one wins
+    std::string kw = const_string(e.arg(op, int(argi)));
+    size_t pi = 0;
+    while (pi < params.size() && !(params[pi].keyword && kw == params[pi].name)) ++pi;
+    if (pi == params.size()) continue; // unknown keywords are ignored, as OSL does
+    store_arg(e, at(pi), params[pi], op, int(argi + 1));
+  }
+  llvm::Value* c = e.call("lobe_closure_component",
+                          {e.sg(), e.iconst(registry::id_of(key)), block, e.iconst(int(size))});
+  e.store(op.args[0], Val{Dual{c}});
+}
+
+// ---- noise ----------------------------------------------------------------------------------
+
+void op_noise(LayerEmitter& e, const ir::Op& op) {
+  const std::string& o = op.opcode;
+  size_t first = 1;
+  int kind = o == "snoise" || o == "psnoise" ? shadeops::kPerlin
+             : o == "cellnoise"              ? shadeops::kCell
+             : o == "hashnoise"              ? shadeops::kHash
+                                             : shadeops::kUPerlin;
+  if (e.arg(op, 1).type.base == BaseType::String) {
+    if (!is_const_string(e.arg(op, 1)))
+      return e.fail(op, "the noise type must be a constant string");
+    std::string name = const_string(e.arg(op, 1));
+    kind = name == "gabor" ? shadeops::kUPerlin : shadeops::noise_kind_from_name(name);
+    if (kind < 0) return e.fail(op, "unknown noise type '" + name + "'");
+    first = 2;
+  }
+  bool periodic = o == "pnoise" || o == "psnoise";
+  size_t nargs = op.args.size() - first, ncoord = periodic ? nargs / 2 : nargs;
+  bool derivs = e.wants_derivs(op.args[0]);
+  std::vector<Dual> x;
+  std::vector<llvm::Value*> per;
+  for (size_t i = 0; i < nargs; ++i) {
+    const ir::Symbol& s = e.arg(op, int(first + i));
+    Val v = e.load_as(op, int(first + i), s.type.is_triple() ? BaseType::Vector : BaseType::Float,
+                      derivs);
+    for (const Dual& d : v) {
+      if (i < ncoord)
+        x.push_back(d);
+      else
+        per.push_back(d.v);
+    }
+  }
+  int nin = int(x.size()), nout = e.arg(op, 0).type.components();
+  std::vector<llvm::Value*> xv;
+  for (const Dual& d : x) xv.push_back(d.v);
+  llvm::Value* in = e.spill(xv);
+  llvm::Value* pp = periodic ? e.spill(per) : llvm::ConstantPointerNull::get(e.b().getPtrTy());
+  llvm::Value* out = e.spill(std::vector<llvm::Value*>(size_t(nout), e.fconst(0)));
+  bool any_d = false;
+  for (const Dual& d : x) any_d |= d.dx || d.dy;
+  llvm::Value* grad = any_d ? e.spill(std::vector<llvm::Value*>(size_t(nout * nin), e.fconst(0)))
+                            : llvm::ConstantPointerNull::get(e.b().getPtrTy());
+  e.call("lobe_noise", {e.iconst(kind), in, e.iconst(nin), pp, out, e.iconst(nout), grad});
+  std::vector<llvm::Value*> ov = e.reload(out, nout), gv;
+  if (any_d) gv = e.reload(grad, nout * nin);
+  DualOps d(e);
+  Val r;
+  for (int j = 0; j < nout; ++j) {
+    Dual rj{ov[size_t(j)]};
+    for (int k = 0; any_d && k < nin; ++k) {
+      rj.dx = d.dadd(rj.dx, d.scale(x[size_t(k)].dx, gv[size_t(j * nin + k)]));
+      rj.dy = d.dadd(rj.dy, d.scale(x[size_t(k)].dy, gv[size_t(j * nin + k)]));
+    }
+    r.push_back(rj);
+  }
+  e.store(op.args[0],
+          e.convert(r, nout == 1 ? BaseType::Float : BaseType::Color, e.arg(op, 0).type.base));
+}
+
+// ---- shading-state queries ------------------------------------------------------------------
+
+llvm::Value* sg_field(LayerEmitter& e, size_t offset, llvm::Type* t) {
+  return e.b().CreateLoad(t, e.b().CreateConstInBoundsGEP1_64(e.b().getInt8Ty(), e.sg(), offset));
+}
+
+int raytype_bit(const std::string& name) {
+  static const std::pair<const char*, int> kNames[] = {
+      {"camera", kRayCamera},         {"shadow", kRayShadow},
+      {"reflection", kRayReflection}, {"refraction", kRayRefraction},
+      {"diffuse", kRayDiffuse},       {"glossy", kRayGlossy},
+      {"subsurface", kRaySubsurface}, {"displacement", kRayDisplacement}};
+  for (auto& [n, bit] : kNames)
+    if (name == n) return bit;
+  return 0;
+}
+
+void op_query(LayerEmitter& e, const ir::Op& op) {
+  auto& B = e.b();
+  const std::string& o = op.opcode;
+  Val r;
+  if (o == "raytype") {
+    int bit = raytype_bit(const_string(e.arg(op, 1)));
+    llvm::Value* rt = sg_field(e, offsetof(ShaderGlobals, raytype), e.i32());
+    r = Val{
+        Dual{B.CreateZExt(B.CreateICmpNE(B.CreateAnd(rt, e.iconst(bit)), e.iconst(0)), e.i32())}};
+  } else if (o == "backfacing") {
+    r = Val{Dual{sg_field(e, offsetof(ShaderGlobals, backfacing), e.i32())}};
+  } else if (o == "surfacearea") {
+    r = Val{Dual{sg_field(e, offsetof(ShaderGlobals, surfacearea), e.f32())}};
+    e.store(op.args[0], e.convert(r, BaseType::Float, e.arg(op, 0).type.base));
+    return;
+  } else if (o == "isconnected") {
+    int s = op.args[1], v = 0;
+    for (const ConnectionPlan& c : e.group().layers[size_t(e.layer())].connections)
+      v |= c.dst_symbol == s ? 1 : 0;
+    for (const LayerPlan& lp : e.group().layers)
+      for (const ConnectionPlan& c : lp.connections)
+        v |= (c.src_layer == e.layer() && c.src_symbol == s) ? 2 : 0;
+    r = Val{Dual{e.iconst(v)}};
+  } else if (o == "isconstant") {
+    r = Val{Dual{e.iconst(e.arg(op, 1).kind == ir::SymKind::Const ? 1 : 0)}};
+  } else { // getattribute, getmessage, trace, gettextureinfo: nothing known; outputs untouched
+    r = Val{Dual{e.iconst(0)}};
+  }
+  e.store(op.args[0], e.convert(r, BaseType::Int, e.arg(op, 0).type.base));
+}
+
+void op_setmessage(LayerEmitter&, const ir::Op&) {} // no message passing between shaders yet
+
+// texture lookups: no texture system is wired in yet; results are 0 (docs/runtime.md).
+void op_texture(LayerEmitter& e, const ir::Op& op) {
+  const ir::Symbol& d = e.arg(op, 0);
+  Val z(size_t(d.type.components()), Dual{e.fconst(0)});
+  e.store(op.args[0],
+          e.convert(z, d.type.is_triple() ? BaseType::Color : BaseType::Float, d.type.base));
+}
+
+const OpEntry kLibraryOps[] = {
+    {"printf", op_printf},    {"format", op_printf},        {"error", op_printf},
+    {"warning", op_printf},   {"fprintf", op_printf},       {"concat", op_string},
+    {"strlen", op_string},    {"startswith", op_string},    {"endswith", op_string},
+    {"stoi", op_string},      {"stof", op_string},          {"substr", op_string},
+    {"getchar", op_string},   {"regex_search", op_string},  {"regex_match", op_string},
+    {"hash", op_hash},        {"closure", op_closure},      {"noise", op_noise},
+    {"snoise", op_noise},     {"pnoise", op_noise},         {"psnoise", op_noise},
+    {"cellnoise", op_noise},  {"hashnoise", op_noise},      {"raytype", op_query},
+    {"backfacing", op_query}, {"surfacearea", op_query},    {"isconnected", op_query},
+    {"isconstant", op_query}, {"getattribute", op_query},   {"getmessage", op_query},
+    {"trace", op_query},      {"gettextureinfo", op_query}, {"setmessage", op_setmessage},
+    {"texture", op_texture},  {"texture3d", op_texture},    {"environment", op_texture},
+};
+
+} // namespace
+
+std::span<const OpEntry> library_ops() { return kLibraryOps; }
+
+OpEmitFn find_op_emitter(const std::string& opcode) {
+  for (auto table : {core_ops(), access_ops(), math_ops(), geometry_ops(), library_ops()})
+    for (const OpEntry& e : table)
+      if (opcode == e.name) return e.fn;
+  return nullptr;
+}
+
+} // namespace lobe::codegen

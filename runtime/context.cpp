@@ -1,0 +1,25 @@
+// ShadingContext: the per-thread arena closures are built in, and the sink for messages from
+// shader code (printf, run-time errors). Rewinding the arena is O(1), so the renderer can
+// reset it at every shading point.
+#include "lobe/context.h"
+
+namespace lobe {
+
+ShadingContext::ShadingContext(size_t arena_bytes)
+    : arena_(new unsigned char[arena_bytes]), capacity_(arena_bytes) {}
+
+void* ShadingContext::allocate(size_t bytes) {
+  size_t start = (used_ + 7) & ~size_t(7);
+  if (start > capacity_ || bytes > capacity_ - start) return nullptr;
+  used_ = start + bytes;
+  return arena_.get() + start;
+}
+
+void ShadingContext::message(const std::string& text) {
+  if (print)
+    print(text);
+  else
+    output += text;
+}
+
+} // namespace lobe

@@ -1,0 +1,137 @@
+// Jit: LLJIT set-up, the absolute-symbol runtime library, the pass pipeline (see jit.h).
+#include "jit.h"
+
+#include "shadeops.h"
+
+#include <llvm/ExecutionEngine/Orc/Core.h>
+#include <llvm/ExecutionEngine/Orc/JITTargetMachineBuilder.h>
+#include <llvm/ExecutionEngine/Orc/LLJIT.h>
+#include <llvm/ExecutionEngine/Orc/ThreadSafeModule.h>
+#include <llvm/IR/LLVMContext.h>
+#include <llvm/IR/Module.h>
+#include <llvm/Passes/PassBuilder.h>
+#include <llvm/Support/TargetSelect.h>
+#include <llvm/Target/TargetMachine.h>
+
+#include <atomic>
+#include <chrono>
+
+namespace lobe::jit {
+
+struct Jit::State {
+  std::unique_ptr<llvm::orc::LLJIT> lljit;
+  std::unique_ptr<llvm::TargetMachine> tm; // for the optimiser's cost model
+  llvm::orc::JITDylib* runtime = nullptr;  // shadeops and libm, as absolute symbols
+  std::atomic<uint64_t> counter{0};
+  mutable std::mutex opt_mutex; // the TargetMachine is shared by optimiser runs
+};
+
+namespace {
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+} // namespace
+
+Jit::~Jit() = default;
+
+std::unique_ptr<Jit> Jit::create(std::string& error) {
+  llvm::InitializeNativeTarget();
+  llvm::InitializeNativeTargetAsmPrinter();
+  auto jtmb = llvm::orc::JITTargetMachineBuilder::detectHost();
+  if (!jtmb) {
+    error = llvm::toString(jtmb.takeError());
+    return nullptr;
+  }
+  jtmb->setCodeGenOptLevel(llvm::CodeGenOptLevel::Default);
+  auto tm = jtmb->createTargetMachine();
+  if (!tm) {
+    error = llvm::toString(tm.takeError());
+    return nullptr;
+  }
+  auto lljit = llvm::orc::LLJITBuilder().setJITTargetMachineBuilder(*jtmb).create();
+  if (!lljit) {
+    error = llvm::toString(lljit.takeError());
+    return nullptr;
+  }
+  std::unique_ptr<Jit> jit(new Jit);
+  jit->s_ = std::make_unique<State>();
+  jit->s_->lljit = std::move(*lljit);
+  jit->s_->tm = std::move(*tm);
+  auto& es = jit->s_->lljit->getExecutionSession();
+  llvm::orc::JITDylib& rt = es.createBareJITDylib("lobe_runtime");
+  llvm::orc::SymbolMap symbols;
+  for (const auto& s : shadeops::shadeop_symbols())
+    symbols[jit->s_->lljit->mangleAndIntern(s.name)] = llvm::orc::ExecutorSymbolDef(
+        llvm::orc::ExecutorAddr::fromPtr(s.address),
+        llvm::JITSymbolFlags::Exported | llvm::JITSymbolFlags::Callable);
+  if (auto err = rt.define(llvm::orc::absoluteSymbols(std::move(symbols)))) {
+    error = llvm::toString(std::move(err));
+    return nullptr;
+  }
+  jit->s_->runtime = &rt;
+  return jit;
+}
+
+void Jit::configure(llvm::Module& module) const {
+  module.setTargetTriple(s_->tm->getTargetTriple().str());
+  module.setDataLayout(s_->tm->createDataLayout());
+}
+
+void Jit::optimize(llvm::Module& module, int opt_level) const {
+  if (opt_level <= 0) return;
+  std::lock_guard<std::mutex> lock(s_->opt_mutex);
+  llvm::LoopAnalysisManager lam;
+  llvm::FunctionAnalysisManager fam;
+  llvm::CGSCCAnalysisManager cgam;
+  llvm::ModuleAnalysisManager mam;
+  llvm::PassBuilder pb(s_->tm.get());
+  pb.registerModuleAnalyses(mam);
+  pb.registerCGSCCAnalyses(cgam);
+  pb.registerFunctionAnalyses(fam);
+  pb.registerLoopAnalyses(lam);
+  pb.crossRegisterProxies(lam, fam, cgam, mam);
+  auto level = opt_level == 1 ? llvm::OptimizationLevel::O1 : llvm::OptimizationLevel::O2;
+  llvm::ModulePassManager mpm = pb.buildPerModuleDefaultPipeline(level);
+  mpm.run(module, mam);
+}
+
+bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::Module> module,
+              int opt_level, const std::string& entry, CompiledGroup& out, JitTimes& times,
+              std::string& error) {
+  auto t0 = std::chrono::steady_clock::now();
+  optimize(*module, opt_level);
+  times.optimize_ms = ms_since(t0);
+  auto t1 = std::chrono::steady_clock::now();
+  auto& lljit = *s_->lljit;
+  std::string name = "lobe_group_" + std::to_string(s_->counter++);
+  auto jd = lljit.createJITDylib(name);
+  if (!jd) {
+    error = llvm::toString(jd.takeError());
+    return false;
+  }
+  jd->addToLinkOrder(*s_->runtime);
+  llvm::orc::ThreadSafeModule tsm(std::move(module), std::move(context));
+  if (auto err = lljit.addIRModule(*jd, std::move(tsm))) {
+    error = llvm::toString(std::move(err));
+    (void)lljit.getExecutionSession().removeJITDylib(*jd);
+    return false;
+  }
+  auto addr = lljit.lookup(*jd, entry);
+  if (!addr) {
+    error = llvm::toString(addr.takeError());
+    llvm::consumeError(lljit.getExecutionSession().removeJITDylib(*jd));
+    return false;
+  }
+  times.codegen_ms = ms_since(t1);
+  out.entry = addr->toPtr<void*>();
+  out.dylib = &*jd;
+  return true;
+}
+
+void Jit::remove(CompiledGroup& group) {
+  if (!group.dylib) return;
+  llvm::consumeError(s_->lljit->getExecutionSession().removeJITDylib(*group.dylib));
+  group = {};
+}
+
+} // namespace lobe::jit

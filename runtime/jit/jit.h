@@ -1,0 +1,57 @@
+// The JIT: LLVM 19's ORC LLJIT for the host CPU, the new-pass-manager optimisation pipeline,
+// and one JITDylib per compiled group (so a Material's code is freed with it). Shadeops and
+// the libm functions generated code needs are resolved from one absolute-symbol map built
+// from the shadeop table (no dlsym look-ups). Thread-safe: several groups may compile at once.
+//
+// LLVM errors never abort the process: every failure is returned as text.
+#pragma once
+
+#include <memory>
+#include <mutex>
+#include <string>
+
+namespace llvm {
+class LLVMContext;
+class Module;
+namespace orc {
+class LLJIT;
+class JITDylib;
+} // namespace orc
+} // namespace llvm
+
+namespace lobe::jit {
+
+// Machine code of one group; the Jit frees it in remove().
+struct CompiledGroup {
+  void* entry = nullptr;
+  llvm::orc::JITDylib* dylib = nullptr;
+};
+
+struct JitTimes {
+  double optimize_ms = 0, codegen_ms = 0;
+};
+
+class Jit {
+public:
+  ~Jit();
+  static std::unique_ptr<Jit> create(std::string& error);
+
+  // Prepares a module for this JIT (host triple and data layout).
+  void configure(llvm::Module& module) const;
+  // Optimises `module` (opt_level 0: no IR passes; 1/2: the O1/O2 pipelines), compiles it into
+  // a fresh JITDylib and returns the address of `entry`.
+  bool add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::Module> module,
+           int opt_level, const std::string& entry, CompiledGroup& out, JitTimes& times,
+           std::string& error);
+  void remove(CompiledGroup& group);
+
+  // Runs the optimisation pipeline only (used by add(), and by tests/benchmarks).
+  void optimize(llvm::Module& module, int opt_level) const;
+
+private:
+  Jit() = default;
+  struct State;
+  std::unique_ptr<State> s_;
+};
+
+} // namespace lobe::jit

@@ -1,0 +1,33 @@
+// The run-time environment JIT-compiled code reaches through one constant pointer baked into
+// each material: the string interner (strings in shader code are interned `const char*` so
+// that equality is pointer equality) and the closure printer used by printf's `%s`.
+// Owned by the ShadingSystem; outlives every Material compiled by it.
+#pragma once
+
+#include "lobe/shading.h"
+
+#include <memory>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <unordered_set>
+
+namespace lobe::shadeops {
+
+// Thread-safe string interner: equal strings give the same pointer, valid for the table's life.
+class StringTable {
+public:
+  const char* intern(std::string_view s);
+
+private:
+  std::mutex mutex_;
+  std::unordered_set<std::string> strings_; // node-based: element addresses are stable
+};
+
+struct RuntimeEnv {
+  StringTable strings;
+  // Renders a closure tree for printf("%s"); null: a built-in fallback format.
+  std::string (*closure_printer)(const ClosureNode*) = nullptr;
+};
+
+} // namespace lobe::shadeops

@@ -1,0 +1,20 @@
+// OSL's printf/format: C printf conversions applied to shader values. A triple or matrix
+// argument prints each component with the same conversion, separated by spaces; an array
+// prints each element likewise; `%s` of a closure prints its tree (RuntimeEnv::closure_printer).
+//
+// Arguments arrive as a type-code string (one code per argument: i int, f float, t triple,
+// m matrix, s string, c closure; an array adds its length in braces, "f{3}") and an array of
+// pointers to the values.
+#pragma once
+
+#include "env.h"
+
+#include <string>
+#include <string_view>
+
+namespace lobe::shadeops {
+
+std::string format_values(const RuntimeEnv& env, std::string_view fmt, std::string_view codes,
+                          const void* const* args);
+
+} // namespace lobe::shadeops

@@ -1,0 +1,104 @@
+// Shadeops for text and messages: printf/format/warning/error, run-time range errors, string
+// functions (concat, substr, regex, hash, ...). Strings are interned through the RuntimeEnv.
+#include "env.h"
+#include "format.h"
+#include "lobe/context.h"
+
+#include <cstdlib>
+#include <cstring>
+#include <regex>
+#include <string>
+
+using lobe::ShaderGlobals;
+using lobe::shadeops::RuntimeEnv;
+
+namespace {
+void send(ShaderGlobals* sg, const std::string& text) {
+  if (sg && sg->context) sg->context->message(text);
+}
+} // namespace
+
+extern "C" {
+
+void lobe_printf(ShaderGlobals* sg, RuntimeEnv* env, const char* fmt, const char* codes,
+                 const void* const* args) {
+  send(sg, lobe::shadeops::format_values(*env, fmt, codes, args));
+}
+
+const char* lobe_format(RuntimeEnv* env, const char* fmt, const char* codes,
+                        const void* const* args) {
+  return env->strings.intern(lobe::shadeops::format_values(*env, fmt, codes, args));
+}
+
+void lobe_warning(ShaderGlobals* sg, RuntimeEnv* env, const char* fmt, const char* codes,
+                  const void* const* args) {
+  if (sg && sg->context) sg->context->warnings++;
+  send(sg, "WARNING: " + lobe::shadeops::format_values(*env, fmt, codes, args));
+}
+
+void lobe_error(ShaderGlobals* sg, RuntimeEnv* env, const char* fmt, const char* codes,
+                const void* const* args) {
+  if (sg && sg->context) sg->context->errors++;
+  send(sg, "ERROR: " + lobe::shadeops::format_values(*env, fmt, codes, args));
+}
+
+// An out-of-range array or component index (the generated code clamps it).
+void lobe_range_error(ShaderGlobals* sg, int index, int length, const char* name, const char* file,
+                      int line) {
+  if (sg && sg->context) sg->context->errors++;
+  send(sg, "ERROR: Index [" + std::to_string(index) + "] out of range " + name + "[0.." +
+               std::to_string(length - 1) + "]: " + file + ":" + std::to_string(line) + "\n");
+}
+
+const char* lobe_concat(RuntimeEnv* env, const char* a, const char* b) {
+  return env->strings.intern(std::string(a) + b);
+}
+
+int lobe_strlen(const char* s) { return int(std::strlen(s)); }
+
+// OSL substr: a negative start counts from the end; the range is clipped to the string.
+const char* lobe_substr(RuntimeEnv* env, const char* s, int start, int len) {
+  int n = int(std::strlen(s));
+  if (start < 0) start += n;
+  if (start < 0) start = 0;
+  if (start > n) start = n;
+  if (len < 0) len = 0;
+  if (len > n - start) len = n - start;
+  return env->strings.intern(std::string(s + start, size_t(len)));
+}
+
+int lobe_startswith(const char* s, const char* prefix) {
+  return std::strncmp(s, prefix, std::strlen(prefix)) == 0;
+}
+
+int lobe_endswith(const char* s, const char* suffix) {
+  size_t n = std::strlen(s), m = std::strlen(suffix);
+  return m <= n && std::strcmp(s + n - m, suffix) == 0;
+}
+
+int lobe_stoi(const char* s) { return int(std::strtol(s, nullptr, 10)); }
+float lobe_stof(const char* s) { return std::strtof(s, nullptr); }
+int lobe_getchar(const char* s, int i) {
+  int n = int(std::strlen(s));
+  return (i >= 0 && i < n) ? int((unsigned char)s[i]) : 0;
+}
+
+// hash(string): 32-bit FNV-1a, stable across runs and platforms.
+int lobe_strhash(const char* s) {
+  uint32_t h = 2166136261u;
+  for (; *s; ++s) h = (h ^ (unsigned char)*s) * 16777619u;
+  return int(h);
+}
+
+// regex_search / regex_match (ECMAScript syntax); an invalid pattern matches nothing.
+// std::regex throws on bad patterns: caught here, this code never runs inside LLVM frames.
+int lobe_regex(const char* s, const char* pattern, int full_match) {
+  try {
+    std::regex re(pattern);
+    return full_match ? std::regex_match(s, re) : std::regex_search(s, re);
+  } catch (...) {
+    return 0;
+  }
+}
+
+} // extern "C"

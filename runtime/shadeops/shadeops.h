@@ -1,0 +1,28 @@
+// The C-ABI functions JIT-compiled shader code calls, and the one table that names them.
+//
+// Each entry is (symbol name, address, signature). The signature string is the return type
+// followed by the parameter types: v void, i int32, l int64, f float, p pointer. Codegen declares
+// functions from this table and the JIT resolves them from it (an absolute-symbol map: no
+// dlsym), so a shadeop is declared exactly once. Pointer arguments carry triples/matrices
+// (float*, components in order), strings (interned const char*) and contexts.
+#pragma once
+
+#include <span>
+#include <string_view>
+
+namespace lobe::shadeops {
+
+struct ShadeOpSymbol {
+  const char* name;
+  void* address;
+  const char* sig;
+};
+
+std::span<const ShadeOpSymbol> shadeop_symbols();
+const ShadeOpSymbol* find_shadeop(std::string_view name);
+
+// Noise kinds for lobe_noise (noise("name", ...) and the named functions).
+enum NoiseKind : int { kPerlin = 0, kUPerlin = 1, kCell = 2, kHash = 3 };
+int noise_kind_from_name(std::string_view name); // -1: unknown
+
+} // namespace lobe::shadeops

@@ -1,0 +1,164 @@
+// Unit tests of the shadeops called directly (no JIT): formatting, strings, matrices, colour,
+// noise. Expected values are worked by hand or from closed forms.
+#include "env.h"
+#include "format.h"
+#include "lobe/context.h"
+#include "shadeops.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+using namespace lobe;
+using namespace lobe::shadeops;
+
+extern "C" {
+const char* lobe_substr(RuntimeEnv*, const char*, int, int);
+const char* lobe_concat(RuntimeEnv*, const char*, const char*);
+int lobe_regex(const char*, const char*, int);
+void lobe_mat_inverse(float*, const float*);
+float lobe_mat_det(const float*);
+void lobe_transform(float*, const float*, const float*, int);
+void lobe_transformc(ShaderGlobals*, const char*, const char*, float*, const float*);
+void lobe_blackbody(float*, float);
+void lobe_wavelength_color(float*, float);
+void lobe_noise(int, const float*, int, const float*, float*, int, float*);
+void lobe_range_error(ShaderGlobals*, int, int, const char*, const char*, int);
+}
+
+TEST(Format, TriplesIntsAndStrings) {
+  RuntimeEnv env;
+  float t[3] = {1, 0.5f, 0.25f};
+  int i = 42;
+  float f = 3.0f;
+  const char* s = env.strings.intern("hey");
+  const void* args[] = {t, &i, &f, &s};
+  EXPECT_EQ(format_values(env, "P = %g, i = %d, f = %.2f, s = %s%%\n", "tifs", args),
+            "P = 1 0.5 0.25, i = 42, f = 3.00, s = hey%\n");
+}
+
+TEST(Format, ArraysAndConversions) {
+  RuntimeEnv env;
+  float a[3] = {1, 2, 3.5f};
+  int n = 7;
+  const void* args[] = {a, &n};
+  // %d of a float truncates, %g of an int promotes.
+  EXPECT_EQ(format_values(env, "[%g] %g %d", "f{3}i", args), "[1 2 3.5] 7 %d");
+}
+
+TEST(Strings, InternedAndSubstr) {
+  RuntimeEnv env;
+  EXPECT_EQ(env.strings.intern("abc"), env.strings.intern(std::string("ab") + "c"));
+  EXPECT_STREQ(lobe_substr(&env, "hello", 1, 3), "ell");
+  EXPECT_STREQ(lobe_substr(&env, "hello", -3, 2), "ll");
+  EXPECT_STREQ(lobe_substr(&env, "hello", 3, 100), "lo");
+  EXPECT_STREQ(lobe_concat(&env, "ab", "cd"), "abcd");
+  EXPECT_EQ(lobe_regex("foo123", "[0-9]+", 0), 1);
+  EXPECT_EQ(lobe_regex("foo123", "[0-9]+", 1), 0);
+  EXPECT_EQ(lobe_regex("foo", "(", 0), 0); // invalid pattern: no match, no crash
+}
+
+TEST(Matrix, InverseDeterminantTransform) {
+  // Scale by 2 along x, translate by (1,2,3) (row-vector convention: translation in row 3).
+  float m[16] = {2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 2, 3, 1};
+  EXPECT_FLOAT_EQ(lobe_mat_det(m), 2.0f);
+  float inv[16];
+  lobe_mat_inverse(inv, m);
+  EXPECT_FLOAT_EQ(inv[0], 0.5f);
+  EXPECT_FLOAT_EQ(inv[12], -0.5f);
+  EXPECT_FLOAT_EQ(inv[13], -2.0f);
+  float p[3] = {1, 1, 1}, r[3];
+  lobe_transform(r, m, p, 0);
+  EXPECT_FLOAT_EQ(r[0], 3.0f);
+  EXPECT_FLOAT_EQ(r[1], 3.0f);
+  EXPECT_FLOAT_EQ(r[2], 4.0f);
+  lobe_transform(r, m, p, 1); // vectors ignore translation
+  EXPECT_FLOAT_EQ(r[0], 2.0f);
+  EXPECT_FLOAT_EQ(r[2], 1.0f);
+  float n[3] = {1, 0, 0};
+  lobe_transform(r, m, n, 2); // normals by the inverse transpose: x scaled by 1/2
+  EXPECT_FLOAT_EQ(r[0], 0.5f);
+}
+
+TEST(Color, SpacesAndSpectra) {
+  float hsv[3] = {0, 1, 1}, out[3];
+  lobe_transformc(nullptr, "hsv", "rgb", out, hsv);
+  EXPECT_FLOAT_EQ(out[0], 1);
+  EXPECT_FLOAT_EQ(out[1], 0);
+  float green[3] = {1.0f / 3, 1, 0.5f};
+  lobe_transformc(nullptr, "hsv", "rgb", out, green);
+  EXPECT_NEAR(out[0], 0, 1e-6);
+  EXPECT_NEAR(out[1], 0.5, 1e-6);
+  float white[3] = {1, 1, 1};
+  lobe_transformc(nullptr, "rgb", "XYZ", out, white);
+  EXPECT_NEAR(out[0], 0.95047, 1e-4); // D65 white point
+  EXPECT_NEAR(out[1], 1.0, 1e-4);
+  EXPECT_NEAR(out[2], 1.08883, 1e-4);
+  float c[3] = {0.2f, 0.4f, 0.6f};
+  lobe_transformc(nullptr, "rgb", "hsl", out, c);
+  float back[3];
+  lobe_transformc(nullptr, "hsl", "rgb", back, out);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(back[k], c[k], 1e-5);
+  lobe_blackbody(out, 6504);
+  EXPECT_NEAR(0.2126729 * out[0] + 0.7151522 * out[1] + 0.072175 * out[2], 1.0, 0.02);
+  EXPECT_NEAR(out[0], out[2], 0.12); // the D65 temperature is nearly white
+  lobe_blackbody(out, 2000);
+  EXPECT_GT(out[0], 2 * out[2]); // low temperatures are red
+  lobe_wavelength_color(out, 540);
+  EXPECT_GT(out[1], out[0]);
+  EXPECT_GT(out[1], out[2]);
+}
+
+TEST(Noise, LatticeRangeDerivativeCellPeriod) {
+  float x[3] = {3, -2, 7}, v, g[3];
+  lobe_noise(kPerlin, x, 3, nullptr, &v, 1, g);
+  EXPECT_EQ(v, 0.0f); // signed gradient noise vanishes on the lattice
+  lobe_noise(kUPerlin, x, 3, nullptr, &v, 1, nullptr);
+  EXPECT_EQ(v, 0.5f);
+  float lo = 1, hi = -1;
+  for (int i = 0; i < 2000; ++i) {
+    float p[2] = {i * 0.137f, i * 0.0713f};
+    lobe_noise(kUPerlin, p, 2, nullptr, &v, 1, nullptr);
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  EXPECT_GE(lo, 0.0f);
+  EXPECT_LE(hi, 1.0f);
+  EXPECT_LT(lo, 0.35f); // it actually varies
+  EXPECT_GT(hi, 0.65f);
+  // Analytic derivative against a central difference.
+  float p[3] = {0.3f, 1.7f, -0.4f}, grad[3];
+  lobe_noise(kPerlin, p, 3, nullptr, &v, 1, grad);
+  for (int k = 0; k < 3; ++k) {
+    float a[3] = {p[0], p[1], p[2]}, b[3] = {p[0], p[1], p[2]}, va, vb;
+    a[k] += 1e-3f;
+    b[k] -= 1e-3f;
+    lobe_noise(kPerlin, a, 3, nullptr, &va, 1, nullptr);
+    lobe_noise(kPerlin, b, 3, nullptr, &vb, 1, nullptr);
+    EXPECT_NEAR(grad[k], (va - vb) / 2e-3f, 2e-2);
+  }
+  float c1[2] = {2.1f, 5.9f}, c2[2] = {2.8f, 5.2f}, v1, v2;
+  lobe_noise(kCell, c1, 2, nullptr, &v1, 1, nullptr);
+  lobe_noise(kCell, c2, 2, nullptr, &v2, 1, nullptr);
+  EXPECT_EQ(v1, v2);
+  float per[1] = {4}, q1[1] = {0.3f}, q2[1] = {4.3f};
+  lobe_noise(kPerlin, q1, 1, per, &v1, 1, nullptr);
+  lobe_noise(kPerlin, q2, 1, per, &v2, 1, nullptr);
+  EXPECT_NEAR(v1, v2, 1e-5);
+}
+
+TEST(Errors, RangeErrorReportsLocation) {
+  ShadingContext ctx;
+  ShaderGlobals sg{};
+  sg.context = &ctx;
+  lobe_range_error(&sg, 5, 3, "a", "t.osl", 7);
+  EXPECT_EQ(ctx.errors, 1);
+  EXPECT_EQ(ctx.output, "ERROR: Index [5] out of range a[0..2]: t.osl:7\n");
+}
+
+TEST(Table, NamesResolve) {
+  ASSERT_NE(find_shadeop("lobe_noise"), nullptr);
+  EXPECT_STREQ(find_shadeop("sinf")->sig, "ff");
+  EXPECT_EQ(find_shadeop("nope"), nullptr);
+}

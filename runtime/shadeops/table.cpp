@@ -1,0 +1,135 @@
+// The shadeop table (see shadeops.h): every symbol JIT code may call, with its signature.
+// libm and libc entries are here too: LLVM lowers intrinsics (llvm.sin, memcpy, ...) to calls
+// of these names, and the JIT resolves nothing that is not in this table.
+#include "shadeops.h"
+
+#include <cmath>
+#include <cstring>
+#include <math.h>
+
+extern "C" {
+// Declarations of the shadeops defined in this folder (C linkage, one definition each).
+void lobe_printf();
+void lobe_format();
+void lobe_warning();
+void lobe_error();
+void lobe_range_error();
+void lobe_concat();
+void lobe_strlen();
+void lobe_substr();
+void lobe_startswith();
+void lobe_endswith();
+void lobe_stoi();
+void lobe_stof();
+void lobe_getchar();
+void lobe_strhash();
+void lobe_regex();
+void lobe_closure_component();
+void lobe_closure_add();
+void lobe_closure_mul();
+void lobe_mat_mul();
+void lobe_mat_inverse();
+void lobe_mat_div();
+void lobe_mat_transpose();
+void lobe_mat_det();
+void lobe_get_matrix();
+void lobe_space_matrix();
+void lobe_transform();
+void lobe_transformc();
+void lobe_wavelength_color();
+void lobe_blackbody();
+void lobe_luminance();
+void lobe_noise();
+}
+
+namespace lobe::shadeops {
+namespace {
+
+template <class F> void* addr(F* f) { return reinterpret_cast<void*>(f); }
+using F1 = float (*)(float);
+using F2 = float (*)(float, float);
+
+const ShadeOpSymbol kTable[] = {
+    // name, address, signature (return type, then parameters)
+    {"lobe_printf", addr(lobe_printf), "vppppp"},
+    {"lobe_format", addr(lobe_format), "ppppp"},
+    {"lobe_warning", addr(lobe_warning), "vppppp"},
+    {"lobe_error", addr(lobe_error), "vppppp"},
+    {"lobe_range_error", addr(lobe_range_error), "vpiippi"},
+    {"lobe_concat", addr(lobe_concat), "pppp"},
+    {"lobe_strlen", addr(lobe_strlen), "ip"},
+    {"lobe_substr", addr(lobe_substr), "pppii"},
+    {"lobe_startswith", addr(lobe_startswith), "ipp"},
+    {"lobe_endswith", addr(lobe_endswith), "ipp"},
+    {"lobe_stoi", addr(lobe_stoi), "ip"},
+    {"lobe_stof", addr(lobe_stof), "fp"},
+    {"lobe_getchar", addr(lobe_getchar), "ipi"},
+    {"lobe_strhash", addr(lobe_strhash), "ip"},
+    {"lobe_regex", addr(lobe_regex), "ippi"},
+    {"lobe_closure_component", addr(lobe_closure_component), "ppipi"},
+    {"lobe_closure_add", addr(lobe_closure_add), "pppp"},
+    {"lobe_closure_mul", addr(lobe_closure_mul), "pppp"},
+    {"lobe_mat_mul", addr(lobe_mat_mul), "vppp"},
+    {"lobe_mat_inverse", addr(lobe_mat_inverse), "vpp"},
+    {"lobe_mat_div", addr(lobe_mat_div), "vppp"},
+    {"lobe_mat_transpose", addr(lobe_mat_transpose), "vpp"},
+    {"lobe_mat_det", addr(lobe_mat_det), "fp"},
+    {"lobe_get_matrix", addr(lobe_get_matrix), "ipppp"},
+    {"lobe_space_matrix", addr(lobe_space_matrix), "vppp"},
+    {"lobe_transform", addr(lobe_transform), "vpppi"},
+    {"lobe_transformc", addr(lobe_transformc), "vppppp"},
+    {"lobe_wavelength_color", addr(lobe_wavelength_color), "vpf"},
+    {"lobe_blackbody", addr(lobe_blackbody), "vpf"},
+    {"lobe_luminance", addr(lobe_luminance), "fp"},
+    {"lobe_noise", addr(lobe_noise), "vpipppip"},
+    // libm / libc
+    {"sinf", addr(F1(::sinf)), "ff"},
+    {"cosf", addr(F1(::cosf)), "ff"},
+    {"tanf", addr(F1(::tanf)), "ff"},
+    {"asinf", addr(F1(::asinf)), "ff"},
+    {"acosf", addr(F1(::acosf)), "ff"},
+    {"atanf", addr(F1(::atanf)), "ff"},
+    {"atan2f", addr(F2(::atan2f)), "fff"},
+    {"sinhf", addr(F1(::sinhf)), "ff"},
+    {"coshf", addr(F1(::coshf)), "ff"},
+    {"tanhf", addr(F1(::tanhf)), "ff"},
+    {"expf", addr(F1(::expf)), "ff"},
+    {"exp2f", addr(F1(::exp2f)), "ff"},
+    {"exp10f", addr(F1(::exp10f)), "ff"},
+    {"expm1f", addr(F1(::expm1f)), "ff"},
+    {"logf", addr(F1(::logf)), "ff"},
+    {"log2f", addr(F1(::log2f)), "ff"},
+    {"log10f", addr(F1(::log10f)), "ff"},
+    {"logbf", addr(F1(::logbf)), "ff"},
+    {"powf", addr(F2(::powf)), "fff"},
+    {"sqrtf", addr(F1(::sqrtf)), "ff"},
+    {"cbrtf", addr(F1(::cbrtf)), "ff"},
+    {"erff", addr(F1(::erff)), "ff"},
+    {"erfcf", addr(F1(::erfcf)), "ff"},
+    {"fmodf", addr(F2(::fmodf)), "fff"},
+    {"floorf", addr(F1(::floorf)), "ff"},
+    {"ceilf", addr(F1(::ceilf)), "ff"},
+    {"roundf", addr(F1(::roundf)), "ff"},
+    {"truncf", addr(F1(::truncf)), "ff"},
+    {"fabsf", addr(F1(::fabsf)), "ff"},
+    {"hypotf", addr(F2(::hypotf)), "fff"},
+    {"fminf", addr(F2(::fminf)), "fff"},
+    {"fmaxf", addr(F2(::fmaxf)), "fff"},
+    {"sincosf", addr(::sincosf), "vfpp"},
+    {"ldexpf", addr(static_cast<float (*)(float, int)>(::ldexpf)), "ffi"},
+    {"memcpy", addr(::memcpy), "pppl"},
+    {"memmove", addr(::memmove), "pppl"},
+    {"memset", addr(::memset), "ppil"},
+};
+
+} // namespace
+
+std::span<const ShadeOpSymbol> shadeop_symbols() { return kTable; }
+
+const ShadeOpSymbol* find_shadeop(std::string_view name) {
+  for (const auto& s : kTable)
+    if (name == s.name) return &s;
+  return nullptr;
+}
+
+} // namespace lobe::shadeops
