@@ -1,0 +1,234 @@
+// Lowering driver: symbols and their names, op emission (with source locations and useparam
+// marks), shader parameters with their defaults and metadata, constant expressions.
+#include "lower/lowerer.h"
+
+#include "diag/source_manager.h"
+#include "ir/edit.h"
+#include "ir/opcodes.h"
+#include "passes/consteval.h"
+#include "passes/constfold.h"
+#include "passes/dce.h"
+#include "passes/derivs.h"
+
+namespace lobe::lower {
+
+using ir::SymKind;
+
+ir::SourceLoc Lowerer::loc(const ast::Node* where) const {
+  ir::SourceLoc l;
+  if (!where || !where->range.valid() || !tu_.sources) return l;
+  diag::PresumedLoc p = tu_.sources->presumed(where->range.begin);
+  if (!p.valid()) return l;
+  l.file = p.file;
+  l.line = p.line;
+  l.column = p.column;
+  return l;
+}
+
+void Lowerer::error(const ast::Node* where, const std::string& msg) {
+  ir::SourceLoc l = loc(where ? where : where_);
+  std::string at = l.line ? l.file + ":" + std::to_string(l.line) + ":" + std::to_string(l.column) + ": "
+                          : std::string();
+  errors_.push_back(at + "error: " + msg);
+}
+
+ir::Type Lowerer::irtype(const ast::Type& t, const ast::Node* where) {
+  using B = ast::BaseType;
+  ir::Type r;
+  r.arraylen = t.arraylen;
+  switch (t.base) {
+  case B::Int: r.base = ir::BaseType::Int; break;
+  case B::Float: r.base = ir::BaseType::Float; break;
+  case B::Color: r.base = ir::BaseType::Color; break;
+  case B::Point: r.base = ir::BaseType::Point; break;
+  case B::Vector: r.base = ir::BaseType::Vector; break;
+  case B::Normal: r.base = ir::BaseType::Normal; break;
+  case B::Matrix: r.base = ir::BaseType::Matrix; break;
+  case B::String: r.base = ir::BaseType::String; break;
+  case B::Closure: r.base = ir::BaseType::Closure; break;
+  default: error(where, "internal: no IR type for this value"); break;
+  }
+  return r;
+}
+
+// Flattens a (possibly array-of-) struct type into its leaves, depth first in field order.
+std::vector<Leaf> Lowerer::leaves(const ast::Type& t, const ast::Node* where) {
+  if (t.base != ast::BaseType::Struct) return {Leaf{"", t}};
+  std::vector<Leaf> out;
+  for (const auto& f : t.strct->fields) {
+    for (Leaf l : leaves(f->type, f.get())) {
+      if (t.arraylen != 0) {
+        if (l.type.arraylen != 0) error(where, "arrays of structs with array fields are not supported");
+        l.type.arraylen = t.arraylen;
+      }
+      out.push_back(Leaf{"." + f->name + l.suffix, l.type});
+    }
+  }
+  return out;
+}
+
+int Lowerer::new_symbol(const std::string& name, const ir::Type& t, SymKind k, const ast::Node* where) {
+  std::string n = name;
+  int& count = name_counts_[name];
+  if (count++ > 0 || sh_.find_symbol(n) >= 0) {
+    do n = name + "~" + std::to_string(count++);
+    while (sh_.find_symbol(n) >= 0);
+  }
+  ir::Symbol s;
+  s.name = n;
+  s.type = t;
+  s.kind = k;
+  s.loc = loc(where);
+  sh_.symbols.push_back(std::move(s));
+  return int(sh_.symbols.size()) - 1;
+}
+
+int Lowerer::temp(const ir::Type& t) {
+  auto it = free_temps_.find(ir::to_string(t));
+  int s;
+  if (it != free_temps_.end()) {
+    s = it->second;
+    free_temps_.erase(it);
+  } else {
+    s = new_symbol("$t" + std::to_string(next_temp_++), t, SymKind::Temp, nullptr);
+  }
+  live_temps_.push_back(s);
+  return s;
+}
+
+void Lowerer::temp_release(size_t mark) {
+  while (live_temps_.size() > mark) {
+    int s = live_temps_.back();
+    live_temps_.pop_back();
+    free_temps_.emplace(ir::to_string(sh_.symbols[s].type), s);
+  }
+}
+
+int Lowerer::here() {
+  used_params_.clear();
+  return int(sh_.ops.size());
+}
+
+void Lowerer::patch(const std::vector<int>& ops, int target) {
+  for (int op : ops)
+    for (int& j : sh_.ops[op].jumps)
+      if (j < 0) { j = target; break; }
+}
+
+// Appends an op; before it, a `useparam` naming the parameters it reads that this basic block
+// has not announced yet. Returns the op's index. Unpatched jump targets are -1.
+int Lowerer::emit(const std::string& opcode, std::vector<int> args, uint32_t written,
+                  const ast::Node* where, std::vector<int> jumps) {
+  ir::Op op;
+  op.opcode = opcode;
+  op.args = std::move(args);
+  op.written_mask = written;
+  op.jumps = std::move(jumps);
+  op.loc = loc(where ? where : where_);
+  std::vector<int> reads;
+  for (size_t i = 0; i < op.args.size(); ++i) {
+    int s = op.args[i];
+    SymKind k = sh_.symbols[s].kind;
+    if ((k == SymKind::Param || k == SymKind::OutputParam) && ir::op_reads(op, int(i)) &&
+        used_params_.insert(s).second)
+      reads.push_back(s);
+  }
+  if (!reads.empty()) {
+    ir::Op u;
+    u.opcode = "useparam";
+    u.args = reads;
+    u.loc = op.loc;
+    sh_.ops.push_back(std::move(u));
+  }
+  sh_.ops.push_back(std::move(op));
+  if (opcode == "br" || opcode == "cbr" || opcode == "exit") used_params_.clear();
+  return int(sh_.ops.size()) - 1;
+}
+
+int Lowerer::global(const ast::VarDecl* v) {
+  auto it = vars_.find(v);
+  if (it != vars_.end()) return it->second[0];
+  int s = sh_.find_symbol(v->name);
+  if (s < 0 || sh_.symbols[s].kind != SymKind::Global)
+    s = new_symbol(v->name, irtype(v->type, v), SymKind::Global, nullptr);
+  vars_[v] = {s};
+  return s;
+}
+
+std::vector<int> Lowerer::declare(const ast::VarDecl* v, SymKind k) {
+  std::vector<int> syms;
+  for (const Leaf& l : leaves(v->type, v)) {
+    int s = new_symbol(v->name + l.suffix, irtype(l.type, v), k, v);
+    if (v->type.base == ast::BaseType::Struct) sh_.symbols[s].struct_name = v->type.strct->name;
+    syms.push_back(s);
+  }
+  vars_[v] = syms;
+  return syms;
+}
+
+// The value of a constant expression (literals, casts, negation, arithmetic on constants,
+// constructors without a space name, initialiser lists), converted to `t`.
+bool Lowerer::const_values(const ast::Expr* e, const ir::Type& t, std::vector<ir::ConstValue>& out) {
+  using K = ast::ExprKind;
+  std::vector<ir::ConstValue> v;
+  ir::Type et = irtype(e->type, e);
+  switch (e->kind) {
+  case K::IntLit: v.resize(1); v[0].i = static_cast<const ast::IntLit*>(e)->value; break;
+  case K::FloatLit: v.resize(1); v[0].f = static_cast<const ast::FloatLit*>(e)->value; break;
+  case K::StringLit: v.resize(1); v[0].s = static_cast<const ast::StringLit*>(e)->value; break;
+  case K::Cast: {
+    auto* c = static_cast<const ast::CastExpr*>(e);
+    if (!const_values(c->operand.get(), irtype(c->operand->type, e), v)) return false;
+    break;
+  }
+  case K::Unary: {
+    auto* u = static_cast<const ast::UnaryExpr*>(e);
+    if (u->overload || u->op == ast::UnaryOp::Not) return false;
+    if (!const_values(u->operand.get(), et, v)) return false;
+    if (u->op == ast::UnaryOp::Plus) break;
+    auto r = passes::evaluate(u->op == ast::UnaryOp::Neg ? "neg" : "compl", et, {{et, &v}});
+    if (!r) return false;
+    v = *r;
+    break;
+  }
+  case K::Construct: {
+    auto* c = static_cast<const ast::ConstructExpr*>(e);
+    if (c->has_space) return false;
+    for (const auto& a : c->args) {
+      std::vector<ir::ConstValue> av;
+      if (!const_values(a.get(), ir::Type{ir::BaseType::Float}, av)) return false;
+      v.insert(v.end(), av.begin(), av.end());
+    }
+    if (et.base == ir::BaseType::Matrix && v.size() == 1) {
+      ir::ConstValue d = v[0];
+      v.assign(16, ir::ConstValue{});
+      for (int i = 0; i < 4; ++i) v[size_t(i * 5)] = d;
+    } else if (v.size() == 1) {
+      v.assign(size_t(et.components()), v[0]);
+    }
+    if (v.size() != size_t(et.components())) return false;
+    break;
+  }
+  case K::InitList: {
+    auto* l = static_cast<const ast::InitListExpr*>(e);
+    if (!t.is_array()) return false;
+    ir::Type elem = t;
+    elem.arraylen = 0;
+    for (const auto& x : l->elems) {
+      std::vector<ir::ConstValue> xv;
+      if (!const_values(x.get(), elem, xv)) return false;
+      v.insert(v.end(), xv.begin(), xv.end());
+    }
+    out = v;
+    return true;
+  }
+  default: return false;
+  }
+  if (et.is_array()) return false;
+  auto conv = passes::convert_const(et, v, t);
+  if (!conv) return false;
+  out = *conv;
+  return true;
+}
+
+} // namespace lobe::lower

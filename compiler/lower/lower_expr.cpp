@@ -1,0 +1,359 @@
+// Lowering of expressions: rvalues into symbols (with an optional destination hint so that
+// `x = a + b` is one `add x a b`), lvalues into LRefs, loads and stores through elements and
+// components, conversions, short-circuit logic and `?:` as jumps.
+#include "lower/lowerer.h"
+
+#include "ir/edit.h"
+
+namespace lobe::lower {
+
+using ir::SymKind;
+using K = ast::ExprKind;
+
+static const char* binop_opcode(ast::BinaryOp op) {
+  using B = ast::BinaryOp;
+  switch (op) {
+  case B::Add: return "add";
+  case B::Sub: return "sub";
+  case B::Mul: return "mul";
+  case B::Div: return "div";
+  case B::Mod: return "mod";
+  case B::Shl: return "shl";
+  case B::Shr: return "shr";
+  case B::BitAnd: return "bitand";
+  case B::BitOr: return "bitor";
+  case B::BitXor: return "xor";
+  case B::Lt: return "lt";
+  case B::Le: return "le";
+  case B::Gt: return "gt";
+  case B::Ge: return "ge";
+  case B::Eq: return "eq";
+  case B::Ne: return "neq";
+  default: return "nop";
+  }
+}
+
+int Lowerer::pick(int hint, const ir::Type& t) {
+  if (hint >= 0 && sh_.symbols[hint].type == t) return hint;
+  return temp(t);
+}
+
+int Lowerer::convert(int sym, const ir::Type& to, const ast::Node* where) {
+  if (sh_.symbols[sym].type == to) return sym;
+  int t = temp(to);
+  emit(to.is_array() ? "arraycopy" : "assign", {t, sym}, 1, where);
+  return t;
+}
+
+int Lowerer::load(const LRef& r, const ast::Node* where) {
+  if (r.whole()) return r.sym;
+  int base = r.sym;
+  if (r.index >= 0) {
+    ir::Type et = sh_.symbols[base].type;
+    et.arraylen = 0;
+    int t = temp(et);
+    emit("aref", {t, base, r.index}, 1, where);
+    base = t;
+  }
+  if (r.comp < 0) return base;
+  int f = temp(ir::Type{ir::BaseType::Float});
+  if (r.comp2 >= 0) emit("mxcompref", {f, base, r.comp, r.comp2}, 1, where);
+  else emit("compref", {f, base, r.comp}, 1, where);
+  return f;
+}
+
+void Lowerer::store(const LRef& r, int v, const ast::Node* where) {
+  if (r.whole()) {
+    if (v == r.sym) return;
+    emit(sh_.symbols[r.sym].type.is_array() ? "arraycopy" : "assign", {r.sym, v}, 1, where);
+    return;
+  }
+  int base = r.sym;
+  if (r.index >= 0 && r.comp < 0) {
+    emit("aassign", {r.sym, r.index, v}, 1, where);
+    return;
+  }
+  if (r.index >= 0) {
+    ir::Type et = sh_.symbols[base].type;
+    et.arraylen = 0;
+    base = temp(et);
+    emit("aref", {base, r.sym, r.index}, 1, where);
+  }
+  if (r.comp2 >= 0) emit("mxcompassign", {base, r.comp, r.comp2, v}, 1, where);
+  else emit("compassign", {base, r.comp, v}, 1, where);
+  if (r.index >= 0) emit("aassign", {r.sym, r.index, base}, 1, where);
+}
+
+std::vector<LRef> Lowerer::lvalue(const ast::Expr* e) {
+  switch (e->kind) {
+  case K::Ident: {
+    auto* id = static_cast<const ast::IdentExpr*>(e);
+    if (id->decl && id->decl->storage == ast::Storage::Global) return {LRef{global(id->decl)}};
+    auto it = vars_.find(id->decl);
+    if (it == vars_.end()) {
+      error(e, "internal: unbound variable '" + id->name + "'");
+      return {LRef{temp(irtype(e->type, e))}};
+    }
+    std::vector<LRef> out;
+    for (int s : it->second) out.push_back(LRef{s});
+    return out;
+  }
+  case K::Index: {
+    auto* ix = static_cast<const ast::IndexExpr*>(e);
+    std::vector<LRef> base = lvalue(ix->base.get());
+    int idx = rvalue(ix->index.get());
+    for (LRef& r : base) {
+      if (ix->index_kind == ast::IndexKind::ArrayElement) {
+        if (!r.whole()) {
+          int t = load(r, e); // an element of a temporary copy (read-only use)
+          r = LRef{t};
+        }
+        r.index = idx;
+      } else {
+        if (r.comp >= 0) r = LRef{load(r, e)};
+        r.comp = idx;
+        if (ix->index_kind == ast::IndexKind::MatrixElement) r.comp2 = rvalue(ix->index2.get());
+      }
+    }
+    return base;
+  }
+  case K::Member: {
+    auto* m = static_cast<const ast::MemberExpr*>(e);
+    std::vector<LRef> base = lvalue(m->base.get());
+    if (m->component >= 0) {
+      LRef r = base[0];
+      if (r.comp >= 0) r = LRef{load(r, e)};
+      r.comp = ir::intern_int(sh_, m->component);
+      return {r};
+    }
+    const ast::StructDecl* sd = m->base->type.strct;
+    size_t first = 0;
+    for (int f = 0; f < m->field; ++f) first += leaves(sd->fields[size_t(f)]->type, e).size();
+    size_t n = leaves(sd->fields[size_t(m->field)]->type, e).size();
+    return std::vector<LRef>(base.begin() + long(first), base.begin() + long(first + n));
+  }
+  default:
+    if (e->type.base == ast::BaseType::Struct) {
+      std::vector<LRef> out;
+      for (int s : rvalue_flat(e)) out.push_back(LRef{s});
+      return out;
+    }
+    return {LRef{rvalue(e)}};
+  }
+}
+
+// The leaf values of a struct built from parts (constructor arguments or an init list).
+std::vector<int> Lowerer::struct_parts(const ast::Expr* e, const ast::Type& t) {
+  std::vector<const ast::Expr*> parts;
+  if (e->kind == K::InitList)
+    for (const auto& x : static_cast<const ast::InitListExpr*>(e)->elems) parts.push_back(x.get());
+  else
+    for (const auto& x : static_cast<const ast::CallExpr*>(e)->args) parts.push_back(x.get());
+  std::vector<int> out;
+  const auto& fields = t.strct->fields;
+  for (size_t i = 0; i < fields.size() && i < parts.size(); ++i) {
+    if (fields[i]->type.base == ast::BaseType::Struct) {
+      auto sub = parts[i]->kind == K::InitList ? struct_parts(parts[i], fields[i]->type) : rvalue_flat(parts[i]);
+      out.insert(out.end(), sub.begin(), sub.end());
+    } else {
+      out.push_back(rvalue(parts[i]));
+    }
+  }
+  return out;
+}
+
+std::vector<int> Lowerer::rvalue_flat(const ast::Expr* e) {
+  if (e->kind == K::InitList) return struct_parts(e, e->type);
+  if (e->kind == K::Call) {
+    auto* c = static_cast<const ast::CallExpr*>(e);
+    if (c->callee.kind == ast::CalleeKind::StructCtor) return struct_parts(e, e->type);
+    if (c->callee.kind == ast::CalleeKind::User) {
+      std::vector<const ast::Expr*> args;
+      for (const auto& a : c->args) args.push_back(a.get());
+      return call_user(c->callee.function, args, e);
+    }
+  }
+  if (e->kind == K::Binary && static_cast<const ast::BinaryExpr*>(e)->overload) {
+    auto* b = static_cast<const ast::BinaryExpr*>(e);
+    return call_user(b->overload, {b->lhs.get(), b->rhs.get()}, e);
+  }
+  if (e->kind == K::Unary && static_cast<const ast::UnaryExpr*>(e)->overload) {
+    auto* u = static_cast<const ast::UnaryExpr*>(e);
+    return call_user(u->overload, {u->operand.get()}, e);
+  }
+  if (e->kind == K::Assign) {
+    auto* a = static_cast<const ast::AssignExpr*>(e);
+    std::vector<LRef> dst = lvalue(a->lhs.get());
+    std::vector<int> v = rvalue_flat(a->rhs.get());
+    for (size_t i = 0; i < dst.size() && i < v.size(); ++i) store(dst[i], v[i], e);
+  }
+  const ast::Expr* src = e->kind == K::Assign ? static_cast<const ast::AssignExpr*>(e)->lhs.get() : e;
+  if (src->kind == K::Ternary || src->kind == K::Comma) {
+    error(e, "this struct-valued expression is not supported");
+    return {};
+  }
+  std::vector<int> out;
+  for (const LRef& r : lvalue(src)) out.push_back(load(r, e));
+  return out;
+}
+
+int Lowerer::logical(const ast::BinaryExpr* b) {
+  bool is_and = b->op == ast::BinaryOp::LogicalAnd;
+  int res = temp(ir::Type{ir::BaseType::Int});
+  int zero = ir::intern_int(sh_, 0);
+  int a = rvalue(b->lhs.get());
+  emit("neq", {res, a, zero}, 1, b);
+  int j = emit("cbr", {res}, 0, b, {-1, -1});
+  sh_.ops[size_t(j)].jumps[is_and ? 0 : 1] = here();
+  int c = rvalue(b->rhs.get());
+  emit("neq", {res, c, zero}, 1, b);
+  sh_.ops[size_t(j)].jumps[is_and ? 1 : 0] = here();
+  return res;
+}
+
+int Lowerer::ternary(const ast::TernaryExpr* t, int hint) {
+  int res = pick(hint, irtype(t->type, t));
+  int c = rvalue(t->cond.get());
+  int j = emit("cbr", {c}, 0, t, {-1, -1});
+  sh_.ops[size_t(j)].jumps[0] = here();
+  store(LRef{res}, rvalue(t->then_expr.get(), res), t);
+  int skip = emit("br", {}, 0, t, {-1});
+  sh_.ops[size_t(j)].jumps[1] = here();
+  store(LRef{res}, rvalue(t->else_expr.get(), res), t);
+  sh_.ops[size_t(skip)].jumps[0] = here();
+  return res;
+}
+
+int Lowerer::assign(const ast::AssignExpr* a, int hint) {
+  if (a->lhs->type.base == ast::BaseType::Struct) {
+    std::vector<int> v = rvalue_flat(a);
+    return v.empty() ? -1 : v[0];
+  }
+  LRef dst = lvalue(a->lhs.get())[0];
+  ir::Type lt = irtype(a->lhs->type, a);
+  bool direct = dst.whole() && a->rhs->kind != K::InitList;
+  if (!a->compound) {
+    int v = rvalue(a->rhs.get(), direct ? dst.sym : -1);
+    store(dst, v, a);
+    return dst.whole() ? dst.sym : v;
+  }
+  int cur = load(dst, a);
+  int rhs = rvalue(a->rhs.get());
+  int res = dst.whole() ? dst.sym : temp(lt);
+  emit(binop_opcode(a->op), {res, cur, rhs}, 1, a);
+  store(dst, res, a);
+  return res;
+}
+
+int Lowerer::incdec(const ast::IncDecExpr* e) {
+  LRef dst = lvalue(e->operand.get())[0];
+  ir::Type t = irtype(e->operand->type, e);
+  int cur = load(dst, e);
+  int old = -1;
+  if (!e->prefix) {
+    old = temp(t);
+    emit("assign", {old, cur}, 1, e);
+  }
+  int one = t.base == ir::BaseType::Int ? ir::intern_int(sh_, 1) : ir::intern_float(sh_, 1.0f);
+  int res = dst.whole() ? dst.sym : temp(t);
+  emit(e->increment ? "add" : "sub", {res, cur, one}, 1, e);
+  store(dst, res, e);
+  return e->prefix ? res : old;
+}
+
+int Lowerer::construct(const ast::ConstructExpr* c, int hint) {
+  ir::Type t = irtype(c->type, c);
+  std::vector<int> args;
+  for (const auto& a : c->args) args.push_back(rvalue(a.get()));
+  int dst = pick(hint, t);
+  if (args.size() == 1 && !c->has_space) {
+    emit("assign", {dst, args[0]}, 1, c);
+    return dst;
+  }
+  args.insert(args.begin(), dst);
+  emit("construct", args, 1, c);
+  return dst;
+}
+
+int Lowerer::rvalue(const ast::Expr* e, int hint) {
+  const ast::Node* saved = where_;
+  where_ = e;
+  int r = -1;
+  switch (e->kind) {
+  case K::IntLit: r = ir::intern_int(sh_, static_cast<const ast::IntLit*>(e)->value); break;
+  case K::FloatLit: r = ir::intern_float(sh_, static_cast<const ast::FloatLit*>(e)->value); break;
+  case K::StringLit: r = ir::intern_string(sh_, static_cast<const ast::StringLit*>(e)->value); break;
+  case K::Ident:
+  case K::Index:
+  case K::Member: r = load(lvalue(e)[0], e); break;
+  case K::Unary: {
+    auto* u = static_cast<const ast::UnaryExpr*>(e);
+    if (u->overload) { r = call_user(u->overload, {u->operand.get()}, e).at(0); break; }
+    int x = rvalue(u->operand.get());
+    if (u->op == ast::UnaryOp::Plus) { r = x; break; }
+    r = pick(hint, irtype(e->type, e));
+    emit(u->op == ast::UnaryOp::Neg ? "neg" : u->op == ast::UnaryOp::Not ? "not" : "compl", {r, x}, 1, e);
+    break;
+  }
+  case K::Binary: {
+    auto* b = static_cast<const ast::BinaryExpr*>(e);
+    if (b->overload) { r = call_user(b->overload, {b->lhs.get(), b->rhs.get()}, e).at(0); break; }
+    if (b->op == ast::BinaryOp::LogicalAnd || b->op == ast::BinaryOp::LogicalOr) { r = logical(b); break; }
+    int x = rvalue(b->lhs.get());
+    int y = rvalue(b->rhs.get());
+    r = pick(hint, irtype(e->type, e));
+    emit(binop_opcode(b->op), {r, x, y}, 1, e);
+    break;
+  }
+  case K::Assign: r = assign(static_cast<const ast::AssignExpr*>(e), hint); break;
+  case K::IncDec: r = incdec(static_cast<const ast::IncDecExpr*>(e)); break;
+  case K::Ternary: r = ternary(static_cast<const ast::TernaryExpr*>(e), hint); break;
+  case K::Comma: {
+    auto* c = static_cast<const ast::CommaExpr*>(e);
+    for (size_t i = 0; i < c->exprs.size(); ++i) r = rvalue(c->exprs[i].get(), i + 1 == c->exprs.size() ? hint : -1);
+    break;
+  }
+  case K::Call: r = call(static_cast<const ast::CallExpr*>(e), hint); break;
+  case K::Construct: r = construct(static_cast<const ast::ConstructExpr*>(e), hint); break;
+  case K::Cast: {
+    auto* c = static_cast<const ast::CastExpr*>(e);
+    int x = rvalue(c->operand.get());
+    ir::Type t = irtype(c->type, e);
+    if (sh_.symbols[x].type == t) { r = x; break; }
+    r = pick(hint, t);
+    emit("assign", {r, x}, 1, e);
+    break;
+  }
+  case K::InitList: {
+    r = temp(irtype(e->type, e));
+    store_init({LRef{r}}, e->type, e);
+    break;
+  }
+  }
+  where_ = saved;
+  if (r < 0 && !e->type.is_void()) r = temp(irtype(e->type, e)); // after an error: keep going
+  return r;
+}
+
+// Initialises `dst` (the leaves of a variable of type t) from an initialiser expression.
+void Lowerer::store_init(const std::vector<LRef>& dst, const ast::Type& t, const ast::Expr* init) {
+  if (init->kind == K::InitList && t.is_array()) {
+    auto* l = static_cast<const ast::InitListExpr*>(init);
+    for (size_t i = 0; i < l->elems.size(); ++i) {
+      int idx = ir::intern_int(sh_, int(i));
+      std::vector<LRef> elem = dst;
+      for (LRef& r : elem) r.index = idx;
+      store_init(elem, t.element(), l->elems[i].get());
+    }
+    return;
+  }
+  if (t.base == ast::BaseType::Struct) {
+    std::vector<int> v = init->kind == K::InitList ? struct_parts(init, t) : rvalue_flat(init);
+    for (size_t i = 0; i < dst.size() && i < v.size(); ++i) store(dst[i], v[i], init);
+    return;
+  }
+  bool direct = dst[0].whole() && init->kind != K::InitList;
+  store(dst[0], rvalue(init, direct ? dst[0].sym : -1), init);
+}
+
+} // namespace lobe::lower

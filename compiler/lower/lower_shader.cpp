@@ -1,0 +1,110 @@
+// The lowering entry: the shader declaration, its parameters (constant defaults into `init`,
+// computed ones into init op ranges), metadata, the body, then the derivative analysis.
+#include "lower/lowerer.h"
+
+#include "ir/verifier.h"
+#include "passes/constfold.h"
+#include "passes/dce.h"
+#include "passes/derivs.h"
+
+namespace lobe::lower {
+
+// Per-leaf constant defaults of a (struct) parameter, or false if any part is not constant.
+bool Lowerer::const_flat(const ast::Expr* e, const ast::Type& t,
+                         std::vector<std::vector<ir::ConstValue>>& out) {
+  if (t.base != ast::BaseType::Struct) {
+    std::vector<ir::ConstValue> v;
+    if (!const_values(e, irtype(t, e), v)) return false;
+    out.push_back(std::move(v));
+    return true;
+  }
+  if (t.is_array()) return false;
+  std::vector<const ast::Expr*> parts;
+  if (e->kind == ast::ExprKind::InitList)
+    for (const auto& x : static_cast<const ast::InitListExpr*>(e)->elems) parts.push_back(x.get());
+  else if (e->kind == ast::ExprKind::Call &&
+           static_cast<const ast::CallExpr*>(e)->callee.kind == ast::CalleeKind::StructCtor)
+    for (const auto& x : static_cast<const ast::CallExpr*>(e)->args) parts.push_back(x.get());
+  else
+    return false;
+  if (parts.size() != t.strct->fields.size()) return false;
+  for (size_t i = 0; i < parts.size(); ++i)
+    if (!const_flat(parts[i], t.strct->fields[i]->type, out)) return false;
+  return true;
+}
+
+static ir::ShaderType shader_type(ast::ShaderType t) {
+  switch (t) {
+  case ast::ShaderType::Surface: return ir::ShaderType::Surface;
+  case ast::ShaderType::Displacement: return ir::ShaderType::Displacement;
+  case ast::ShaderType::Volume: return ir::ShaderType::Volume;
+  case ast::ShaderType::Shader: return ir::ShaderType::Shader;
+  }
+  return ir::ShaderType::Shader;
+}
+
+LowerResult Lowerer::run() {
+  LowerResult res;
+  const ast::ShaderDecl* sd = tu_.shader();
+  if (!sd) {
+    res.errors.push_back("error: no shader declared");
+    return res;
+  }
+  sh_.type = shader_type(sd->shader_type);
+  sh_.name = sd->name;
+  auto metadata = [&](const ast::Metadata& md) {
+    std::vector<ir::Metadata> out;
+    for (const ast::MetadataItem& m : md) {
+      ir::Metadata x{irtype(m.type, nullptr), m.name, {}};
+      if (!m.value || !const_values(m.value.get(), x.type, x.value))
+        error(m.value.get(), "metadata '" + m.name + "' is not a constant");
+      out.push_back(std::move(x));
+    }
+    return out;
+  };
+  sh_.metadata = metadata(sd->metadata);
+  for (const auto& p : sd->params) {
+    std::vector<int> syms = declare(p.get(), p->is_output ? ir::SymKind::OutputParam : ir::SymKind::Param);
+    std::vector<ir::Metadata> md = metadata(p->metadata);
+    for (int s : syms) sh_.symbols[size_t(s)].metadata = md;
+    if (!p->init) continue;
+    std::vector<std::vector<ir::ConstValue>> values;
+    if (const_flat(p->init.get(), p->type, values) && values.size() == syms.size()) {
+      for (size_t i = 0; i < syms.size(); ++i) sh_.symbols[size_t(syms[i])].init = values[i];
+      continue;
+    }
+    int begin = here();
+    std::vector<LRef> dst;
+    for (int s : syms) dst.push_back(LRef{s});
+    size_t mark = temp_mark();
+    store_init(dst, p->type, p->init.get());
+    temp_release(mark);
+    for (int s : syms) {
+      sh_.symbols[size_t(s)].init_begin = begin;
+      sh_.symbols[size_t(s)].init_end = int(sh_.ops.size());
+    }
+  }
+  sh_.main_begin = here();
+  stmt(sd->body.get());
+  if (!errors_.empty()) {
+    res.errors = std::move(errors_);
+    return res;
+  }
+  if (opt_.optimize) {
+    for (int round = 0; round < 8; ++round) {
+      bool changed = passes::fold_constants(sh_);
+      changed |= passes::eliminate_dead_code(sh_);
+      if (!changed) break;
+    }
+  }
+  passes::analyze_derivatives(sh_);
+  for (const std::string& e : ir::verify(sh_)) res.errors.push_back("internal error: invalid IR: " + e);
+  if (res.errors.empty()) res.shader = std::move(sh_);
+  return res;
+}
+
+LowerResult lower(const ast::TranslationUnit& tu, const LowerOptions& options) {
+  return Lowerer(tu, options).run();
+}
+
+} // namespace lobe::lower

@@ -1,0 +1,262 @@
+// Lowering of statements (structured control flow into br/cbr) and calls: user functions are
+// inlined, builtins become library opcodes (written operands first), closures `closure` ops.
+#include "lower/lowerer.h"
+
+#include "closure_registry.h"
+#include "ir/edit.h"
+#include "ir/opcodes.h"
+
+#include <bit>
+
+namespace lobe::lower {
+
+using S = ast::StmtKind;
+
+void Lowerer::stmt(const ast::Stmt* s) {
+  if (!s) return;
+  size_t mark = temp_mark();
+  const ast::Node* saved = where_;
+  where_ = s;
+  switch (s->kind) {
+  case S::Compound:
+    for (const auto& x : static_cast<const ast::CompoundStmt*>(s)->stmts) stmt(x.get());
+    break;
+  case S::Expr: {
+    const ast::Expr* e = static_cast<const ast::ExprStmt*>(s)->expr.get();
+    if (e->type.base == ast::BaseType::Struct) rvalue_flat(e);
+    else rvalue(e);
+    break;
+  }
+  case S::Decl:
+    for (const auto& d : static_cast<const ast::DeclStmt*>(s)->decls) {
+      if (d->kind != ast::DeclKind::Var) continue; // nested functions inline at their calls
+      auto* v = static_cast<const ast::VarDecl*>(d.get());
+      std::vector<LRef> dst;
+      for (int sym : declare(v, ir::SymKind::Local)) dst.push_back(LRef{sym});
+      if (v->init) store_init(dst, v->type, v->init.get());
+    }
+    break;
+  case S::If: {
+    auto* i = static_cast<const ast::IfStmt*>(s);
+    int j = emit("cbr", {rvalue(i->cond.get())}, 0, s, {-1, -1});
+    sh_.ops[size_t(j)].jumps[0] = here();
+    stmt(i->then_stmt.get());
+    int skip = i->else_stmt ? emit("br", {}, 0, s, {-1}) : -1;
+    sh_.ops[size_t(j)].jumps[1] = here();
+    if (i->else_stmt) {
+      stmt(i->else_stmt.get());
+      sh_.ops[size_t(skip)].jumps[0] = here();
+    }
+    break;
+  }
+  case S::While:
+  case S::For: {
+    const ast::Expr* cond = nullptr;
+    const ast::Expr* step = nullptr;
+    const ast::Stmt* body = nullptr;
+    if (s->kind == S::While) {
+      auto* w = static_cast<const ast::WhileStmt*>(s);
+      cond = w->cond.get(), body = w->body.get();
+    } else {
+      auto* f = static_cast<const ast::ForStmt*>(s);
+      stmt(f->init.get());
+      cond = f->cond.get(), step = f->step.get(), body = f->body.get();
+    }
+    int top = here();
+    int j = cond ? emit("cbr", {rvalue(cond)}, 0, s, {-1, -1}) : -1;
+    if (j >= 0) sh_.ops[size_t(j)].jumps[0] = here();
+    loops_.push_back({});
+    stmt(body);
+    int cont = here();
+    if (step) {
+      size_t m = temp_mark();
+      rvalue(step);
+      temp_release(m);
+    }
+    emit("br", {}, 0, s, {top});
+    int end = here();
+    if (j >= 0) sh_.ops[size_t(j)].jumps[1] = end;
+    patch(loops_.back().continues, cont);
+    patch(loops_.back().breaks, end);
+    loops_.pop_back();
+    break;
+  }
+  case S::DoWhile: {
+    auto* d = static_cast<const ast::DoWhileStmt*>(s);
+    int top = here();
+    loops_.push_back({});
+    stmt(d->body.get());
+    int cont = here();
+    int j = emit("cbr", {rvalue(d->cond.get())}, 0, s, {top, -1});
+    int end = here();
+    sh_.ops[size_t(j)].jumps[1] = end;
+    patch(loops_.back().continues, cont);
+    patch(loops_.back().breaks, end);
+    loops_.pop_back();
+    break;
+  }
+  case S::Break:
+  case S::Continue:
+    if (loops_.empty()) {
+      error(s, "break or continue outside a loop");
+      break;
+    }
+    (s->kind == S::Break ? loops_.back().breaks : loops_.back().continues)
+        .push_back(emit("br", {}, 0, s, {-1}));
+    break;
+  case S::Return: {
+    auto* r = static_cast<const ast::ReturnStmt*>(s);
+    if (inlines_.empty()) {
+      emit("exit", {}, 0, s);
+      break;
+    }
+    std::vector<int> result = inlines_.back().result;
+    if (r->value && r->value->type.base == ast::BaseType::Struct) {
+      std::vector<int> v = rvalue_flat(r->value.get());
+      for (size_t i = 0; i < v.size() && i < result.size(); ++i) store(LRef{result[i]}, v[i], s);
+    } else if (r->value && !result.empty()) {
+      store(LRef{result[0]}, rvalue(r->value.get(), result[0]), s);
+    }
+    inlines_.back().returns.push_back(emit("br", {}, 0, s, {-1}));
+    break;
+  }
+  case S::Empty: break;
+  }
+  where_ = saved;
+  temp_release(mark);
+}
+
+std::vector<int> Lowerer::call_user(const ast::FunctionDecl* f,
+                                    const std::vector<const ast::Expr*>& args,
+                                    const ast::Node* where) {
+  if (!f || !f->body) {
+    error(where, "call to a function without a body");
+    return {};
+  }
+  // Evaluate the arguments first, then bind them (an argument may call the same function).
+  std::vector<std::vector<int>> bound;
+  std::vector<std::pair<LRef, int>> copy_back;
+  for (size_t i = 0; i < f->params.size() && i < args.size(); ++i) {
+    const ast::VarDecl* p = f->params[i].get();
+    std::vector<int> syms;
+    if (p->is_output) {
+      for (const LRef& r : lvalue(args[i])) {
+        if (r.whole()) {
+          syms.push_back(r.sym); // alias the caller's variable
+          continue;
+        }
+        int v = load(r, where);
+        int t = temp(sh_.symbols[v].type);
+        emit("assign", {t, v}, 1, where);
+        syms.push_back(t);
+        copy_back.push_back({r, t});
+      }
+    } else if (p->type.base == ast::BaseType::Struct) {
+      syms = rvalue_flat(args[i]);
+    } else {
+      syms = {rvalue(args[i])};
+    }
+    bound.push_back(std::move(syms));
+  }
+  std::vector<std::pair<const ast::VarDecl*, std::optional<std::vector<int>>>> saved;
+  for (size_t i = 0; i < bound.size(); ++i) {
+    const ast::VarDecl* p = f->params[i].get();
+    auto it = vars_.find(p);
+    saved.push_back({p, it == vars_.end() ? std::nullopt : std::optional(it->second)});
+    vars_[p] = bound[i];
+  }
+  Inline in;
+  if (!f->return_type.is_void())
+    for (const Leaf& l : leaves(f->return_type, f)) in.result.push_back(temp(irtype(l.type, f)));
+  inlines_.push_back(in);
+  stmt(f->body.get());
+  int end = here();
+  patch(inlines_.back().returns, end);
+  std::vector<int> result = inlines_.back().result;
+  inlines_.pop_back();
+  for (const auto& [r, t] : copy_back) store(r, t, where);
+  for (auto& [p, old] : saved) {
+    if (old) vars_[p] = *old;
+    else vars_.erase(p);
+  }
+  return result;
+}
+
+// Builtins: `name [result] [outputs...] inputs... ["kw" value]...`. The outputs are the last
+// arguments (OSL's convention: sincos(x, s, c), getattribute(name, val)); their number comes
+// from the opcode table's written mask, or from the prototype's `output` params.
+int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
+  if (c->name == "exit") {
+    emit("exit", {}, 0, c);
+    return -1;
+  }
+  const ir::OpcodeInfo* info = ir::find_opcode(c->name);
+  if (!info) {
+    error(c, "no IR opcode for the builtin '" + c->name + "'");
+    return -1;
+  }
+  bool returns = !c->type.is_void();
+  size_t npos = c->num_positional < 0 ? c->args.size() : size_t(c->num_positional);
+  size_t nout = size_t(std::popcount(info->written)) - (returns ? 1 : 0);
+  if (c->callee.kind == ast::CalleeKind::User && c->callee.function) {
+    nout = 0;
+    for (const auto& p : c->callee.function->params) nout += p->is_output;
+  }
+  nout = std::min(nout, npos);
+  std::vector<int> args;
+  uint32_t mask = 0;
+  if (returns) {
+    args.push_back(pick(hint, irtype(c->type, c)));
+    mask |= 1;
+  }
+  std::vector<std::pair<LRef, int>> copy_back;
+  for (size_t i = npos - nout; i < npos; ++i) {
+    LRef r = lvalue(c->args[i].get())[0];
+    int s = r.whole() ? r.sym : temp(irtype(c->args[i]->type, c));
+    if (!r.whole()) copy_back.push_back({r, s});
+    mask |= 1u << args.size();
+    args.push_back(s);
+  }
+  for (size_t i = 0; i < npos - nout; ++i) args.push_back(rvalue(c->args[i].get()));
+  for (const ast::KeywordArg& k : c->keywords) {
+    args.push_back(ir::intern_string(sh_, k.name));
+    args.push_back(rvalue(k.value));
+  }
+  emit(c->name, args, mask, c);
+  for (const auto& [r, s] : copy_back) store(r, s, c);
+  return returns ? args[0] : -1;
+}
+
+int Lowerer::call_closure(const ast::CallExpr* c, const std::string& key, int hint) {
+  int dst = pick(hint, ir::Type{ir::BaseType::Closure});
+  std::vector<int> args = {dst, ir::intern_string(sh_, key)};
+  size_t npos = c->num_positional < 0 ? c->args.size() : size_t(c->num_positional);
+  for (size_t i = 0; i < npos; ++i) args.push_back(rvalue(c->args[i].get()));
+  for (const ast::KeywordArg& k : c->keywords) {
+    args.push_back(ir::intern_string(sh_, k.name));
+    args.push_back(rvalue(k.value));
+  }
+  emit("closure", args, 1, c);
+  return dst;
+}
+
+int Lowerer::call(const ast::CallExpr* c, int hint) {
+  switch (c->callee.kind) {
+  case ast::CalleeKind::Closure: return call_closure(c, c->callee.closure->key, hint);
+  case ast::CalleeKind::Builtin: return call_builtin(c, hint);
+  case ast::CalleeKind::User: {
+    const ast::FunctionDecl* f = c->callee.function;
+    if (f && !f->body) {
+      if (f->return_type.is_closure()) return call_closure(c, f->name, hint);
+      return call_builtin(c, hint);
+    }
+    std::vector<const ast::Expr*> args;
+    for (const auto& a : c->args) args.push_back(a.get());
+    std::vector<int> r = call_user(f, args, c);
+    return r.empty() ? -1 : r[0];
+  }
+  default: error(c, "internal: unresolved call to '" + c->name + "'"); return -1;
+  }
+}
+
+} // namespace lobe::lower

@@ -1,0 +1,109 @@
+// Internal: the state of one lowering (lower.h). Split over lower.cpp (symbols, emission,
+// shader parameters), lower_expr.cpp (expressions, lvalues) and lower_stmt.cpp (statements,
+// inlined calls).
+#pragma once
+
+#include "ast/ast.h"
+#include "ir/ir.h"
+#include "lower/lower.h"
+
+#include <map>
+#include <set>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace lobe::lower {
+
+// A location a value can be stored to or loaded from: a symbol, optionally one array element
+// (`index`), and optionally one component (`comp`) or matrix element (`comp`, `comp2`).
+// Index operands are int symbols.
+struct LRef {
+  int sym = -1;
+  int index = -1;
+  int comp = -1;
+  int comp2 = -1;
+  bool whole() const { return index < 0 && comp < 0; }
+};
+
+// One flattened struct field: its name suffix (".a.b") and type (arrays of structs give
+// arrays of fields).
+struct Leaf {
+  std::string suffix;
+  ast::Type type;
+};
+
+class Lowerer {
+public:
+  Lowerer(const ast::TranslationUnit& tu, const LowerOptions& opt) : tu_(tu), opt_(opt) {}
+  LowerResult run();
+
+  // ---- lower.cpp: symbols, emission, errors
+  ir::Type irtype(const ast::Type& t, const ast::Node* where);
+  std::vector<Leaf> leaves(const ast::Type& t, const ast::Node* where);
+  int new_symbol(const std::string& name, const ir::Type& t, ir::SymKind k, const ast::Node* where);
+  int temp(const ir::Type& t);
+  int emit(const std::string& opcode, std::vector<int> args, uint32_t written,
+           const ast::Node* where, std::vector<int> jumps = {});
+  int here(); // the index the next op gets; a jump target (resets useparam tracking)
+  void error(const ast::Node* where, const std::string& msg);
+  ir::SourceLoc loc(const ast::Node* where) const;
+  std::vector<int> declare(const ast::VarDecl* v, ir::SymKind k); // symbols of a variable
+  int global(const ast::VarDecl* v);
+  bool const_values(const ast::Expr* e, const ir::Type& t, std::vector<ir::ConstValue>& out);
+
+  // ---- lower_expr.cpp
+  int rvalue(const ast::Expr* e, int hint = -1);    // non-struct value -> symbol
+  std::vector<int> rvalue_flat(const ast::Expr* e); // struct value -> one symbol per leaf
+  std::vector<LRef> lvalue(const ast::Expr* e);     // storage of an lvalue (one per leaf)
+  int load(const LRef& r, const ast::Node* where);
+  void store(const LRef& r, int value, const ast::Node* where);
+  void store_init(const std::vector<LRef>& dst, const ast::Type& t, const ast::Expr* init);
+  int pick(int hint, const ir::Type& t);
+  int logical(const ast::BinaryExpr* b);
+  int ternary(const ast::TernaryExpr* t, int hint);
+  int assign(const ast::AssignExpr* a, int hint);
+  int incdec(const ast::IncDecExpr* e);
+  int construct(const ast::ConstructExpr* c, int hint);
+  int call(const ast::CallExpr* c, int hint);
+  std::vector<int> struct_parts(const ast::Expr* e, const ast::Type& t);
+  bool const_flat(const ast::Expr* e, const ast::Type& t, std::vector<std::vector<ir::ConstValue>>& out);
+  int convert(int sym, const ir::Type& to, const ast::Node* where);
+
+  // ---- lower_stmt.cpp
+  void stmt(const ast::Stmt* s);
+  // Inlines `f` with the given argument expressions; returns the result's symbols.
+  std::vector<int> call_user(const ast::FunctionDecl* f, const std::vector<const ast::Expr*>& args,
+                             const ast::Node* where);
+  int call_builtin(const ast::CallExpr* c, int hint);
+  int call_closure(const ast::CallExpr* c, const std::string& key, int hint);
+
+  // Temporaries allocated since a statement began are free again when it ends.
+  size_t temp_mark() const { return live_temps_.size(); }
+  void temp_release(size_t mark);
+
+  const ast::TranslationUnit& tu_;
+  LowerOptions opt_;
+  ir::Shader sh_;
+  std::vector<std::string> errors_;
+  std::unordered_map<const ast::VarDecl*, std::vector<int>> vars_;
+  std::map<std::string, int> name_counts_;
+  std::multimap<std::string, int> free_temps_; // keyed by type string
+  std::vector<int> live_temps_;
+  int next_temp_ = 0;
+  std::set<int> used_params_; // params announced by useparam in the current block
+  const ast::Node* where_ = nullptr;
+
+  struct Loop {
+    std::vector<int> breaks, continues; // ops to patch
+  };
+  std::vector<Loop> loops_;
+  struct Inline {
+    std::vector<int> result;
+    std::vector<int> returns; // `br` ops to patch to the end of the body
+  };
+  std::vector<Inline> inlines_;
+  void patch(const std::vector<int>& ops, int target);
+};
+
+} // namespace lobe::lower
