@@ -1,0 +1,61 @@
+// Shared by `lobe compile` and `lobe info`: finds a shader by name or path and loads it as
+// Lobe IR. Sources: Lobe IR text (.lir, as printed by `lobe compile --emit=ir`) and OSL
+// source (.osl) through the front end once it is available.
+#pragma once
+
+#include "ir/ir.h"
+#include "ir/parser.h"
+#include "ir/verifier.h"
+
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace lobe::cli {
+
+// `name` as given, else name.osl / name.lir in the current directory and each include dir.
+inline std::string find_shader(const std::string& name, const std::vector<std::string>& dirs) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_regular_file(name, ec)) return name;
+  std::vector<std::string> places = {"."};
+  places.insert(places.end(), dirs.begin(), dirs.end());
+  for (const std::string& d : places)
+    for (const char* ext : {".osl", ".lir"}) {
+      fs::path p = fs::path(d) / (name + ext);
+      if (fs::is_regular_file(p, ec)) return p.string();
+    }
+  return "";
+}
+
+struct Loaded {
+  std::optional<ir::Shader> shader;
+  std::string errors; // rendered, for stderr
+  int status = 0;     // 0 ok, 1 input error, 2 not supported
+};
+
+inline Loaded load_ir_text(const std::string& path) {
+  Loaded r;
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  ir::ParseResult pr = ir::parse(ss.str());
+  if (!pr.shader) {
+    r.errors = path + ":" + std::to_string(pr.error.line) + ":" + std::to_string(pr.error.column) +
+               ": error: " + pr.error.message + "\n";
+    r.status = 1;
+    return r;
+  }
+  for (const std::string& e : ir::verify(*pr.shader)) r.errors += path + ": error: " + e + "\n";
+  if (!r.errors.empty()) {
+    r.status = 1;
+    return r;
+  }
+  r.shader = std::move(pr.shader);
+  return r;
+}
+
+} // namespace lobe::cli
