@@ -1,0 +1,84 @@
+// Piecewise-constant distributions (see distribution.h): CDF tables and inversion by binary
+// search, in double precision while building so long tables stay accurate.
+#include "distribution.h"
+
+#include <algorithm>
+
+namespace lobe::render {
+
+Distribution1D::Distribution1D(const std::vector<float>& f) : func_(f), cdf_(f.size() + 1) {
+  const size_t n = f.size();
+  double sum = 0;
+  cdf_[0] = 0;
+  for (size_t i = 0; i < n; ++i) {
+    func_[i] = f[i] > 0 ? f[i] : 0.0f; // negative and NaN weights count as zero
+    sum += func_[i];
+    cdf_[i + 1] = static_cast<float>(sum);
+  }
+  integral_ = n ? static_cast<float>(sum / double(n)) : 0.0f;
+  if (!(sum > 0)) {
+    for (size_t i = 0; i < n; ++i) func_[i] = 1, cdf_[i + 1] = float(i + 1) / float(n);
+    integral_ = n ? 1.0f : 0.0f;
+    return;
+  }
+  for (size_t i = 1; i <= n; ++i) cdf_[i] = static_cast<float>(cdf_[i] / sum);
+  cdf_[n] = 1;
+}
+
+static int find_interval(const std::vector<float>& cdf, float u) {
+  // Last index i with cdf[i] <= u, clamped to a valid cell; skips zero-width cells.
+  auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
+  int i = static_cast<int>(it - cdf.begin()) - 1;
+  return std::clamp(i, 0, static_cast<int>(cdf.size()) - 2);
+}
+
+float Distribution1D::sample_continuous(float u, float& pdf, int& index) const {
+  index = find_interval(cdf_, u);
+  float width = cdf_[index + 1] - cdf_[index];
+  float du = width > 0 ? (u - cdf_[index]) / width : 0.5f;
+  pdf = integral_ > 0 ? func_[index] / integral_ : 0;
+  float x = (float(index) + std::clamp(du, 0.0f, 1.0f)) / float(size());
+  return std::min(x, 0x1.fffffep-1f);
+}
+
+int Distribution1D::sample_discrete(float u, float& prob) const {
+  int i = find_interval(cdf_, u);
+  prob = discrete_prob(i);
+  return i;
+}
+
+int Distribution1D::sample_discrete(float u, float& prob, float& u_rest) const {
+  int i = sample_discrete(u, prob);
+  u_rest = prob > 0 ? std::clamp((u - cdf_[i]) / prob, 0.0f, 0x1.fffffep-1f) : 0.5f;
+  return i;
+}
+
+float Distribution1D::discrete_prob(int i) const { return cdf_[i + 1] - cdf_[i]; }
+
+float Distribution1D::pdf(int i) const { return integral_ > 0 ? func_[i] / integral_ : 0; }
+
+Distribution2D::Distribution2D(const std::vector<float>& f, int w, int h) : w_(w), h_(h) {
+  std::vector<float> marg(h);
+  rows_.reserve(h);
+  for (int y = 0; y < h; ++y) {
+    rows_.emplace_back(
+        std::vector<float>(f.begin() + size_t(y) * w, f.begin() + size_t(y + 1) * w));
+    marg[y] = rows_.back().integral();
+  }
+  marginal_ = Distribution1D(marg);
+}
+
+void Distribution2D::sample(float u1, float u2, float& u, float& v, float& pdf) const {
+  float pv, pu;
+  int iv, iu;
+  v = marginal_.sample_continuous(u2, pv, iv);
+  u = rows_[iv].sample_continuous(u1, pu, iu);
+  pdf = pv * pu;
+}
+
+float Distribution2D::pdf(float u, float v) const {
+  int iu = std::clamp(int(u * w_), 0, w_ - 1), iv = std::clamp(int(v * h_), 0, h_ - 1);
+  return marginal_.pdf(iv) * rows_[iv].pdf(iu);
+}
+
+} // namespace lobe::render

@@ -1,0 +1,66 @@
+// Piecewise-constant distributions: sampled frequencies match the tabulated function, and
+// pdf() agrees with what sample_continuous() reports.
+#include "distribution.h"
+#include "sampling.h"
+
+#include <gtest/gtest.h>
+
+using namespace lobe::render;
+
+TEST(Distribution1D, DiscreteFrequenciesMatchWeights) {
+  Distribution1D d({1, 0, 3, 4});
+  std::vector<int> count(4, 0);
+  const int n = 80000;
+  for (int i = 0; i < n; ++i) {
+    float p;
+    count[d.sample_discrete((i + 0.5f) / n, p)]++;
+  }
+  EXPECT_EQ(count[1], 0);
+  EXPECT_NEAR(count[0] / double(n), 1 / 8.0, 1e-3);
+  EXPECT_NEAR(count[2] / double(n), 3 / 8.0, 1e-3);
+  EXPECT_NEAR(d.discrete_prob(3), 0.5f, 1e-6);
+  EXPECT_FLOAT_EQ(d.integral(), 2.0f);
+}
+
+TEST(Distribution1D, ContinuousPdfIsFunctionOverIntegral) {
+  Distribution1D d({2, 6});
+  float pdf;
+  int idx;
+  float x = d.sample_continuous(0.5f, pdf, idx); // cdf: 0, .25, 1 -> cell 1
+  EXPECT_EQ(idx, 1);
+  EXPECT_FLOAT_EQ(pdf, 6.0f / 4.0f);
+  EXPECT_NEAR(x, 0.5f + 0.5f * (0.25f / 0.75f), 1e-6);
+  EXPECT_FLOAT_EQ(d.pdf(0), 0.5f);
+}
+
+TEST(Distribution1D, RemappedUniformStaysUniform) {
+  Distribution1D d({1, 1, 2});
+  float p, rest;
+  int i = d.sample_discrete(0.75f + 0.5f * 0.25f, p, rest); // middle of cell 2 ([0.5, 1))
+  EXPECT_EQ(i, 2);
+  EXPECT_NEAR(rest, 0.75f, 1e-6);
+}
+
+TEST(Distribution1D, AllZeroIsUniform) {
+  Distribution1D d({0, 0});
+  EXPECT_FLOAT_EQ(d.discrete_prob(0), 0.5f);
+}
+
+TEST(Distribution2D, PdfIntegratesToOneAndMatchesSamples) {
+  std::vector<float> f = {1, 2, 3, 0, 5, 1};
+  Distribution2D d(f, 3, 2);
+  // Integral of the pdf over the unit square: sum over cells of pdf * cell area (1/6).
+  double sum = 0;
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 3; ++x) sum += d.pdf((x + 0.5f) / 3, (y + 0.5f) / 2) / 6.0;
+  EXPECT_NEAR(sum, 1.0, 1e-5);
+  // Expected pdf of cell (1, 1): f / mean(f) = 5 / 2.
+  EXPECT_NEAR(d.pdf(0.5f, 0.75f), 2.5f, 1e-5);
+  lobe::render::Sampler s(1, 2, 3);
+  for (int i = 0; i < 1000; ++i) {
+    float u, v, pdf;
+    d.sample(s.next(), s.next(), u, v, pdf);
+    ASSERT_GT(pdf, 0);
+    EXPECT_NEAR(pdf, d.pdf(u, v), 1e-4 * pdf);
+  }
+}

@@ -1,0 +1,95 @@
+// Lat-long environment table and its importance sampling (see environment.h).
+#include "environment.h"
+
+#include "sampling.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lobe::render {
+
+EnvironmentLight::EnvironmentLight(std::vector<float> rgb, int w, int h, float rotation_deg)
+    : rgb_(std::move(rgb)), w_(w), h_(h) {
+  float r = rotation_deg * kPi / 180.0f;
+  cos_r_ = std::cos(r), sin_r_ = std::sin(r);
+  // Sampling weight: luminance times sin(theta) (the solid angle of a texel's row).
+  std::vector<float> f(size_t(w) * h);
+  double lum_sum = 0, weight_sum = 0;
+  constant_ = true;
+  for (int y = 0; y < h; ++y) {
+    float s = std::sin(kPi * (y + 0.5f) / float(h));
+    for (int x = 0; x < w; ++x) {
+      const float* p = &rgb_[(size_t(y) * w + x) * 3];
+      float l = std::max(0.0f, luminance({p[0], p[1], p[2]}));
+      // Keep a small floor so every direction with radiance can be sampled.
+      f[size_t(y) * w + x] =
+          (l > 0 || p[0] > 0 || p[1] > 0 || p[2] > 0) ? std::max(l, 1e-6f) * s : 0;
+      lum_sum += double(l) * s;
+      weight_sum += s;
+      constant_ &= p[0] == rgb_[0] && p[1] == rgb_[1] && p[2] == rgb_[2];
+    }
+  }
+  avg_lum_ = weight_sum > 0 ? float(lum_sum / weight_sum) : 0;
+  dist_ = Distribution2D(f, w, h);
+}
+
+EnvironmentLight EnvironmentLight::from_function(const std::function<Color3(const Vec3&)>& radiance,
+                                                 int w, int h, float rotation_deg) {
+  std::vector<float> rgb(size_t(w) * h * 3);
+  EnvironmentLight probe({0, 0, 0}, 1, 1, rotation_deg); // only for uv_to_dir
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      Color3 sum;
+      for (int s = 0; s < 4; ++s) {
+        float u = (x + 0.25f + 0.5f * (s & 1)) / float(w),
+              v = (y + 0.25f + 0.5f * (s >> 1)) / float(h);
+        sum += radiance(probe.uv_to_dir(u, v));
+      }
+      float* p = &rgb[(size_t(y) * w + x) * 3];
+      p[0] = sum.x * 0.25f, p[1] = sum.y * 0.25f, p[2] = sum.z * 0.25f;
+    }
+  return EnvironmentLight(std::move(rgb), w, h, rotation_deg);
+}
+
+Vec3 EnvironmentLight::uv_to_dir(float u, float v) const {
+  float theta = v * kPi, phi = (u - 0.5f) * 2 * kPi;
+  float st = std::sin(theta);
+  Vec3 d{st * std::sin(phi), std::cos(theta), -st * std::cos(phi)};
+  // Rotate by +rotation about +Y into the world.
+  return {cos_r_ * d.x + sin_r_ * d.z, d.y, -sin_r_ * d.x + cos_r_ * d.z};
+}
+
+void EnvironmentLight::dir_to_uv(const Vec3& dw, float& u, float& v) const {
+  Vec3 d{cos_r_ * dw.x - sin_r_ * dw.z, dw.y, sin_r_ * dw.x + cos_r_ * dw.z};
+  v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
+  u = 0.5f + std::atan2(d.x, -d.z) / (2 * kPi);
+  u = u - std::floor(u);
+}
+
+Color3 EnvironmentLight::eval(const Vec3& dir) const {
+  if (!valid()) return {};
+  float u, v;
+  dir_to_uv(dir, u, v);
+  int x = std::clamp(int(u * w_), 0, w_ - 1), y = std::clamp(int(v * h_), 0, h_ - 1);
+  const float* p = &rgb_[(size_t(y) * w_ + x) * 3];
+  return {p[0], p[1], p[2]};
+}
+
+float EnvironmentLight::pdf(const Vec3& dir) const {
+  if (!valid()) return 0;
+  float u, v;
+  dir_to_uv(dir, u, v);
+  float st = std::sin(v * kPi);
+  if (!(st > 0)) return 0;
+  return dist_.pdf(u, v) / (2 * kPi * kPi * st);
+}
+
+Vec3 EnvironmentLight::sample(float u1, float u2, float& pdf) const {
+  float u, v, p;
+  dist_.sample(u1, u2, u, v, p);
+  float st = std::sin(v * kPi);
+  pdf = st > 0 ? p / (2 * kPi * kPi * st) : 0;
+  return uv_to_dir(u, v);
+}
+
+} // namespace lobe::render

@@ -1,0 +1,50 @@
+// The environment: radiance arriving from infinitely far away, stored as a lat-long table and
+// importance-sampled with a piecewise-constant 2-D distribution.
+//
+// Every environment kind becomes the same table: a constant, an image (.exr/.hdr), the
+// procedural sky (sky.h) or a background() shader tabulated at load, like OSL's testrender.
+// Radiance lookups read the same table the distribution was built from, so lookup and pdf
+// agree exactly and MIS weights are consistent.
+//
+// Mapping (after rotating by -rotation about +Y): v = theta/pi with theta measured from +Y
+// (row 0 is straight up), u = 0.5 + atan2(x, -z) / (2 pi) (the image centre looks down -Z).
+#pragma once
+
+#include "distribution.h"
+
+#include "lobe/vec.h"
+
+#include <functional>
+#include <vector>
+
+namespace lobe::render {
+
+class EnvironmentLight {
+public:
+  EnvironmentLight() = default;
+  // `rgb`: w*h*3 linear radiance, rows from +Y down to -Y.
+  EnvironmentLight(std::vector<float> rgb, int w, int h, float rotation_deg);
+  // Tabulates `radiance(direction)` at w x h (supersampled 2x2 per texel).
+  static EnvironmentLight from_function(const std::function<Color3(const Vec3&)>& radiance, int w,
+                                        int h, float rotation_deg);
+
+  bool valid() const { return w_ > 0; }
+  Color3 eval(const Vec3& dir) const;
+  float pdf(const Vec3& dir) const;                  // solid-angle density of sample()
+  Vec3 sample(float u1, float u2, float& pdf) const; // direction towards the environment
+  float average_luminance() const { return avg_lum_; }
+  bool is_constant() const { return constant_; }
+
+  Vec3 uv_to_dir(float u, float v) const;
+  void dir_to_uv(const Vec3& d, float& u, float& v) const;
+
+private:
+  std::vector<float> rgb_;
+  int w_ = 0, h_ = 0;
+  float cos_r_ = 1, sin_r_ = 0;
+  float avg_lum_ = 0;
+  bool constant_ = false;
+  Distribution2D dist_;
+};
+
+} // namespace lobe::render

@@ -1,0 +1,101 @@
+// Environment table: the direction mapping round-trips, the sampling pdf integrates to one
+// over the sphere and matches sample(), and Monte Carlo estimates of the irradiance of a
+// known environment are right.
+#include "environment.h"
+#include "sampling.h"
+#include "sky.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace lobe;
+using namespace lobe::render;
+
+namespace {
+EnvironmentLight gradient_env(float rotation) {
+  // Radiance 1 + 3 * max(y, 0)^2: bright towards +Y.
+  return EnvironmentLight::from_function(
+      [](const Vec3& d) {
+        float k = 1 + 3 * std::max(d.y, 0.0f) * std::max(d.y, 0.0f);
+        return Color3{k, k * 0.5f, 0.25f};
+      },
+      64, 32, rotation);
+}
+} // namespace
+
+TEST(Environment, UvMappingRoundTrips) {
+  EnvironmentLight env = gradient_env(30);
+  Sampler s(0, 0, 0);
+  for (int i = 0; i < 200; ++i) {
+    Vec3 d = square_to_uniform_sphere(s.next(), s.next());
+    float u, v;
+    env.dir_to_uv(d, u, v);
+    Vec3 back = env.uv_to_dir(u, v);
+    EXPECT_NEAR(dot(back, d), 1.0f, 1e-5);
+  }
+  // Row 0 is straight up; the image centre looks down -Z (without rotation).
+  EnvironmentLight plain = gradient_env(0);
+  EXPECT_NEAR(plain.uv_to_dir(0.3f, 0.0f).y, 1.0f, 1e-6);
+  Vec3 c = plain.uv_to_dir(0.5f, 0.5f);
+  EXPECT_NEAR(c.z, -1.0f, 1e-6);
+}
+
+TEST(Environment, PdfIntegratesToOneAndMatchesSample) {
+  EnvironmentLight env = gradient_env(10);
+  // Uniform-sphere Monte Carlo of the pdf's integral.
+  Sampler s(5, 0, 0);
+  double sum = 0;
+  const int n = 200000;
+  for (int i = 0; i < n; ++i) sum += env.pdf(square_to_uniform_sphere(s.next(), s.next()));
+  EXPECT_NEAR(sum / n * 4 * M_PI, 1.0, 0.01);
+  for (int i = 0; i < 500; ++i) {
+    float pdf;
+    Vec3 d = env.sample(s.next(), s.next(), pdf);
+    ASSERT_GT(pdf, 0);
+    EXPECT_NEAR(env.pdf(d), pdf, 2e-3 * pdf);
+  }
+}
+
+TEST(Environment, ImportanceSampledIrradianceMatchesClosedForm) {
+  // Irradiance at an upward-facing point: integral over the upper hemisphere of
+  // (1 + 3 cos^2) cos dw = pi + 3 * 2pi/4 = 2.5 pi (red channel).
+  EnvironmentLight env = gradient_env(0);
+  Sampler s(9, 0, 0);
+  double sum = 0;
+  const int n = 100000;
+  for (int i = 0; i < n; ++i) {
+    float pdf;
+    Vec3 d = env.sample(s.next(), s.next(), pdf);
+    if (d.y > 0 && pdf > 0) sum += env.eval(d).x * d.y / pdf;
+  }
+  // The table is piecewise constant over 64x32 texels: allow 1.5% for tabulation.
+  EXPECT_NEAR(sum / n, 2.5 * M_PI, 0.015 * 2.5 * M_PI);
+}
+
+TEST(Environment, ConstantIsExact) {
+  // A constant table of 64 x 32 texels: near the equator the pdf is uniform over the sphere up
+  // to the sin(theta) variation inside one row (a fraction of a percent).
+  EnvironmentLight env(std::vector<float>(64 * 32 * 3, 0.5f), 64, 32, 0);
+  EXPECT_TRUE(env.is_constant());
+  EXPECT_NEAR(env.pdf(normalize(Vec3{0.3f, 0.01f, 0.8f})), 1 / (4 * M_PI), 2e-3 / (4 * M_PI));
+  EXPECT_FLOAT_EQ(env.eval({1, 0, 0}).y, 0.5f);
+}
+
+TEST(Sky, SunDiskDeliversItsIrradiance) {
+  // Integrate the sky's luminance times cos over the sun's cone: the disk gives kSunIrradiance.
+  Vec3 sun = normalize(Vec3{0.3f, 0.8f, 0.2f});
+  float diam = 2.0f, cos_r = std::cos(0.5f * diam * float(M_PI) / 180);
+  Frame f(sun);
+  Sampler s(1, 1, 1);
+  double sum = 0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    Vec3 d = f.to_world(square_to_uniform_cone(s.next(), s.next(), cos_r));
+    sum += luminance(procedural_sky(d, sun, diam)) * dot(d, sun);
+  }
+  double solid = 2 * M_PI * (1 - cos_r);
+  // The glow adds a little on top of the disk: at most a few percent.
+  EXPECT_GT(sum / n * solid, kSunIrradiance * 0.99);
+  EXPECT_LT(sum / n * solid, kSunIrradiance * 1.05);
+}

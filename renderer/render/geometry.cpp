@@ -1,0 +1,179 @@
+// Embree scene construction and ray queries (see geometry.h).
+#include "geometry.h"
+
+#include "sampling.h"
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+namespace lobe::render {
+
+Vec3 offset_ray_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
+  constexpr float kOrigin = 1.0f / 32.0f, kFloatScale = 1.0f / 65536.0f, kIntScale = 256.0f;
+  Vec3 n = dot(ng, dir) < 0 ? -ng : ng;
+  Vec3 out;
+  for (int i = 0; i < 3; ++i) {
+    int32_t of = static_cast<int32_t>(kIntScale * n[i]);
+    int32_t bits = std::bit_cast<int32_t>(p[i]);
+    float pi = std::bit_cast<float>(bits + (p[i] < 0 ? -of : of));
+    out[i] = std::abs(p[i]) < kOrigin ? p[i] + kFloatScale * n[i] : pi;
+  }
+  return out;
+}
+
+Geometry::~Geometry() {
+  if (scene_) rtcReleaseScene(scene_);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+static scene::Mesh quad_mesh(const scene::Shape& s) {
+  scene::Mesh m;
+  m.positions = {s.corner, s.corner + s.edge_x, s.corner + s.edge_x + s.edge_y,
+                 s.corner + s.edge_y};
+  m.uvs = {0, 0, 1, 0, 1, 1, 0, 1};
+  m.indices = {0, 1, 2, 0, 2, 3};
+  return m;
+}
+
+std::string Geometry::build(const std::vector<scene::Shape>& shapes) {
+  shapes_ = &shapes;
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) return "cannot create the Embree device";
+  scene_ = rtcNewScene(device_);
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+  meshes_.assign(shapes.size(), {});
+  for (size_t i = 0; i < shapes.size(); ++i) {
+    const scene::Shape& s = shapes[i];
+    RTCGeometry g;
+    if (s.kind == scene::Shape::Kind::Sphere) {
+      g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+      auto* v = static_cast<float*>(
+          rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 16, 1));
+      v[0] = s.center.x, v[1] = s.center.y, v[2] = s.center.z, v[3] = s.radius;
+    } else {
+      meshes_[i] = s.kind == scene::Shape::Kind::Quad ? quad_mesh(s) : s.mesh;
+      const scene::Mesh& m = meshes_[i];
+      g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, m.positions.size()));
+      std::memcpy(v, m.positions.data(), m.positions.size() * 12);
+      auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, m.indices.size() / 3));
+      std::memcpy(idx, m.indices.data(), m.indices.size() * 4);
+    }
+    rtcCommitGeometry(g);
+    unsigned id = rtcAttachGeometry(scene_, g);
+    rtcReleaseGeometry(g);
+    if (geom_to_shape_.size() <= id) geom_to_shape_.resize(id + 1, -1);
+    geom_to_shape_[id] = static_cast<int>(i);
+  }
+  rtcCommitScene(scene_);
+  if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) return "Embree failed to build the scene";
+  RTCBounds b;
+  rtcGetSceneBounds(scene_, &b);
+  if (shapes.empty() || !(b.upper_x >= b.lower_x)) {
+    center_ = {0, 0, 0}, radius_ = 1;
+  } else {
+    Vec3 lo{b.lower_x, b.lower_y, b.lower_z}, hi{b.upper_x, b.upper_y, b.upper_z};
+    center_ = (lo + hi) * 0.5f;
+    radius_ = std::max(1e-3f, length(hi - lo) * 0.5f);
+  }
+  return "";
+}
+
+bool Geometry::intersect_raw(const Ray& ray, float& t) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRayHit rh;
+  rh.ray.org_x = ray.org.x, rh.ray.org_y = ray.org.y, rh.ray.org_z = ray.org.z;
+  rh.ray.dir_x = ray.dir.x, rh.ray.dir_y = ray.dir.y, rh.ray.dir_z = ray.dir.z;
+  rh.ray.tnear = 0, rh.ray.tfar = ray.tmax, rh.ray.time = 0, rh.ray.mask = ~0u, rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &ctx, &rh);
+  t = rh.ray.tfar;
+  return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+}
+
+bool Geometry::intersect(const Ray& ray, SurfaceHit& hit) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRayHit rh;
+  rh.ray.org_x = ray.org.x, rh.ray.org_y = ray.org.y, rh.ray.org_z = ray.org.z;
+  rh.ray.dir_x = ray.dir.x, rh.ray.dir_y = ray.dir.y, rh.ray.dir_z = ray.dir.z;
+  rh.ray.tnear = 0, rh.ray.tfar = ray.tmax, rh.ray.time = 0, rh.ray.mask = ~0u, rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &ctx, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  hit.t = rh.ray.tfar;
+  hit.P = ray.org + ray.dir * hit.t;
+  surface(geom_to_shape_[rh.hit.geomID], int(rh.hit.primID), rh.hit.u, rh.hit.v, hit);
+  return true;
+}
+
+bool Geometry::occluded(const Vec3& org, const Vec3& dir, float tmax) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRay r;
+  r.org_x = org.x, r.org_y = org.y, r.org_z = org.z;
+  r.dir_x = dir.x, r.dir_y = dir.y, r.dir_z = dir.z;
+  r.tnear = 0, r.tfar = tmax, r.time = 0, r.mask = ~0u, r.flags = 0;
+  rtcOccluded1(scene_, &ctx, &r);
+  return r.tfar < 0; // Embree sets tfar to -inf on a hit
+}
+
+// Tangents from the uv parametrisation of a triangle, or any frame when it is degenerate.
+static void triangle_tangents(const Vec3 p[3], const float uv[6], const Vec3& ng, Vec3& dpdu,
+                              Vec3& dpdv) {
+  float du1 = uv[2] - uv[0], dv1 = uv[3] - uv[1], du2 = uv[4] - uv[0], dv2 = uv[5] - uv[1];
+  float det = du1 * dv2 - dv1 * du2;
+  Vec3 e1 = p[1] - p[0], e2 = p[2] - p[0];
+  if (std::abs(det) > 1e-12f) {
+    float inv = 1.0f / det;
+    dpdu = (e1 * dv2 - e2 * dv1) * inv;
+    dpdv = (e2 * du1 - e1 * du2) * inv;
+    if (is_finite(dpdu) && is_finite(dpdv) && !is_zero(cross(dpdu, dpdv))) return;
+  }
+  Frame f(ng);
+  dpdu = f.t, dpdv = f.b;
+}
+
+void Geometry::surface(int shape, int prim, float bu, float bv, SurfaceHit& hit) const {
+  const scene::Shape& s = (*shapes_)[shape];
+  hit.shape = shape;
+  hit.prim = prim;
+  if (s.kind == scene::Shape::Kind::Sphere) {
+    Vec3 d = normalize(hit.P - s.center);
+    if (is_zero(d)) d = {0, 1, 0};
+    hit.P = s.center + d * s.radius; // re-project: the hit point is exactly on the sphere
+    hit.Ng = hit.N = d;
+    hit.u = 0.5f + std::atan2(d.x, d.z) / (2 * kPi);
+    hit.v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
+    float st = std::sqrt(std::max(0.0f, 1 - d.y * d.y));
+    hit.dPdu = Vec3{d.z, 0, -d.x} * (2 * kPi * s.radius);
+    float phi = std::atan2(d.x, d.z);
+    hit.dPdv = Vec3{d.y * std::sin(phi), -st, d.y * std::cos(phi)} * (kPi * s.radius);
+    return;
+  }
+  const scene::Mesh& m = meshes_[shape];
+  const uint32_t* tri = &m.indices[3 * size_t(prim)];
+  Vec3 p[3] = {m.positions[tri[0]], m.positions[tri[1]], m.positions[tri[2]]};
+  float b0 = 1 - bu - bv;
+  hit.Ng = normalize(cross(p[1] - p[0], p[2] - p[0]));
+  hit.P = p[0] * b0 + p[1] * bu + p[2] * bv;
+  float uv[6] = {0, 0, 1, 0, 0, 1};
+  if (!m.uvs.empty())
+    for (int k = 0; k < 3; ++k)
+      uv[2 * k] = m.uvs[2 * tri[k]], uv[2 * k + 1] = m.uvs[2 * tri[k] + 1];
+  hit.u = uv[0] * b0 + uv[2] * bu + uv[4] * bv;
+  hit.v = uv[1] * b0 + uv[3] * bu + uv[5] * bv;
+  triangle_tangents(p, uv, hit.Ng, hit.dPdu, hit.dPdv);
+  hit.N = hit.Ng;
+  if (!m.normals.empty()) {
+    Vec3 n = normalize(m.normals[tri[0]] * b0 + m.normals[tri[1]] * bu + m.normals[tri[2]] * bv);
+    // Keep the shading normal on the geometric normal's side (bad normals otherwise leak).
+    if (!is_zero(n)) hit.N = dot(n, hit.Ng) < 0 ? -n : n;
+  }
+}
+
+} // namespace lobe::render

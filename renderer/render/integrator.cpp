@@ -1,0 +1,122 @@
+// The path tracer (see integrator.h).
+#include "integrator.h"
+
+#include "lobe/bsdf.h"
+#include "lobe/context.h"
+
+#include <chrono>
+
+namespace lobe::render {
+namespace {
+
+struct Vertex {
+  SurfaceHit hit;
+  Bsdf bsdf;
+};
+
+// MIS weight for emission reached by a BSDF sample of density `bsdf_pdf` that light sampling
+// would have produced with density `light_pdf`.
+float weight_bsdf_hit(Strategy s, bool after_delta, float bsdf_pdf, float light_pdf) {
+  if (after_delta || s == Strategy::BsdfOnly) return 1;
+  if (s == Strategy::LightOnly) return light_pdf > 0 ? 0 : 1;
+  return power_heuristic(bsdf_pdf, light_pdf);
+}
+
+} // namespace
+
+// Shades `hit` seen along `dir` and flattens its closure into `bsdf`.
+static void shade_into(const RenderScene& scene, const SurfaceHit& hit, const Vec3& dir,
+                       int raytype, ShadingContext& ctx, Bsdf& bsdf, TraceCounters& c, bool timed) {
+  ShaderGlobals sg;
+  fill_globals(sg, hit, dir, raytype, ctx);
+  ctx.reset();
+  auto t0 = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+  scene.material(hit.shape).shade(sg);
+  bsdf.build(sg.Ci, -dir, hit.Ng);
+  ++c.shades;
+  if (timed)
+    c.shade_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingContext& ctx,
+                             TraceCounters& c) const {
+  const LightSet& lights = scene_.lights();
+  const Geometry& geo = scene_.geometry();
+  PathResult out;
+  Color3 beta{1, 1, 1};
+  Ray ray = camera_ray;
+  bool after_delta = true; // the camera ray counts as delta: emission seen directly has weight 1
+  float prev_pdf = 0;
+  Vec3 prev_p;
+  int raytype = kRayCamera;
+  Vertex v;
+  for (int depth = 0;; ++depth) {
+    ++c.rays;
+    if (!geo.intersect(ray, v.hit)) {
+      if (const EnvironmentLight* env = lights.environment()) {
+        float w =
+            weight_bsdf_hit(strategy_, after_delta, prev_pdf, lights.pdf_environment(ray.dir));
+        out.L += beta * env->eval(ray.dir) * w;
+      }
+      break;
+    }
+    shade_into(scene_, v.hit, ray.dir, raytype, ctx, v.bsdf, c, time_);
+    const Vec3 wo = -ray.dir;
+    if (!is_zero(v.bsdf.emission)) {
+      float lp = lights.is_emitter(v.hit.shape) ? lights.pdf_area(prev_p, v.hit) : 0;
+      out.L += beta * v.bsdf.emission * weight_bsdf_hit(strategy_, after_delta, prev_pdf, lp);
+    }
+    if (depth == 0) {
+      out.albedo = v.bsdf.albedo(wo) + v.bsdf.emission;
+      out.normal = v.hit.N;
+      out.depth = v.hit.t;
+    }
+    if (depth >= max_depth_) break;
+
+    // Next-event estimation.
+    if (strategy_ != Strategy::BsdfOnly && v.bsdf.has_non_delta()) {
+      float us = sampler.next(), u1 = sampler.next(), u2 = sampler.next();
+      LightSample ls;
+      if (lights.sample(v.hit.P, us, u1, u2, ls)) {
+        BsdfEval f = v.bsdf.eval(wo, ls.wi);
+        if (!is_zero(f.value)) {
+          Color3 Le = ls.L;
+          bool delta = ls.kind == LightSample::Kind::Point;
+          if (ls.kind == LightSample::Kind::Area) {
+            Bsdf eb;
+            shade_into(scene_, ls.surface, ls.wi, kRayShadow, ctx, eb, c, time_);
+            Le = eb.emission;
+          }
+          Vec3 org = offset_ray_origin(v.hit.P, v.hit.Ng, ls.wi);
+          float tmax = ls.kind == LightSample::Kind::Environment ? 1e30f : ls.dist * (1 - 1e-4f);
+          ++c.shadow_rays;
+          if (!is_zero(Le) && !geo.occluded(org, ls.wi, tmax)) {
+            float w =
+                (delta || strategy_ == Strategy::LightOnly) ? 1 : power_heuristic(ls.pdf, f.pdf);
+            out.L += beta * f.value * Le * (w / ls.pdf);
+          }
+        }
+      }
+    }
+
+    // Continue the path by sampling the BSDF.
+    auto s = v.bsdf.sample(wo, sampler.next3());
+    if (!s) break;
+    beta *= s->weight;
+    if (is_zero(beta) || !is_finite(beta)) break;
+    after_delta = (s->flags & kLobeSpecular) != 0;
+    prev_pdf = s->pdf;
+    prev_p = v.hit.P;
+    raytype = after_delta ? (s->flags & kLobeTransmit ? kRayRefraction : kRayReflection)
+                          : (s->flags & kLobeDiffuse ? kRayDiffuse : kRayGlossy);
+    ray = Ray{offset_ray_origin(v.hit.P, v.hit.Ng, s->wi), s->wi};
+    if (depth >= 3) {
+      float q = std::min(0.95f, max_component(beta));
+      if (sampler.next() >= q) break;
+      beta = beta / q;
+    }
+  }
+  return out;
+}
+
+} // namespace lobe::render

@@ -1,0 +1,160 @@
+// Light selection and sampling (see lights.h).
+#include "lights.h"
+
+#include "sampling.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace lobe::render {
+
+void LightSet::build(const Geometry& geo, const std::vector<scene::Light>& lights,
+                     const std::vector<Emitter>& emitters, const EnvironmentLight* env) {
+  geo_ = &geo;
+  env_ = env && env->valid() ? env : nullptr;
+  points_ = lights;
+  std::vector<float> power;
+  for (const scene::Light& l : lights) {
+    float solid = 4 * kPi;
+    if (l.kind == scene::Light::Kind::Spot)
+      solid = 2 * kPi * (1 - std::cos(l.cone_angle * kPi / 180.0f));
+    power.push_back(solid * luminance(l.intensity));
+  }
+  shape_to_area_.assign(geo.shapes().size(), -1);
+  for (const Emitter& e : emitters) {
+    Area a{e.shape, 0, {}};
+    const scene::Shape& s = geo.shapes()[e.shape];
+    if (s.kind == scene::Shape::Kind::Sphere) {
+      a.total_area = 4 * kPi * s.radius * s.radius;
+    } else {
+      const scene::Mesh& m = geo.mesh(e.shape);
+      std::vector<float> areas(m.indices.size() / 3);
+      for (size_t t = 0; t < areas.size(); ++t) {
+        const uint32_t* i = &m.indices[3 * t];
+        areas[t] = 0.5f * length(cross(m.positions[i[1]] - m.positions[i[0]],
+                                       m.positions[i[2]] - m.positions[i[0]]));
+        a.total_area += areas[t];
+      }
+      a.triangles = Distribution1D(areas);
+    }
+    if (!(a.total_area > 0)) continue;
+    shape_to_area_[e.shape] = static_cast<int>(areas_.size());
+    areas_.push_back(std::move(a));
+    power.push_back(e.power);
+  }
+  if (env_) {
+    float r = geo.radius();
+    power.push_back(4 * kPi * kPi * r * r * env_->average_luminance());
+  }
+  count_ = static_cast<int>(power.size());
+  // A light whose power estimate is zero keeps a small share so it is never unsampleable.
+  float mx = 0;
+  for (float p : power) mx = std::max(mx, p);
+  for (float& p : power) p = std::max(p, 1e-3f * mx + 1e-12f);
+  if (count_) select_ = Distribution1D(power);
+}
+
+bool LightSet::sample(const Vec3& p, float u_select, float u1, float u2, LightSample& out) const {
+  if (!count_) return false;
+  float prob;
+  int i = select_.sample_discrete(u_select, prob);
+  if (i < int(points_.size())) {
+    const scene::Light& l = points_[i];
+    Vec3 d = l.position - p;
+    float d2 = dot(d, d);
+    if (!(d2 > 0)) return false;
+    out.kind = LightSample::Kind::Point;
+    out.dist = std::sqrt(d2);
+    out.wi = d / out.dist;
+    out.L = l.intensity / d2;
+    if (l.kind == scene::Light::Kind::Spot) {
+      float c = dot(-out.wi, l.direction);
+      float c_out = std::cos(l.cone_angle * kPi / 180.0f);
+      float c_in = std::cos((l.cone_angle - l.falloff_angle) * kPi / 180.0f);
+      float t = c_in > c_out ? std::clamp((c - c_out) / (c_in - c_out), 0.0f, 1.0f)
+                             : (c >= c_out ? 1.0f : 0.0f);
+      out.L *= t * t * (3 - 2 * t); // smoothstep edge
+    }
+    out.pdf = prob;
+    return !is_zero(out.L);
+  }
+  i -= int(points_.size());
+  if (i < int(areas_.size())) {
+    if (!sample_area(areas_[i], p, u1, u2, out)) return false;
+    out.pdf *= prob;
+    return out.pdf > 0;
+  }
+  float pdf;
+  out.kind = LightSample::Kind::Environment;
+  out.wi = env_->sample(u1, u2, pdf);
+  out.dist = std::numeric_limits<float>::infinity();
+  out.L = env_->eval(out.wi);
+  out.pdf = pdf * prob;
+  return out.pdf > 0;
+}
+
+bool LightSet::sample_area(const Area& a, const Vec3& p, float u1, float u2,
+                           LightSample& out) const {
+  const scene::Shape& s = geo_->shapes()[a.shape];
+  out.kind = LightSample::Kind::Area;
+  SurfaceHit& h = out.surface;
+  if (s.kind == scene::Shape::Kind::Sphere) {
+    Vec3 dc = s.center - p;
+    float d2 = dot(dc, dc), r2 = s.radius * s.radius;
+    if (d2 <= r2 * 1.0001f) { // inside (or on) the sphere: uniform area
+      h.P = s.center + square_to_uniform_sphere(u1, u2) * s.radius;
+    } else { // the cone of directions the sphere subtends
+      float dist = std::sqrt(d2), cos_max = std::sqrt(std::max(0.0f, 1 - r2 / d2));
+      Vec3 w = Frame(dc / dist).to_world(square_to_uniform_cone(u1, u2, cos_max));
+      // Nearest intersection of p + t w with the sphere (clamped to the tangent point).
+      float b = dot(w, dc), disc = std::max(0.0f, b * b - (d2 - r2));
+      h.P = p + w * (b - std::sqrt(disc));
+    }
+    geo_->surface(a.shape, 0, 0, 0, h);
+  } else {
+    // Triangle by area, then a uniform point in it (u1 re-used within the chosen cell).
+    float prob, ur;
+    int t = a.triangles.sample_discrete(u1, prob, ur);
+    float su = std::sqrt(ur);
+    geo_->surface(a.shape, t, su * (1 - u2), su * u2, h); // barycentric (b1, b2)
+  }
+  Vec3 d = h.P - p;
+  float d2 = dot(d, d);
+  if (!(d2 > 0)) return false;
+  out.dist = std::sqrt(d2);
+  out.wi = d / out.dist;
+  out.pdf = area_density(a, p, h);
+  return out.pdf > 0 && std::isfinite(out.pdf);
+}
+
+float LightSet::area_density(const Area& a, const Vec3& p, const SurfaceHit& h) const {
+  const scene::Shape& s = geo_->shapes()[a.shape];
+  Vec3 d = h.P - p;
+  float d2 = dot(d, d);
+  if (!(d2 > 0)) return 0;
+  if (s.kind == scene::Shape::Kind::Sphere) {
+    Vec3 dc = s.center - p;
+    float c2 = dot(dc, dc), r2 = s.radius * s.radius;
+    if (c2 > r2 * 1.0001f) {
+      float cos_max = std::sqrt(std::max(0.0f, 1 - r2 / c2));
+      return 1.0f / (2 * kPi * std::max(1 - cos_max, 1e-7f));
+    }
+  }
+  float cos_l = std::abs(dot(h.Ng, d)) / std::sqrt(d2);
+  if (!(cos_l > 1e-7f)) return 0;
+  return d2 / (cos_l * a.total_area);
+}
+
+float LightSet::pdf_area(const Vec3& p, const SurfaceHit& hit) const {
+  if (!is_emitter(hit.shape)) return 0;
+  int i = shape_to_area_[hit.shape];
+  return select_.discrete_prob(int(points_.size()) + i) * area_density(areas_[i], p, hit);
+}
+
+float LightSet::pdf_environment(const Vec3& dir) const {
+  if (!env_) return 0;
+  return select_.discrete_prob(count_ - 1) * env_->pdf(dir);
+}
+
+} // namespace lobe::render

@@ -1,0 +1,69 @@
+// Every light of a scene behind one interface for next-event estimation and MIS:
+// point and spot lights (delta positions), emissive shapes (area lights: triangles sampled by
+// area, spheres by the solid angle they subtend), and the environment.
+//
+// One light is picked per shading point with probability proportional to an estimate of its
+// power (point: 4 pi I, spot: its cone's solid angle times I, area: pi A L, environment:
+// pi^2 R^2 L_avg * 4 for a scene of bounding radius R). pdf() returns the same
+// selection-times-density that sample() reports, so a BSDF-sampled ray that hits an emitter can
+// be weighted against light sampling.
+#pragma once
+
+#include "distribution.h"
+#include "environment.h"
+#include "geometry.h"
+
+#include <memory>
+#include <vector>
+
+namespace lobe::render {
+
+struct LightSample {
+  enum class Kind { Point, Area, Environment } kind = Kind::Point;
+  Vec3 wi;            // unit, from the shading point towards the light
+  float dist = 0;     // distance to the light point (infinity for the environment)
+  Color3 L;           // arriving radiance/intensity; for Area the caller shades the emitter
+  float pdf = 0;      // selection probability x solid-angle density (delta: selection only)
+  SurfaceHit surface; // Area: the point on the emitter
+};
+
+class LightSet {
+public:
+  struct Emitter {
+    int shape = -1;
+    float power = 0; // luminance power estimate (pi * area * radiance)
+  };
+
+  void build(const Geometry& geo, const std::vector<scene::Light>& lights,
+             const std::vector<Emitter>& emitters, const EnvironmentLight* env);
+  bool empty() const { return count_ == 0; }
+
+  // Samples one light as seen from `p`; false if nothing can be sampled.
+  bool sample(const Vec3& p, float u_select, float u1, float u2, LightSample& out) const;
+  // Selection x solid-angle density of reaching emitter point `hit` from `p` by sample().
+  float pdf_area(const Vec3& p, const SurfaceHit& hit) const;
+  float pdf_environment(const Vec3& dir) const;
+  bool is_emitter(int shape) const {
+    return shape >= 0 && shape < int(shape_to_area_.size()) && shape_to_area_[shape] >= 0;
+  }
+  const EnvironmentLight* environment() const { return env_; }
+
+private:
+  struct Area {
+    int shape;
+    float total_area = 0;
+    Distribution1D triangles; // by area (meshes and quads)
+  };
+  bool sample_area(const Area& a, const Vec3& p, float u1, float u2, LightSample& out) const;
+  float area_density(const Area& a, const Vec3& p, const SurfaceHit& hit) const;
+
+  const Geometry* geo_ = nullptr;
+  const EnvironmentLight* env_ = nullptr;
+  std::vector<scene::Light> points_; // point and spot
+  std::vector<Area> areas_;
+  std::vector<int> shape_to_area_;
+  Distribution1D select_; // over points_, then areas_, then the environment
+  int count_ = 0;
+};
+
+} // namespace lobe::render

@@ -1,0 +1,133 @@
+// Tiled, progressive, deterministic rendering (see renderer.h).
+#include "renderer.h"
+
+#include "lobe/context.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <memory>
+#include <mutex>
+
+namespace lobe::render {
+namespace {
+
+constexpr int kTile = 16;
+
+struct Accum {
+  Color3 L, albedo, normal;
+  float depth = 0;
+  int n = 0;
+};
+
+struct ThreadState {
+  ShadingContext ctx;
+  TraceCounters counters;
+};
+
+// Renders samples [s0, s1) of every pixel in tile `t`.
+void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int height, int t,
+                 int s0, int s1, const RenderOptions& opt, const std::atomic<bool>* cancel,
+                 std::vector<Accum>& acc, ThreadState& ts) {
+  int tiles_x = (width + kTile - 1) / kTile;
+  int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
+  for (int y = y0; y < std::min(y0 + kTile, height); ++y) {
+    for (int x = x0; x < std::min(x0 + kTile, width); ++x) {
+      if (cancel && cancel->load(std::memory_order_relaxed)) return;
+      uint64_t pixel = uint64_t(y) * width + x;
+      Accum& a = acc[pixel];
+      for (int s = s0; s < s1; ++s) {
+        Sampler sampler(pixel, uint64_t(s), opt.seed);
+        float jx = sampler.next(), jy = sampler.next(), l1 = sampler.next(), l2 = sampler.next();
+        Ray ray = scene.camera().generate(x + jx, y + jy, l1, l2);
+        PathResult r = pt.trace(ray, sampler, ts.ctx, ts.counters);
+        // A rare invalid sample must not poison the pixel (counted, then dropped).
+        if (!is_finite(r.L)) r.L = {};
+        a.L += r.L;
+        a.albedo += r.albedo;
+        a.normal += r.normal;
+        a.depth += r.depth;
+        ++a.n;
+      }
+    }
+  }
+}
+
+image::Image resolve(const std::vector<Accum>& acc, int width, int height, bool aovs) {
+  std::vector<std::string> ch = {"R", "G", "B"};
+  if (aovs) ch.insert(ch.end(), {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z"});
+  image::Image img(width, height, ch);
+  for (size_t p = 0; p < acc.size(); ++p) {
+    const Accum& a = acc[p];
+    if (!a.n) continue;
+    float inv = 1.0f / float(a.n);
+    float* px = img.pixels.data() + p * ch.size();
+    Color3 v[3] = {a.L * inv, a.albedo * inv, a.normal * inv};
+    for (int k = 0; k < (aovs ? 3 : 1); ++k)
+      for (int c = 0; c < 3; ++c) px[3 * k + c] = v[k][c];
+    if (aovs) px[9] = a.depth * inv;
+  }
+  return img;
+}
+
+} // namespace
+
+image::Image render_image(const RenderScene& scene, int width, int height, const RenderOptions& opt,
+                          const std::atomic<bool>* cancel, const ProgressFn& progress,
+                          RenderStats* stats) {
+  auto t0 = std::chrono::steady_clock::now();
+  PathTracer pt(scene, opt.max_depth, opt.strategy, opt.time_shading);
+  std::vector<Accum> acc(size_t(width) * height);
+  tbb::enumerable_thread_specific<ThreadState> states;
+  int tiles = ((width + kTile - 1) / kTile) * ((height + kTile - 1) / kTile);
+  uint64_t total = uint64_t(width) * height * opt.spp;
+  std::atomic<uint64_t> done{0};
+  int threads = opt.threads > 0 ? opt.threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
+  // Passes of 1, 1, 2, 4, ... 16 samples: early passes give a full (noisy) image quickly.
+  for (int s0 = 0, pass = 1; s0 < opt.spp; s0 += pass, pass = std::min(pass * 2, 16)) {
+    if (s0 == 1) pass = 1;
+    int s1 = std::min(opt.spp, s0 + pass);
+    arena.execute([&] {
+      tbb::parallel_for(0, tiles, [&](int t) {
+        render_tile(scene, pt, width, height, t, s0, s1, opt, cancel, acc, states.local());
+        int tw = std::min(kTile, width - (t % ((width + kTile - 1) / kTile)) * kTile);
+        int th = std::min(kTile, height - (t / ((width + kTile - 1) / kTile)) * kTile);
+        uint64_t d = done.fetch_add(uint64_t(tw) * th * (s1 - s0)) + uint64_t(tw) * th * (s1 - s0);
+        if (progress) progress(std::min(d, total), total);
+      });
+    });
+    if (cancel && cancel->load()) break;
+  }
+  if (stats) {
+    *stats = RenderStats{};
+    stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    for (const Accum& a : acc) stats->samples += uint64_t(a.n);
+    for (const ThreadState& ts : states) {
+      stats->counters.rays += ts.counters.rays;
+      stats->counters.shadow_rays += ts.counters.shadow_rays;
+      stats->counters.shades += ts.counters.shades;
+      stats->counters.shade_seconds += ts.counters.shade_seconds;
+    }
+    stats->cancelled = cancel && cancel->load();
+  }
+  return resolve(acc, width, height, opt.aovs);
+}
+
+double rel_mse(const image::Image& x, const image::Image& ref) {
+  if (x.width != ref.width || x.height != ref.height || x.nchannels() < 3 || ref.nchannels() < 3)
+    return -1;
+  double sum = 0;
+  size_t n = size_t(x.width) * x.height;
+  for (size_t p = 0; p < n; ++p)
+    for (int c = 0; c < 3; ++c) {
+      double a = x.pixels[p * x.nchannels() + c], r = ref.pixels[p * ref.nchannels() + c];
+      sum += (a - r) * (a - r) / (r * r + 0.01);
+    }
+  return sum / double(3 * n);
+}
+
+} // namespace lobe::render

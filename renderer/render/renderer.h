@@ -1,0 +1,50 @@
+// Image rendering: tiles of 16x16 pixels in parallel on oneTBB, in progressive passes so that
+// an interrupted render still covers the whole image.
+//
+// Determinism: sample s of pixel p always uses Sampler(p, s, seed) and each pixel accumulates
+// its samples in index order, whichever thread runs it, so the image depends only on scene,
+// sample count and seed; the thread count changes nothing (tested bit for bit).
+#pragma once
+
+#include "image.h"
+#include "integrator.h"
+#include "scene_setup.h"
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+
+namespace lobe::render {
+
+struct RenderOptions {
+  int spp = 16;
+  int max_depth = 8;
+  uint64_t seed = 0;
+  int threads = 0; // 0: all cores
+  Strategy strategy = Strategy::Mis;
+  bool aovs = true;          // albedo, normal and depth channels
+  bool time_shading = false; // measure time inside materials (small overhead)
+};
+
+struct RenderStats {
+  double seconds = 0;
+  uint64_t samples = 0; // pixel samples finished
+  TraceCounters counters;
+  bool cancelled = false;
+};
+
+// Called from worker threads after each tile (thread-safe receivers only): pixel samples done
+// so far and in total.
+using ProgressFn = std::function<void(uint64_t done, uint64_t total)>;
+
+// Renders `scene` (set up for its camera resolution `width` x `height`). Channels: R G B, then
+// with aovs: albedo.R/G/B, N.X/Y/Z, Z. Pixels that got no sample before a cancel are black.
+image::Image render_image(const RenderScene& scene, int width, int height, const RenderOptions& opt,
+                          const std::atomic<bool>* cancel, const ProgressFn& progress,
+                          RenderStats* stats);
+
+// relMSE = mean over pixels and RGB of (x - r)^2 / (r^2 + 0.01), the metric in bench/ and
+// tests (BSDF_NOTES.md); both images must have the same size, first three channels compared.
+double rel_mse(const image::Image& x, const image::Image& ref);
+
+} // namespace lobe::render

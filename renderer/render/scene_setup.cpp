@@ -1,0 +1,173 @@
+// Scene setup: materials compiled in parallel (oneTBB), emitters found by probing, the
+// environment tabulated (see scene_setup.h).
+#include "scene_setup.h"
+
+#include "image.h"
+#include "native_materials.h"
+#include "sampling.h"
+#include "sky.h"
+
+#include "lobe/bsdf.h"
+#include "lobe/context.h"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <set>
+
+namespace lobe::render {
+
+MaterialCompiler native_compiler() {
+  return [](const scene::MaterialDesc& m, std::string& error) {
+    return make_native_material(m.group, error);
+  };
+}
+
+void fill_globals(ShaderGlobals& sg, const SurfaceHit& hit, const Vec3& dir, int raytype,
+                  ShadingContext& ctx) {
+  sg = ShaderGlobals{};
+  sg.P = hit.P;
+  sg.I = dir;
+  sg.N = hit.N;
+  sg.Ng = hit.Ng;
+  sg.u = hit.u;
+  sg.v = hit.v;
+  sg.dPdu = hit.dPdu;
+  sg.dPdv = hit.dPdv;
+  sg.raytype = raytype;
+  sg.backfacing = dot(dir, hit.Ng) > 0;
+  sg.context = &ctx;
+}
+
+std::string RenderScene::compile_materials(const MaterialCompiler& compile) {
+  std::set<int> used;
+  for (const scene::Shape& s : desc_.shapes)
+    if (s.material >= 0) used.insert(s.material);
+  if (desc_.environment.kind == scene::Environment::Kind::Shader)
+    used.insert(desc_.environment.material);
+  std::vector<int> todo(used.begin(), used.end());
+  std::vector<std::string> errors(todo.size());
+  materials_.assign(desc_.materials.size(), nullptr);
+  auto t0 = std::chrono::steady_clock::now();
+  tbb::parallel_for(size_t(0), todo.size(), [&](size_t i) {
+    const scene::MaterialDesc& m = desc_.materials[todo[i]];
+    std::string err;
+    materials_[todo[i]] = compile(m, err);
+    if (!materials_[todo[i]]) errors[i] = m.where + ": material '" + m.name + "': " + err;
+  });
+  stats_.compile_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  stats_.materials_compiled = static_cast<int>(todo.size());
+  for (const std::string& e : errors)
+    if (!e.empty()) return e;
+  std::string err;
+  ShaderGroup grey;
+  grey.layers.push_back({"matte", "default", {{"color", "Cs", "0.5 0.5 0.5"}}});
+  default_material_ = make_native_material(grey, err);
+  for (const scene::Shape& s : desc_.shapes)
+    shape_material_.push_back(s.material >= 0 ? materials_[s.material].get()
+                                              : default_material_.get());
+  return "";
+}
+
+std::string RenderScene::build_environment() {
+  const scene::Environment& e = desc_.environment;
+  const float k = e.intensity;
+  const int res = e.resolution;
+  switch (e.kind) {
+  case scene::Environment::Kind::None:
+    return "";
+  case scene::Environment::Kind::Constant: {
+    // 64 x 32 texels rather than one: rows let the sampler follow sin(theta), so a constant
+    // environment is sampled almost uniformly over the sphere.
+    std::vector<float> rgb(64 * 32 * 3);
+    for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = e.color[int(i % 3)] * k;
+    env_ = EnvironmentLight(std::move(rgb), 64, 32, 0);
+    return "";
+  }
+  case scene::Environment::Kind::Map: {
+    image::Image img;
+    if (std::string err = image::read_image(e.file, img); !err.empty()) return e.where + ": " + err;
+    std::vector<float> rgb(size_t(img.width) * img.height * 3);
+    for (size_t p = 0; p < size_t(img.width) * img.height; ++p)
+      for (int c = 0; c < 3; ++c)
+        rgb[p * 3 + c] = k * img.pixels[p * img.nchannels() + std::min(c, img.nchannels() - 1)];
+    env_ = EnvironmentLight(std::move(rgb), img.width, img.height, e.rotation);
+    return "";
+  }
+  case scene::Environment::Kind::Sky: {
+    Vec3 sun = e.sun_direction;
+    float size = e.sun_size;
+    int h = std::max(res, 512);
+    env_ = EnvironmentLight::from_function(
+        [&](const Vec3& d) { return procedural_sky(d, sun, size) * k; }, 2 * h, h, e.rotation);
+    return "";
+  }
+  case scene::Environment::Kind::Shader: {
+    // Tabulate the background shader (one context: tabulation runs on this thread).
+    const Material& m = *materials_[e.material];
+    ShadingContext ctx;
+    env_ = EnvironmentLight::from_function(
+        [&](const Vec3& d) {
+          SurfaceHit h;
+          h.N = h.Ng = -d;
+          ShaderGlobals sg;
+          fill_globals(sg, h, d, kRayCamera, ctx);
+          ctx.reset();
+          m.shade(sg);
+          Bsdf b;
+          b.build(sg.Ci, -d, h.Ng);
+          return b.background * k;
+        },
+        2 * res, res, e.rotation);
+    return "";
+  }
+  }
+  return "";
+}
+
+// An emitter is a shape whose material emits at a probe point; its power estimate
+// (pi * area * luminance of the probe's emission) decides how often it is sampled.
+void RenderScene::find_emitters(std::vector<LightSet::Emitter>& out) const {
+  ShadingContext ctx;
+  for (size_t i = 0; i < desc_.shapes.size(); ++i) {
+    const scene::Shape& s = desc_.shapes[i];
+    SurfaceHit h;
+    float area = 0;
+    if (s.kind == scene::Shape::Kind::Sphere) {
+      h.P = s.center + Vec3{0, s.radius, 0};
+      geo_.surface(int(i), 0, 0, 0, h);
+      area = 4 * kPi * s.radius * s.radius;
+    } else {
+      geo_.surface(int(i), 0, 1.0f / 3, 1.0f / 3, h);
+      const scene::Mesh& m = geo_.mesh(int(i));
+      for (size_t t = 0; t + 2 < m.indices.size(); t += 3)
+        area += 0.5f * length(cross(m.positions[m.indices[t + 1]] - m.positions[m.indices[t]],
+                                    m.positions[m.indices[t + 2]] - m.positions[m.indices[t]]));
+    }
+    ShaderGlobals sg;
+    fill_globals(sg, h, -h.Ng, kRayShadow, ctx);
+    ctx.reset();
+    material(int(i)).shade(sg);
+    Bsdf b;
+    b.build(sg.Ci, h.Ng, h.Ng);
+    float lum = luminance(b.emission);
+    if (lum > 0) out.push_back({int(i), kPi * area * lum});
+  }
+}
+
+std::string RenderScene::setup(const scene::SceneDesc& desc, const MaterialCompiler& compile,
+                               int width, int height) {
+  desc_ = desc;
+  camera_ = Camera(desc_.camera, width, height);
+  if (std::string e = geo_.build(desc_.shapes); !e.empty()) return desc_.path + ": " + e;
+  if (std::string e = compile_materials(compile); !e.empty()) return e;
+  if (std::string e = build_environment(); !e.empty()) return e;
+  std::vector<LightSet::Emitter> emitters;
+  find_emitters(emitters);
+  stats_.emitters = static_cast<int>(emitters.size());
+  lights_.build(geo_, desc_.lights, emitters, env_.valid() ? &env_ : nullptr);
+  return "";
+}
+
+} // namespace lobe::render

@@ -1,0 +1,69 @@
+// A render-ready scene: the Embree geometry, compiled materials (one per scene material that
+// a shape or the environment uses; unreferenced ones are never compiled), the camera, the
+// environment table and the light set with emissive shapes found by probing each material.
+#pragma once
+
+#include "camera.h"
+#include "environment.h"
+#include "geometry.h"
+#include "lights.h"
+#include "scene.h"
+
+#include "lobe/shadingsys.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lobe::render {
+
+// Turns one scene material into a compiled Material: the CLI passes one backed by the JIT's
+// ShadingSystem, tests pass make_native_material. Must be thread-safe (called in parallel).
+using MaterialCompiler =
+    std::function<std::shared_ptr<const Material>(const scene::MaterialDesc&, std::string& error)>;
+
+MaterialCompiler native_compiler();
+
+struct SetupStats {
+  double compile_seconds = 0; // wall time of the parallel compile of all used materials
+  int materials_compiled = 0;
+  int emitters = 0;
+};
+
+class RenderScene {
+public:
+  // "" on success, else an error naming the scene element.
+  std::string setup(const scene::SceneDesc& desc, const MaterialCompiler& compile, int width,
+                    int height);
+
+  const scene::SceneDesc& desc() const { return desc_; }
+  const Geometry& geometry() const { return geo_; }
+  const Camera& camera() const { return camera_; }
+  const LightSet& lights() const { return lights_; }
+  const EnvironmentLight& environment() const { return env_; }
+  // Material of a shape (a grey matte for shapes without one).
+  const Material& material(int shape) const { return *shape_material_[shape]; }
+  const SetupStats& stats() const { return stats_; }
+
+private:
+  std::string compile_materials(const MaterialCompiler& compile);
+  std::string build_environment();
+  void find_emitters(std::vector<LightSet::Emitter>& out) const;
+
+  scene::SceneDesc desc_;
+  Geometry geo_;
+  Camera camera_;
+  EnvironmentLight env_;
+  LightSet lights_;
+  std::vector<std::shared_ptr<const Material>> materials_; // per scene material (null: unused)
+  std::vector<const Material*> shape_material_;
+  std::shared_ptr<const Material> default_material_;
+  SetupStats stats_;
+};
+
+// Fills the globals of a surface point seen along `dir` (only cheap fields; see shade_point).
+void fill_globals(ShaderGlobals& sg, const SurfaceHit& hit, const Vec3& dir, int raytype,
+                  ShadingContext& ctx);
+
+} // namespace lobe::render
