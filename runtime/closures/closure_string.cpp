@@ -25,8 +25,8 @@ std::string fmt_float(float v) {
 
 std::string fmt_triple(const Vec3& v) {
   char buf[96];
-  std::snprintf(buf, sizeof buf, "(%g, %g, %g)", static_cast<double>(v.x),
-                static_cast<double>(v.y), static_cast<double>(v.z));
+  std::snprintf(buf, sizeof buf, "(%g, %g, %g)", static_cast<double>(v.x), static_cast<double>(v.y),
+                static_cast<double>(v.z));
   return buf;
 }
 

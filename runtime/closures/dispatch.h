@@ -12,6 +12,7 @@
 #include "common.h"
 #include "diffuse.h"
 #include "lobe/bsdf.h"
+#include "microfacet_setup.h"
 #include "params.h"
 
 namespace lobe::closures {
@@ -53,6 +54,50 @@ template <class Fn> bool with_lobe(int id, const unsigned char* p, Fn&& fn) {
     if (!make_frame(q.N, f)) return false;
     float r = clampf(q.roughness, 0.0f, 1.0f);
     fn(Burley{vmax0(q.albedo), r == r ? r : 0.0f}, f);
+    return true;
+  }
+  case kMicrofacetId: {
+    const auto& q = as<MicrofacetParams>(p);
+    if (!make_frame(q.N, q.U, f)) return false;
+    fn(make_microfacet(q.distribution, q.xalpha, q.yalpha, q.eta, q.refract, q.energy_compensation),
+       f);
+    return true;
+  }
+  case kMicrofacet5Id: {
+    const auto& q = as<Microfacet5Params>(p);
+    if (!make_frame(q.N, f)) return false;
+    fn(make_microfacet(q.distribution, q.alpha, q.alpha, q.eta, q.refract, q.energy_compensation),
+       f);
+    return true;
+  }
+  case kConductorId: {
+    const auto& q = as<ConductorParams>(p);
+    if (!make_frame(q.N, q.U, f)) return false;
+    fn(make_conductor(q), f);
+    return true;
+  }
+  case kDielectricId: {
+    const auto& q = as<DielectricParams>(p);
+    if (!make_frame(q.N, q.U, f)) return false;
+    fn(make_dielectric(q), f);
+    return true;
+  }
+  case kGeneralizedSchlickId: {
+    const auto& q = as<GeneralizedSchlickParams>(p);
+    if (!make_frame(q.N, q.U, f)) return false;
+    fn(make_generalized_schlick(q), f);
+    return true;
+  }
+  case kReflectionId: {
+    if (!make_frame(as<DiffuseParams>(p).N, f)) return false;
+    fn(make_specular(0.0f, false), f);
+    return true;
+  }
+  case kReflectionEtaId:
+  case kRefractionId: {
+    const auto& q = as<ReflectionEtaParams>(p);
+    if (!make_frame(q.N, f)) return false;
+    fn(make_specular(q.eta > 0.0f ? q.eta : 1.0f, id == kRefractionId), f);
     return true;
   }
   default:

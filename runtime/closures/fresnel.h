@@ -1,0 +1,97 @@
+// Fresnel reflectance: exact dielectric (with total internal reflection), exact conductor
+// with a complex index of refraction per channel, classic and generalised Schlick.
+//
+//   dielectric  F = (r_s^2 + r_p^2) / 2,  r_s = (c - eta c_t)/(c + eta c_t),
+//               r_p = (eta c - c_t)/(eta c + c_t),  c_t^2 = 1 - (1 - c^2)/eta^2 (< 0: TIR, F = 1)
+//               eta = eta_transmitted / eta_incident, c = cos of the incident angle (>= 0).
+//   conductor   the same two amplitudes with the complex index n + i k (absorbing medium;
+//               n - ik in the other sign convention gives the same |r|^2), evaluated exactly
+//               in complex arithmetic, per channel.
+//   schlick     F = f0 + (f90 - f0)(1 - c)^p  (p = 5: Schlick 1994; generalised: any p > 0).
+//
+// Valid ranges: c in [0, 1] (clamped), eta > 0, n >= 0, k >= 0. Reference: Born & Wolf,
+// Principles of Optics, ch. 1.5 and 13.2; pbrt-v4 section 9.3.
+#pragma once
+
+#include "common.h"
+
+namespace lobe::closures {
+
+inline float fresnel_dielectric(float c, float eta) {
+  c = clampf(c, 0.0f, 1.0f);
+  if (!(eta > 0.0f)) return 1.0f;
+  float s2t = (1.0f - c * c) / (eta * eta);
+  if (s2t >= 1.0f) return 1.0f;
+  float ct = safe_sqrt(1.0f - s2t);
+  float rs = (c - eta * ct) / (c + eta * ct);
+  float rp = (eta * c - ct) / (eta * c + ct);
+  float f = 0.5f * (rs * rs + rp * rp);
+  return f == f ? clampf(f, 0.0f, 1.0f) : 1.0f;
+}
+
+// Minimal complex arithmetic (std::complex is avoided to keep bitcode free of library calls).
+struct Cpx {
+  float re = 0, im = 0;
+};
+inline Cpx operator+(Cpx a, Cpx b) { return {a.re + b.re, a.im + b.im}; }
+inline Cpx operator-(Cpx a, Cpx b) { return {a.re - b.re, a.im - b.im}; }
+inline Cpx operator*(Cpx a, Cpx b) {
+  return {a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re};
+}
+inline float norm2(Cpx a) { return a.re * a.re + a.im * a.im; }
+inline Cpx operator/(Cpx a, Cpx b) {
+  float d = norm2(b);
+  return {(a.re * b.re + a.im * b.im) / d, (a.im * b.re - a.re * b.im) / d};
+}
+inline Cpx csqrt(Cpx z) {
+  float m = std::sqrt(std::sqrt(norm2(z)));
+  if (m == 0.0f) return {};
+  float half = 0.5f * std::atan2(z.im, z.re);
+  return {m * std::cos(half), m * std::sin(half)};
+}
+
+// Exact conductor Fresnel for one channel, index n + i k.
+inline float fresnel_conductor(float c, float n, float k) {
+  c = clampf(c, 0.0f, 1.0f);
+  Cpx eta{maxf(n, 0.0f), maxf(k, 0.0f)};
+  if (eta.re == 0.0f && eta.im == 0.0f) return 1.0f;
+  Cpx s2t = Cpx{1.0f - c * c, 0.0f} / (eta * eta);
+  Cpx ct = csqrt(Cpx{1.0f, 0.0f} - s2t);
+  Cpx cc{c, 0.0f};
+  Cpx rp = (eta * cc - ct) / (eta * cc + ct);
+  Cpx rs = (cc - eta * ct) / (cc + eta * ct);
+  float f = 0.5f * (norm2(rp) + norm2(rs));
+  return f == f ? clampf(f, 0.0f, 1.0f) : 1.0f;
+}
+
+inline Vec3 fresnel_conductor(float c, const Vec3& n, const Vec3& k) {
+  return {fresnel_conductor(c, n.x, k.x), fresnel_conductor(c, n.y, k.y),
+          fresnel_conductor(c, n.z, k.z)};
+}
+
+inline float schlick_weight(float c, float p) {
+  float m = clampf(1.0f - c, 0.0f, 1.0f);
+  if (p == 5.0f) return m * m * m * m * m;
+  return m > 0.0f ? std::pow(m, maxf(p, 1e-6f)) : 0.0f;
+}
+inline Vec3 fresnel_schlick(float c, const Vec3& f0, const Vec3& f90, float p) {
+  float w = schlick_weight(c, p);
+  return f0 + (f90 - f0) * w;
+}
+
+// Hemispherical average 2 int_0^1 F(mu) mu dmu of any Fresnel, by 8-point Gauss-Legendre
+// quadrature on mu (exact enough for the smooth Fresnel curves; used by energy compensation).
+template <class F> Vec3 fresnel_average(F&& fresnel) {
+  constexpr float x[8] = {-0.9602898565f, -0.7966664774f, -0.5255324099f, -0.1834346425f,
+                          0.1834346425f,  0.5255324099f,  0.7966664774f,  0.9602898565f};
+  constexpr float w[8] = {0.1012285363f, 0.2223810345f, 0.3137066459f, 0.3626837834f,
+                          0.3626837834f, 0.3137066459f, 0.2223810345f, 0.1012285363f};
+  Vec3 sum;
+  for (int i = 0; i < 8; ++i) {
+    float mu = 0.5f * (x[i] + 1.0f);
+    sum += fresnel(mu) * (w[i] * 0.5f * 2.0f * mu);
+  }
+  return sum;
+}
+
+} // namespace lobe::closures

@@ -1,0 +1,221 @@
+// Microfacet lobes (Torrance-Sparrow): reflection f = F D G2 / (4 |wo.z| |wi.z|) and rough
+// refraction (Walter et al. 2007)
+//   f_t = (1 - F) D G2 |wi.m| |wo.m| / (|wi.z| |wo.z| (wi.m + wo.m/eta)^2)   [/ eta^2 in
+//   radiance transport], with the generalised half vector m = normalize(wo + eta wi).
+// One lobe type serves microfacet(), conductor_bsdf, dielectric_bsdf, generalized_schlick_bsdf
+// and, with alpha below kDeltaAlpha, the delta lobes reflection() and refraction(): the lobe
+// then reflects/refracts about the normal with weight F / (1 - F).
+//
+// Fresnel: exact dielectric (eta), exact conductor (n + ik per channel), generalised Schlick
+// (f0, f90, exponent; its refraction uses eta = (1 + sqrt f0)/(1 - sqrt f0)), or 1.
+// Reflection is weighted by reflection_tint * F, refraction by transmission_tint * (1 - F);
+// the lobe picks one with probability proportional to the luminance of those weights.
+// Sampling: visible normals (microfacet_dist.h), so the weight is ~ F G2 / G1.
+// wo below the surface means "inside": the lobe flips to that side and uses 1/eta.
+// Energy compensation (Kulla & Conty 2017), on by default for the reflection-only lobes of
+// conductors and generalized_schlick without transmission: an extra diffuse-like lobe
+// f_ms = F_ms (1 - E(wo))(1 - E(wi)) / (pi (1 - E_avg)), with E from energy_tables.h.
+// Ranges: alpha >= 0 (clamped to [1e-4, 4]); eta > 0, |eta - 1| < 1e-4 is index-matched
+// (straight pass-through, a delta lobe); colours >= 0.
+#pragma once
+
+#include "common.h"
+#include "energy.h"
+#include "fresnel.h"
+#include "lobe/bsdf.h"
+#include "microfacet_dist.h"
+
+namespace lobe::closures {
+
+enum class FresnelKind : uint8_t { One, Dielectric, Conductor, Schlick };
+
+struct Microfacet {
+  MicrofacetDistribution dist;
+  bool delta = false;
+  FresnelKind fresnel = FresnelKind::One;
+  float eta = 1.0f;      // dielectric / refraction IOR (inside over outside)
+  Vec3 n, k;             // conductor
+  Vec3 f0, f90;          // Schlick
+  float exponent = 5.0f; // Schlick
+  Vec3 refl_tint{1, 1, 1}, trans_tint{0, 0, 0};
+  bool ms = false; // Kulla-Conty compensation lobe
+  Vec3 ms_color;   // F_ms / (pi (1 - E_avg))
+
+  static constexpr bool kOneSided = true;
+
+  bool refracts() const { return trans_tint.x > 0 || trans_tint.y > 0 || trans_tint.z > 0; }
+  bool reflects() const { return refl_tint.x > 0 || refl_tint.y > 0 || refl_tint.z > 0; }
+  uint32_t flags() const {
+    uint32_t f = (reflects() ? kFlagReflect : 0u) | (refracts() ? kFlagTransmit : 0u);
+    return f | (delta ? kFlagSpecular : kFlagGlossy);
+  }
+
+  // Fresnel reflectance for cosine c on the side whose relative IOR is `e`.
+  Vec3 F(float c, float e) const {
+    switch (fresnel) {
+    case FresnelKind::One:
+      return splat(1.0f);
+    case FresnelKind::Dielectric:
+      return splat(fresnel_dielectric(c, e));
+    case FresnelKind::Conductor:
+      return fresnel_conductor(c, n, k);
+    case FresnelKind::Schlick: {
+      if (e < 1.0f) { // from inside: Schlick at the transmitted angle, TIR gives 1
+        float s2t = (1.0f - c * c) / (e * e);
+        if (s2t >= 1.0f) return splat(1.0f);
+        c = safe_sqrt(1.0f - s2t);
+      }
+      return fresnel_schlick(c, f0, f90, exponent);
+    }
+    }
+    return splat(1.0f);
+  }
+
+  // Reflection and refraction weights at cosine c, and the probability of reflecting.
+  float split(float c, float e, Vec3& fr, Vec3& ft) const {
+    Vec3 f = F(c, e);
+    fr = f * refl_tint;
+    ft = (splat(1.0f) - f) * trans_tint;
+    if (e == 1.0f && !delta) ft = {}; // index-matched rough refraction is handled as delta
+    float lr = luminance(fr), lt = luminance(ft);
+    return lr + lt > 0.0f ? lr / (lr + lt) : 0.0f;
+  }
+
+  float E(float mu) const { return energy_E(mu, alpha_eff(), dist.beckmann); }
+  float alpha_eff() const { return std::sqrt(dist.ax * dist.ay); }
+  float ms_prob(float mu_o) const {
+    if (!ms) return 0.0f;
+    float m = luminance(ms_color) * (1.0f - E(mu_o)) * kPi;
+    float s = luminance(refl_tint * F(mu_o, eta)) * E(mu_o);
+    return m + s > 0.0f ? clampf(m / (m + s), 0.0f, 0.9f) : 0.0f;
+  }
+
+  LobeEval eval(Vec3 wo, Vec3 wi, Transport mode) const {
+    float e = eta;
+    if (wo.z < 0.0f) {
+      wo.z = -wo.z, wi.z = -wi.z, e = 1.0f / eta;
+    }
+    if (!(wo.z > 0.0f) || wi.z == 0.0f || delta) return {};
+    return eval_above(wo, wi, e, mode);
+  }
+
+  // eval with wo.z > 0 and e the relative IOR below the surface.
+  LobeEval eval_above(const Vec3& wo, const Vec3& wi, float e, Transport mode) const {
+    LobeEval r = wi.z > 0.0f ? eval_reflect(wo, wi, e) : eval_refract(wo, wi, e, mode);
+    if (ms && wi.z > 0.0f) {
+      float p = ms_prob(wo.z);
+      float k2 = (1.0f - E(wo.z)) * (1.0f - E(wi.z));
+      r.value += ms_color * (k2 * wi.z);
+      r.pdf = (1.0f - p) * r.pdf + p * wi.z * kInvPi;
+    }
+    return r;
+  }
+
+  LobeEval eval_reflect(const Vec3& wo, const Vec3& wi, float e) const {
+    Vec3 m = normalize(wo + wi);
+    float c = dot(wo, m);
+    if (!(c > 0.0f) || !(m.z > 0.0f)) return {};
+    Vec3 fr, ft;
+    float pr = split(c, e, fr, ft);
+    float D = dist.D(m);
+    float v = D * dist.G2(wo, wi) / (4.0f * wo.z);
+    return {fr * v, pr * dist.G1(wo) * D / (4.0f * wo.z)};
+  }
+
+  LobeEval eval_refract(const Vec3& wo, const Vec3& wi, float e, Transport mode) const {
+    if (e == 1.0f) return {};
+    Vec3 m = normalize(wi * e + wo);
+    if (m.z < 0.0f) m = -m;
+    float ci = dot(wi, m), co = dot(wo, m);
+    if (!(m.z > 0.0f) || !(ci < 0.0f) || !(co > 0.0f)) return {}; // back-facing microfacet
+    Vec3 fr, ft;
+    float pr = split(co, e, fr, ft);
+    float denom = sqr(ci + co / e);
+    if (!(denom > 0.0f)) return {};
+    float D = dist.D(m);
+    float f = D * dist.G2(wo, wi) * std::fabs(ci * co) / (wo.z * denom); // times |wi.z|
+    if (mode == Transport::Radiance) f /= e * e;
+    float pdf = (1.0f - pr) * dist.D_visible(wo, m) * std::fabs(ci) / denom;
+    return {ft * f, pdf};
+  }
+
+  LobeSample sample(Vec3 wo, const Vec3& u, Transport mode) const {
+    float e = eta, sign = 1.0f;
+    if (wo.z < 0.0f) wo.z = -wo.z, e = 1.0f / eta, sign = -1.0f;
+    if (!(wo.z > 0.0f)) return {};
+    LobeSample s = delta ? sample_delta(wo, u, e, mode) : sample_rough(wo, u, e, mode);
+    s.wi.z *= sign;
+    return s;
+  }
+
+  LobeSample sample_delta(const Vec3& wo, const Vec3& u, float e, Transport mode) const {
+    LobeSample s;
+    Vec3 fr, ft;
+    float pr = split(wo.z, e, fr, ft);
+    if (luminance(fr) + luminance(ft) <= 0.0f) return s;
+    if (u.z < pr) {
+      s.wi = reflect_z(wo);
+      s.weight = fr / pr;
+      s.pdf = pr;
+      s.flags = kFlagReflect | kFlagSpecular;
+    } else {
+      if (!refract(wo, Vec3{0, 0, 1}, e, s.wi)) return {};
+      s.weight = ft / (1.0f - pr);
+      if (mode == Transport::Radiance) s.weight = s.weight / (e * e);
+      s.pdf = 1.0f - pr;
+      s.flags = kFlagTransmit | kFlagSpecular;
+      s.eta = e;
+    }
+    s.ok = s.wi.z != 0.0f;
+    return s;
+  }
+
+  LobeSample sample_rough(const Vec3& wo, Vec3 u, float e, Transport mode) const {
+    LobeSample s;
+    float p = ms_prob(wo.z);
+    if (u.z < p) { // compensation lobe: cosine-distributed
+      s.wi = sample_cosine_hemisphere(u.x, u.y);
+      s.flags = kFlagReflect | kFlagDiffuse;
+    } else {
+      u.z = minf((u.z - p) / (1.0f - p), kOneMinusEpsilon);
+      Vec3 m = dist.sample_visible(wo, u.x, u.y);
+      float c = dot(wo, m);
+      if (!(c > 0.0f)) return s;
+      Vec3 fr, ft;
+      float pr = split(c, e, fr, ft);
+      if (u.z < pr) {
+        s.wi = reflect(wo, m);
+        s.flags = kFlagReflect | kFlagGlossy;
+      } else {
+        if (!refract(wo, m, e, s.wi)) return s;
+        s.flags = kFlagTransmit | kFlagGlossy;
+        s.eta = e;
+        if (!(s.wi.z < 0.0f)) return s;
+      }
+    }
+    if (s.wi.z == 0.0f || ((s.flags & kFlagReflect) && s.wi.z < 0.0f)) return s;
+    LobeEval ev = eval_above(wo, s.wi, e, mode);
+    if (!(ev.pdf > 0.0f)) return s;
+    s.pdf = ev.pdf;
+    s.weight = ev.value / ev.pdf;
+    s.ok = true;
+    return s;
+  }
+
+  // Estimate: F(wo.z) E(wo.z) tinted, plus the compensation lobe's albedo; transmission
+  // counted as (1 - F) trans_tint.
+  Vec3 albedo(Vec3 wo) const {
+    float e = eta;
+    if (wo.z < 0.0f) wo.z = -wo.z, e = 1.0f / eta;
+    if (!(wo.z > 0.0f)) return {};
+    Vec3 fr, ft;
+    split(wo.z, e, fr, ft);
+    float E0 = delta ? 1.0f : E(wo.z);
+    Vec3 a = fr * E0 + ft * E0;
+    if (ms)
+      a += ms_color * (kPi * (1.0f - E(wo.z)) * (1.0f - energy_E_avg(alpha_eff(), dist.beckmann)));
+    return a;
+  }
+};
+
+} // namespace lobe::closures

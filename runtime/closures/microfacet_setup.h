@@ -1,0 +1,96 @@
+// Parameter blocks -> Microfacet lobes for microfacet(), conductor_bsdf, dielectric_bsdf,
+// generalized_schlick_bsdf, reflection() and refraction(): one place that decides the Fresnel
+// mode, tints, delta threshold, index matching and Kulla-Conty compensation of each.
+#pragma once
+
+#include "microfacet.h"
+#include "params.h"
+
+namespace lobe::closures {
+
+inline bool is_beckmann(const char* s) { return s && (s[0] == 'b' || s[0] == 'B'); }
+
+// NaN/negative IOR: index-matched; within 1e-4 of 1: exactly 1 (pass-through).
+inline float sane_eta(float e) {
+  if (!(e > 0.0f) || !(e < 1e6f)) return 1.0f;
+  return std::fabs(e - 1.0f) < 1e-4f ? 1.0f : e;
+}
+
+inline Microfacet microfacet_base(float ax, float ay, const char* distribution) {
+  Microfacet m;
+  float a = maxf(ax == ax ? ax : 0.0f, ay == ay ? ay : 0.0f);
+  m.delta = !(a >= kDeltaAlpha);
+  m.dist = MicrofacetDistribution::make(ax, ay, is_beckmann(distribution));
+  return m;
+}
+
+// Kulla-Conty compensation for a reflection-only lobe with hemispherical Fresnel average fa.
+inline void enable_compensation(Microfacet& m, const Vec3& fa) {
+  if (m.delta || m.refracts()) return;
+  float ea = energy_E_avg(m.alpha_eff(), m.dist.beckmann);
+  if (!(1.0f - ea > 1e-4f)) return;
+  Vec3 den = splat(1.0f) - fa * (1.0f - ea);
+  Vec3 fms = fa * fa * ea / Vec3{maxf(den.x, 1e-6f), maxf(den.y, 1e-6f), maxf(den.z, 1e-6f)};
+  m.ms = true;
+  m.ms_color = fms * (1.0f / (kPi * (1.0f - ea)));
+}
+
+inline Microfacet make_microfacet(const char* dist, float ax, float ay, float eta, int refract,
+                                  int ec) {
+  Microfacet m = microfacet_base(ax, ay, dist);
+  m.fresnel = FresnelKind::Dielectric;
+  m.eta = sane_eta(eta);
+  m.refl_tint = refract == 1 ? Vec3{} : splat(1.0f);
+  m.trans_tint = refract >= 1 ? splat(1.0f) : Vec3{};
+  if (m.refracts() && m.eta == 1.0f) m.delta = true;
+  return m;
+}
+
+inline Microfacet make_conductor(const ConductorParams& p) {
+  Microfacet m = microfacet_base(p.roughness_x, p.roughness_y, p.distribution);
+  m.fresnel = FresnelKind::Conductor;
+  m.n = vmax0(sanitize(p.ior));
+  m.k = vmax0(sanitize(p.extinction));
+  if (p.energy_compensation)
+    enable_compensation(m, fresnel_average([&](float mu) { return m.F(mu, 1.0f); }));
+  return m;
+}
+
+inline Microfacet make_dielectric(const DielectricParams& p) {
+  Microfacet m = microfacet_base(p.roughness_x, p.roughness_y, p.distribution);
+  m.fresnel = FresnelKind::Dielectric;
+  m.eta = sane_eta(p.ior);
+  m.refl_tint = sanitize(p.reflection_tint);
+  m.trans_tint = sanitize(p.transmission_tint);
+  if (m.refracts() && m.eta == 1.0f) m.delta = true;
+  return m;
+}
+
+inline Microfacet make_generalized_schlick(const GeneralizedSchlickParams& p) {
+  Microfacet m = microfacet_base(p.roughness_x, p.roughness_y, p.distribution);
+  m.fresnel = FresnelKind::Schlick;
+  m.f0 = sanitize(p.f0);
+  m.f90 = sanitize(p.f90);
+  m.exponent = p.exponent > 0.0f && p.exponent < 1e4f ? p.exponent : 5.0f;
+  m.refl_tint = sanitize(p.reflection_tint);
+  m.trans_tint = sanitize(p.transmission_tint);
+  float s = std::sqrt(clampf((m.f0.x + m.f0.y + m.f0.z) / 3.0f, 0.0f, 0.998f));
+  m.eta = sane_eta((1.0f + s) / (1.0f - s));
+  if (m.refracts() && m.eta == 1.0f) m.delta = true;
+  if (p.energy_compensation)
+    enable_compensation(m, fresnel_average([&](float mu) { return m.F(mu, 2.0f) * m.refl_tint; }));
+  return m;
+}
+
+// reflection(N) (eta <= 0: Fresnel 1), reflection(N, eta), refraction(N, eta).
+inline Microfacet make_specular(float eta, bool refraction) {
+  Microfacet m;
+  m.delta = true;
+  m.fresnel = eta > 0.0f ? FresnelKind::Dielectric : FresnelKind::One;
+  m.eta = eta > 0.0f ? sane_eta(eta) : 1.0f;
+  m.refl_tint = refraction ? Vec3{} : splat(1.0f);
+  m.trans_tint = refraction ? splat(1.0f) : Vec3{};
+  return m;
+}
+
+} // namespace lobe::closures
