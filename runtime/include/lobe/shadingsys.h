@@ -98,6 +98,11 @@ public:
   std::unique_ptr<ShaderGroup> parse_group(const std::string& text, const std::string& where,
                                            DiagnosticList& diags) const;
 
+  // Makes shader `name` available from its IR text (what `lobe compile --emit=ir` prints), as
+  // if compiled from source; it takes precedence over files on the search path. False with
+  // diagnostics if the text does not parse.
+  bool add_shader_ir(const std::string& name, const std::string& ir_text, DiagnosticList& diags);
+
   // Compiles (or fetches from the in-process cache) a group. Thread-safe. Null on error.
   std::shared_ptr<const Material> compile(const ShaderGroup& group, DiagnosticList& diags);
 

@@ -1,0 +1,343 @@
+// build_group (see group_build.h).
+#include "group_build.h"
+
+#include "env.h"
+#include "ir/edit.h"
+#include "ir/opcodes.h"
+#include "lobe/shading.h"
+#include "passes/constfold.h"
+#include "passes/dce.h"
+#include "passes/derivs.h"
+
+#include <cstring>
+#include <map>
+#include <set>
+
+namespace lobe::group {
+namespace {
+
+using ir::SymKind;
+
+Diagnostic err(const std::string& msg) { return {Diagnostic::Severity::Error, "error: " + msg}; }
+Diagnostic warn(const std::string& msg) {
+  return {Diagnostic::Severity::Warning, "warning: " + msg};
+}
+
+// One resolved end of a connection: a symbol name and an optional element/component.
+struct Endpoint {
+  std::string symbol;
+  int elem = -1, comp = -1;
+};
+
+// "c[1]", "a[2][0]", "s.a", or a whole struct "s" (one endpoint per field, keyed by the
+// field's suffix). Empty result: not found.
+std::map<std::string, Endpoint> resolve(const ir::Shader& sh, const std::string& path) {
+  std::map<std::string, Endpoint> out;
+  size_t br = path.find('[');
+  std::string base = path.substr(0, br);
+  std::vector<int> idx;
+  for (size_t p = br; p != std::string::npos && p < path.size(); p = path.find('[', p + 1))
+    idx.push_back(std::atoi(path.c_str() + p + 1));
+  int s = sh.find_symbol(base);
+  if (s >= 0) {
+    const ir::Symbol& sym = sh.symbols[size_t(s)];
+    Endpoint e{base};
+    if (sym.type.is_array() && !idx.empty()) {
+      e.elem = idx[0];
+      if (idx.size() > 1) e.comp = idx[1];
+    } else if (!idx.empty()) {
+      e.comp = idx[0];
+    }
+    out[""] = e;
+    return out;
+  }
+  for (const ir::Symbol& sym : sh.symbols)
+    if ((sym.kind == SymKind::Param || sym.kind == SymKind::OutputParam) &&
+        sym.name.rfind(base + ".", 0) == 0)
+      out[sym.name.substr(base.size())] = Endpoint{sym.name};
+  return out;
+}
+
+struct Link { // a resolved connection, by names
+  int src_layer, dst_layer;
+  Endpoint src, dst;
+};
+
+bool is_param(const ir::Symbol& s) {
+  return s.kind == SymKind::Param || s.kind == SymKind::OutputParam;
+}
+
+std::set<int> written_symbols(const ir::Shader& sh) {
+  std::set<int> w;
+  for (size_t i = size_t(sh.main_begin); i < sh.ops.size(); ++i)
+    for (size_t a = 0; a < sh.ops[i].args.size(); ++a)
+      if (sh.ops[i].writes(int(a))) w.insert(sh.ops[i].args[a]);
+  return w;
+}
+
+// String comparisons of two constants become int constants. (passes::fold_constants compares
+// strings as numbers at the time of writing: "a" == "b" folds to 1; this runs first.)
+void fold_string_compares(ir::Shader& sh) {
+  for (ir::Op& op : sh.ops) {
+    if ((op.opcode != "eq" && op.opcode != "neq") || op.args.size() != 3) continue;
+    const ir::Symbol& a = sh.symbols[size_t(op.args[1])];
+    const ir::Symbol& b = sh.symbols[size_t(op.args[2])];
+    bool strings = a.type.base == ir::BaseType::String && b.type.base == ir::BaseType::String &&
+                   !a.type.is_array() && !b.type.is_array();
+    if (!strings || a.kind != SymKind::Const || b.kind != SymKind::Const || a.init.empty() ||
+        b.init.empty())
+      continue;
+    bool same = a.init[0].s == b.init[0].s;
+    ir::Symbol c;
+    c.name = "$str_cmp" + std::to_string(sh.symbols.size());
+    c.type = ir::Type{ir::BaseType::Int, 0};
+    c.kind = SymKind::Const;
+    c.init = {ir::ConstValue{(op.opcode == "eq") == same ? 1 : 0, 0.0f, ""}};
+    sh.symbols.push_back(c);
+    op.opcode = "assign";
+    op.args = {op.args[0], int(sh.symbols.size()) - 1};
+    op.written_mask = 1;
+  }
+}
+
+// Instance values -> constants; unconnected, unwritten params with known values -> Const.
+void specialize_layer(ir::Shader& sh,
+                      const std::map<std::string, std::vector<ir::ConstValue>>& values,
+                      const std::set<std::string>& connected) {
+  std::set<int> written = written_symbols(sh);
+  for (size_t i = 0; i < sh.symbols.size(); ++i) {
+    ir::Symbol& s = sh.symbols[i];
+    if (s.kind != SymKind::Param || connected.count(s.name) || written.count(int(i))) continue;
+    auto it = values.find(s.name);
+    if (it != values.end())
+      s.init = it->second;
+    else if (s.init_begin >= 0)
+      continue; // computed default: stays a parameter
+    if (s.init.empty()) continue;
+    s.kind = SymKind::Const;
+    s.init_begin = s.init_end = -1;
+    s.derivs = false;
+  }
+  for (int round = 0; round < 8; ++round) {
+    fold_string_compares(sh);
+    bool changed = passes::fold_constants(sh);
+    changed |= passes::eliminate_dead_code(sh);
+    if (!changed) break;
+  }
+}
+
+// Closes existing derivative flags backwards through kPropagates ops (after a downstream
+// layer asked for the derivatives of one of this layer's outputs).
+void extend_derivatives(ir::Shader& sh) {
+  auto can_carry = [](const ir::Symbol& s) {
+    return s.kind != SymKind::Const && (s.type.base == ir::BaseType::Float || s.type.is_triple());
+  };
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const ir::Op& op : sh.ops) {
+      const ir::OpcodeInfo* info = ir::find_opcode(op.opcode);
+      if (!info || !(info->flags & ir::kPropagates)) continue;
+      bool needs = false;
+      for (size_t a = 0; a < op.args.size(); ++a)
+        needs |= op.writes(int(a)) && sh.symbols[size_t(op.args[a])].derivs;
+      if (!needs) continue;
+      for (size_t a = 0; a < op.args.size(); ++a) {
+        ir::Symbol& s = sh.symbols[size_t(op.args[a])];
+        if (ir::op_reads(op, int(a)) && !s.derivs && can_carry(s)) s.derivs = grew = true;
+      }
+    }
+  }
+}
+
+uint64_t globals_mask(const ir::Shader& sh) {
+  uint64_t mask = 0;
+  auto set = [&](const char* name) {
+    for (size_t g = 0; g < std::size(kGlobalFields); ++g)
+      if (name && !std::strcmp(name, kGlobalFields[g].name)) mask |= uint64_t(1) << g;
+  };
+  std::set<int> used;
+  for (const ir::Op& op : sh.ops) used.insert(op.args.begin(), op.args.end());
+  for (int i : used) {
+    const ir::Symbol& s = sh.symbols[size_t(i)];
+    if (s.kind != SymKind::Global) continue;
+    set(s.name.c_str());
+    for (const GlobalField& f : kGlobalFields)
+      if (s.derivs && s.name == f.name) {
+        set(f.dx);
+        set(f.dy);
+      }
+  }
+  return mask;
+}
+
+void write_value(unsigned char* p, const ir::Symbol& s, const std::vector<ir::ConstValue>& v,
+                 shadeops::RuntimeEnv* env) {
+  for (size_t k = 0; k < v.size(); ++k) {
+    if (s.type.base == ir::BaseType::Int)
+      std::memcpy(p + 4 * k, &v[k].i, 4);
+    else if (s.type.base == ir::BaseType::String) {
+      const char* str = env->strings.intern(v[k].s);
+      std::memcpy(p + 8 * k, &str, 8);
+    } else if (s.type.base != ir::BaseType::Closure)
+      std::memcpy(p + 4 * k, &v[k].f, 4);
+  }
+}
+
+} // namespace
+
+bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
+                 bool specialize, GroupBuild& out, DiagnosticList& diags) {
+  size_t n = group.layers.size();
+  std::map<std::string, int> layer_index;
+  for (size_t i = 0; i < n; ++i) layer_index[group.layers[i].name] = int(i);
+
+  // Instance values, parsed against each parameter's declared type.
+  std::vector<std::map<std::string, std::vector<ir::ConstValue>>> values(n);
+  std::vector<std::map<std::string, int>> lengths(n);
+  for (size_t i = 0; i < n; ++i)
+    for (const InstanceValue& v : group.layers[i].values) {
+      int s = sources[i]->find_symbol(v.name);
+      if (s < 0 || !is_param(sources[i]->symbols[size_t(s)])) {
+        diags.push_back(warn("layer '" + group.layers[i].name + "': shader '" + sources[i]->name +
+                             "' has no parameter '" + v.name + "'; value ignored"));
+        continue;
+      }
+      std::vector<ir::ConstValue> cv;
+      int len = 0;
+      if (!parse_value(v.value, sources[i]->symbols[size_t(s)].type, cv, len)) {
+        diags.push_back(err("layer '" + group.layers[i].name + "': value '" + v.value +
+                            "' does not fit parameter '" + v.name + "' of type " +
+                            ir::to_string(sources[i]->symbols[size_t(s)].type)));
+        return false;
+      }
+      values[i][v.name] = cv;
+      lengths[i][v.name] = len;
+    }
+
+  // Connections, by names.
+  std::vector<Link> links;
+  for (const Connection& c : group.connections) {
+    auto si = layer_index.find(c.src_layer), di = layer_index.find(c.dst_layer);
+    if (si == layer_index.end() || di == layer_index.end()) {
+      diags.push_back(err("connect " + c.src_layer + "." + c.src_param + " " + c.dst_layer + "." +
+                          c.dst_param + ": no such layer"));
+      return false;
+    }
+    if (si->second >= di->second) {
+      diags.push_back(err("connect " + c.src_layer + " -> " + c.dst_layer +
+                          ": the source layer must come first"));
+      return false;
+    }
+    auto src = resolve(*sources[size_t(si->second)], c.src_param);
+    auto dst = resolve(*sources[size_t(di->second)], c.dst_param);
+    if (src.empty() || dst.empty() || src.size() != dst.size()) {
+      diags.push_back(err("connect " + c.src_layer + "." + c.src_param + " " + c.dst_layer + "." +
+                          c.dst_param + ": no such parameter (or mismatched structs)"));
+      return false;
+    }
+    for (auto& [suffix, e] : src) {
+      auto d = dst.find(suffix);
+      if (d == dst.end()) {
+        diags.push_back(err("connect: struct field '" + suffix + "' missing in " + c.dst_param));
+        return false;
+      }
+      links.push_back({si->second, di->second, e, d->second});
+    }
+  }
+
+  // Layers the last one depends on.
+  std::vector<bool> needed(n, false);
+  needed[n - 1] = true;
+  for (size_t i = n; i-- > 0;)
+    for (const Link& l : links)
+      if (l.dst_layer == int(i) && needed[i]) needed[size_t(l.src_layer)] = true;
+
+  // Specialise copies of the needed layers.
+  std::vector<int> new_index(n, -1);
+  for (size_t i = 0; i < n; ++i) {
+    if (!needed[i]) continue;
+    auto sh = std::make_unique<ir::Shader>(*sources[i]);
+    for (auto& [name, len] : lengths[i])
+      if (len > 0) sh->symbols[size_t(sh->find_symbol(name))].type.arraylen = len;
+    std::set<std::string> connected;
+    for (const Link& l : links)
+      if (l.dst_layer == int(i)) connected.insert(l.dst.symbol);
+    if (specialize) specialize_layer(*sh, values[i], connected);
+    new_index[i] = int(out.shaders.size());
+    out.shaders.push_back(std::move(sh));
+    out.layer_names.push_back(group.layers[i].name);
+  }
+
+  // Derivatives, then across connections from the last layer back.
+  for (auto& sh : out.shaders) passes::analyze_derivatives(*sh);
+  for (size_t i = n; i-- > 0;) {
+    if (!needed[i]) continue;
+    const ir::Shader& dst = *out.shaders[size_t(new_index[i])];
+    for (const Link& l : links) {
+      if (l.dst_layer != int(i)) continue;
+      int ds = dst.find_symbol(l.dst.symbol);
+      ir::Shader& src = *out.shaders[size_t(new_index[size_t(l.src_layer)])];
+      int ss = src.find_symbol(l.src.symbol);
+      if (ds >= 0 && ss >= 0 && dst.symbols[size_t(ds)].derivs && !src.symbols[size_t(ss)].derivs &&
+          src.symbols[size_t(ss)].type.base != ir::BaseType::Int) {
+        src.symbols[size_t(ss)].derivs = true;
+        extend_derivatives(src);
+      }
+    }
+  }
+
+  // Layout: per layer a ran flag, then each parameter, 8-byte aligned.
+  size_t off = 0;
+  auto align8 = [](size_t x) { return (x + 7) / 8 * 8; };
+  for (size_t li = 0; li < out.shaders.size(); ++li) {
+    const ir::Shader& sh = *out.shaders[li];
+    codegen::LayerPlan lp;
+    lp.shader = &sh;
+    lp.function_name = "layer_" + std::to_string(li) + "_" + sh.name;
+    lp.ran_offset = int(off);
+    off += 8;
+    for (const ir::Symbol& s : sh.symbols) {
+      lp.symbol_offset.push_back(is_param(s) ? int(off) : -1);
+      lp.run_default.push_back(false);
+      if (is_param(s)) off = align8(off + codegen::storage_bytes(s));
+    }
+    out.plan.layers.push_back(lp);
+  }
+  out.groupdata.assign(off, 0);
+  for (size_t i = 0; i < n; ++i) {
+    if (!needed[i]) continue;
+    size_t li = size_t(new_index[i]);
+    const ir::Shader& sh = *out.shaders[li];
+    codegen::LayerPlan& lp = out.plan.layers[li];
+    std::set<std::string> connected;
+    for (const Link& l : links)
+      if (l.dst_layer == int(i)) {
+        connected.insert(l.dst.symbol);
+        codegen::ConnectionPlan c;
+        c.dst_symbol = sh.find_symbol(l.dst.symbol);
+        c.dst_element = l.dst.elem;
+        c.dst_component = l.dst.comp;
+        c.src_layer = new_index[size_t(l.src_layer)];
+        c.src_symbol = out.shaders[size_t(c.src_layer)]->find_symbol(l.src.symbol);
+        c.src_element = l.src.elem;
+        c.src_component = l.src.comp;
+        if (c.dst_symbol < 0 || c.src_symbol < 0) continue; // specialised away: never read
+        lp.connections.push_back(c);
+      }
+    for (size_t s = 0; s < sh.symbols.size(); ++s) {
+      const ir::Symbol& sym = sh.symbols[s];
+      if (!is_param(sym)) continue;
+      auto v = values[i].find(sym.name);
+      bool has_value = v != values[i].end();
+      if (has_value)
+        write_value(out.groupdata.data() + lp.symbol_offset[s], sym, v->second, out.plan.env);
+      else
+        write_value(out.groupdata.data() + lp.symbol_offset[s], sym, sym.init, out.plan.env);
+      lp.run_default[s] = !has_value && !connected.count(sym.name) && sym.init_begin >= 0;
+    }
+    out.globals_read |= globals_mask(sh);
+  }
+  return true;
+}
+
+} // namespace lobe::group

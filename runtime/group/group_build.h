@@ -1,0 +1,38 @@
+// From a ShaderGroup and its layers' IR to what codegen needs: instance values parsed against
+// each parameter's type, connections resolved to symbols (whole params, struct members, array
+// elements, components), specialisation (instance values and defaults of unconnected,
+// never-written params become constants, then constant folding and dead-code elimination),
+// derivative analysis across layers, the group-data layout and its initial contents.
+//
+// Only layers the last layer depends on (through connections) are kept; the others can never
+// run (lazy layers), so they are not compiled.
+#pragma once
+
+#include "codegen.h"
+#include "lobe/shadingsys.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lobe::group {
+
+struct GroupBuild {
+  std::vector<std::unique_ptr<ir::Shader>> shaders; // specialised layers, in execution order
+  std::vector<std::string> layer_names;
+  codegen::GroupPlan plan;
+  std::vector<unsigned char> groupdata; // initial group data (instance values, defaults)
+  uint64_t globals_read = 0;            // bit i: kGlobalFields[i] is read
+};
+
+// `sources[i]` is the compiled IR of group.layers[i]. Returns false with diagnostics on error.
+bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
+                 bool specialize, GroupBuild& out, DiagnosticList& diags);
+
+// Parses an instance value's text for a symbol of type `t` (one value broadcasts to every
+// component). Sets `arraylen` for unsized arrays. False if the text does not fit the type.
+bool parse_value(const std::string& text, const ir::Type& t, std::vector<ir::ConstValue>& out,
+                 int& arraylen);
+
+} // namespace lobe::group

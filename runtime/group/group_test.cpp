@@ -1,0 +1,246 @@
+// Shader groups through the public API, on layers given as IR text (ShadingSystem::add_shader_ir):
+// group text, instance values, every kind of connection, lazy layers, specialisation on/off
+// giving identical output, the cache, read_output and globals_read.
+#include "lobe/shadingsys.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+using namespace lobe;
+
+namespace {
+
+// upstream: Cout = color(a, 2a, 3a), f[] = {a, 10}, prints when it runs.
+const char* kUpstream = R"(lobe-ir 1
+shader upstream
+symbols
+  param float a = 1
+  oparam color Cout = 0 0 0
+  oparam float[2] f = 0 0
+  oparam float s.x = 0 struct=S
+  oparam float s.y = 0 struct=S
+  temp float $t0
+  temp float $t1
+  const float $c2 = 2
+  const float $c3 = 3
+  const float $c10 = 10
+  const int $i0 = 0
+  const int $i1 = 1
+  const string $msg = "upstream ran\n"
+main
+  useparam a
+  printf $msg
+  mul $t0 a $c2
+  mul $t1 a $c3
+  construct Cout a $t0 $t1
+  aassign f $i0 a
+  aassign f $i1 $c10
+  assign s.x $c2
+  add s.y a $c10
+end
+)";
+
+// downstream: prints its inputs, but reads `Cin` only when `use` is nonzero.
+const char* kDownstream = R"(lobe-ir 1
+surface downstream
+symbols
+  param int use = 1
+  param color Cin = 0 0 0
+  param float g = 0
+  param float h = 0
+  param float sx = 0
+  param string mode = "plain"
+  oparam float result = 0
+  temp int $t0
+  const string $fmt = "Cin %g g %g h %g sx %g\n"
+  const string $fancy = "fancy"
+  const string $m1 = "mode fancy\n"
+  const string $m2 = "mode plain\n"
+  const float $c7 = 7
+main
+  useparam use
+  cbr use -> Lread Lskip
+Lread:
+  useparam Cin g h sx
+  printf $fmt Cin g h sx
+Lskip:
+  useparam mode
+  eq $t0 mode $fancy
+  cbr $t0 -> Lfancy Lplain
+Lfancy:
+  printf $m1
+  br -> Ldone
+Lplain:
+  printf $m2
+Ldone:
+  assign result $c7
+end
+)";
+
+struct GroupRun {
+  std::string output;
+  std::shared_ptr<const Material> mat;
+};
+
+GroupRun run_group(ShadingSystem& ss, const std::string& text, bool specialize, int opt = 2) {
+  DiagnosticList diags;
+  auto g = ss.parse_group(text, "test", diags);
+  EXPECT_TRUE(g) << (diags.empty() ? "" : diags[0].text);
+  if (!g) return {};
+  ss.options().specialize = specialize;
+  ss.options().opt_level = opt;
+  auto mat = ss.compile(*g, diags);
+  EXPECT_TRUE(mat) << (diags.empty() ? "" : diags[0].text);
+  if (!mat) return {};
+  ShadingContext ctx;
+  ShaderGlobals sg{};
+  sg.context = &ctx;
+  mat->shade(sg);
+  return {ctx.output, mat};
+}
+
+class Groups : public ::testing::Test {
+protected:
+  void SetUp() override {
+    DiagnosticList d;
+    ASSERT_TRUE(ss.add_shader_ir("upstream", kUpstream, d)) << d[0].text;
+    ASSERT_TRUE(ss.add_shader_ir("downstream", kDownstream, d)) << d[0].text;
+  }
+  // Runs with specialisation off (-O0) and on (-O2): the output must be identical.
+  std::string both(const std::string& text) {
+    GroupRun a = run_group(ss, text, false, 0);
+    GroupRun b = run_group(ss, text, true, 2);
+    EXPECT_EQ(a.output, b.output) << "specialisation changed the output";
+    return b.output;
+  }
+  ShadingSystem ss;
+};
+
+TEST_F(Groups, ParseGroupText) {
+  DiagnosticList d;
+  auto g =
+      ss.parse_group("param float a 0.5 ; param color c 1 0 0 ; shader up u1 ;\n"
+                     "param string mode \"fancy\" shader down d1 ; connect u1.Cout d1.Cin[1] ;",
+                     "t", d);
+  ASSERT_TRUE(g);
+  ASSERT_EQ(g->layers.size(), 2u);
+  EXPECT_EQ(g->layers[0].values.size(), 2u);
+  EXPECT_EQ(g->layers[0].values[1].value, "1 0 0");
+  EXPECT_EQ(g->layers[1].values[0].value, "fancy");
+  ASSERT_EQ(g->connections.size(), 1u);
+  EXPECT_EQ(g->connections[0].src_layer, "u1");
+  EXPECT_EQ(g->connections[0].dst_param, "Cin[1]");
+  EXPECT_FALSE(ss.parse_group("shader a ; connect x y ;", "t", d));
+  EXPECT_FALSE(ss.parse_group("frobnicate ;", "t", d));
+}
+
+TEST_F(Groups, InstanceValuesAndDefaults) {
+  EXPECT_EQ(both("shader downstream d ;"), "Cin 0 0 0 g 0 h 0 sx 0\nmode plain\n");
+  EXPECT_EQ(both("param color Cin 1 2 3 ; param float g 0.5 ; param string mode \"fancy\" ; shader "
+                 "downstream d ;"),
+            "Cin 1 2 3 g 0.5 h 0 sx 0\nmode fancy\n");
+}
+
+TEST_F(Groups, ConnectionsOfEachKind) {
+  // whole param, array element, component, struct member (u.s -> whole struct is tested by
+  // connecting one member).
+  EXPECT_EQ(both("param float a 2 ; shader upstream u ; shader downstream d ;"
+                 "connect u.Cout d.Cin ; connect u.f[1] d.g ; connect u.Cout[2] d.h ; connect "
+                 "u.s.y d.sx ;"),
+            "upstream ran\nCin 2 4 6 g 10 h 6 sx 12\nmode plain\n");
+  // a component into a component
+  EXPECT_EQ(
+      both("param float a 1 ; shader upstream u ; shader downstream d ; connect u.f[0] d.Cin[1] ;"),
+      "upstream ran\nCin 0 1 0 g 0 h 0 sx 0\nmode plain\n");
+}
+
+TEST_F(Groups, LazyLayersRunOnlyWhenRead) {
+  // Cin is connected but never read (use = 0): the upstream layer never runs.
+  EXPECT_EQ(
+      both("shader upstream u ; param int use 0 ; shader downstream d ; connect u.Cout d.Cin ;"),
+      "mode plain\n");
+  // An upstream layer nothing connects to never runs either.
+  EXPECT_EQ(both("shader upstream u ; shader downstream d ;"),
+            "Cin 0 0 0 g 0 h 0 sx 0\nmode plain\n");
+  // Two connections from one layer: it runs once.
+  EXPECT_EQ(both("shader upstream u ; shader downstream d ; connect u.Cout d.Cin ; connect "
+                 "u.Cout[0] d.g ;"),
+            "upstream ran\nCin 1 2 3 g 1 h 0 sx 0\nmode plain\n");
+}
+
+TEST_F(Groups, CacheHitsAndReadOutput) {
+  std::string text =
+      "param float a 3 ; shader upstream u ; shader downstream d ; connect u.Cout d.Cin ;";
+  GroupRun a = run_group(ss, text, true);
+  ASSERT_TRUE(a.mat);
+  EXPECT_FALSE(a.mat->stats().cache_hit);
+  GroupRun b = run_group(ss, text, true);
+  ASSERT_TRUE(b.mat);
+  EXPECT_TRUE(b.mat->stats().cache_hit);
+  EXPECT_EQ(a.output, b.output);
+  std::vector<float> out;
+  ShadingContext ctx;
+  ShaderGlobals sg{};
+  sg.context = &ctx;
+  b.mat->shade(sg);
+  ASSERT_TRUE(b.mat->read_output("d", "result", out));
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0], 7.0f);
+  ASSERT_TRUE(b.mat->read_output("u", "Cout", out));
+  EXPECT_EQ(out, (std::vector<float>{3, 6, 9}));
+  EXPECT_FALSE(b.mat->read_output("d", "nope", out));
+  // A different instance value is a different material.
+  GroupRun c = run_group(
+      ss, "param float a 4 ; shader upstream u ; shader downstream d ; connect u.Cout d.Cin ;",
+      true);
+  ASSERT_TRUE(c.mat);
+  EXPECT_FALSE(c.mat->stats().cache_hit);
+}
+
+TEST_F(Groups, ErrorsAreDiagnostics) {
+  DiagnosticList d;
+  auto g = ss.parse_group("shader nosuchshader x ;", "t", d);
+  ASSERT_TRUE(g);
+  EXPECT_FALSE(ss.compile(*g, d));
+  ASSERT_FALSE(d.empty());
+  EXPECT_NE(d.back().text.find("not found"), std::string::npos);
+  g = ss.parse_group("shader downstream d ; shader upstream u ; connect u.Cout d.Cin ;", "t", d);
+  EXPECT_FALSE(ss.compile(*g, d)); // source layer after destination
+  g = ss.parse_group("param float g oops ; shader downstream d ;", "t", d);
+  EXPECT_FALSE(ss.compile(*g, d)); // bad value
+}
+
+TEST(GroupGlobals, GlobalsRead) {
+  ShadingSystem ss;
+  DiagnosticList d;
+  ASSERT_TRUE(ss.add_shader_ir("g", R"(lobe-ir 1
+surface g
+symbols
+  global float u
+  global normal N
+  global closure Ci
+  local float x
+  const string $f = "%g\n"
+main
+  Dx x u
+  printf $f x
+end
+)",
+                               d));
+  auto grp = ss.parse_group("shader g l ;", "t", d);
+  auto mat = ss.compile(*grp, d);
+  ASSERT_TRUE(mat);
+  uint64_t m = mat->globals_read();
+  auto bit = [&](const char* name) {
+    for (size_t i = 0; i < std::size(kGlobalFields); ++i)
+      if (!std::strcmp(kGlobalFields[i].name, name)) return (m >> i) & 1;
+    return uint64_t(99);
+  };
+  EXPECT_EQ(bit("u"), 1u);
+  EXPECT_EQ(bit("dudx"), 1u); // Dx(u) reads u's derivatives
+  EXPECT_EQ(bit("N"), 0u);
+  EXPECT_EQ(bit("P"), 0u);
+}
+
+} // namespace

@@ -1,0 +1,60 @@
+// MaterialImpl: runs the group entry on a copy of the initial group data kept in the calling
+// thread's ShadingContext (so shade() is re-entrant across threads), and reads outputs back.
+#include "material.h"
+
+#include "lobe/context.h"
+
+#include <cstring>
+
+namespace lobe::group {
+
+MaterialImpl::MaterialImpl(std::shared_ptr<jit::Jit> jit, std::shared_ptr<shadeops::RuntimeEnv> env,
+                           jit::CompiledGroup code, std::vector<unsigned char> groupdata,
+                           std::map<std::string, OutputSlot> slots, uint64_t globals,
+                           CompileStats stats)
+    : jit_(std::move(jit)), env_(std::move(env)), code_(code),
+      entry_(reinterpret_cast<Entry>(code.entry)), groupdata_(std::move(groupdata)),
+      slots_(std::move(slots)), globals_(globals), stats_(stats) {}
+
+MaterialImpl::~MaterialImpl() { jit_->remove(code_); }
+
+void MaterialImpl::shade(ShaderGlobals& sg) const {
+  sg.Ci = nullptr;
+  ShadingContext* ctx = sg.context;
+  if (!ctx) { // no context: no closures, no messages; still run for outputs
+    std::vector<unsigned char> gd = groupdata_;
+    entry_(&sg, gd.data());
+    return;
+  }
+  if (ctx->groupdata.size() < groupdata_.size()) ctx->groupdata.resize(groupdata_.size());
+  std::memcpy(ctx->groupdata.data(), groupdata_.data(), groupdata_.size());
+  ctx->groupdata_owner = this;
+  last_context_.store(ctx, std::memory_order_relaxed);
+  entry_(&sg, ctx->groupdata.data());
+}
+
+bool MaterialImpl::read_output(const std::string& layer, const std::string& param,
+                               std::vector<float>& dst) const {
+  auto it = slots_.find(layer + "." + param);
+  if (it == slots_.end()) return false;
+  const ShadingContext* ctx = last_context_.load(std::memory_order_relaxed);
+  const unsigned char* gd =
+      (ctx && ctx->groupdata_owner == this) ? ctx->groupdata.data() : groupdata_.data();
+  const OutputSlot& s = it->second;
+  if (s.type.base == ir::BaseType::String || s.type.base == ir::BaseType::Closure) return false;
+  int n = s.type.components() * std::max(1, s.type.arraylen);
+  dst.resize(size_t(n));
+  for (int k = 0; k < n; ++k) {
+    const unsigned char* p = gd + s.offset + 4 * size_t(k);
+    if (s.type.base == ir::BaseType::Int) {
+      int32_t i;
+      std::memcpy(&i, p, 4);
+      dst[size_t(k)] = float(i);
+    } else {
+      std::memcpy(&dst[size_t(k)], p, 4);
+    }
+  }
+  return true;
+}
+
+} // namespace lobe::group

@@ -1,0 +1,69 @@
+// The compiled Material (shadingsys.h): machine code of one specialised group, its initial
+// group data, and where each layer's parameters live for read_output(). The JIT and the
+// runtime environment are shared, so a Material stays valid after its ShadingSystem is gone.
+#pragma once
+
+#include "env.h"
+#include "ir/ir.h"
+#include "jit.h"
+#include "lobe/shadingsys.h"
+
+#include <atomic>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lobe::group {
+
+struct OutputSlot {
+  size_t offset = 0;
+  ir::Type type;
+};
+
+class MaterialImpl final : public Material {
+public:
+  using Entry = void (*)(ShaderGlobals*, void*);
+
+  MaterialImpl(std::shared_ptr<jit::Jit> jit, std::shared_ptr<shadeops::RuntimeEnv> env,
+               jit::CompiledGroup code, std::vector<unsigned char> groupdata,
+               std::map<std::string, OutputSlot> slots, uint64_t globals, CompileStats stats);
+  ~MaterialImpl() override;
+
+  void shade(ShaderGlobals& sg) const override;
+  uint64_t globals_read() const override { return globals_; }
+  bool read_output(const std::string& layer, const std::string& param,
+                   std::vector<float>& dst) const override;
+  const CompileStats& stats() const override { return stats_; }
+
+private:
+  std::shared_ptr<jit::Jit> jit_;
+  std::shared_ptr<shadeops::RuntimeEnv> env_; // strings baked into the code live here
+  jit::CompiledGroup code_;
+  Entry entry_;
+  std::vector<unsigned char> groupdata_;    // initial contents, copied at every shade()
+  std::map<std::string, OutputSlot> slots_; // "layer.param" -> storage
+  uint64_t globals_;
+  CompileStats stats_;
+  mutable std::atomic<const ShadingContext*> last_context_{nullptr};
+};
+
+// A cache hit: the same compiled material, with the stats of this request.
+class CachedMaterial final : public Material {
+public:
+  CachedMaterial(std::shared_ptr<const Material> m, CompileStats stats)
+      : m_(std::move(m)), stats_(stats) {}
+  void shade(ShaderGlobals& sg) const override { m_->shade(sg); }
+  uint64_t globals_read() const override { return m_->globals_read(); }
+  bool read_output(const std::string& layer, const std::string& param,
+                   std::vector<float>& dst) const override {
+    return m_->read_output(layer, param, dst);
+  }
+  const CompileStats& stats() const override { return stats_; }
+
+private:
+  std::shared_ptr<const Material> m_;
+  CompileStats stats_;
+};
+
+} // namespace lobe::group

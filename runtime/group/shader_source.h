@@ -1,0 +1,26 @@
+// Finding a shader by name and turning it into IR: an in-memory IR registration
+// (ShadingSystem::add_shader_ir), else a file on the search path: `name` itself, or
+// `name.osl` / `name.lir` (IR text) in each include dir, then the current directory.
+#pragma once
+
+#include "ir/ir.h"
+#include "lobe/shadingsys.h"
+
+#include <optional>
+#include <string>
+
+namespace lobe::group {
+
+// The path of shader `name` on the search path, or "" if not found.
+std::string find_shader_file(const std::string& name, const CompileOptions& options);
+
+// Compiles the file (.osl through the front end, .lir through the IR parser); stage times go
+// to `stats`. Nullopt with diagnostics on failure.
+std::optional<ir::Shader> compile_shader_file(const std::string& path,
+                                              const CompileOptions& options, DiagnosticList& diags,
+                                              CompileStats& stats);
+
+std::optional<ir::Shader> parse_ir_text(const std::string& text, const std::string& where,
+                                        DiagnosticList& diags);
+
+} // namespace lobe::group

@@ -1,0 +1,192 @@
+// ShadingSystem (shadingsys.h): group parsing, the compile pipeline (load layers -> cache
+// look-up -> specialise -> LLVM IR -> optimise -> JIT) and the material cache.
+#include "lobe/shadingsys.h"
+
+#include "codegen.h"
+#include "group_build.h"
+#include "group_text.h"
+#include "ir/printer.h"
+#include "jit.h"
+#include "lobe/bsdf.h"
+#include "material.h"
+#include "shader_source.h"
+
+#include <llvm/IR/LLVMContext.h>
+#include <llvm/IR/Module.h>
+
+#include <chrono>
+#include <map>
+#include <mutex>
+#include <unordered_map>
+
+namespace lobe {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+} // namespace
+
+struct ShadingSystem::Impl {
+  CompileOptions options;
+  std::shared_ptr<shadeops::RuntimeEnv> env = std::make_shared<shadeops::RuntimeEnv>();
+  std::shared_ptr<jit::Jit> jit;
+  std::string jit_error;
+  std::mutex mutex; // guards the maps below
+  std::map<std::string, ir::Shader> registered;
+  std::unordered_map<std::string, std::shared_ptr<const Material>> cache;
+
+  std::optional<ir::Shader> load(const std::string& name, DiagnosticList& diags, CompileStats& st);
+  std::string cache_key(const ShaderGroup& g, const std::vector<const ir::Shader*>& layers) const;
+  std::shared_ptr<const Material> build(const ShaderGroup& g,
+                                        const std::vector<const ir::Shader*>& layers,
+                                        CompileStats stats, DiagnosticList& diags);
+};
+
+ShadingSystem::ShadingSystem() : impl_(std::make_unique<Impl>()) {
+  impl_->env->closure_printer = &closure_to_string;
+  std::unique_ptr<jit::Jit> j = jit::Jit::create(impl_->jit_error);
+  impl_->jit = std::move(j);
+}
+
+ShadingSystem::~ShadingSystem() = default;
+
+CompileOptions& ShadingSystem::options() { return impl_->options; }
+
+std::unique_ptr<ShaderGroup> ShadingSystem::parse_group(const std::string& text,
+                                                        const std::string& where,
+                                                        DiagnosticList& diags) const {
+  return group::parse_group_text(text, where, diags);
+}
+
+bool ShadingSystem::add_shader_ir(const std::string& name, const std::string& ir_text,
+                                  DiagnosticList& diags) {
+  auto sh = group::parse_ir_text(ir_text, name, diags);
+  if (!sh) return false;
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->registered[name] = std::move(*sh);
+  return true;
+}
+
+std::optional<ir::Shader> ShadingSystem::Impl::load(const std::string& name, DiagnosticList& diags,
+                                                    CompileStats& st) {
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = registered.find(name);
+    if (it != registered.end()) return it->second;
+  }
+  std::string path = group::find_shader_file(name, options);
+  if (path.empty()) {
+    diags.push_back({Diagnostic::Severity::Error, "error: shader '" + name + "' not found"});
+    return std::nullopt;
+  }
+  return group::compile_shader_file(path, options, diags, st);
+}
+
+// The printed IR of every layer, the layer names and values, the connections and the options.
+std::string ShadingSystem::Impl::cache_key(const ShaderGroup& g,
+                                           const std::vector<const ir::Shader*>& layers) const {
+  std::string key =
+      "O" + std::to_string(options.opt_level) + (options.specialize ? "s" : "n") + "\n";
+  for (size_t i = 0; i < layers.size(); ++i) {
+    key += "layer " + g.layers[i].name + "\n" + ir::print(*layers[i]);
+    for (const InstanceValue& v : g.layers[i].values)
+      key += "value " + v.type + " " + v.name + " " + v.value + "\n";
+  }
+  for (const Connection& c : g.connections)
+    key +=
+        "connect " + c.src_layer + "." + c.src_param + " " + c.dst_layer + "." + c.dst_param + "\n";
+  return key;
+}
+
+std::shared_ptr<const Material>
+ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Shader*>& layers,
+                           CompileStats stats, DiagnosticList& diags) {
+  auto t0 = Clock::now();
+  group::GroupBuild b;
+  b.plan.env = env.get();
+  bool specialize = options.specialize && options.opt_level > 0;
+  if (!group::build_group(g, layers, specialize, b, diags)) return nullptr;
+  stats.specialize_ms = ms_since(t0);
+
+  auto t1 = Clock::now();
+  auto ctx = std::make_unique<llvm::LLVMContext>();
+  auto mod = std::make_unique<llvm::Module>(g.name.empty() ? "group" : g.name, *ctx);
+  jit->configure(*mod);
+  std::string err = codegen::emit_group(b.plan, *mod);
+  if (!err.empty()) {
+    diags.push_back({Diagnostic::Severity::Error, "error: " + err});
+    return nullptr;
+  }
+  stats.llvm_ir_ms = ms_since(t1);
+
+  jit::CompiledGroup code;
+  jit::JitTimes times;
+  if (!jit->add(std::move(ctx), std::move(mod), options.opt_level, b.plan.entry_name, code, times,
+                err)) {
+    diags.push_back({Diagnostic::Severity::Error, "error: JIT: " + err});
+    return nullptr;
+  }
+  stats.optimize_ms = times.optimize_ms;
+  stats.codegen_ms = times.codegen_ms;
+
+  std::map<std::string, group::OutputSlot> slots;
+  for (size_t li = 0; li < b.shaders.size(); ++li) {
+    const ir::Shader& sh = *b.shaders[li];
+    for (size_t s = 0; s < sh.symbols.size(); ++s)
+      if (b.plan.layers[li].symbol_offset[s] >= 0)
+        slots[b.layer_names[li] + "." + sh.symbols[s].name] = {
+            size_t(b.plan.layers[li].symbol_offset[s]), sh.symbols[s].type};
+  }
+  return std::make_shared<group::MaterialImpl>(jit, env, code, std::move(b.groupdata),
+                                               std::move(slots), b.globals_read, stats);
+}
+
+std::shared_ptr<const Material> ShadingSystem::compile(const ShaderGroup& group,
+                                                       DiagnosticList& diags) {
+  Impl& m = *impl_;
+  if (!m.jit) {
+    diags.push_back({Diagnostic::Severity::Error, "error: JIT unavailable: " + m.jit_error});
+    return nullptr;
+  }
+  if (group.layers.empty()) {
+    diags.push_back({Diagnostic::Severity::Error, "error: the group has no layers"});
+    return nullptr;
+  }
+  CompileStats stats;
+  std::vector<ir::Shader> loaded;
+  loaded.reserve(group.layers.size());
+  std::map<std::string, size_t> by_name; // a shader used by several layers loads once
+  std::vector<size_t> which;
+  for (const auto& layer : group.layers) {
+    auto it = by_name.find(layer.shader);
+    if (it == by_name.end()) {
+      auto sh = m.load(layer.shader, diags, stats);
+      if (!sh) return nullptr;
+      it = by_name.emplace(layer.shader, loaded.size()).first;
+      loaded.push_back(std::move(*sh));
+    }
+    which.push_back(it->second);
+  }
+  std::vector<const ir::Shader*> layers;
+  for (size_t w : which) layers.push_back(&loaded[w]);
+
+  std::string key = m.cache_key(group, layers);
+  {
+    std::lock_guard<std::mutex> lock(m.mutex);
+    auto it = m.cache.find(key);
+    if (it != m.cache.end()) {
+      stats.cache_hit = true;
+      return std::make_shared<group::CachedMaterial>(it->second, stats);
+    }
+  }
+  auto mat = m.build(group, layers, stats, diags);
+  if (mat) {
+    std::lock_guard<std::mutex> lock(m.mutex);
+    m.cache.emplace(key, mat);
+  }
+  return mat;
+}
+
+} // namespace lobe
