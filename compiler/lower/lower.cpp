@@ -178,7 +178,11 @@ bool Lowerer::const_values(const ast::Expr* e, const ir::Type& t, std::vector<ir
   case K::StringLit: v.resize(1); v[0].s = static_cast<const ast::StringLit*>(e)->value; break;
   case K::Cast: {
     auto* c = static_cast<const ast::CastExpr*>(e);
-    if (!const_values(c->operand.get(), irtype(c->operand->type, e), v)) return false;
+    ir::Type ot = irtype(c->operand->type, e);
+    if (!const_values(c->operand.get(), ot, v)) return false;
+    auto cv = passes::convert_const(ot, v, et);
+    if (!cv) return false;
+    v = *cv;
     break;
   }
   case K::Unary: {
