@@ -11,9 +11,12 @@
 
 #include "common.h"
 #include "diffuse.h"
+#include "glossy.h"
 #include "lobe/bsdf.h"
 #include "microfacet_setup.h"
 #include "params.h"
+#include "sheen.h"
+#include "toon.h"
 
 namespace lobe::closures {
 
@@ -98,6 +101,38 @@ template <class Fn> bool with_lobe(int id, const unsigned char* p, Fn&& fn) {
     const auto& q = as<ReflectionEtaParams>(p);
     if (!make_frame(q.N, f)) return false;
     fn(make_specular(q.eta > 0.0f ? q.eta : 1.0f, id == kRefractionId), f);
+    return true;
+  }
+  case kPhongId: {
+    const auto& q = as<PhongParams>(p);
+    if (!make_frame(q.N, f)) return false;
+    fn(Phong{clampf(q.exponent == q.exponent ? q.exponent : 0.0f, 0.0f, 1e6f)}, f);
+    return true;
+  }
+  case kBlinnPhongId: {
+    const auto& q = as<PhongParams>(p);
+    if (!make_frame(q.N, f)) return false;
+    fn(BlinnPhong::make(q.exponent), f);
+    return true;
+  }
+  case kWardId: {
+    const auto& q = as<WardParams>(p);
+    if (!make_frame(q.N, q.T, f)) return false;
+    auto c = [](float a) { return a == a ? clampf(a, 1e-3f, 4.0f) : 1e-3f; };
+    fn(Ward{MicrofacetDistribution::make(c(q.ax), c(q.ay), true)}, f);
+    return true;
+  }
+  case kSheenId: {
+    const auto& q = as<AlbedoRoughnessParams>(p);
+    if (!make_frame(q.N, f)) return false;
+    float r = q.roughness == q.roughness ? clampf(q.roughness, 0.01f, 1.0f) : 1.0f;
+    fn(Sheen{vmax0(sanitize(q.albedo)), r}, f);
+    return true;
+  }
+  case kToonId: {
+    const auto& q = as<ToonParams>(p);
+    if (!make_frame(q.N, f)) return false;
+    fn(Toon::make(sanitize(q.albedo), sanitize(q.specular), q.shininess, q.bands, q.softness), f);
     return true;
   }
   default:
