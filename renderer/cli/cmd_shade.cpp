@@ -17,6 +17,7 @@
 // follows OSL's formatting; each connection is announced as `Connect A.out to B.in` first.
 #include "command.h"
 
+#include "grid.h"
 #include "image.h"
 #include "lobe/shadingsys.h"
 
@@ -45,11 +46,10 @@ struct Options {
 };
 
 void usage(FILE* f) {
-  std::fprintf(f,
-               "usage: lobe shade [options] shadername [more layers]\n"
-               "  -g W H  -param[:type=T] name value  -layer NAME shader  -connect A out B in\n"
-               "  -group file  --center  --raytype name  -o var file.exr|png  -O0|-O1|-O2\n"
-               "  --stats  -I dir  -D NAME[=val]\n");
+  std::fprintf(f, "usage: lobe shade [options] shadername [more layers]\n"
+                  "  -g W H  -param[:type=T] name value  -layer NAME shader  -connect A out B in\n"
+                  "  -group file  --center  --raytype name  -o var file.exr|png  -O0|-O1|-O2\n"
+                  "  --stats  -I dir  -D NAME[=val]\n");
 }
 
 std::string layer_name_for(const std::string& shader) {
@@ -70,64 +70,62 @@ int parse_args(int argc, char** argv, Options& o) {
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     auto need = [&](int n) { return i + n < argc; };
-    if (a == "-h" || a == "--help") { usage(stdout); return -1; }
-    if (a == "-g" && need(2)) { o.w = std::atoi(argv[i + 1]); o.h = std::atoi(argv[i + 2]); i += 2; }
-    else if ((a.rfind("-param", 0) == 0 || a.rfind("--param", 0) == 0) && need(2)) {
+    if (a == "-h" || a == "--help") {
+      usage(stdout);
+      return -1;
+    }
+    if (a == "-g" && need(2)) {
+      o.w = std::atoi(argv[i + 1]);
+      o.h = std::atoi(argv[i + 2]);
+      i += 2;
+    } else if ((a.rfind("-param", 0) == 0 || a.rfind("--param", 0) == 0) && need(2)) {
       std::string type = "float";
       size_t c = a.find(":type=");
       if (c != std::string::npos) type = a.substr(c + 6);
       o.pending.push_back({type, argv[i + 1], argv[i + 2]});
       i += 2;
-    } else if (is_opt(a, "layer") && need(2)) { add_layer(o, argv[i + 2], argv[i + 1]); i += 2; }
-    else if (is_opt(a, "connect") && need(4)) {
+    } else if (is_opt(a, "layer") && need(2)) {
+      add_layer(o, argv[i + 2], argv[i + 1]);
+      i += 2;
+    } else if (is_opt(a, "connect") && need(4)) {
       o.group.connections.push_back({argv[i + 1], argv[i + 2], argv[i + 3], argv[i + 4]});
       i += 4;
-    } else if (is_opt(a, "group") && need(1)) o.group_source = argv[++i];
-    else if (is_opt(a, "center")) o.center = true;
-    else if (is_opt(a, "raytype") && need(1)) o.raytype = argv[++i];
-    else if (a == "-o" && need(2)) { o.outputs.push_back({argv[i + 1], argv[i + 2]}); i += 2; }
-    else if (a == "-O0" || a == "-O1" || a == "-O2") {
+    } else if (is_opt(a, "group") && need(1))
+      o.group_source = argv[++i];
+    else if (is_opt(a, "center"))
+      o.center = true;
+    else if (is_opt(a, "raytype") && need(1))
+      o.raytype = argv[++i];
+    else if (a == "-o" && need(2)) {
+      o.outputs.push_back({argv[i + 1], argv[i + 2]});
+      i += 2;
+    } else if (a == "-O0" || a == "-O1" || a == "-O2") {
       o.compile.opt_level = a[2] - '0';
       o.compile.specialize = o.compile.opt_level > 0;
-    } else if (is_opt(a, "stats")) o.stats = true;
-    else if (a.rfind("-I", 0) == 0) { std::string d = a.size() > 2 ? a.substr(2) : (need(1) ? argv[++i] : ""); o.compile.include_dirs.push_back(d); }
-    else if (a.rfind("-D", 0) == 0) { std::string d = a.size() > 2 ? a.substr(2) : (need(1) ? argv[++i] : ""); o.compile.defines.push_back(d); }
-    else if (!a.empty() && a[0] == '-') { std::fprintf(stderr, "lobe shade: unknown or incomplete option '%s'\n", a.c_str()); return 2; }
-    else add_layer(o, a, layer_name_for(a));
+    } else if (is_opt(a, "stats"))
+      o.stats = true;
+    else if (a.rfind("-I", 0) == 0) {
+      std::string d = a.size() > 2 ? a.substr(2) : (need(1) ? argv[++i] : "");
+      o.compile.include_dirs.push_back(d);
+    } else if (a.rfind("-D", 0) == 0) {
+      std::string d = a.size() > 2 ? a.substr(2) : (need(1) ? argv[++i] : "");
+      o.compile.defines.push_back(d);
+    } else if (!a.empty() && a[0] == '-') {
+      std::fprintf(stderr, "lobe shade: unknown or incomplete option '%s'\n", a.c_str());
+      return 2;
+    } else
+      add_layer(o, a, layer_name_for(a));
   }
-  if (o.w < 1 || o.h < 1) { std::fprintf(stderr, "lobe shade: bad grid size\n"); return 2; }
+  if (o.w < 1 || o.h < 1) {
+    std::fprintf(stderr, "lobe shade: bad grid size\n");
+    return 2;
+  }
   return 0;
 }
 
-int raytype_bits(const std::string& name) {
-  const char* names[] = {"camera", "shadow", "reflection", "refraction", "diffuse", "glossy", "subsurface", "displacement"};
-  for (int i = 0; i < 8; ++i)
-    if (name == names[i]) return 1 << i;
-  return lobe::kRayCamera;
-}
-
-// The grid's shading globals, OSL testshade's conventions (docs/runtime.md).
 lobe::ShaderGlobals grid_point(const Options& o, int x, int y, lobe::ShadingContext& ctx) {
-  auto coord = [&](int i, int n, float& t, float& dt) {
-    if (o.center) { t = (float(i) + 0.5f) / float(n); dt = 1.0f / float(n); }
-    else if (n == 1) { t = 0.5f; dt = 1.0f; }
-    else { t = float(i) / float(n - 1); dt = 1.0f / float(n - 1); }
-  };
-  lobe::ShaderGlobals sg{};
-  float u, du, v, dv;
-  coord(x, o.w, u, du);
-  coord(y, o.h, v, dv);
-  sg.u = u; sg.dudx = du; sg.v = v; sg.dvdy = dv;
-  sg.P = {u, v, 1};
-  sg.dPdx = {du, 0, 0};
-  sg.dPdy = {0, dv, 0};
-  sg.N = sg.Ng = {0, 0, 1};
-  sg.dPdu = {1, 0, 0};
-  sg.dPdv = {0, 1, 0};
-  sg.surfacearea = 1;
-  sg.raytype = raytype_bits(o.raytype);
-  sg.context = &ctx;
-  return sg;
+  lobe::group::GridSpec g{o.w, o.h, o.center, lobe::group::raytype_from_name(o.raytype)};
+  return lobe::group::grid_globals(g, x, y, &ctx);
 }
 
 bool read_text(const std::string& path, std::string& out) {
@@ -144,7 +142,8 @@ void print_diags(const lobe::DiagnosticList& d) {
 }
 
 // Finds `var` among the layers' parameters, last layer first.
-bool read_var(const lobe::Material& m, const lobe::ShaderGroup& g, const std::string& var, std::vector<float>& v) {
+bool read_var(const lobe::Material& m, const lobe::ShaderGroup& g, const std::string& var,
+              std::vector<float>& v) {
   for (size_t i = g.layers.size(); i-- > 0;)
     if (m.read_output(g.layers[i].name, var, v)) return true;
   return false;
@@ -161,20 +160,28 @@ int run_shade(int argc, char** argv) {
     std::string text = o.group_source;
     read_text(o.group_source, text); // a file, else the text itself
     auto g = ss.parse_group(text, o.group_source, diags);
-    if (!g) { print_diags(diags); return 1; }
+    if (!g) {
+      print_diags(diags);
+      return 1;
+    }
     for (auto& l : o.group.layers) g->layers.push_back(l);
     for (auto& c : o.group.connections) g->connections.push_back(c);
     o.group = *g;
   }
-  if (o.group.layers.empty()) { usage(stderr); return 2; }
+  if (o.group.layers.empty()) {
+    usage(stderr);
+    return 2;
+  }
   for (const auto& c : o.group.connections)
-    std::printf("Connect %s.%s to %s.%s\n", c.src_layer.c_str(), c.src_param.c_str(), c.dst_layer.c_str(), c.dst_param.c_str());
+    std::printf("Connect %s.%s to %s.%s\n", c.src_layer.c_str(), c.src_param.c_str(),
+                c.dst_layer.c_str(), c.dst_param.c_str());
   auto mat = ss.compile(o.group, diags);
   print_diags(diags);
   if (!mat) return 1;
 
   std::vector<lobe::image::Image> images;
-  for (const Output& out : o.outputs) images.emplace_back(o.w, o.h, std::vector<std::string>{"R", "G", "B"});
+  for (const Output& out : o.outputs)
+    images.emplace_back(o.w, o.h, std::vector<std::string>{"R", "G", "B"});
   lobe::ShadingContext ctx;
   ctx.print = [](const std::string& s) { std::fputs(s.c_str(), stdout); };
   auto t0 = std::chrono::steady_clock::now();
@@ -190,7 +197,8 @@ int run_shade(int argc, char** argv) {
         for (int c = 0; c < 3; ++c) px[c] = v[v.size() >= 3 ? size_t(c) : 0];
       }
     }
-  double shade_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  double shade_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   std::fflush(stdout);
   int status = 0;
   for (size_t k = 0; k < o.outputs.size(); ++k) {
@@ -200,15 +208,20 @@ int run_shade(int argc, char** argv) {
       continue;
     }
     std::string err = lobe::image::write_image(o.outputs[k].file, images[k]);
-    if (!err.empty()) { std::fprintf(stderr, "lobe shade: %s\n", err.c_str()); status = 1; }
+    if (!err.empty()) {
+      std::fprintf(stderr, "lobe shade: %s\n", err.c_str());
+      status = 1;
+    }
   }
   if (o.stats) {
     const lobe::CompileStats& s = mat->stats();
-    std::printf("stats: preprocess %.3f ms, parse %.3f ms, sema %.3f ms, ir %.3f ms, specialize %.3f ms,"
-                " llvm-ir %.3f ms, optimize %.3f ms, codegen %.3f ms%s\n",
-                s.preprocess_ms, s.parse_ms, s.sema_ms, s.ir_ms, s.specialize_ms, s.llvm_ir_ms,
-                s.optimize_ms, s.codegen_ms, s.cache_hit ? " (cache hit)" : "");
-    std::printf("stats: %d points, %.3f us per point\n", o.w * o.h, 1000.0 * shade_ms / (o.w * o.h));
+    std::printf(
+        "stats: preprocess %.3f ms, parse %.3f ms, sema %.3f ms, ir %.3f ms, specialize %.3f ms,"
+        " llvm-ir %.3f ms, optimize %.3f ms, codegen %.3f ms%s\n",
+        s.preprocess_ms, s.parse_ms, s.sema_ms, s.ir_ms, s.specialize_ms, s.llvm_ir_ms,
+        s.optimize_ms, s.codegen_ms, s.cache_hit ? " (cache hit)" : "");
+    std::printf("stats: %d points, %.3f us per point\n", o.w * o.h,
+                1000.0 * shade_ms / (o.w * o.h));
   }
   return status;
 }

@@ -245,7 +245,7 @@ main
   printf $f x
 end
 )");
-  EXPECT_EQ(out, "ERROR: Index [5] out of range a[0..2]: t.osl:4\nx = 9\n");
+  EXPECT_EQ(out, "ERROR: Index [5] out of range [0..2]: t.osl:4\nx = 9\n");
 }
 
 TEST(Codegen, TriplesAndGeometry) {

@@ -270,8 +270,7 @@ llvm::Value* LayerEmitter::truthy(const Val& v, BaseType t) {
   return any;
 }
 
-llvm::Value* LayerEmitter::checked_index(const ir::Op& op, int symbol_arg, int index_arg,
-                                         int length, const std::string& what) {
+llvm::Value* LayerEmitter::checked_index(const ir::Op& op, int index_arg, int length) {
   const ir::Symbol& is = arg(op, index_arg);
   if (is.kind == SymKind::Const && !is.type.is_array()) {
     int i =
@@ -285,13 +284,12 @@ llvm::Value* LayerEmitter::checked_index(const ir::Op& op, int symbol_arg, int i
   b_.CreateCondBr(bad, report, ok);
   b_.SetInsertPoint(report);
   call("lobe_range_error",
-       {sg_, idx, iconst(length), string_const(what),
-        string_const(op.loc.file.empty() ? shader().name : op.loc.file), iconst(op.loc.line)});
+       {sg_, idx, iconst(length), string_const(op.loc.file.empty() ? shader().name : op.loc.file),
+        iconst(op.loc.line)});
   b_.CreateBr(ok);
   b_.SetInsertPoint(ok);
   llvm::Value* lo = b_.CreateSelect(b_.CreateICmpSLT(idx, iconst(0)), iconst(0), idx);
   return b_.CreateSelect(b_.CreateICmpSGT(lo, iconst(length - 1)), iconst(length - 1), lo);
-  (void)symbol_arg;
 }
 
 } // namespace lobe::codegen

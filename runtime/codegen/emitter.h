@@ -74,8 +74,7 @@ public:
   llvm::AllocaInst* entry_alloca(llvm::Type* ty, unsigned count, const char* name = "");
   // An in-range index: constant indices are checked at compile time, others clamped at run
   // time with a range error reported through the ShadingContext.
-  llvm::Value* checked_index(const ir::Op& op, int symbol_arg, int index_arg, int length,
-                             const std::string& what);
+  llvm::Value* checked_index(const ir::Op& op, int index_arg, int length);
   llvm::Value* truthy(const Val& v, ir::BaseType t); // i1: v != 0
   void emit_exit();                                  // branch to the layer's exit block
   void run_useparam(int symbol);                     // fetch a connected param once

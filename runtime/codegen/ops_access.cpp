@@ -38,29 +38,29 @@ void place(LayerEmitter& e, Val& v, llvm::Value* idx, const Dual& x) {
 }
 
 void op_compref(LayerEmitter& e, const ir::Op& op) {
-  llvm::Value* i = e.checked_index(op, 1, 2, 3, e.arg(op, 1).name);
+  llvm::Value* i = e.checked_index(op, 2, 3);
   Val t = e.load(op.args[1], nullptr, e.wants_derivs(op.args[0]));
   e.store(op.args[0], e.convert(Val{pick(e, t, i)}, BaseType::Float, e.arg(op, 0).type.base));
 }
 
 void op_compassign(LayerEmitter& e, const ir::Op& op) {
-  llvm::Value* i = e.checked_index(op, 0, 1, 3, e.arg(op, 0).name);
+  llvm::Value* i = e.checked_index(op, 1, 3);
   Val t = e.load(op.args[0]);
   place(e, t, i, e.load_as(op, 2, BaseType::Float)[0]);
   e.store(op.args[0], t);
 }
 
 void op_mxcompref(LayerEmitter& e, const ir::Op& op) {
-  llvm::Value* r = e.checked_index(op, 1, 2, 4, e.arg(op, 1).name);
-  llvm::Value* c = e.checked_index(op, 1, 3, 4, e.arg(op, 1).name);
+  llvm::Value* r = e.checked_index(op, 2, 4);
+  llvm::Value* c = e.checked_index(op, 3, 4);
   llvm::Value* idx = e.b().CreateAdd(e.b().CreateMul(r, e.iconst(4)), c);
   Val m = e.load(op.args[1], nullptr, false);
   e.store(op.args[0], e.convert(Val{pick(e, m, idx)}, BaseType::Float, e.arg(op, 0).type.base));
 }
 
 void op_mxcompassign(LayerEmitter& e, const ir::Op& op) {
-  llvm::Value* r = e.checked_index(op, 0, 1, 4, e.arg(op, 0).name);
-  llvm::Value* c = e.checked_index(op, 0, 2, 4, e.arg(op, 0).name);
+  llvm::Value* r = e.checked_index(op, 1, 4);
+  llvm::Value* c = e.checked_index(op, 2, 4);
   llvm::Value* idx = e.b().CreateAdd(e.b().CreateMul(r, e.iconst(4)), c);
   Val m = e.load(op.args[0], nullptr, false);
   place(e, m, idx, e.load_as(op, 3, BaseType::Float, false)[0]);
@@ -69,14 +69,14 @@ void op_mxcompassign(LayerEmitter& e, const ir::Op& op) {
 
 void op_aref(LayerEmitter& e, const ir::Op& op) {
   const ir::Symbol& a = e.arg(op, 1);
-  llvm::Value* i = e.checked_index(op, 1, 2, array_length(a), a.name);
+  llvm::Value* i = e.checked_index(op, 2, array_length(a));
   Val v = e.load(op.args[1], i, e.wants_derivs(op.args[0]));
   e.store(op.args[0], e.convert(v, a.type.base, e.arg(op, 0).type.base));
 }
 
 void op_aassign(LayerEmitter& e, const ir::Op& op) {
   const ir::Symbol& a = e.arg(op, 0);
-  llvm::Value* i = e.checked_index(op, 0, 1, array_length(a), a.name);
+  llvm::Value* i = e.checked_index(op, 1, array_length(a));
   e.store(op.args[0], e.load_as(op, 2, a.type.base, a.derivs), i);
 }
 

@@ -42,11 +42,11 @@ void lobe_error(ShaderGlobals* sg, RuntimeEnv* env, const char* fmt, const char*
   send(sg, "ERROR: " + lobe::shadeops::format_values(*env, fmt, codes, args));
 }
 
-// An out-of-range array or component index (the generated code clamps it).
-void lobe_range_error(ShaderGlobals* sg, int index, int length, const char* name, const char* file,
-                      int line) {
+// An out-of-range array or component index (the generated code clamps it). The message names
+// the source location, not the variable: after specialisation the operand may be a constant.
+void lobe_range_error(ShaderGlobals* sg, int index, int length, const char* file, int line) {
   if (sg && sg->context) sg->context->errors++;
-  send(sg, "ERROR: Index [" + std::to_string(index) + "] out of range " + name + "[0.." +
+  send(sg, "ERROR: Index [" + std::to_string(index) + "] out of range [0.." +
                std::to_string(length - 1) + "]: " + file + ":" + std::to_string(line) + "\n");
 }
 

@@ -24,7 +24,7 @@ void lobe_transformc(ShaderGlobals*, const char*, const char*, float*, const flo
 void lobe_blackbody(float*, float);
 void lobe_wavelength_color(float*, float);
 void lobe_noise(int, const float*, int, const float*, float*, int, float*);
-void lobe_range_error(ShaderGlobals*, int, int, const char*, const char*, int);
+void lobe_range_error(ShaderGlobals*, int, int, const char*, int);
 }
 
 TEST(Format, TriplesIntsAndStrings) {
@@ -152,9 +152,9 @@ TEST(Errors, RangeErrorReportsLocation) {
   ShadingContext ctx;
   ShaderGlobals sg{};
   sg.context = &ctx;
-  lobe_range_error(&sg, 5, 3, "a", "t.osl", 7);
+  lobe_range_error(&sg, 5, 3, "t.osl", 7);
   EXPECT_EQ(ctx.errors, 1);
-  EXPECT_EQ(ctx.output, "ERROR: Index [5] out of range a[0..2]: t.osl:7\n");
+  EXPECT_EQ(ctx.output, "ERROR: Index [5] out of range [0..2]: t.osl:7\n");
 }
 
 TEST(Table, NamesResolve) {

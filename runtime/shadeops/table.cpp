@@ -55,7 +55,7 @@ const ShadeOpSymbol kTable[] = {
     {"lobe_format", addr(lobe_format), "ppppp"},
     {"lobe_warning", addr(lobe_warning), "vppppp"},
     {"lobe_error", addr(lobe_error), "vppppp"},
-    {"lobe_range_error", addr(lobe_range_error), "vpiippi"},
+    {"lobe_range_error", addr(lobe_range_error), "vpiipi"},
     {"lobe_concat", addr(lobe_concat), "pppp"},
     {"lobe_strlen", addr(lobe_strlen), "ip"},
     {"lobe_substr", addr(lobe_substr), "pppii"},
