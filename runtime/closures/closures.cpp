@@ -171,6 +171,7 @@ bool has_implementation(int id) {
   if (id < 0 || id >= static_cast<int>(registry::closures().size())) return false;
   uint32_t fl = registry::closures()[id].flags;
   if (!(fl & (registry::kReflect | registry::kTransmit))) return true; // handled by Bsdf::build
+  if (id == kMeasuredId) return true; // its default block names no file, so it cannot be probed
   Params p(registry::closures()[id].key);
   return with_lobe(id, p.data(), [](const auto&, const Frame&) {});
 }

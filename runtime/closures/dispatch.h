@@ -12,6 +12,9 @@
 #include "common.h"
 #include "diffuse.h"
 #include "glossy.h"
+#ifndef LOBE_BITCODE
+#include "measured.h"
+#endif
 #include "lobe/bsdf.h"
 #include "microfacet_setup.h"
 #include "params.h"
@@ -135,6 +138,15 @@ template <class Fn> bool with_lobe(int id, const unsigned char* p, Fn&& fn) {
     fn(Toon::make(sanitize(q.albedo), sanitize(q.specular), q.shininess, q.bands, q.softness), f);
     return true;
   }
+#ifndef LOBE_BITCODE
+  case kMeasuredId: {
+    const auto& q = as<MeasuredParams>(p);
+    const MeasuredTable* t = measured_table(q.filename);
+    if (!t || !make_frame(q.N, f)) return false;
+    fn(Measured{t, vmax0(sanitize(q.tint))}, f);
+    return true;
+  }
+#endif
   default:
     return false;
   }

@@ -161,6 +161,15 @@ LOBE_ID(kLayerId, "layer");
 LOBE_ID(kToonId, "toon");
 LOBE_ID(kMeasuredId, "measured_bsdf");
 #undef LOBE_ID
+static_assert(kDiffuseId >= 0 && kOrenNayarId >= 0 && kOrenNayarDiffuseId >= 0 && kBurleyId >= 0 &&
+                  kTranslucentId >= 0 && kTranslucentBsdfId >= 0 && kPhongId >= 0 &&
+                  kBlinnPhongId >= 0 && kWardId >= 0 && kMicrofacetId >= 0 && kMicrofacet5Id >= 0 &&
+                  kReflectionId >= 0 && kReflectionEtaId >= 0 && kRefractionId >= 0 &&
+                  kConductorId >= 0 && kDielectricId >= 0 && kGeneralizedSchlickId >= 0 &&
+                  kSheenId >= 0 && kTransparentId >= 0 && kTransparentBsdfId >= 0 &&
+                  kEmissionId >= 0 && kUniformEdfId >= 0 && kBackgroundId >= 0 && kHoldoutId >= 0 &&
+                  kDebugId >= 0 && kLayerId >= 0 && kToonId >= 0 && kMeasuredId >= 0,
+              "every implementation names a registry entry");
 
 // True if the registry entry `key` has exactly these parameter offsets and a block size that
 // the struct fits.
