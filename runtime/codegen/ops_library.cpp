@@ -293,6 +293,65 @@ void op_noise(LayerEmitter& e, const ir::Op& op) {
           e.convert(r, nout == 1 ? BaseType::Float : BaseType::Color, e.arg(op, 0).type.base));
 }
 
+// ---- splines --------------------------------------------------------------------------------
+
+// spline a "basis" x (knots... | knots[] | nknots knots[]); splineinverse likewise (floats).
+void op_spline(LayerEmitter& e, const ir::Op& op) {
+  auto& B = e.b();
+  bool inverse = op.opcode == "splineinverse";
+  BaseType t =
+      inverse || e.arg(op, 0).type.base == BaseType::Float ? BaseType::Float : BaseType::Color;
+  int comps = t == BaseType::Float ? 1 : 3;
+  bool derivs = e.wants_derivs(op.args[0]);
+  Dual x = e.load_as(op, 2, BaseType::Float, derivs)[0];
+  size_t k = 3;
+  llvm::Value* count = nullptr;
+  if (op.args.size() == 5 && e.arg(op, 3).type.base == BaseType::Int &&
+      e.arg(op, 4).type.is_array()) {
+    count = e.load_as(op, 3, BaseType::Int)[0].v;
+    k = 4;
+  }
+  std::vector<llvm::Value*> kv;
+  int n = 0;
+  if (e.arg(op, int(k)).type.is_array()) {
+    const ir::Symbol& a = e.arg(op, int(k));
+    n = a.type.arraylen > 0 ? a.type.arraylen : int(a.init.size()) / a.type.components();
+    for (int i = 0; i < n; ++i)
+      for (const Dual& d : e.convert(e.load(op.args[k], e.iconst(i), false), a.type.base, t))
+        kv.push_back(d.v);
+  } else {
+    for (size_t i = k; i < op.args.size(); ++i, ++n)
+      for (const Dual& d : e.load_as(op, int(i), t, false)) kv.push_back(d.v);
+  }
+  llvm::Value* nk = e.iconst(n);
+  if (count) nk = B.CreateSelect(B.CreateICmpSLT(count, nk), count, nk);
+  llvm::Value* knots = e.spill(kv);
+  if (inverse) {
+    e.store(op.args[0], e.convert(Val{Dual{e.call("lobe_splineinverse",
+                                                  {e.load(op.args[1])[0].v, x.v, knots, nk})}},
+                                  BaseType::Float, e.arg(op, 0).type.base));
+    return;
+  }
+  llvm::Value* out = e.spill(std::vector<llvm::Value*>(size_t(comps), e.fconst(0)));
+  bool chain = derivs && (x.dx || x.dy);
+  llvm::Value* dout = chain ? e.spill(std::vector<llvm::Value*>(size_t(comps), e.fconst(0)))
+                            : llvm::ConstantPointerNull::get(B.getPtrTy());
+  e.call("lobe_spline", {e.load(op.args[1])[0].v, x.v, knots, nk, e.iconst(comps), out, dout});
+  std::vector<llvm::Value*> ov = e.reload(out, comps), dv;
+  if (chain) dv = e.reload(dout, comps);
+  DualOps d(e);
+  Val r;
+  for (int c = 0; c < comps; ++c) {
+    Dual rc{ov[size_t(c)]};
+    if (chain) {
+      rc.dx = d.scale(x.dx, dv[size_t(c)]);
+      rc.dy = d.scale(x.dy, dv[size_t(c)]);
+    }
+    r.push_back(rc);
+  }
+  e.store(op.args[0], e.convert(r, t, e.arg(op, 0).type.base));
+}
+
 // ---- shading-state queries ------------------------------------------------------------------
 
 llvm::Value* sg_field(LayerEmitter& e, size_t offset, llvm::Type* t) {
@@ -352,18 +411,19 @@ void op_texture(LayerEmitter& e, const ir::Op& op) {
 }
 
 const OpEntry kLibraryOps[] = {
-    {"printf", op_printf},    {"format", op_printf},        {"error", op_printf},
-    {"warning", op_printf},   {"fprintf", op_printf},       {"concat", op_string},
-    {"strlen", op_string},    {"startswith", op_string},    {"endswith", op_string},
-    {"stoi", op_string},      {"stof", op_string},          {"substr", op_string},
-    {"getchar", op_string},   {"regex_search", op_string},  {"regex_match", op_string},
-    {"hash", op_hash},        {"closure", op_closure},      {"noise", op_noise},
-    {"snoise", op_noise},     {"pnoise", op_noise},         {"psnoise", op_noise},
-    {"cellnoise", op_noise},  {"hashnoise", op_noise},      {"raytype", op_query},
-    {"backfacing", op_query}, {"surfacearea", op_query},    {"isconnected", op_query},
-    {"isconstant", op_query}, {"getattribute", op_query},   {"getmessage", op_query},
-    {"trace", op_query},      {"gettextureinfo", op_query}, {"setmessage", op_setmessage},
-    {"texture", op_texture},  {"texture3d", op_texture},    {"environment", op_texture},
+    {"printf", op_printf},     {"format", op_printf},        {"error", op_printf},
+    {"warning", op_printf},    {"fprintf", op_printf},       {"concat", op_string},
+    {"strlen", op_string},     {"startswith", op_string},    {"endswith", op_string},
+    {"stoi", op_string},       {"stof", op_string},          {"substr", op_string},
+    {"getchar", op_string},    {"regex_search", op_string},  {"regex_match", op_string},
+    {"hash", op_hash},         {"closure", op_closure},      {"noise", op_noise},
+    {"snoise", op_noise},      {"pnoise", op_noise},         {"psnoise", op_noise},
+    {"cellnoise", op_noise},   {"hashnoise", op_noise},      {"raytype", op_query},
+    {"backfacing", op_query},  {"surfacearea", op_query},    {"isconnected", op_query},
+    {"isconstant", op_query},  {"getattribute", op_query},   {"getmessage", op_query},
+    {"trace", op_query},       {"gettextureinfo", op_query}, {"setmessage", op_setmessage},
+    {"spline", op_spline},     {"splineinverse", op_spline}, {"texture", op_texture},
+    {"texture3d", op_texture}, {"environment", op_texture},
 };
 
 } // namespace

@@ -40,6 +40,8 @@ void lobe_wavelength_color();
 void lobe_blackbody();
 void lobe_luminance();
 void lobe_noise();
+void lobe_spline();
+void lobe_splineinverse();
 }
 
 namespace lobe::shadeops {
@@ -82,6 +84,8 @@ const ShadeOpSymbol kTable[] = {
     {"lobe_blackbody", addr(lobe_blackbody), "vpf"},
     {"lobe_luminance", addr(lobe_luminance), "fp"},
     {"lobe_noise", addr(lobe_noise), "vpipppip"},
+    {"lobe_spline", addr(lobe_spline), "vpfpiipp"},
+    {"lobe_splineinverse", addr(lobe_splineinverse), "fpfpi"},
     // libm / libc
     {"sinf", addr(F1(::sinf)), "ff"},
     {"cosf", addr(F1(::cosf)), "ff"},
