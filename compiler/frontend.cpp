@@ -1,0 +1,77 @@
+// The front-end pipeline. Type checking runs only when preprocessing and parsing reported no
+// error: a partial tree would mostly produce follow-on errors.
+#include "frontend.h"
+
+#include "closure_registry.h"
+#include "diag/source_manager.h"
+#include "lex/lexer.h"
+#include "parse/parser.h"
+#include "pp/preprocessor.h"
+#include "sema/sema.h"
+#include "stdlib/stdlib.h"
+
+#include <chrono>
+
+namespace lobe::frontend {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Marks the declarations that come from the standard header.
+void mark_stdlib(ast::TranslationUnit& tu, const diag::SourceManager& sm, int stdlib_id) {
+  if (stdlib_id < 0) return;
+  for (auto& d : tu.decls) d->from_stdlib = sm.buffer_of(sm.file_loc(d->range.begin)) == stdlib_id;
+}
+
+} // namespace
+
+std::unique_ptr<ast::TranslationUnit> compile_to_ast(const SourceInput& input,
+                                                     const FrontendOptions& options,
+                                                     diag::DiagnosticEngine& diags,
+                                                     FrontendTimings* timings) {
+  FrontendTimings t;
+  auto tu = std::make_unique<ast::TranslationUnit>();
+  tu->sources = std::make_shared<diag::SourceManager>();
+  diag::SourceManager& sm = *tu->sources;
+
+  auto t0 = Clock::now();
+  pp::PPOptions ppo;
+  ppo.include_dirs = options.include_dirs;
+  ppo.defines = options.defines;
+  ppo.undefines = options.undefines;
+  ppo.read_file = options.read_file;
+  pp::Preprocessor pp(sm, diags, ppo);
+  int stdlib_id = -1;
+  if (options.include_stdlib) {
+    stdlib_id = sm.add_file(stdlib::kStdoslName, std::string(stdlib::stdosl_source()));
+    pp.process_buffer(stdlib_id);
+  }
+  if (input.text)
+    pp.process_buffer(sm.add_file(input.path.empty() ? "<source>" : input.path, *input.text));
+  else
+    pp.process_file(input.path);
+  int out = pp.finish();
+  t.preprocess_ms = ms_since(t0);
+
+  t0 = Clock::now();
+  lex::TokenStream ts = lex::lex_buffer(sm, diags, out);
+  parse::parse(ts, diags, *tu);
+  mark_stdlib(*tu, sm, stdlib_id);
+  t.parse_ms = ms_since(t0);
+
+  if (!diags.has_errors()) {
+    t0 = Clock::now();
+    sema::SemaOptions so;
+    so.closures = registry::closures();
+    sema::check(*tu, diags, so);
+    t.sema_ms = ms_since(t0);
+  }
+  if (timings) *timings = t;
+  return tu;
+}
+
+} // namespace lobe::frontend

@@ -1,0 +1,228 @@
+// The builtin table, grouped by family. Shorthands: I int, F float, C color, P point,
+// V vector, N normal, M matrix, S string; "generic" means float and every triple (OSL's
+// functions that work per component).
+#include "sema/builtins.h"
+
+#include "sema/types.h"
+
+#include <algorithm>
+#include <map>
+
+namespace lobe::sema {
+
+namespace {
+
+using Sig = BuiltinSig;
+
+class Builder {
+public:
+  std::vector<Sig> sigs;
+
+  Sig& add(const char* name, Type ret, std::vector<Type> params) {
+    Sig s;
+    s.name = name;
+    s.ret = ret;
+    for (auto& p : params) s.params.push_back({p, false});
+    sigs.push_back(std::move(s));
+    return sigs.back();
+  }
+  // T f(T...) for T = float, color, point, vector, normal (arity 1..3)
+  void generic(const char* name, int arity) {
+    for (Type t : kGeneric) add(name, t, std::vector<Type>(size_t(arity), t));
+  }
+  static inline const Type kGeneric[] = {t_float(), t_color(), t_point(), t_vector(), t_normal()};
+  static inline const Type kTriples[] = {t_color(), t_point(), t_vector(), t_normal()};
+};
+
+void math(Builder& b) {
+  for (const char* f :
+       {"sin",  "cos",  "tan",   "asin", "acos",  "atan",  "sinh",    "cosh",   "tanh",
+        "exp",  "exp2", "expm1", "log",  "log2",  "log10", "logb",    "sqrt",   "inversesqrt",
+        "cbrt", "fabs", "floor", "ceil", "round", "trunc", "radians", "degrees"})
+    b.generic(f, 1);
+  b.add("abs", t_int(), {t_int()});
+  b.generic("abs", 1);
+  b.add("sign", t_int(), {t_int()});
+  b.generic("sign", 1);
+  for (const char* f : {"atan2", "pow", "fmod", "mod", "min", "max", "step"}) {
+    if (std::string(f) == "min" || std::string(f) == "max" || std::string(f) == "mod")
+      b.add(f, t_int(), {t_int(), t_int()});
+    b.generic(f, 2);
+  }
+  for (Type t : Builder::kTriples) {
+    b.add("pow", t, {t, t_float()});
+    b.add("fmod", t, {t, t_float()});
+    b.add("mod", t, {t, t_float()});
+    b.add("log", t, {t, t_float()});
+    b.add("step", t, {t_float(), t});
+  }
+  b.add("log", t_float(), {t_float(), t_float()});
+  b.generic("smoothstep", 3);
+  for (Type t : Builder::kTriples) b.add("smoothstep", t, {t_float(), t_float(), t});
+  b.add("select", t_float(), {t_float(), t_float(), t_float()});
+  b.add("select", t_int(), {t_int(), t_int(), t_int()});
+  for (Type t : Builder::kTriples) {
+    b.add("select", t, {t, t, t_float()});
+    b.add("select", t, {t, t, t});
+  }
+  for (const char* f : {"isnan", "isinf", "isfinite"}) b.add(f, t_int(), {t_float()});
+  b.add("erf", t_float(), {t_float()});
+  b.add("erfc", t_float(), {t_float()});
+  for (Type t : Builder::kGeneric) {
+    Sig& s = b.add("sincos", t_void(), {t, t, t});
+    s.params[1].output = s.params[2].output = true;
+  }
+}
+
+void geometry(Builder& b) {
+  b.add("dot", t_float(), {t_vector(), t_vector()});
+  b.add("cross", t_vector(), {t_vector(), t_vector()});
+  b.add("length", t_float(), {t_vector()});
+  b.add("distance", t_float(), {t_point(), t_point()});
+  b.add("distance", t_float(), {t_point(), t_point(), t_point()});
+  b.add("normalize", t_normal(), {t_normal()});
+  b.add("normalize", t_vector(), {t_vector()});
+  for (Type t : {t_point(), t_vector(), t_normal()}) {
+    b.add("transform", t, {t_string(), t});
+    b.add("transform", t, {t_string(), t_string(), t});
+    b.add("transform", t, {t_matrix(), t});
+  }
+  b.add("transformu", t_float(), {t_string(), t_float()});
+  b.add("transformu", t_float(), {t_string(), t_string(), t_float()});
+  Sig& g1 = b.add("getmatrix", t_int(), {t_string(), t_string(), t_matrix()});
+  g1.params[2].output = true;
+  b.add("determinant", t_float(), {t_matrix()});
+  b.add("transpose", t_matrix(), {t_matrix()});
+  b.add("area", t_float(), {t_point()});
+  b.add("calculatenormal", t_normal(), {t_point()});
+  b.add("surfacearea", t_float(), {});
+  b.add("backfacing", t_int(), {});
+  b.add("raytype", t_int(), {t_string()});
+}
+
+void derivatives(Builder& b) {
+  for (const char* f : {"Dx", "Dy", "Dz"}) b.generic(f, 1);
+  b.add("filterwidth", t_float(), {t_float()});
+  b.add("filterwidth", t_vector(), {t_vector()});
+}
+
+void color(Builder& b) {
+  b.add("luminance", t_float(), {t_color()});
+  b.add("blackbody", t_color(), {t_float()});
+  b.add("wavelength_color", t_color(), {t_float()});
+  b.add("transformc", t_color(), {t_string(), t_color()});
+  b.add("transformc", t_color(), {t_string(), t_string(), t_color()});
+}
+
+// noise-like functions: float and triple results over 1-4 D domains.
+void patterns(Builder& b) {
+  const Type results[] = {t_float(), t_color(), t_vector(), t_point()};
+  for (const char* f : {"noise", "snoise", "cellnoise", "hashnoise"}) {
+    for (Type r : results) {
+      b.add(f, r, {t_float()});
+      b.add(f, r, {t_float(), t_float()});
+      b.add(f, r, {t_point()});
+      b.add(f, r, {t_point(), t_float()});
+    }
+  }
+  for (const char* f : {"pnoise", "psnoise"}) {
+    for (Type r : results) {
+      b.add(f, r, {t_float(), t_float()});
+      b.add(f, r, {t_float(), t_float(), t_float(), t_float()});
+      b.add(f, r, {t_point(), t_point()});
+      b.add(f, r, {t_point(), t_float(), t_point(), t_float()});
+    }
+  }
+  // Generic noise("perlin" | "uperlin" | "cell" | "hash" | "simplex" | "gabor" ..., ...)
+  for (const char* f : {"noise", "pnoise"}) {
+    bool periodic = std::string(f) == "pnoise";
+    for (Type r : results) {
+      if (periodic) {
+        b.add(f, r, {t_string(), t_float(), t_float()});
+        b.add(f, r, {t_string(), t_point(), t_point()});
+      } else {
+        b.add(f, r, {t_string(), t_float()});
+        b.add(f, r, {t_string(), t_float(), t_float()});
+        b.add(f, r, {t_string(), t_point()});
+        b.add(f, r, {t_string(), t_point(), t_float()});
+      }
+    }
+  }
+  b.add("hash", t_int(), {t_int()});
+  b.add("hash", t_int(), {t_float()});
+  b.add("hash", t_int(), {t_float(), t_float()});
+  b.add("hash", t_int(), {t_point()});
+  b.add("hash", t_int(), {t_point(), t_float()});
+  b.add("hash", t_int(), {t_string()});
+}
+
+void strings(Builder& b) {
+  b.add("printf", t_void(), {t_string()}).extra = Sig::Extra::Any;
+  b.add("format", t_string(), {t_string()}).extra = Sig::Extra::Any;
+  b.add("error", t_void(), {t_string()}).extra = Sig::Extra::Any;
+  b.add("warning", t_void(), {t_string()}).extra = Sig::Extra::Any;
+  b.add("concat", t_string(), {t_string()}).extra = Sig::Extra::Any;
+  b.add("strlen", t_int(), {t_string()});
+  b.add("startswith", t_int(), {t_string(), t_string()});
+  b.add("endswith", t_int(), {t_string(), t_string()});
+  b.add("stoi", t_int(), {t_string()});
+  b.add("stof", t_float(), {t_string()});
+  b.add("substr", t_string(), {t_string(), t_int(), t_int()});
+  b.add("substr", t_string(), {t_string(), t_int()});
+  b.add("getchar", t_int(), {t_string(), t_int()});
+  b.add("regex_search", t_int(), {t_string(), t_string()});
+  b.add("regex_match", t_int(), {t_string(), t_string()});
+}
+
+void misc(Builder& b) {
+  b.add("exit", t_void(), {});
+  b.add("arraylength", t_int(), {t_float()}).array_param = true;
+  b.add("isconnected", t_int(), {t_float()}).any_param = true;
+  b.add("isconstant", t_int(), {t_float()}).any_param = true;
+  // texture(filename, s, t, "keyword", value, ...): float or color.
+  b.add("texture", t_float(), {t_string(), t_float(), t_float()}).extra = Sig::Extra::Keywords;
+  b.add("texture", t_color(), {t_string(), t_float(), t_float()}).extra = Sig::Extra::Keywords;
+}
+
+} // namespace
+
+std::string BuiltinSig::signature() const {
+  std::string s = ast::to_string(ret) + " " + name + "(";
+  for (size_t i = 0; i < params.size(); ++i) {
+    if (i) s += ", ";
+    if (params[i].output) s += "output ";
+    s += any_param ? "any" : array_param ? "T[]" : ast::to_string(params[i].type);
+  }
+  if (extra != Extra::None) s += params.empty() ? "..." : ", ...";
+  return s + ")";
+}
+
+BuiltinTable::BuiltinTable() {
+  Builder b;
+  math(b);
+  geometry(b);
+  derivatives(b);
+  color(b);
+  patterns(b);
+  strings(b);
+  misc(b);
+  // Group by name, keeping each name's declaration order (the preference order).
+  std::stable_sort(b.sigs.begin(), b.sigs.end(),
+                   [](const Sig& x, const Sig& y) { return x.name < y.name; });
+  sigs_ = std::move(b.sigs);
+}
+
+std::span<const BuiltinSig> BuiltinTable::lookup(std::string_view name) const {
+  auto lo = std::lower_bound(sigs_.begin(), sigs_.end(), name,
+                             [](const Sig& s, std::string_view n) { return s.name < n; });
+  auto hi = lo;
+  while (hi != sigs_.end() && hi->name == name) ++hi;
+  return {lo, hi};
+}
+
+const BuiltinTable& builtins() {
+  static const BuiltinTable table;
+  return table;
+}
+
+} // namespace lobe::sema

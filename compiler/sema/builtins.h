@@ -1,0 +1,52 @@
+// The builtin function table: every standard-library function OSL provides natively (those
+// OSL writes in the language itself live in compiler/stdlib/stdosl.h instead), with all
+// overloads. Closures are not here: they come from the closure registry.
+//
+// Built once by code (builtins.cpp), read-only afterwards. Overloads of one name are listed in
+// OSL's preference order: when argument types and the expected return type still leave a tie
+// (`noise(P)` used as a statement), the first wins, which is the float-returning one.
+#pragma once
+
+#include "ast/ast.h"
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace lobe::sema {
+
+struct BuiltinParam {
+  ast::Type type;
+  bool output = false; // written by the function (sincos, getmatrix, fresnel-like)
+};
+
+struct BuiltinSig {
+  std::string name;
+  ast::Type ret;
+  std::vector<BuiltinParam> params;
+  // Extra arguments after the fixed ones: any type (printf, format, error, warning, concat
+  // takes strings), or `"name", value` keyword pairs (texture).
+  enum class Extra : uint8_t { None, Any, Keywords } extra = Extra::None;
+  bool any_param = false;   // the single parameter accepts any type (isconnected, isconstant)
+  bool array_param = false; // the single parameter accepts any array (arraylength)
+
+  std::string signature() const; // "float noise(point, float)"
+};
+
+class BuiltinTable {
+public:
+  BuiltinTable();
+  // All overloads of `name` (empty span if none).
+  std::span<const BuiltinSig> lookup(std::string_view name) const;
+  size_t size() const { return sigs_.size(); }
+  const std::vector<BuiltinSig>& all() const { return sigs_; }
+
+private:
+  std::vector<BuiltinSig> sigs_; // grouped by name
+};
+
+// The one table (immutable after construction on first use).
+const BuiltinTable& builtins();
+
+} // namespace lobe::sema

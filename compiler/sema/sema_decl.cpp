@@ -1,0 +1,332 @@
+// Sema: scopes, globals, and declarations (structs, functions, shaders, variables), plus the
+// whole-file checks (recursion).
+#include "sema/sema_impl.h"
+
+#include <functional>
+#include <set>
+
+namespace lobe::sema {
+
+bool check(ast::TranslationUnit& tu, diag::DiagnosticEngine& diags, const SemaOptions& options) {
+  return Sema(tu, diags, options).run();
+}
+
+bool Sema::run() {
+  int errors_before = diags_.error_count();
+  push_scope();
+  for (auto& d : tu_.decls) {
+    if (diags_.stopped()) break;
+    decl(d.get());
+  }
+  resolve_prototypes();
+  check_recursion();
+  pop_scope();
+  return diags_.error_count() == errors_before;
+}
+
+// ---- scopes -----------------------------------------------------------------------------------
+
+void Sema::declare_var(ast::VarDecl* v) {
+  if (v->name.empty()) return; // unnamed prototype parameter
+  auto& vars = scopes_.back().vars;
+  auto it = vars.find(v->name);
+  if (it != vars.end()) {
+    error(DiagId::err_redefinition, v->name_range, {v->name});
+    error(DiagId::note_previous_decl, it->second->name_range);
+    return;
+  }
+  vars[v->name] = v;
+}
+
+namespace {
+bool same_params(const ast::FunctionDecl* a, const ast::FunctionDecl* b) {
+  if (a->params.size() != b->params.size()) return false;
+  for (size_t i = 0; i < a->params.size(); ++i)
+    if (!(a->params[i]->type == b->params[i]->type)) return false;
+  return true;
+}
+} // namespace
+
+// Functions overload by parameter types; a definition supersedes an earlier prototype.
+void Sema::declare_function(ast::FunctionDecl* f) {
+  auto& set = scopes_.back().funcs[f->name];
+  for (auto& existing : set) {
+    if (!same_params(existing, f)) continue;
+    if (existing->body && f->body) {
+      error(DiagId::err_redefinition, f->name_range, {f->name});
+      error(DiagId::note_previous_decl, existing->name_range);
+      return;
+    }
+    if (f->body) {
+      defined_by_[existing] = f;
+      existing = f;
+    }
+    return;
+  }
+  set.push_back(f);
+}
+
+ast::VarDecl* Sema::lookup_var(const std::string& name) {
+  for (auto s = scopes_.rbegin(); s != scopes_.rend(); ++s) {
+    auto it = s->vars.find(name);
+    if (it != s->vars.end()) return it->second;
+  }
+  return global(name);
+}
+
+std::vector<ast::FunctionDecl*> Sema::lookup_functions(const std::string& name) {
+  std::vector<ast::FunctionDecl*> out;
+  for (auto s = scopes_.rbegin(); s != scopes_.rend(); ++s) {
+    auto it = s->funcs.find(name);
+    if (it == s->funcs.end()) continue;
+    for (auto* f : it->second) {
+      bool hidden = false; // an inner overload with the same parameters hides an outer one
+      for (auto* o : out) hidden |= same_params(o, f);
+      if (!hidden) out.push_back(f);
+    }
+  }
+  return out;
+}
+
+namespace {
+// The shading globals shaders may read: name and type.
+struct GlobalInfo {
+  const char* name;
+  ast::BaseType type;
+};
+const GlobalInfo kGlobals[] = {
+    {"P", ast::BaseType::Point},     {"I", ast::BaseType::Vector},
+    {"N", ast::BaseType::Normal},    {"Ng", ast::BaseType::Normal},
+    {"u", ast::BaseType::Float},     {"v", ast::BaseType::Float},
+    {"dPdu", ast::BaseType::Vector}, {"dPdv", ast::BaseType::Vector},
+    {"dPdx", ast::BaseType::Vector}, {"dPdy", ast::BaseType::Vector},
+    {"dPdz", ast::BaseType::Vector}, {"time", ast::BaseType::Float},
+    {"dtime", ast::BaseType::Float}, {"dPdtime", ast::BaseType::Vector},
+    {"Ps", ast::BaseType::Point},    {"Ci", ast::BaseType::Closure},
+};
+} // namespace
+
+// Globals are declared on first use, so the translation unit lists only those it reads.
+ast::VarDecl* Sema::global(const std::string& name) {
+  auto it = globals_.find(name);
+  if (it != globals_.end()) return it->second;
+  for (const auto& g : kGlobals) {
+    if (name != g.name) continue;
+    auto v = std::make_unique<ast::VarDecl>();
+    v->name = name;
+    v->type = ast::Type(g.type);
+    v->storage = ast::Storage::Global;
+    v->writable = name == "P" || name == "I" || name == "N" || name == "Ci";
+    ast::VarDecl* raw = v.get();
+    tu_.globals.push_back(std::move(v));
+    globals_[name] = raw;
+    return raw;
+  }
+  return nullptr;
+}
+
+const ast::StructDecl* Sema::find_struct(const std::string& name) const {
+  auto it = structs_.find(name);
+  return it == structs_.end() ? nullptr : it->second;
+}
+
+// ---- declarations
+// --------------------------------------------------------------------------------
+
+void Sema::decl(ast::Decl* d) {
+  switch (d->kind) {
+  case ast::DeclKind::Struct:
+    struct_decl(static_cast<ast::StructDecl*>(d));
+    break;
+  case ast::DeclKind::Function:
+    function_decl(static_cast<ast::FunctionDecl*>(d));
+    break;
+  case ast::DeclKind::Shader:
+    shader_decl(static_cast<ast::ShaderDecl*>(d));
+    break;
+  case ast::DeclKind::Var:
+    var_decl(static_cast<ast::VarDecl*>(d));
+    break;
+  }
+}
+
+void Sema::struct_decl(ast::StructDecl* s) {
+  if (auto* prev = find_struct(s->name); prev && prev != s) {
+    error(DiagId::err_redefinition, s->name_range, {s->name});
+    error(DiagId::note_previous_decl, prev->name_range);
+  }
+  structs_[s->name] = s;
+  std::set<std::string> seen;
+  for (auto& f : s->fields) {
+    if (f->type.base == ast::BaseType::Void)
+      error(DiagId::err_void_variable, f->name_range, {f->name});
+    if (!seen.insert(f->name).second) error(DiagId::err_redefinition, f->name_range, {f->name});
+  }
+}
+
+void Sema::function_decl(ast::FunctionDecl* f) {
+  for (auto& p : f->params) {
+    p->writable = p->is_output;
+    if (p->type.base == ast::BaseType::Void)
+      error(DiagId::err_void_variable, p->name_range, {p->name});
+  }
+  if (f->name.rfind("__operator__", 0) == 0) {
+    bool has_struct = false;
+    for (auto& p : f->params) has_struct |= p->type.base == ast::BaseType::Struct;
+    if (!has_struct) error(DiagId::err_operator_not_struct, f->name_range, {f->name});
+  }
+  metadata(f->metadata);
+  declare_function(f); // before the body: a recursive call then resolves, and is reported
+  if (!f->body) return;
+  functions_.push_back(f);
+  int loops = loop_depth_;
+  loop_depth_ = 0;
+  push_scope();
+  for (auto& p : f->params) declare_var(p.get());
+  compound(f->body.get(), false);
+  pop_scope();
+  loop_depth_ = loops;
+  functions_.pop_back();
+  if (!f->return_type.is_void() && !f->return_type.is_error() && !has_return_value(f->body.get()))
+    error(DiagId::err_missing_return, f->name_range, {f->name});
+}
+
+void Sema::shader_decl(ast::ShaderDecl* s) {
+  if (shader_) {
+    error(DiagId::err_shader_redefinition, s->name_range, {shader_->name});
+    return;
+  }
+  shader_ = s;
+  metadata(s->metadata);
+  push_scope();
+  for (auto& p : s->params) {
+    var_decl(p.get()); // a default may use globals and earlier parameters
+    metadata(p->metadata);
+  }
+  if (s->body) compound(s->body.get(), true);
+  pop_scope();
+}
+
+// Variable (local or shader parameter): type, initialiser converted to the type, declaration.
+void Sema::var_decl(ast::VarDecl* v) {
+  if (v->type.base == ast::BaseType::Void) {
+    error(DiagId::err_void_variable, v->name_range, {v->name});
+    v->type = t_error();
+  }
+  if (v->init) {
+    if (v->init->kind == ast::ExprKind::InitList) {
+      init_list(v->init, v->type);
+      if (v->type.arraylen < 0 && v->init->type.is_array())
+        v->type.arraylen = v->init->type.arraylen;
+    } else {
+      expr(v->init, &v->type);
+      convert(v->init, v->type);
+    }
+  }
+  if (v->type.arraylen < 0 && v->storage == ast::Storage::Local) {
+    error(DiagId::err_array_size, v->name_range);
+    v->type.arraylen = 1;
+  }
+  declare_var(v);
+}
+
+namespace {
+bool constant_expr(const ast::Expr* e) {
+  switch (e->kind) {
+  case ast::ExprKind::IntLit:
+  case ast::ExprKind::FloatLit:
+  case ast::ExprKind::StringLit:
+    return true;
+  case ast::ExprKind::Unary:
+    return constant_expr(static_cast<const ast::UnaryExpr*>(e)->operand.get());
+  case ast::ExprKind::Cast:
+    return constant_expr(static_cast<const ast::CastExpr*>(e)->operand.get());
+  case ast::ExprKind::InitList:
+    for (auto& x : static_cast<const ast::InitListExpr*>(e)->elems)
+      if (!constant_expr(x.get())) return false;
+    return true;
+  case ast::ExprKind::Construct:
+    for (auto& x : static_cast<const ast::ConstructExpr*>(e)->args)
+      if (!constant_expr(x.get())) return false;
+    return true;
+  default:
+    return false;
+  }
+}
+} // namespace
+
+// Metadata values must be constants of the declared type.
+void Sema::metadata(ast::Metadata& md) {
+  for (auto& m : md) {
+    if (!m.value) continue;
+    if (!constant_expr(m.value.get())) {
+      error(DiagId::err_metadata_not_const, m.value->range, {m.name});
+      continue;
+    }
+    if (m.value->kind == ast::ExprKind::InitList) {
+      init_list(m.value, m.type);
+      if (m.type.arraylen < 0 && m.value->type.is_array()) m.type.arraylen = m.value->type.arraylen;
+    } else {
+      expr(m.value, &m.type);
+      convert(m.value, m.type);
+    }
+  }
+}
+
+// True if the statement contains a `return` (nested function definitions excluded); a
+// `return;` without a value in a non-void function is reported where it is.
+bool Sema::has_return_value(const ast::Stmt* s) const {
+  if (!s) return false;
+  switch (s->kind) {
+  case ast::StmtKind::Return:
+    return true;
+  case ast::StmtKind::Compound:
+    for (auto& c : static_cast<const ast::CompoundStmt*>(s)->stmts)
+      if (has_return_value(c.get())) return true;
+    return false;
+  case ast::StmtKind::If: {
+    auto* i = static_cast<const ast::IfStmt*>(s);
+    return has_return_value(i->then_stmt.get()) || has_return_value(i->else_stmt.get());
+  }
+  case ast::StmtKind::While:
+    return has_return_value(static_cast<const ast::WhileStmt*>(s)->body.get());
+  case ast::StmtKind::DoWhile:
+    return has_return_value(static_cast<const ast::DoWhileStmt*>(s)->body.get());
+  case ast::StmtKind::For:
+    return has_return_value(static_cast<const ast::ForStmt*>(s)->body.get());
+  default:
+    return false;
+  }
+}
+
+// Calls resolved to a prototype that a later definition supplied go to the definition.
+void Sema::resolve_prototypes() {
+  auto final_decl = [&](ast::FunctionDecl* f) {
+    for (int guard = 0; guard < 100 && defined_by_.count(f); ++guard) f = defined_by_[f];
+    return f;
+  };
+  for (auto* c : user_calls_) c->callee.function = final_decl(c->callee.function);
+  for (auto& e : edges_) e.callee = final_decl(e.callee);
+}
+
+// No recursion: report every call that lies on a cycle of the call graph.
+void Sema::check_recursion() {
+  std::unordered_map<ast::FunctionDecl*, std::vector<ast::FunctionDecl*>> graph;
+  for (auto& e : edges_) graph[e.caller].push_back(e.callee);
+  auto reaches = [&](ast::FunctionDecl* from, ast::FunctionDecl* to) {
+    std::set<ast::FunctionDecl*> seen;
+    std::vector<ast::FunctionDecl*> work{from};
+    while (!work.empty()) {
+      auto* f = work.back();
+      work.pop_back();
+      if (f == to) return true;
+      if (!seen.insert(f).second) continue;
+      for (auto* g : graph[f]) work.push_back(g);
+    }
+    return false;
+  };
+  for (auto& e : edges_)
+    if (reaches(e.callee, e.caller)) error(DiagId::err_recursion, e.where, {e.callee->name});
+}
+
+} // namespace lobe::sema

@@ -1,0 +1,581 @@
+// Sema: expressions other than calls: names, operators (with the struct operator overloads and
+// the closure rules), assignment, subscripts, members, casts, constructors, initialiser lists.
+#include "sema/sema_impl.h"
+
+namespace lobe::sema {
+
+using ast::BaseType;
+using ast::Type;
+
+namespace {
+std::string tname(const Type& t) { return ast::to_string(t); }
+} // namespace
+
+void Sema::expr(ExprPtr& e, const Type* expected) {
+  using K = ast::ExprKind;
+  switch (e->kind) {
+  case K::IntLit:
+    e->type = t_int();
+    break;
+  case K::FloatLit:
+    e->type = t_float();
+    break;
+  case K::StringLit:
+    e->type = t_string();
+    break;
+  case K::Ident:
+    ident(static_cast<ast::IdentExpr*>(e.get()));
+    break;
+  case K::Unary:
+    unary(static_cast<ast::UnaryExpr*>(e.get()));
+    break;
+  case K::Binary:
+    binary(static_cast<ast::BinaryExpr*>(e.get()));
+    break;
+  case K::Assign:
+    assign(static_cast<ast::AssignExpr*>(e.get()));
+    break;
+  case K::IncDec:
+    incdec(static_cast<ast::IncDecExpr*>(e.get()));
+    break;
+  case K::Ternary:
+    ternary(static_cast<ast::TernaryExpr*>(e.get()), expected);
+    break;
+  case K::Comma: {
+    auto* c = static_cast<ast::CommaExpr*>(e.get());
+    for (auto& x : c->exprs) expr(x);
+    c->type = c->exprs.back()->type;
+    break;
+  }
+  case K::Call:
+    call(static_cast<ast::CallExpr*>(e.get()), expected);
+    break;
+  case K::Construct:
+    construct(e);
+    break;
+  case K::Cast:
+    cast(static_cast<ast::CastExpr*>(e.get()));
+    break;
+  case K::Index:
+    index(e);
+    break;
+  case K::Member:
+    member(static_cast<ast::MemberExpr*>(e.get()));
+    break;
+  case K::InitList:
+    if (expected && (expected->is_array() || expected->is_struct())) {
+      init_list(e, *expected);
+    } else {
+      error(DiagId::err_init_list_context, e->range);
+      e->type = t_error();
+    }
+    break;
+  }
+}
+
+bool Sema::is_zero_literal(const ast::Expr* e) const {
+  if (auto* i = ast::as<ast::IntLit>(e)) return i->value == 0;
+  if (auto* f = ast::as<ast::FloatLit>(e)) return f->value == 0.0f;
+  return false;
+}
+
+void Sema::convert(ExprPtr& e, const Type& to) {
+  if (e->type.is_error() || to.is_error()) return;
+  if (conversion_cost(e->type, to, is_zero_literal(e.get())) == kNoConversion) {
+    bool arrays = e->type.is_array() && to.is_array() && e->type.base == to.base;
+    error(arrays ? DiagId::err_array_assign_size : DiagId::err_cannot_assign, e->range,
+          {tname(e->type), tname(to)});
+    return;
+  }
+  coerce(e, to);
+}
+
+void Sema::coerce(ExprPtr& e, const Type& to) {
+  if (e->type == to || e->type.is_error() || to.is_error() || to.is_unsized_array()) return;
+  auto c = std::make_unique<ast::CastExpr>();
+  c->range = e->range;
+  c->target = to;
+  c->type = to;
+  c->implicit = true;
+  c->operand = std::move(e);
+  e = std::move(c);
+}
+
+void Sema::ident(ast::IdentExpr* e) {
+  ast::VarDecl* v = lookup_var(e->name);
+  if (!v) {
+    error(DiagId::err_undeclared, e->range, {e->name});
+    e->type = t_error();
+    return;
+  }
+  e->decl = v;
+  e->type = v->type;
+  e->lvalue = true;
+}
+
+// ---- operators ----------------------------------------------------------------------------------
+
+// A user function __operator__<name>__ taking the operands (struct operators).
+bool Sema::operator_overload(ast::Expr* e, const char* opname, std::vector<ExprPtr*> operands,
+                             ast::FunctionDecl*& out) {
+  std::string fname = std::string("__operator__") + opname + "__";
+  ast::FunctionDecl* best = nullptr;
+  int best_cost = 1 << 30;
+  for (auto* f : lookup_functions(fname)) {
+    if (f->params.size() != operands.size()) continue;
+    int cost = 0;
+    for (size_t i = 0; i < operands.size() && cost >= 0; ++i) {
+      int c = conversion_cost((*operands[i])->type, f->params[i]->type);
+      cost = c == kNoConversion ? -1 : cost + c;
+    }
+    if (cost >= 0 && cost < best_cost) {
+      best = f;
+      best_cost = cost;
+    }
+  }
+  if (!best) return false;
+  for (size_t i = 0; i < operands.size(); ++i) coerce(*operands[i], best->params[i]->type);
+  out = best;
+  e->type = best->return_type;
+  if (!functions_.empty()) edges_.push_back({functions_.back(), best, e->range});
+  return true;
+}
+
+void Sema::unary(ast::UnaryExpr* e) {
+  expr(e->operand);
+  const Type& t = e->operand->type;
+  e->type = t_error();
+  if (t.is_error()) return;
+  static const char* const kNames[] = {"neg", "", "not", "compl"};
+  static const char* const kOps[] = {"-", "+", "!", "~"};
+  if (t.is_struct()) {
+    if (!operator_overload(e, kNames[int(e->op)], {&e->operand}, e->overload))
+      error(DiagId::err_bad_unary, e->range, {kOps[int(e->op)], tname(t)});
+    return;
+  }
+  switch (e->op) {
+  case ast::UnaryOp::Neg:
+  case ast::UnaryOp::Plus:
+    if (t.is_scalar_or_triple() || t.is_matrix() || t.is_closure()) e->type = t;
+    break;
+  case ast::UnaryOp::Not:
+    if (t.is_numeric()) e->type = t_int();
+    break;
+  case ast::UnaryOp::Compl:
+    if (t.is_int()) e->type = t_int();
+    break;
+  }
+  if (e->type.is_error()) error(DiagId::err_bad_unary, e->range, {kOps[int(e->op)], tname(t)});
+}
+
+// closure + closure, closure * (float | color), (float | color) * closure.
+bool Sema::closure_binary(ast::BinaryExpr* e) {
+  const Type &l = e->lhs->type, &r = e->rhs->type;
+  if (e->op == ast::BinaryOp::Add && l.is_closure() && r.is_closure()) {
+    e->type = t_closure();
+    return true;
+  }
+  if (e->op != ast::BinaryOp::Mul) return false;
+  ExprPtr* weight = l.is_closure() ? &e->rhs : &e->lhs;
+  const Type& other = l.is_closure() ? l : r;
+  if (!other.is_closure()) return false;
+  const Type& w = (*weight)->type;
+  if (w.is_int())
+    coerce(*weight, t_float());
+  else if (!w.is_float() && !(w.is_triple() && w.base == BaseType::Color))
+    return false;
+  e->type = t_closure();
+  return true;
+}
+
+void Sema::binary(ast::BinaryExpr* e) {
+  expr(e->lhs);
+  expr(e->rhs);
+  const Type l = e->lhs->type, r = e->rhs->type;
+  e->type = t_error();
+  if (l.is_error() || r.is_error()) return;
+  using Op = ast::BinaryOp;
+  auto fail = [&] {
+    error(DiagId::err_bad_binary, e->range, {ast::to_string(e->op), tname(l), tname(r)});
+  };
+  if (l.is_struct() || r.is_struct()) {
+    if (!operator_overload(e, ast::operator_name(e->op), {&e->lhs, &e->rhs}, e->overload)) fail();
+    return;
+  }
+  if (l.is_closure() || r.is_closure()) {
+    if (!closure_binary(e)) fail();
+    return;
+  }
+  switch (e->op) {
+  case Op::LogicalAnd:
+  case Op::LogicalOr:
+    if (l.is_numeric() && r.is_numeric())
+      e->type = t_int();
+    else
+      fail();
+    return;
+  case Op::BitAnd:
+  case Op::BitOr:
+  case Op::BitXor:
+  case Op::Shl:
+  case Op::Shr:
+    if (l.is_int() && r.is_int())
+      e->type = t_int();
+    else
+      fail();
+    return;
+  default:
+    break;
+  }
+  auto ct = common_type(l, r);
+  bool ok = ct.has_value();
+  if (ok) {
+    switch (e->op) {
+    case Op::Add:
+    case Op::Sub:
+      ok = !ct->is_string() && !(ct->is_matrix() && !(l.is_matrix() && r.is_matrix()));
+      break;
+    case Op::Mul:
+    case Op::Div:
+      ok = !ct->is_string();
+      break;
+    case Op::Mod:
+      ok = ct->is_numeric() || ct->is_triple();
+      break;
+    case Op::Eq:
+    case Op::Ne:
+      break;
+    default:
+      ok = ct->is_numeric();
+      break; // < <= > >= : numbers only (not triples)
+    }
+  }
+  if (!ok) {
+    fail();
+    return;
+  }
+  // point - point is a vector (the difference of two positions).
+  if (e->op == Op::Sub && l.base == BaseType::Point && r.base == BaseType::Point) ct = t_vector();
+  coerce(e->lhs, *ct);
+  coerce(e->rhs, *ct);
+  bool comparison = e->op >= Op::Lt && e->op <= Op::Ne;
+  e->type = comparison ? t_int() : *ct;
+}
+
+// The variable an lvalue expression designates (through subscripts and members).
+ast::VarDecl* Sema::root_var(ast::Expr* e) const {
+  while (e) {
+    if (auto* i = ast::as<ast::IdentExpr>(e)) return i->decl;
+    if (auto* x = ast::as<ast::IndexExpr>(e))
+      e = x->base.get();
+    else if (auto* m = ast::as<ast::MemberExpr>(e))
+      e = m->base.get();
+    else
+      return nullptr;
+  }
+  return nullptr;
+}
+
+// Function parameters are read-only unless `output`; globals depend on the shader type.
+bool Sema::check_writable(ast::Expr* target, SourceRange where) {
+  ast::VarDecl* v = root_var(target);
+  if (!v) return true;
+  if (v->storage == ast::Storage::FuncParam && !v->is_output) {
+    error(DiagId::err_write_readonly_param, where, {v->name});
+    return false;
+  }
+  if (v->storage == ast::Storage::Global) {
+    bool ok = v->writable;
+    if (ok && shader_) {
+      auto st = shader_->shader_type;
+      if (st == ast::ShaderType::Displacement) ok = v->name == "P" || v->name == "N";
+      if (st == ast::ShaderType::Volume) ok = v->name == "Ci";
+    }
+    if (!ok) {
+      std::string kind =
+          shader_ ? std::string(ast::to_string(shader_->shader_type)) + " shader" : "shader";
+      error(DiagId::err_write_readonly_global, where, {v->name, kind});
+      return false;
+    }
+  }
+  return true;
+}
+
+void Sema::assign(ast::AssignExpr* e) {
+  expr(e->lhs);
+  const Type lt = e->lhs->type;
+  e->type = lt;
+  if (lt.is_error()) {
+    if (e->rhs->kind != ast::ExprKind::InitList) expr(e->rhs);
+    return;
+  }
+  if (!e->lhs->lvalue)
+    error(DiagId::err_not_assignable, e->lhs->range);
+  else
+    check_writable(e->lhs.get(), e->lhs->range);
+  if (!e->compound) {
+    if (e->rhs->kind == ast::ExprKind::InitList) {
+      init_list(e->rhs, lt);
+    } else {
+      expr(e->rhs, &lt);
+      convert(e->rhs, lt);
+    }
+    return;
+  }
+  expr(e->rhs);
+  const Type rt = e->rhs->type;
+  if (rt.is_error()) return;
+  using Op = ast::BinaryOp;
+  auto fail = [&] {
+    error(DiagId::err_bad_binary, e->range,
+          {std::string(ast::to_string(e->op)) + "=", tname(lt), tname(rt)});
+  };
+  if (lt.is_closure()) {
+    if (e->op == Op::Add && rt.is_closure()) return;
+    if (e->op == Op::Mul && (rt.is_numeric() || rt.base == BaseType::Color) && !rt.is_array()) {
+      if (rt.is_int()) coerce(e->rhs, t_float());
+      return;
+    }
+    fail();
+    return;
+  }
+  bool ok;
+  switch (e->op) {
+  case Op::Add:
+  case Op::Sub:
+  case Op::Mul:
+  case Op::Div:
+    ok = lt.is_scalar_or_triple() || lt.is_matrix();
+    break;
+  case Op::Mod:
+    ok = lt.is_scalar_or_triple();
+    break;
+  default:
+    ok = lt.is_int();
+    break; // bit operations and shifts
+  }
+  if (!ok) {
+    fail();
+    return;
+  }
+  convert(e->rhs, lt);
+}
+
+void Sema::incdec(ast::IncDecExpr* e) {
+  expr(e->operand);
+  e->type = e->operand->type;
+  if (e->type.is_error()) return;
+  if (!e->type.is_numeric()) {
+    error(DiagId::err_bad_unary, e->range, {e->increment ? "++" : "--", tname(e->type)});
+    return;
+  }
+  if (!e->operand->lvalue)
+    error(DiagId::err_not_assignable, e->operand->range);
+  else
+    check_writable(e->operand.get(), e->operand->range);
+}
+
+void Sema::ternary(ast::TernaryExpr* e, const Type* expected) {
+  condition(e->cond);
+  expr(e->then_expr, expected);
+  expr(e->else_expr, expected);
+  const Type a = e->then_expr->type, b = e->else_expr->type;
+  e->type = t_error();
+  if (a.is_error() || b.is_error()) return;
+  Type result;
+  if (a == b)
+    result = a;
+  else if (a.is_closure() && is_zero_literal(e->else_expr.get()))
+    result = a;
+  else if (b.is_closure() && is_zero_literal(e->then_expr.get()))
+    result = b;
+  else if (auto ct = common_type(a, b))
+    result = *ct;
+  else {
+    error(DiagId::err_bad_binary, e->range, {"?:", tname(a), tname(b)});
+    return;
+  }
+  coerce(e->then_expr, result);
+  coerce(e->else_expr, result);
+  e->type = result;
+}
+
+// ---- subscripts and members
+// -----------------------------------------------------------------------
+
+// a[i], c[i], and m[i][j] (folded into one MatrixElement node).
+void Sema::index(ExprPtr& e) {
+  auto* ix = static_cast<ast::IndexExpr*>(e.get());
+  auto* inner = ast::as<ast::IndexExpr>(ix->base.get());
+  if (!inner || inner->index_kind != ast::IndexKind::Unresolved) {
+    expr(ix->base);
+    index_checked_base(ix);
+    return;
+  }
+  expr(inner->base);
+  if (!inner->base->type.is_matrix()) {
+    index_checked_base(inner);
+    index_checked_base(ix);
+    return;
+  }
+  ExprPtr m = std::move(inner->base);
+  ExprPtr row = std::move(inner->index);
+  ix->index2 = std::move(ix->index);
+  ix->index = std::move(row);
+  ix->base = std::move(m); // destroys `inner`
+  for (ExprPtr* i : {&ix->index, &ix->index2}) {
+    expr(*i);
+    if (!(*i)->type.is_int() && !(*i)->type.is_error())
+      error(DiagId::err_index_not_int, (*i)->range, {tname((*i)->type)});
+  }
+  ix->index_kind = ast::IndexKind::MatrixElement;
+  ix->type = t_float();
+  ix->lvalue = ix->base->lvalue;
+}
+
+void Sema::index_checked_base(ast::IndexExpr* ix) {
+  expr(ix->index);
+  const Type& it = ix->index->type;
+  if (!it.is_int() && !it.is_error())
+    error(DiagId::err_index_not_int, ix->index->range, {tname(it)});
+  const Type& bt = ix->base->type;
+  ix->lvalue = ix->base->lvalue;
+  ix->type = t_error();
+  if (bt.is_error()) return;
+  if (bt.is_array()) {
+    ix->index_kind = ast::IndexKind::ArrayElement;
+    ix->type = bt.element();
+  } else if (bt.is_triple()) {
+    ix->index_kind = ast::IndexKind::Component;
+    ix->type = t_float();
+  } else if (bt.is_matrix()) {
+    error(DiagId::err_expected, ix->range, {"two subscripts for a matrix element: m[row][col]"});
+  } else {
+    error(DiagId::err_not_subscriptable, ix->base->range, {tname(bt)});
+  }
+}
+
+void Sema::member(ast::MemberExpr* e) {
+  expr(e->base);
+  const Type& bt = e->base->type;
+  e->type = t_error();
+  e->lvalue = e->base->lvalue;
+  if (bt.is_error()) return;
+  if (bt.is_struct() && bt.strct) {
+    int f = bt.strct->field_index(e->name);
+    if (f >= 0) {
+      e->field = f;
+      e->type = bt.strct->fields[size_t(f)]->type;
+      return;
+    }
+  } else if (bt.is_triple()) {
+    const std::string& n = e->name;
+    e->component = (n == "x" || n == "r")   ? 0
+                   : (n == "y" || n == "g") ? 1
+                   : (n == "z" || n == "b") ? 2
+                                            : -1;
+    if (e->component >= 0) {
+      e->type = t_float();
+      return;
+    }
+  }
+  error(DiagId::err_no_member, e->name_range, {tname(bt), e->name});
+}
+
+// ---- casts, constructors, initialiser lists
+// ----------------------------------------------------------
+
+void Sema::cast(ast::CastExpr* e) {
+  expr(e->operand, &e->target); // `(color) noise(P)` picks the color-returning overload
+  const Type& from = e->operand->type;
+  const Type& to = e->target;
+  e->type = to;
+  if (from.is_error() || from == to) return;
+  bool ok = (to.is_numeric() && from.is_numeric()) ||
+            ((to.is_triple() || to.is_matrix()) && (from.is_numeric() || from.is_triple())) ||
+            (to.is_matrix() && from.is_matrix());
+  if (to.is_matrix() && from.is_triple()) ok = false;
+  if (!ok) error(DiagId::err_bad_cast, e->range, {tname(from), tname(to)});
+}
+
+// T(x) with one non-string argument is a cast; the other forms stay constructors.
+void Sema::construct(ExprPtr& e) {
+  auto* c = static_cast<ast::ConstructExpr*>(e.get());
+  const Type t = c->target;
+  if (c->args.size() == 1 && c->args[0]->kind != ast::ExprKind::StringLit) {
+    auto k = std::make_unique<ast::CastExpr>();
+    k->range = c->range;
+    k->target = t;
+    k->operand = std::move(c->args[0]);
+    e = std::move(k);
+    cast(static_cast<ast::CastExpr*>(e.get()));
+    return;
+  }
+  for (auto& a : c->args) expr(a);
+  c->type = t;
+  size_t n = c->args.size();
+  bool space = n > 0 && c->args[0]->type.is_string();
+  size_t first = space ? 1 : 0, rest = n - first;
+  bool ok = false;
+  if (t.is_triple())
+    ok = rest == 3;
+  else if (t.is_matrix())
+    ok = rest == 16 || (space && rest == 1) || (space && rest == 0);
+  if (t.is_matrix() && space && n == 2 && c->args[1]->type.is_string()) {
+    c->has_space = true; // matrix("from", "to")
+    return;
+  }
+  for (size_t i = first; i < n && ok; ++i)
+    ok = conversion_cost(c->args[i]->type, t_float()) != kNoConversion;
+  if (!ok || (t.is_matrix() && space && rest == 0)) {
+    std::string types;
+    for (size_t i = 0; i < n; ++i) types += (i ? ", " : "") + tname(c->args[i]->type);
+    error(DiagId::err_bad_constructor, c->range, {tname(t), types});
+    c->type = t.is_triple() || t.is_matrix() ? t : t_error();
+    return;
+  }
+  c->has_space = space;
+  for (size_t i = first; i < n; ++i) coerce(c->args[i], t_float());
+}
+
+// {a, b, ...} for an array (elements) or a struct (fields). Missing trailing elements or fields
+// are zero (documented in docs/language.md).
+void Sema::init_list(ExprPtr& e, const Type& target) {
+  auto* l = static_cast<ast::InitListExpr*>(e.get());
+  l->type = t_error();
+  if (target.is_error()) return;
+  std::vector<Type> slots;
+  if (target.is_array()) {
+    size_t n = target.arraylen > 0 ? size_t(target.arraylen) : l->elems.size();
+    slots.assign(n, target.element());
+  } else if (target.is_struct() && target.strct) {
+    for (auto& f : target.strct->fields) slots.push_back(f->type);
+  } else {
+    error(DiagId::err_init_list_context, l->range);
+    return;
+  }
+  if (l->elems.size() > slots.size()) {
+    error(DiagId::err_init_count, l->elems[slots.size()]->range, {tname(target)});
+    return;
+  }
+  for (size_t i = 0; i < l->elems.size(); ++i) {
+    if (l->elems[i]->kind == ast::ExprKind::InitList) {
+      init_list(l->elems[i], slots[i]);
+    } else {
+      expr(l->elems[i], &slots[i]);
+      convert(l->elems[i], slots[i]);
+    }
+  }
+  l->type = target;
+  if (target.is_unsized_array()) l->type.arraylen = int(l->elems.size());
+}
+
+bool Sema::init_list_fits(const ast::Expr* e, const Type& target) const {
+  auto* l = ast::as<ast::InitListExpr>(e);
+  if (!l) return false;
+  if (target.is_array()) return target.arraylen < 0 || l->elems.size() <= size_t(target.arraylen);
+  if (target.is_struct() && target.strct) return l->elems.size() <= target.strct->fields.size();
+  return false;
+}
+
+} // namespace lobe::sema

@@ -1,0 +1,119 @@
+// The type checker's private class, shared by sema_decl.cpp, sema_stmt.cpp, sema_expr.cpp and
+// sema_call.cpp.
+#pragma once
+
+#include "sema/builtins.h"
+#include "sema/sema.h"
+#include "sema/types.h"
+
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace lobe::sema {
+
+using ast::ExprPtr;
+using diag::DiagId;
+using diag::SourceRange;
+
+class Sema {
+public:
+  Sema(ast::TranslationUnit& tu, diag::DiagnosticEngine& d, const SemaOptions& o)
+      : tu_(tu), diags_(d), opts_(o) {}
+  bool run();
+
+private:
+  struct Scope {
+    std::unordered_map<std::string, ast::VarDecl*> vars;
+    std::unordered_map<std::string, std::vector<ast::FunctionDecl*>> funcs;
+  };
+  struct CallEdge {
+    ast::FunctionDecl* caller;
+    ast::FunctionDecl* callee;
+    SourceRange where;
+  };
+  // A candidate during overload resolution: a user function or a builtin signature.
+  struct Candidate {
+    ast::FunctionDecl* fn = nullptr;
+    const BuiltinSig* builtin = nullptr;
+    int cost = 0;
+    ast::Type ret() const { return fn ? fn->return_type : builtin->ret; }
+    std::string signature() const;
+  };
+
+  void error(DiagId id, SourceRange r, std::vector<std::string> args = {}) {
+    diags_.report(id, r, std::move(args));
+  }
+
+  // --- declarations and scopes (sema_decl.cpp)
+  void push_scope() { scopes_.emplace_back(); }
+  void pop_scope() { scopes_.pop_back(); }
+  void declare_var(ast::VarDecl* v);
+  void declare_function(ast::FunctionDecl* f);
+  ast::VarDecl* lookup_var(const std::string& name);
+  std::vector<ast::FunctionDecl*> lookup_functions(const std::string& name);
+  ast::VarDecl* global(const std::string& name);
+  const ast::StructDecl* find_struct(const std::string& name) const;
+  void decl(ast::Decl* d);
+  void struct_decl(ast::StructDecl* s);
+  void function_decl(ast::FunctionDecl* f);
+  void shader_decl(ast::ShaderDecl* s);
+  void var_decl(ast::VarDecl* v);
+  void metadata(ast::Metadata& md);
+  void check_recursion();
+  void resolve_prototypes();
+  bool has_return_value(const ast::Stmt* s) const;
+
+  // --- statements (sema_stmt.cpp)
+  void stmt(ast::Stmt* s);
+  void compound(ast::CompoundStmt* c, bool new_scope = true);
+  void condition(ExprPtr& e);
+
+  // --- expressions (sema_expr.cpp)
+  void expr(ExprPtr& e, const ast::Type* expected = nullptr);
+  void convert(ExprPtr& e, const ast::Type& to); // implicit conversion or error
+  void coerce(ExprPtr& e, const ast::Type& to);  // insert the cast (already valid)
+  bool is_zero_literal(const ast::Expr* e) const;
+  void init_list(ExprPtr& e, const ast::Type& target);
+  bool init_list_fits(const ast::Expr* e, const ast::Type& target) const;
+  void ident(ast::IdentExpr* e);
+  void unary(ast::UnaryExpr* e);
+  void binary(ast::BinaryExpr* e);
+  bool closure_binary(ast::BinaryExpr* e);
+  bool operator_overload(ast::Expr* e, const char* opname, std::vector<ExprPtr*> operands,
+                         ast::FunctionDecl*& out);
+  void assign(ast::AssignExpr* e);
+  void incdec(ast::IncDecExpr* e);
+  void ternary(ast::TernaryExpr* e, const ast::Type* expected);
+  void index(ExprPtr& e);
+  void index_checked_base(ast::IndexExpr* ix);
+  void member(ast::MemberExpr* e);
+  void cast(ast::CastExpr* e);
+  void construct(ExprPtr& e);
+  bool check_writable(ast::Expr* target, SourceRange where);
+  ast::VarDecl* root_var(ast::Expr* e) const;
+
+  // --- calls (sema_call.cpp)
+  void call(ast::CallExpr* e, const ast::Type* expected);
+  void struct_constructor(ast::CallExpr* e, const ast::StructDecl* s);
+  bool closure_call(ast::CallExpr* e);
+  int candidate_cost(const Candidate& c, const std::vector<ExprPtr>& args) const;
+  void apply_candidate(ast::CallExpr* e, const Candidate& c);
+  void report_no_match(ast::CallExpr* e, const std::vector<Candidate>& cands, bool ambiguous);
+  std::string arg_types(const std::vector<ExprPtr>& args) const;
+
+  ast::TranslationUnit& tu_;
+  diag::DiagnosticEngine& diags_;
+  const SemaOptions& opts_;
+  std::vector<Scope> scopes_;
+  std::unordered_map<std::string, ast::VarDecl*> globals_;
+  std::unordered_map<std::string, const ast::StructDecl*> structs_;
+  std::vector<ast::FunctionDecl*> functions_; // functions being checked (innermost last)
+  ast::ShaderDecl* shader_ = nullptr;
+  int loop_depth_ = 0;
+  std::vector<CallEdge> edges_;
+  std::vector<ast::CallExpr*> user_calls_;                                // calls of user functions
+  std::unordered_map<ast::FunctionDecl*, ast::FunctionDecl*> defined_by_; // prototype -> definition
+};
+
+} // namespace lobe::sema

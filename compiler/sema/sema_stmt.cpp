@@ -1,0 +1,98 @@
+// Sema: statements.
+#include "sema/sema_impl.h"
+
+namespace lobe::sema {
+
+void Sema::compound(ast::CompoundStmt* c, bool new_scope) {
+  if (new_scope) push_scope();
+  for (auto& s : c->stmts) {
+    if (diags_.stopped()) break;
+    stmt(s.get());
+  }
+  if (new_scope) pop_scope();
+}
+
+// Conditions are int or float (non-zero is true).
+void Sema::condition(ExprPtr& e) {
+  expr(e);
+  if (!e->type.is_numeric() && !e->type.is_error())
+    error(DiagId::err_bad_condition, e->range, {ast::to_string(e->type)});
+}
+
+void Sema::stmt(ast::Stmt* s) {
+  switch (s->kind) {
+  case ast::StmtKind::Compound:
+    compound(static_cast<ast::CompoundStmt*>(s));
+    break;
+  case ast::StmtKind::Expr:
+    expr(static_cast<ast::ExprStmt*>(s)->expr);
+    break;
+  case ast::StmtKind::Decl:
+    for (auto& d : static_cast<ast::DeclStmt*>(s)->decls) decl(d.get());
+    break;
+  case ast::StmtKind::If: {
+    auto* i = static_cast<ast::IfStmt*>(s);
+    condition(i->cond);
+    stmt(i->then_stmt.get());
+    if (i->else_stmt) stmt(i->else_stmt.get());
+    break;
+  }
+  case ast::StmtKind::While: {
+    auto* w = static_cast<ast::WhileStmt*>(s);
+    condition(w->cond);
+    ++loop_depth_;
+    stmt(w->body.get());
+    --loop_depth_;
+    break;
+  }
+  case ast::StmtKind::DoWhile: {
+    auto* w = static_cast<ast::DoWhileStmt*>(s);
+    ++loop_depth_;
+    stmt(w->body.get());
+    --loop_depth_;
+    condition(w->cond);
+    break;
+  }
+  case ast::StmtKind::For: {
+    auto* f = static_cast<ast::ForStmt*>(s);
+    push_scope(); // the init declaration is scoped to the loop
+    if (f->init) stmt(f->init.get());
+    if (f->cond) condition(f->cond);
+    if (f->step) expr(f->step);
+    ++loop_depth_;
+    stmt(f->body.get());
+    --loop_depth_;
+    pop_scope();
+    break;
+  }
+  case ast::StmtKind::Break:
+  case ast::StmtKind::Continue:
+    if (loop_depth_ == 0)
+      error(DiagId::err_break_outside_loop, s->range,
+            {s->kind == ast::StmtKind::Break ? "break" : "continue"});
+    break;
+  case ast::StmtKind::Return: {
+    auto* r = static_cast<ast::ReturnStmt*>(s);
+    ast::FunctionDecl* fn = functions_.empty() ? nullptr : functions_.back();
+    r->function = fn;
+    ast::Type ret = fn ? fn->return_type : t_void();
+    std::string name = fn ? fn->name : (shader_ ? shader_->name : "shader");
+    if (r->value) {
+      if (ret.is_void()) {
+        expr(r->value);
+        error(DiagId::err_return_value_in_void, r->value->range, {name});
+      } else {
+        expr(r->value, &ret);
+        convert(r->value, ret);
+      }
+    } else if (!ret.is_void() && !ret.is_error()) {
+      error(DiagId::err_return_without_value, s->range, {name});
+    }
+    break;
+  }
+  case ast::StmtKind::Empty:
+    break;
+  }
+}
+
+} // namespace lobe::sema

@@ -1,0 +1,407 @@
+// Type checker tests, through the whole front end (so the standard header is present): types,
+// coercions, overloads (also by return type), output arguments, structs, operator overloading,
+// closures with keyword arguments against the real registry, and the error cases.
+#include "ast/ast_dump.h"
+#include "diag/source_manager.h"
+#include "frontend.h"
+#include "sema/builtins.h"
+
+#include <gtest/gtest.h>
+
+using namespace lobe;
+using diag::DiagId;
+
+namespace {
+
+struct Checked {
+  diag::DiagnosticEngine diags{200};
+  std::unique_ptr<ast::TranslationUnit> tu;
+
+  explicit Checked(const std::string& src) {
+    tu = frontend::compile_to_ast({"t.osl", src}, {}, diags);
+  }
+  std::string text() const { return diag::render_all(diags, *tu->sources); }
+  bool ok() const { return !diags.has_errors(); }
+  int count(DiagId id) const {
+    int n = 0;
+    for (auto& d : diags.diagnostics()) n += d.id == id;
+    return n;
+  }
+  // Dump (with types) of the shader body.
+  std::string body() const {
+    ast::DumpOptions o;
+    o.types = true;
+    return ast::dump(tu->shader()->body.get(), o);
+  }
+  const ast::ShaderDecl* shader() const { return tu->shader(); }
+};
+
+std::string body_of(const std::string& stmts) {
+  Checked c("shader s() { " + stmts + " }");
+  EXPECT_TRUE(c.ok()) << stmts << "\n" << c.text();
+  return c.ok() ? c.body() : "";
+}
+
+} // namespace
+
+TEST(Sema, StandardHeaderTypeChecks) {
+  Checked c("");
+  EXPECT_TRUE(c.ok()) << c.text();
+  EXPECT_EQ(c.count(DiagId::warn_no_shader), 0);
+}
+
+TEST(Sema, LiteralsAndArithmeticCoercions) {
+  EXPECT_EQ(body_of("float f = 1;"), "{ (var float f (icast float:float 1:int)) }");
+  EXPECT_EQ(body_of("color c = 0.5 * color(1, 0, 0);"),
+            "{ (var color c (*:color (icast color:color 0.5:float) (construct color:color "
+            "(icast float:float 1:int) (icast float:float 0:int) (icast float:float 0:int)))) }");
+  EXPECT_EQ(body_of("int i = 7 / 2; float g = 7 / 2.0;"),
+            "{ (var int i (/:int 7:int 2:int)) (var float g (/:float (icast float:float 7:int) "
+            "2.0:float)) }");
+  // point - point is a vector
+  EXPECT_EQ(
+      body_of("vector d = P - P;"),
+      "{ (var vector d (-:vector (icast vector:vector P:point) (icast vector:vector P:point))) }");
+  EXPECT_EQ(body_of("vector d = P - I;"),
+            "{ (var vector d (-:vector (icast vector:vector P:point) I:vector)) }");
+  EXPECT_EQ(body_of("int b = 1 < 2.5;"),
+            "{ (var int b (<:int (icast float:float 1:int) 2.5:float)) }");
+  EXPECT_EQ(body_of("matrix m = 2; m = m * 3;"),
+            "{ (var matrix m (icast matrix:matrix 2:int)) (=:matrix m:matrix (*:matrix m:matrix "
+            "(icast matrix:matrix 3:int))); }");
+}
+
+TEST(Sema, OneArgumentConstructorsAreCasts) {
+  EXPECT_EQ(
+      body_of("vector v = vector(P); color c = color(0.5); int k = int(2.7);"),
+      "{ (var vector v (cast vector:vector P:point)) (var color c (cast color:color 0.5:float)) "
+      "(var int k (cast int:int 2.7:float)) }");
+  EXPECT_EQ(
+      body_of("color h = color(\"hsv\", 0.1, 1, 1);"),
+      "{ (var color h (construct color:color \"hsv\":string 0.1:float (icast float:float 1:int) "
+      "(icast float:float 1:int))) }");
+}
+
+TEST(Sema, ComponentsMembersAndMatrixElements) {
+  EXPECT_EQ(
+      body_of(
+          "float a = P.x + P[1]; matrix m = 1; m[1][2] = a; float arr[3] = {1, 2, 3}; a = arr[2];"),
+      "{ (var float a (+:float (. x:float P:point) ([]:float P:point 1:int))) "
+      "(var matrix m (icast matrix:matrix 1:int)) (=:float ([]:float m:matrix 1:int 2:int) "
+      "a:float); "
+      "(var float[3] arr ({}:float[3] (icast float:float 1:int) (icast float:float 2:int) "
+      "(icast float:float 3:int))) (=:float a:float ([]:float arr:float[3] 2:int)); }");
+}
+
+TEST(Sema, OverloadsByArgumentsAndReturnType) {
+  std::string src =
+      "shader s() { float f = noise(P); color c = noise(P); vector v = (vector) noise(u, v);"
+      " float g = noise(u); float h = sin(1); int a = abs(-2); }";
+  Checked c(src);
+  ASSERT_TRUE(c.ok()) << c.text();
+  auto& stmts = c.shader()->body->stmts;
+  auto call_of = [&](size_t i) {
+    auto* v =
+        static_cast<ast::VarDecl*>(static_cast<ast::DeclStmt*>(stmts[i].get())->decls[0].get());
+    ast::Expr* e = v->init.get();
+    while (auto* k = ast::as<ast::CastExpr>(e)) e = k->operand.get();
+    return ast::as<ast::CallExpr>(e);
+  };
+  EXPECT_EQ(call_of(0)->callee.builtin->signature(), "float noise(point)");
+  EXPECT_EQ(call_of(1)->callee.builtin->signature(), "color noise(point)");
+  EXPECT_EQ(call_of(2)->callee.builtin->signature(), "vector noise(float, float)");
+  EXPECT_EQ(call_of(3)->callee.builtin->signature(), "float noise(float)");
+  EXPECT_EQ(call_of(4)->callee.builtin->signature(), "float sin(float)");
+  EXPECT_EQ(call_of(5)->callee.builtin->signature(), "int abs(int)");
+  EXPECT_EQ(call_of(1)->callee.kind, ast::CalleeKind::Builtin);
+}
+
+TEST(Sema, UserOverloadsAndCoercionOrder) {
+  Checked c("float f(float x) { return 1; }\n"
+            "float f(color x) { return 2; }\n"
+            "shader s() { float a = f(1); float b = f(P); float d = f(color(1)); }");
+  ASSERT_TRUE(c.ok()) << c.text();
+  auto& stmts = c.shader()->body->stmts;
+  auto callee = [&](size_t i) {
+    auto* v =
+        static_cast<ast::VarDecl*>(static_cast<ast::DeclStmt*>(stmts[i].get())->decls[0].get());
+    return ast::to_string(ast::as<ast::CallExpr>(v->init.get())->callee.function->params[0]->type);
+  };
+  EXPECT_EQ(callee(0), "float"); // int -> float beats int -> color
+  EXPECT_EQ(callee(1), "color"); // point -> color (triple to triple)
+  EXPECT_EQ(callee(2), "color");
+}
+
+TEST(Sema, NoMatchListsCandidates) {
+  Checked c("float f(float x) { return x; }\nfloat f(string s) { return 0; }\n"
+            "shader s() { f(matrix(1)); }");
+  EXPECT_EQ(c.count(DiagId::err_no_matching_call), 1);
+  EXPECT_EQ(c.count(DiagId::note_candidate), 2);
+  std::string t = c.text();
+  EXPECT_NE(t.find("t.osl:3:14: error: no matching function for call to 'f(matrix)'"),
+            std::string::npos)
+      << t;
+  EXPECT_NE(t.find("t.osl:1:7: note: candidate: float f(float)"), std::string::npos) << t;
+  EXPECT_NE(t.find("t.osl:2:7: note: candidate: float f(string)"), std::string::npos) << t;
+}
+
+TEST(Sema, AmbiguousUserCall) {
+  Checked c("float g(float a, color b) { return 0; }\nfloat g(color a, float b) { return 0; }\n"
+            "shader s() { g(1.0, 1.0); }");
+  EXPECT_EQ(c.count(DiagId::err_ambiguous_call), 1) << c.text();
+}
+
+TEST(Sema, OutputArguments) {
+  Checked ok("void set(output float x) { x = 1; }\nshader s() { float a; set(a); float k, cc; "
+             "sincos(0.5, k, cc); }");
+  EXPECT_TRUE(ok.ok()) << ok.text();
+  Checked bad("void set(float x) { x = 1; }\n" // writes a non-output param
+              "void put(output float x) { x = 2; }\n"
+              "shader s(float p = 1) { put(1.5); put(p + 1); int i; put(i); }");
+  EXPECT_EQ(bad.count(DiagId::err_write_readonly_param), 1) << bad.text();
+  EXPECT_EQ(bad.count(DiagId::err_output_arg_not_lvalue), 2) << bad.text();
+  EXPECT_EQ(bad.count(DiagId::err_no_matching_call), 1) << bad.text(); // int is not output float
+}
+
+TEST(Sema, GlobalsAndWritability) {
+  EXPECT_TRUE(
+      Checked("surface s() { P = P + N; N = normalize(N); Ci = 0; float x = u + v + time; }").ok());
+  Checked bad("surface s() { Ng = N; u = 1; }\ndisplacement d() { }");
+  EXPECT_EQ(bad.count(DiagId::err_write_readonly_global), 2) << bad.text();
+  EXPECT_EQ(bad.count(DiagId::err_shader_redefinition), 1);
+  Checked disp("displacement d() { P += N; Ci = 0; }");
+  EXPECT_EQ(disp.count(DiagId::err_write_readonly_global), 1) << disp.text();
+}
+
+TEST(Sema, ShadingFunctions) {
+  EXPECT_TRUE(Checked("surface s() { if (backfacing() || raytype(\"shadow\")) exit(); float a = "
+                      "surfacearea(); }")
+                  .ok());
+}
+
+TEST(Sema, OperatorRules) {
+  Checked c("shader s() { color a = 1, b = 2; int x = a < b; string q = \"a\" + \"b\"; "
+            "closure color c1 = 0, c2 = 0; closure color c3 = c1 * c2; c3 = c1 * vector(1); "
+            "int y = 1.5 & 2; }");
+  EXPECT_EQ(c.count(DiagId::err_bad_binary), 5) << c.text();
+}
+
+TEST(Sema, ClosureArithmeticAndMix) {
+  Checked bad("surface s() { closure color c = 0.5 * diffuse(N) - emission(); }");
+  EXPECT_EQ(bad.count(DiagId::err_bad_binary), 1) << bad.text(); // no closure subtraction
+  Checked ok("surface s() { closure color a = diffuse(N); Ci = a * 2 + color(0.5) * a; Ci *= 0.5;"
+             " Ci += -a; Ci = mix(a, transparent(), 0.25); Ci = u > 0.5 ? a : 0; }");
+  EXPECT_TRUE(ok.ok()) << ok.text();
+}
+
+TEST(Sema, ClosureKeywordArguments) {
+  Checked c(
+      "surface s() { Ci = oren_nayar_diffuse_bsdf(N, color(1), 0.5, \"energy_compensation\", 1,"
+      " \"label\", \"a\", \"label\", \"b\"); }");
+  ASSERT_TRUE(c.ok()) << c.text();
+  auto* st = static_cast<ast::ExprStmt*>(c.shader()->body->stmts[0].get());
+  auto* call = ast::as<ast::CallExpr>(static_cast<ast::AssignExpr*>(st->expr.get())->rhs.get());
+  ASSERT_NE(call, nullptr);
+  EXPECT_EQ(call->callee.kind, ast::CalleeKind::Closure);
+  EXPECT_EQ(call->num_positional, 3);
+  ASSERT_EQ(call->keywords.size(), 2u);
+  EXPECT_EQ(call->keywords[0].name, "energy_compensation");
+  EXPECT_EQ(call->keywords[1].name, "label");
+  EXPECT_EQ(ast::as<ast::StringLit>(call->keywords[1].value)->value, "b"); // the last one wins
+  Checked bad("surface s() { Ci = diffuse(N, \"nonsense\", 1); Ci = diffuse(N, \"label\", 3); Ci = "
+              "diffuse(1, 2); }");
+  EXPECT_EQ(bad.count(DiagId::err_unknown_keyword), 1) << bad.text();
+  EXPECT_EQ(bad.count(DiagId::err_keyword_type), 1) << bad.text();
+  EXPECT_EQ(bad.count(DiagId::err_no_matching_call), 1) << bad.text();
+}
+
+TEST(Sema, ClosureOverloadsFromRegistry) {
+  Checked c("surface s() { Ci = microfacet(\"ggx\", N, 0.2, 1.5, 0) + microfacet(\"ggx\", N, dPdu, "
+            "0.1, 0.3, 1.5, 0); }");
+  EXPECT_TRUE(c.ok()) << c.text();
+}
+
+TEST(Sema, StructsConstructorsAndInitLists) {
+  Checked c("struct A { float x; color c[2]; };\n"
+            "struct B { A a; int n; };\n"
+            "shader s() { A a = A(1, {color(1), 2}); B b = { a, 3 }; B b2 = {{1, {0, 0}}, 2};"
+            " b.a.c[1].r = b2.a.x; A arr[2] = { a, A(2, {0, 1}) }; float f = arr[1].c[0][2]; }");
+  EXPECT_TRUE(c.ok()) << c.text();
+  Checked bad(
+      "struct A { float x; };\nshader s() { A a = A(1, 2); A b = {1, 2}; float f = a.y; a = 1; }");
+  EXPECT_EQ(bad.count(DiagId::err_struct_ctor_args), 1) << bad.text();
+  EXPECT_EQ(bad.count(DiagId::err_init_count), 1) << bad.text();
+  EXPECT_EQ(bad.count(DiagId::err_no_member), 1) << bad.text();
+  EXPECT_EQ(bad.count(DiagId::err_cannot_assign), 1) << bad.text();
+}
+
+TEST(Sema, OperatorOverloading) {
+  Checked c("struct V2 { float x, y; };\n"
+            "V2 __operator__add__(V2 a, V2 b) { return V2(a.x + b.x, a.y + b.y); }\n"
+            "V2 __operator__mul__(V2 a, float s) { return V2(a.x * s, a.y * s); }\n"
+            "V2 __operator__neg__(V2 a) { return V2(-a.x, -a.y); }\n"
+            "int __operator__eq__(V2 a, V2 b) { return a.x == b.x && a.y == b.y; }\n"
+            "shader s() { V2 p = V2(1, 2), q = V2(3, 4); V2 r = -(p + q) * 2; int e = p == q; V2 z "
+            "= p - q; }");
+  EXPECT_EQ(c.count(DiagId::err_bad_binary), 1) << c.text(); // no __operator__sub__
+  EXPECT_EQ(c.diags.error_count(), 1) << c.text();
+}
+
+TEST(Sema, FunctionRules) {
+  Checked c("float f(float x) { if (x > 0) x = 1; }\n" // missing return + readonly write
+            "float g(float x) { return g(x); }\n"      // recursion
+            "float h(float x) { return k(x); }\n"      // undeclared function
+            "void w() { return 1; }\n"
+            "float r() { return; }\n"
+            "shader s() { break; float y = undefined_var; int z = \"s\"; }");
+  EXPECT_EQ(c.count(DiagId::err_missing_return), 1) << c.text();
+  EXPECT_EQ(c.count(DiagId::err_write_readonly_param), 1) << c.text();
+  EXPECT_EQ(c.count(DiagId::err_recursion), 1) << c.text();
+  EXPECT_EQ(c.count(DiagId::err_unknown_function), 1) << c.text();
+  EXPECT_EQ(c.count(DiagId::err_return_value_in_void), 1) << c.text();
+  EXPECT_EQ(c.count(DiagId::err_return_without_value), 1) << c.text();
+  EXPECT_EQ(c.count(DiagId::err_break_outside_loop), 1) << c.text();
+  EXPECT_EQ(c.count(DiagId::err_undeclared), 1) << c.text();
+  EXPECT_EQ(c.count(DiagId::err_cannot_assign), 1) << c.text();
+}
+
+TEST(Sema, MutualRecursionAndNestedFunctions) {
+  Checked c(
+      "float b(float x);\nfloat a(float x) { return b(x); }\nfloat b(float x) { return a(x); }\n"
+      "shader s() { float sq(float v) { return v * v; } float t = sq(2); }");
+  EXPECT_EQ(c.count(DiagId::err_recursion), 2) << c.text();
+  EXPECT_EQ(c.diags.error_count(), 2) << c.text();
+}
+
+TEST(Sema, RedefinitionHasNote) {
+  Checked c("shader s() { float a = 1;\n int a = 2; }");
+  EXPECT_EQ(c.count(DiagId::err_redefinition), 1);
+  std::string t = c.text();
+  EXPECT_NE(t.find("t.osl:2:6: error: redefinition of 'a'"), std::string::npos) << t;
+  EXPECT_NE(t.find("t.osl:1:20: note: previous definition is here"), std::string::npos) << t;
+}
+
+TEST(Sema, ScopesLoopsAndConditions) {
+  Checked c("shader s() { for (int i = 0; i < 3; ++i) { float i2 = i; } int j = i;"
+            " if (\"str\") {} while (P) {} }");
+  EXPECT_EQ(c.count(DiagId::err_undeclared), 1) << c.text();
+  EXPECT_EQ(c.count(DiagId::err_bad_condition), 2) << c.text();
+}
+
+TEST(Sema, ShaderParamsDefaultsAndMetadata) {
+  Checked c("surface s(normal Nn = N, vector T = normalize(dPdu), float k = 1 [[ float min = 0 ]],"
+            " float arr[] = {1, 2}, color tint = k) { Ci = k * diffuse(Nn); }");
+  ASSERT_TRUE(c.ok()) << c.text();
+  EXPECT_EQ(c.shader()->params[3]->type.arraylen, 2);
+  Checked bad("surface s(float k = 1 [[ float min = u ]]) {}");
+  EXPECT_EQ(bad.count(DiagId::err_metadata_not_const), 1) << bad.text();
+}
+
+TEST(Sema, BuiltinTableCoversTheStandardLibrary) {
+  const char* names[] = {"sin",
+                         "cos",
+                         "tan",
+                         "asin",
+                         "acos",
+                         "atan",
+                         "atan2",
+                         "sinh",
+                         "cosh",
+                         "tanh",
+                         "pow",
+                         "exp",
+                         "exp2",
+                         "expm1",
+                         "log",
+                         "log2",
+                         "log10",
+                         "logb",
+                         "sqrt",
+                         "inversesqrt",
+                         "cbrt",
+                         "abs",
+                         "fabs",
+                         "sign",
+                         "floor",
+                         "ceil",
+                         "round",
+                         "trunc",
+                         "fmod",
+                         "mod",
+                         "min",
+                         "max",
+                         "select",
+                         "isnan",
+                         "isinf",
+                         "isfinite",
+                         "erf",
+                         "erfc",
+                         "radians",
+                         "degrees",
+                         "step",
+                         "smoothstep",
+                         "dot",
+                         "cross",
+                         "length",
+                         "distance",
+                         "normalize",
+                         "transform",
+                         "transformu",
+                         "getmatrix",
+                         "determinant",
+                         "transpose",
+                         "luminance",
+                         "blackbody",
+                         "wavelength_color",
+                         "transformc",
+                         "noise",
+                         "snoise",
+                         "pnoise",
+                         "psnoise",
+                         "cellnoise",
+                         "hashnoise",
+                         "hash",
+                         "printf",
+                         "format",
+                         "error",
+                         "warning",
+                         "concat",
+                         "strlen",
+                         "startswith",
+                         "endswith",
+                         "stoi",
+                         "stof",
+                         "substr",
+                         "getchar",
+                         "regex_search",
+                         "regex_match",
+                         "arraylength",
+                         "exit",
+                         "isconnected",
+                         "isconstant",
+                         "Dx",
+                         "Dy",
+                         "Dz",
+                         "filterwidth",
+                         "area",
+                         "calculatenormal",
+                         "backfacing",
+                         "surfacearea",
+                         "raytype"};
+  for (const char* n : names) EXPECT_FALSE(sema::builtins().lookup(n).empty()) << n;
+  // Generic and 1-4 D noise with float and triple results.
+  EXPECT_EQ(sema::builtins().lookup("cellnoise").size(), 16u);
+}
+
+TEST(Sema, StringAndMiscBuiltins) {
+  Checked c("shader s() { string f = format(\"%d %s\", 1, \"x\"); printf(\"%g\\n\", P);"
+            " int n = strlen(f) + startswith(f, \"a\") + hash(f) + regex_match(f, \"a.*\");"
+            " float arr[4]; int len = arraylength(arr); int con = isconnected(n);"
+            " color t = texture(\"a.exr\", u, v, \"wrap\", \"periodic\"); float w = filterwidth(u);"
+            " float k = clamp(u, 0, 1); color m = mix(color(0), color(1), 0.5); float l = "
+            "linearstep(0, 1, u);"
+            " float aa = aastep(0.5, u); vector rr = reflect(I, N); float Kr, Kt; fresnel(I, N, "
+            "1.5, Kr, Kt);"
+            " float pi = M_PI; }");
+  EXPECT_TRUE(c.ok()) << c.text();
+}

@@ -1,0 +1,144 @@
+// stdosl.h: the part of Lobe's standard library written in the shading language itself, as
+// OSL's stdosl.h does. Included automatically before every shader (embedded into the compiler
+// at build time). The functions implemented natively are in compiler/sema/builtins.cpp.
+
+#ifndef STDOSL_H
+#define STDOSL_H
+
+// Constants
+#define M_PI       3.1415926535897932
+#define M_PI_2     1.5707963267948966
+#define M_PI_4     0.7853981633974483
+#define M_2_PI     0.6366197723675813
+#define M_2PI      6.2831853071795865
+#define M_4PI      12.566370614359173
+#define M_2_SQRTPI 1.1283791670955126
+#define M_E        2.7182818284590452
+#define M_LN2      0.6931471805599453
+#define M_LN10     2.3025850929940457
+#define M_LOG2E    1.4426950408889634
+#define M_LOG10E   0.4342944819032518
+#define M_SQRT2    1.4142135623730950
+#define M_SQRT1_2  0.7071067811865475
+
+// hypot
+float hypot(float a, float b) { return sqrt(a * a + b * b); }
+float hypot(float a, float b, float c) { return sqrt(a * a + b * b + c * c); }
+
+// clamp(x, lo, hi), per component for triples
+int clamp(int x, int lo, int hi) { return max(lo, min(x, hi)); }
+float clamp(float x, float lo, float hi) { return max(lo, min(x, hi)); }
+color clamp(color x, color lo, color hi) { return max(lo, min(x, hi)); }
+point clamp(point x, point lo, point hi) { return max(lo, min(x, hi)); }
+vector clamp(vector x, vector lo, vector hi) { return max(lo, min(x, hi)); }
+normal clamp(normal x, normal lo, normal hi) { return max(lo, min(x, hi)); }
+color clamp(color x, float lo, float hi) { return clamp(x, color(lo), color(hi)); }
+point clamp(point x, float lo, float hi) { return clamp(x, point(lo), point(hi)); }
+vector clamp(vector x, float lo, float hi) { return clamp(x, vector(lo), vector(hi)); }
+normal clamp(normal x, float lo, float hi) { return clamp(x, normal(lo), normal(hi)); }
+
+// mix(a, b, t) = a * (1 - t) + b * t
+float mix(float a, float b, float t) { return a * (1 - t) + b * t; }
+color mix(color a, color b, color t) { return a * (1 - t) + b * t; }
+point mix(point a, point b, point t) { return a * (1 - t) + b * t; }
+vector mix(vector a, vector b, vector t) { return a * (1 - t) + b * t; }
+normal mix(normal a, normal b, normal t) { return a * (1 - t) + b * t; }
+color mix(color a, color b, float t) { return a * (1 - t) + b * t; }
+point mix(point a, point b, float t) { return a * (1 - t) + b * t; }
+vector mix(vector a, vector b, float t) { return a * (1 - t) + b * t; }
+normal mix(normal a, normal b, float t) { return a * (1 - t) + b * t; }
+closure color mix(closure color a, closure color b, float t) { return (1 - t) * a + t * b; }
+closure color mix(closure color a, closure color b, color t) { return (1 - t) * a + t * b; }
+
+// Directions
+normal faceforward(normal N, vector I, normal Nref) { return (dot(I, Nref) > 0) ? -N : N; }
+normal faceforward(normal N, vector I) { return faceforward(N, I, Ng); }
+vector reflect(vector I, vector N) { return I - 2 * dot(N, I) * N; }
+vector refract(vector I, vector N, float eta) {
+  float IdotN = dot(I, N);
+  float k = 1 - eta * eta * (1 - IdotN * IdotN);
+  return (k < 0) ? vector(0, 0, 0) : (eta * I - (eta * IdotN + sqrt(k)) * N);
+}
+
+// Dielectric Fresnel: reflected and transmitted fractions and directions, as OSL computes them.
+void fresnel(vector I, normal N, float eta, output float Kr, output float Kt, output vector R,
+             output vector T) {
+  float sqr(float x) { return x * x; }
+  float c = dot(I, N);
+  if (c < 0) c = -c;
+  R = reflect(I, N);
+  float g = sqr(1.0 / eta) - 1 + c * c;
+  if (g >= 0) {
+    g = sqrt(g);
+    float beta = g - c;
+    float F = (c * (g + c) - 1) / (c * beta + 1);
+    F = 0.5 * (1 + sqr(F));
+    F *= sqr(beta / (g + c));
+    Kr = F;
+    Kt = (1 - Kr) * eta * eta;
+    T = refract(I, N, 1.0 / eta);
+  } else {
+    Kr = 1;
+    Kt = 0;
+    T = vector(0, 0, 0);
+  }
+}
+void fresnel(vector I, normal N, float eta, output float Kr, output float Kt) {
+  vector R, T;
+  fresnel(I, N, eta, Kr, Kt, R, T);
+}
+
+// Rotation of a point by `angle` radians about the axis through a and b (Rodrigues' formula).
+point rotate(point p, float angle, point a, point b) {
+  vector axis = normalize(b - a);
+  vector v = p - a;
+  float cosang = cos(angle), sinang = sin(angle);
+  vector r = v * cosang + cross(axis, v) * sinang + axis * dot(axis, v) * (1 - cosang);
+  return a + r;
+}
+point rotate(point p, float angle, vector axis) { return rotate(p, angle, point(0, 0, 0), point(axis)); }
+
+// Steps
+float linearstep(float edge0, float edge1, float x) {
+  float result;
+  if (edge0 != edge1) {
+    float xclamped = clamp(x, edge0, edge1);
+    result = (xclamped - edge0) / (edge1 - edge0);
+  } else {
+    result = step(edge0, x);
+  }
+  return result;
+}
+color linearstep(color edge0, color edge1, color x) {
+  return color(linearstep(edge0[0], edge1[0], x[0]), linearstep(edge0[1], edge1[1], x[1]),
+               linearstep(edge0[2], edge1[2], x[2]));
+}
+float smooth_linearstep(float edge0, float edge1, float x_, float eps_) {
+  float result;
+  if (edge0 != edge1) {
+    float rampup(float x, float r) { return 0.5 / r * x * x; }
+    float width_inv = 1.0 / (edge1 - edge0);
+    float eps = eps_ * width_inv;
+    float x = (x_ - edge0) * width_inv;
+    if (x <= -eps) result = 0;
+    else if (x >= eps && x <= 1.0 - eps) result = x;
+    else if (x >= 1.0 + eps) result = 1;
+    else if (x < eps) result = rampup(x + eps, 2.0 * eps);
+    else result = 1.0 - rampup(1.0 - x + eps, 2.0 * eps);
+  } else {
+    result = step(edge0, x_);
+  }
+  return result;
+}
+
+// Antialiased step: a filtered step over the filter width of its argument.
+float aastep(float edge, float s, float dedge, float ds) {
+  float width = fabs(dedge) + fabs(ds);
+  float halfwidth = 0.5 * width;
+  float e1 = edge - halfwidth;
+  return (s <= e1) ? 0.0 : ((s >= edge + halfwidth) ? 1.0 : (s - e1) / width);
+}
+float aastep(float edge, float s, float ds) { return aastep(edge, s, filterwidth(edge), ds); }
+float aastep(float edge, float s) { return aastep(edge, s, filterwidth(edge), filterwidth(s)); }
+
+#endif // STDOSL_H
