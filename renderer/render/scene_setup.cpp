@@ -98,7 +98,7 @@ std::string RenderScene::build_environment() {
   case scene::Environment::Kind::Sky: {
     Vec3 sun = e.sun_direction;
     float size = e.sun_size;
-    int h = std::max(res, 512);
+    int h = std::max(res, 256);
     env_ = EnvironmentLight::from_function(
         [&](const Vec3& d) { return procedural_sky(d, sun, size) * k; }, 2 * h, h, e.rotation);
     return "";

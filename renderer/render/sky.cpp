@@ -14,8 +14,8 @@ Color3 procedural_sky(const Vec3& d, const Vec3& sun_dir_in, float sun_diameter_
   float sun_r = 0.5f * sun_diameter_deg * kPi / 180.0f;
   float cos_r = std::cos(sun_r);
   if (d.y < 0) {
-    // Ground: a dim, slightly warm grey that darkens away from the horizon.
-    float k = 0.25f + 0.15f * std::exp(8.0f * d.y);
+    // Ground: a warm grey, brightest at the horizon (where it meets a lit ground plane).
+    float k = 0.3f + 0.5f * std::exp(8.0f * d.y);
     return Color3{0.38f, 0.34f, 0.30f} * k;
   }
   const Color3 zenith{0.22f, 0.42f, 0.90f}, horizon{0.80f, 0.88f, 1.00f};
