@@ -94,9 +94,11 @@ Dual unary(LayerEmitter& e, DualOps& d, const std::string& name, const Dual& x) 
     llvm::Value* r = libm(e, "cbrtf", v);
     return d.chain(x, r, [&] { return fdiv(e, one, fmul(e, e.fconst(3), fmul(e, r, r))); });
   }
-  if (name == "abs" || name == "fabs") {
+  if (name == "abs" || name == "fabs") { // fabs keeps IEEE's |-0| = +0
     llvm::Value* neg = B.CreateFCmpOLT(v, e.fconst(0));
-    return d.select(neg, d.neg(x), x);
+    Dual r = d.select(neg, d.neg(x), x);
+    r.v = intr(e, llvm::Intrinsic::fabs, v);
+    return r;
   }
   if (name == "sign") {
     llvm::Value* s =

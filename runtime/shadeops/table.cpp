@@ -83,7 +83,7 @@ const ShadeOpSymbol kTable[] = {
     {"lobe_wavelength_color", addr(lobe_wavelength_color), "vpf"},
     {"lobe_blackbody", addr(lobe_blackbody), "vpf"},
     {"lobe_luminance", addr(lobe_luminance), "fp"},
-    {"lobe_noise", addr(lobe_noise), "vpipppip"},
+    {"lobe_noise", addr(lobe_noise), "vipippip"},
     {"lobe_spline", addr(lobe_spline), "vpfpiipp"},
     {"lobe_splineinverse", addr(lobe_splineinverse), "fpfpi"},
     // libm / libc
