@@ -287,12 +287,12 @@ struct CallExpr : Expr {
   CallExpr() : Expr(ExprKind::Call) {}
 };
 
-// A type constructor: int(x), float(x), color(x), color(r,g,b), color("hsv", h, s, v),
-// point("object", x, y, z), vector(P), matrix(f), matrix(16 floats), matrix("from", "to"),
-// matrix("space", 16 floats), matrix("space", f). `has_space` is set by sema when the first
-// argument is a string (it stays args[0]); the other arguments are converted to float, except
-// the one-argument triple form `vector(P)` (operand converted to the target type, like a cast)
-// and matrix("from", "to") (two strings).
+// A type constructor with several arguments: color(r,g,b), color("hsv", h, s, v),
+// point("object", x, y, z), matrix(16 floats), matrix("from", "to"), matrix("space", 16 floats),
+// matrix("space", f). `has_space` is set by sema when the first argument is a string (it stays
+// args[0]); the other arguments are converted to float, except matrix("from", "to") (two
+// strings). A one-argument form T(x) (int(x), float(x), color(f), vector(P), matrix(f)) is
+// replaced by sema with an explicit CastExpr (implicit = false): lowering never sees it here.
 struct ConstructExpr : Expr {
   Type target; // the constructed type (as written)
   std::vector<ExprPtr> args;

@@ -142,7 +142,7 @@ Token Lexer::next() {
     if (digit(c) || (c == '.' && digit(at(pos_ + 1)))) return number();
     if (c == '"') return string_literal();
     if (Token t = punctuator(); t.kind != Tok::Eof) return t;
-    // Anything else is reported once per run of bad bytes and skipped.
+    // Anything else is reported once per run of bad bytes and becomes one Error token.
     size_t b = pos_;
     while (pos_ < text_.size() && !ident_start(text_[pos_]) &&
            !std::isspace(static_cast<unsigned char>(text_[pos_])) &&
@@ -160,6 +160,7 @@ Token Lexer::next() {
                                                 "0123456789abcdef"[u & 15];
       diags_.report(DiagId::err_invalid_char, SourceRange(loc(b), loc(b + 1)), {shown});
     }
+    return make(Tok::Error, b); // the parser stays silent about it: already reported
   }
 }
 

@@ -27,9 +27,12 @@ bool Parser::expect(Tok k, const char* what) {
   return false;
 }
 
+// Reports a syntax error and enters panic mode (silent until the next sync point). An error
+// at a token the lexer already reported is not repeated.
 void Parser::error(DiagId id, SourceRange r, std::vector<std::string> args) {
   if (panic_) return;
   panic_ = true;
+  if (peek().kind == Tok::Error || prev().kind == Tok::Error) return;
   diags_.report(id, r, std::move(args));
 }
 

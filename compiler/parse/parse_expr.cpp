@@ -162,13 +162,25 @@ ExprPtr Parser::ternary() {
 }
 
 // binary: unary (binop unary)*, grouped by precedence (left associative).
+// Each operator of a chain counts as a nesting level: `1 + 1 + ... + 1` builds a tree as deep
+// as it is long, and later stages walk it recursively.
 ExprPtr Parser::binary(int min_prec) {
   SourceLoc begin = peek().range.begin;
   ExprPtr lhs = unary();
+  int levels = 0;
+  struct Release {
+    Parser& p;
+    int& n;
+    ~Release() {
+      for (; n > 0; --n) p.leave();
+    }
+  } release{*this, levels};
   while (lhs) {
     BinInfo info = binary_info(peek().kind);
     if (info.prec < min_prec || info.prec == 0) break;
     take();
+    ++levels;
+    if (!enter()) return nullptr;
     ExprPtr rhs = binary(info.prec + 1);
     if (!rhs) return nullptr;
     auto b = node<ast::BinaryExpr>({});

@@ -14,7 +14,7 @@
 namespace lobe::parse {
 
 struct ParseOptions {
-  int max_depth = 200; // nested blocks, parentheses and unary operators
+  int max_depth = 512; // nested blocks, parentheses, unary operators, operator chains
 };
 
 // Parses a token stream, appending declarations to `tu`.

@@ -14,7 +14,7 @@ using diag::DiagId;
 
 namespace {
 constexpr long kExpansionBudget = 200000; // macro expansions per top-level token
-constexpr int kMaxArgDepth = 200;         // nested macro calls inside arguments
+constexpr int kMaxArgDepth = 64;          // nested macro calls inside arguments
 
 PPToken pop(std::vector<PPToken>& stack) {
   PPToken t = std::move(stack.back());
@@ -53,6 +53,10 @@ std::vector<PPToken> Preprocessor::expand_list(std::vector<PPToken> toks) {
 
 void Preprocessor::expand_loop(Input& in, std::vector<PPToken>& out) {
   while (!in.pending.empty()) {
+    if (expansion_budget_ < 0) { // a budget was exceeded (reported): abandon this expansion
+      in.pending.clear();
+      break;
+    }
     PPToken t = pop(in.pending);
     if (!try_expand(t, in)) out.push_back(std::move(t));
   }
@@ -98,7 +102,19 @@ bool Preprocessor::try_expand(const PPToken& t, Input& in) {
   std::vector<std::vector<PPToken>> args;
   if (m->function_like) {
     if (!next_is_lparen(in)) return false;
-    if (!collect_args(*m, t, in, args)) return true;
+    std::vector<PPToken> consumed;
+    if (!collect_args(*m, t, in, args, consumed)) {
+      // A wrong argument count keeps the call as written (the name no longer expands), so the
+      // parser sees a call rather than a hole.
+      PPToken name = t;
+      auto hide = std::make_shared<std::vector<const Macro*>>(t.hide ? *t.hide
+                                                                     : std::vector<const Macro*>{});
+      hide->push_back(m);
+      name.hide = hide;
+      for (auto it = consumed.rbegin(); it != consumed.rend(); ++it) in.pending.push_back(*it);
+      in.pending.push_back(std::move(name));
+      return true;
+    }
   }
   std::vector<PPToken> body = substitute(*m, t, args);
   for (auto it = body.rbegin(); it != body.rend(); ++it) in.pending.push_back(std::move(*it));
@@ -108,14 +124,16 @@ bool Preprocessor::try_expand(const PPToken& t, Input& in) {
 // Reads `( a, b, ... )` from the input: commas split arguments at parenthesis depth 1; the
 // extra arguments of a variadic macro are joined into __VA_ARGS__.
 bool Preprocessor::collect_args(const Macro& m, const PPToken& name, Input& in,
-                                std::vector<std::vector<PPToken>>& args) {
+                                std::vector<std::vector<PPToken>>& args,
+                                std::vector<PPToken>& consumed) {
   auto next = [&](PPToken& t) {
     if (!in.pending.empty()) {
       t = pop(in.pending);
-      return true;
+    } else {
+      if (!in.file || in.file->at_eof()) return false;
+      t = (*in.file->toks)[in.file->pos++];
     }
-    if (!in.file || in.file->at_eof()) return false;
-    t = (*in.file->toks)[in.file->pos++];
+    if (t.kind != PPKind::Newline) consumed.push_back(t);
     return true;
   };
   PPToken t;
@@ -128,6 +146,7 @@ bool Preprocessor::collect_args(const Macro& m, const PPToken& name, Input& in,
   while (true) {
     if (!next(t)) {
       diags_.report(DiagId::err_macro_unterminated_call, name.loc, {m.name});
+      consumed.clear();
       return false;
     }
     if (t.kind == PPKind::Newline) continue;
@@ -211,6 +230,7 @@ std::vector<PPToken> Preprocessor::substitute(const Macro& m, const PPToken& nam
         if (++expand_depth_ > kMaxArgDepth) {
           diags_.report(DiagId::err_macro_expansion_too_large, name.loc, {m.name});
           --expand_depth_;
+          expansion_budget_ = -2; // stop the whole expansion, without a second report
           return {};
         }
         auto e = expand_list(args[size_t(p)]);

@@ -101,7 +101,7 @@ private:
   bool try_expand(const PPToken& t, Input& in);
   bool next_is_lparen(Input& in);
   bool collect_args(const Macro& m, const PPToken& name, Input& in,
-                    std::vector<std::vector<PPToken>>& args);
+                    std::vector<std::vector<PPToken>>& args, std::vector<PPToken>& consumed);
   std::vector<PPToken> substitute(const Macro& m, const PPToken& name,
                                   const std::vector<std::vector<PPToken>>& args);
   void define_macro(std::unique_ptr<Macro> m);
