@@ -45,7 +45,7 @@ void LightSet::build(const Geometry& geo, const std::vector<scene::Light>& light
   }
   if (env_) {
     float r = geo.radius();
-    power.push_back(4 * kPi * kPi * r * r * env_->average_luminance());
+    power.push_back(kPi * kPi * r * r * env_->average_luminance());
   }
   count_ = static_cast<int>(power.size());
   // A light whose power estimate is zero keeps a small share so it is never unsampleable.

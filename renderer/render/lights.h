@@ -4,7 +4,8 @@
 //
 // One light is picked per shading point with probability proportional to an estimate of its
 // power (point: 4 pi I, spot: its cone's solid angle times I, area: pi A L, environment:
-// pi^2 R^2 L_avg * 4 for a scene of bounding radius R). pdf() returns the same
+// pi^2 R^2 L_avg, the irradiance pi L_avg through the cross-section pi R^2 of a scene of
+// bounding radius R). pdf() returns the same
 // selection-times-density that sample() reports, so a BSDF-sampled ray that hits an emitter can
 // be weighted against light sampling.
 #pragma once
