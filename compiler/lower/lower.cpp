@@ -10,6 +10,8 @@
 #include "passes/dce.h"
 #include "passes/derivs.h"
 
+#include <algorithm>
+
 namespace lobe::lower {
 
 using ir::SymKind;
@@ -26,9 +28,12 @@ ir::SourceLoc Lowerer::loc(const ast::Node* where) const {
 }
 
 void Lowerer::error(const ast::Node* where, const std::string& msg) {
-  ir::SourceLoc l = loc(where ? where : where_);
-  std::string at = l.line ? l.file + ":" + std::to_string(l.line) + ":" + std::to_string(l.column) + ": "
-                          : std::string();
+  const ast::Node* at_node = where ? where : where_;
+  diags_.push_back(LowerDiag{msg, at_node ? at_node->range : diag::SourceRange()});
+  ir::SourceLoc l = loc(at_node);
+  std::string at =
+      l.line ? l.file + ":" + std::to_string(l.line) + ":" + std::to_string(l.column) + ": "
+             : std::string();
   errors_.push_back(at + "error: " + msg);
 }
 
@@ -37,29 +42,54 @@ ir::Type Lowerer::irtype(const ast::Type& t, const ast::Node* where) {
   ir::Type r;
   r.arraylen = t.arraylen;
   switch (t.base) {
-  case B::Int: r.base = ir::BaseType::Int; break;
-  case B::Float: r.base = ir::BaseType::Float; break;
-  case B::Color: r.base = ir::BaseType::Color; break;
-  case B::Point: r.base = ir::BaseType::Point; break;
-  case B::Vector: r.base = ir::BaseType::Vector; break;
-  case B::Normal: r.base = ir::BaseType::Normal; break;
-  case B::Matrix: r.base = ir::BaseType::Matrix; break;
-  case B::String: r.base = ir::BaseType::String; break;
-  case B::Closure: r.base = ir::BaseType::Closure; break;
-  default: error(where, "internal: no IR type for this value"); break;
+  case B::Int:
+    r.base = ir::BaseType::Int;
+    break;
+  case B::Float:
+    r.base = ir::BaseType::Float;
+    break;
+  case B::Color:
+    r.base = ir::BaseType::Color;
+    break;
+  case B::Point:
+    r.base = ir::BaseType::Point;
+    break;
+  case B::Vector:
+    r.base = ir::BaseType::Vector;
+    break;
+  case B::Normal:
+    r.base = ir::BaseType::Normal;
+    break;
+  case B::Matrix:
+    r.base = ir::BaseType::Matrix;
+    break;
+  case B::String:
+    r.base = ir::BaseType::String;
+    break;
+  case B::Closure:
+    r.base = ir::BaseType::Closure;
+    break;
+  default:
+    error(where, "internal: no IR type for this value");
+    break;
   }
   return r;
 }
 
 // Flattens a (possibly array-of-) struct type into its leaves, depth first in field order.
+// In an array of n structs each leaf holds the n structs' fields one after the other: a field
+// that is itself an array of m gives an array of n*m (see LRef::slice).
 std::vector<Leaf> Lowerer::leaves(const ast::Type& t, const ast::Node* where) {
   if (t.base != ast::BaseType::Struct) return {Leaf{"", t}};
   std::vector<Leaf> out;
   for (const auto& f : t.strct->fields) {
     for (Leaf l : leaves(f->type, f.get())) {
-      if (t.arraylen != 0) {
-        if (l.type.arraylen != 0) error(where, "arrays of structs with array fields are not supported");
-        l.type.arraylen = t.arraylen;
+      if (t.arraylen > 0)
+        l.type.arraylen = t.arraylen * std::max(1, l.type.arraylen);
+      else if (t.arraylen < 0) {
+        if (l.type.arraylen != 0)
+          error(where, "unsized arrays of structs with array fields are not supported");
+        l.type.arraylen = -1;
       }
       out.push_back(Leaf{"." + f->name + l.suffix, l.type});
     }
@@ -67,7 +97,8 @@ std::vector<Leaf> Lowerer::leaves(const ast::Type& t, const ast::Node* where) {
   return out;
 }
 
-int Lowerer::new_symbol(const std::string& name, const ir::Type& t, SymKind k, const ast::Node* where) {
+int Lowerer::new_symbol(const std::string& name, const ir::Type& t, SymKind k,
+                        const ast::Node* where) {
   std::string n = name;
   int& count = name_counts_[name];
   if (count++ > 0 || sh_.find_symbol(n) >= 0) {
@@ -112,7 +143,10 @@ int Lowerer::here() {
 void Lowerer::patch(const std::vector<int>& ops, int target) {
   for (int op : ops)
     for (int& j : sh_.ops[op].jumps)
-      if (j < 0) { j = target; break; }
+      if (j < 0) {
+        j = target;
+        break;
+      }
 }
 
 // Appends an op; before it, a `useparam` naming the parameters it reads that this basic block
@@ -168,14 +202,24 @@ std::vector<int> Lowerer::declare(const ast::VarDecl* v, SymKind k) {
 
 // The value of a constant expression (literals, casts, negation, arithmetic on constants,
 // constructors without a space name, initialiser lists), converted to `t`.
-bool Lowerer::const_values(const ast::Expr* e, const ir::Type& t, std::vector<ir::ConstValue>& out) {
+bool Lowerer::const_values(const ast::Expr* e, const ir::Type& t,
+                           std::vector<ir::ConstValue>& out) {
   using K = ast::ExprKind;
   std::vector<ir::ConstValue> v;
   ir::Type et = irtype(e->type, e);
   switch (e->kind) {
-  case K::IntLit: v.resize(1); v[0].i = static_cast<const ast::IntLit*>(e)->value; break;
-  case K::FloatLit: v.resize(1); v[0].f = static_cast<const ast::FloatLit*>(e)->value; break;
-  case K::StringLit: v.resize(1); v[0].s = static_cast<const ast::StringLit*>(e)->value; break;
+  case K::IntLit:
+    v.resize(1);
+    v[0].i = static_cast<const ast::IntLit*>(e)->value;
+    break;
+  case K::FloatLit:
+    v.resize(1);
+    v[0].f = static_cast<const ast::FloatLit*>(e)->value;
+    break;
+  case K::StringLit:
+    v.resize(1);
+    v[0].s = static_cast<const ast::StringLit*>(e)->value;
+    break;
   case K::Cast: {
     auto* c = static_cast<const ast::CastExpr*>(e);
     ir::Type ot = irtype(c->operand->type, e);
@@ -226,7 +270,8 @@ bool Lowerer::const_values(const ast::Expr* e, const ir::Type& t, std::vector<ir
     out = v;
     return true;
   }
-  default: return false;
+  default:
+    return false;
   }
   if (et.is_array()) return false;
   auto conv = passes::convert_const(et, v, t);

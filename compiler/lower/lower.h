@@ -22,9 +22,17 @@ struct LowerOptions {
   bool optimize = false; // run constant folding and dead-code elimination afterwards
 };
 
+// One lowering error with the source range it concerns (invalid for internal errors), so a
+// caller holding the SourceManager can show the source line and a caret.
+struct LowerDiag {
+  std::string message; // without location or "error: "
+  diag::SourceRange range;
+};
+
 struct LowerResult {
   std::optional<ir::Shader> shader; // set on success
   std::vector<std::string> errors;  // "file:line:col: error: message" (constructs not lowered)
+  std::vector<LowerDiag> diags;     // the same errors, unformatted, with their source ranges
 };
 
 // Lowers the translation unit's shader. Derivative flags are computed (passes/derivs.h).

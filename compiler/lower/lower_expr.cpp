@@ -5,6 +5,8 @@
 
 #include "ir/edit.h"
 
+#include <algorithm>
+
 namespace lobe::lower {
 
 using ir::SymKind;
@@ -13,23 +15,40 @@ using K = ast::ExprKind;
 static const char* binop_opcode(ast::BinaryOp op) {
   using B = ast::BinaryOp;
   switch (op) {
-  case B::Add: return "add";
-  case B::Sub: return "sub";
-  case B::Mul: return "mul";
-  case B::Div: return "div";
-  case B::Mod: return "mod";
-  case B::Shl: return "shl";
-  case B::Shr: return "shr";
-  case B::BitAnd: return "bitand";
-  case B::BitOr: return "bitor";
-  case B::BitXor: return "xor";
-  case B::Lt: return "lt";
-  case B::Le: return "le";
-  case B::Gt: return "gt";
-  case B::Ge: return "ge";
-  case B::Eq: return "eq";
-  case B::Ne: return "neq";
-  default: return "nop";
+  case B::Add:
+    return "add";
+  case B::Sub:
+    return "sub";
+  case B::Mul:
+    return "mul";
+  case B::Div:
+    return "div";
+  case B::Mod:
+    return "mod";
+  case B::Shl:
+    return "shl";
+  case B::Shr:
+    return "shr";
+  case B::BitAnd:
+    return "bitand";
+  case B::BitOr:
+    return "bitor";
+  case B::BitXor:
+    return "xor";
+  case B::Lt:
+    return "lt";
+  case B::Le:
+    return "le";
+  case B::Gt:
+    return "gt";
+  case B::Ge:
+    return "ge";
+  case B::Eq:
+    return "eq";
+  case B::Ne:
+    return "neq";
+  default:
+    return "nop";
   }
 }
 
@@ -45,42 +64,107 @@ int Lowerer::convert(int sym, const ir::Type& to, const ast::Node* where) {
   return t;
 }
 
+int Lowerer::int_add(int a, int b, const ast::Node* where) {
+  const ir::Symbol& x = sh_.symbols[size_t(a)];
+  const ir::Symbol& y = sh_.symbols[size_t(b)];
+  if (x.kind == SymKind::Const && x.init.size() == 1 && x.init[0].i == 0) return b;
+  if (y.kind == SymKind::Const && y.init.size() == 1 && y.init[0].i == 0) return a;
+  if (x.kind == SymKind::Const && y.kind == SymKind::Const && x.init.size() == 1 &&
+      y.init.size() == 1)
+    return ir::intern_int(sh_, x.init[0].i + y.init[0].i);
+  int t = temp(ir::Type{ir::BaseType::Int});
+  emit("add", {t, a, b}, 1, where);
+  return t;
+}
+
+int Lowerer::int_mul(int a, int k, const ast::Node* where) {
+  if (k == 1) return a;
+  const ir::Symbol& x = sh_.symbols[size_t(a)];
+  if (x.kind == SymKind::Const && x.init.size() == 1) return ir::intern_int(sh_, x.init[0].i * k);
+  int t = temp(ir::Type{ir::BaseType::Int});
+  emit("mul", {t, a, ir::intern_int(sh_, k)}, 1, where);
+  return t;
+}
+
+int Lowerer::slice_elem(const LRef& r, int k, const ast::Node* where) {
+  return int_add(r.index, ir::intern_int(sh_, k), where);
+}
+
+// Indexing an array of `len` elements (its leaves `refs`) by `idx`. A leaf holding more than
+// `len` elements (array fields of an array of structs) gets a slice of len-th of its elements.
+void Lowerer::index_refs(std::vector<LRef>& refs, int len, int idx, const ast::Node* where) {
+  for (LRef& r : refs) {
+    if (!r.whole() && r.slice == 0) {
+      r = LRef{load(r, where)}; // an element of a temporary copy (read-only use)
+    }
+    int total = r.slice > 0 ? r.slice : sh_.symbols[size_t(r.sym)].type.arraylen;
+    int step = len > 0 && total > len ? total / len : 1;
+    int start = int_mul(idx, step, where);
+    if (r.slice > 0) start = int_add(r.index, start, where);
+    r = LRef{r.sym, start, -1, -1, step > 1 ? step : 0};
+  }
+}
+
 int Lowerer::load(const LRef& r, const ast::Node* where) {
   if (r.whole()) return r.sym;
   int base = r.sym;
+  ir::Type et = sh_.symbols[size_t(base)].type;
+  et.arraylen = 0;
+  if (r.slice > 0) { // copy the run of elements into an array temporary
+    ir::Type at = et;
+    at.arraylen = r.slice;
+    int a = temp(at);
+    int x = temp(et);
+    for (int k = 0; k < r.slice; ++k) {
+      emit("aref", {x, base, slice_elem(r, k, where)}, 1, where);
+      emit("aassign", {a, ir::intern_int(sh_, k), x}, 1, where);
+    }
+    return a;
+  }
   if (r.index >= 0) {
-    ir::Type et = sh_.symbols[base].type;
-    et.arraylen = 0;
     int t = temp(et);
     emit("aref", {t, base, r.index}, 1, where);
     base = t;
   }
   if (r.comp < 0) return base;
   int f = temp(ir::Type{ir::BaseType::Float});
-  if (r.comp2 >= 0) emit("mxcompref", {f, base, r.comp, r.comp2}, 1, where);
-  else emit("compref", {f, base, r.comp}, 1, where);
+  if (r.comp2 >= 0)
+    emit("mxcompref", {f, base, r.comp, r.comp2}, 1, where);
+  else
+    emit("compref", {f, base, r.comp}, 1, where);
   return f;
 }
 
 void Lowerer::store(const LRef& r, int v, const ast::Node* where) {
   if (r.whole()) {
     if (v == r.sym) return;
-    emit(sh_.symbols[r.sym].type.is_array() ? "arraycopy" : "assign", {r.sym, v}, 1, where);
+    emit(sh_.symbols[size_t(r.sym)].type.is_array() ? "arraycopy" : "assign", {r.sym, v}, 1, where);
     return;
   }
   int base = r.sym;
+  ir::Type et = sh_.symbols[size_t(base)].type;
+  et.arraylen = 0;
+  if (r.slice > 0) { // element by element into the run
+    int x = temp(et);
+    int n = std::min(r.slice, std::max(0, sh_.symbols[size_t(v)].type.arraylen));
+    for (int k = 0; k < n; ++k) {
+      emit("aref", {x, v, ir::intern_int(sh_, k)}, 1, where);
+      emit("aassign", {r.sym, slice_elem(r, k, where), x}, 1, where);
+    }
+    return;
+  }
   if (r.index >= 0 && r.comp < 0) {
     emit("aassign", {r.sym, r.index, v}, 1, where);
     return;
   }
   if (r.index >= 0) {
-    ir::Type et = sh_.symbols[base].type;
-    et.arraylen = 0;
     base = temp(et);
     emit("aref", {base, r.sym, r.index}, 1, where);
   }
-  if (r.comp2 >= 0) emit("mxcompassign", {base, r.comp, r.comp2, v}, 1, where);
-  else emit("compassign", {base, r.comp, v}, 1, where);
+  if (r.comp2 >= 0)
+    emit("mxcompassign", {base, r.comp, r.comp2, v}, 1, where);
+  else
+    emit("compassign", {base, r.comp, v}, 1, where);
   if (r.index >= 0) emit("aassign", {r.sym, r.index, base}, 1, where);
 }
 
@@ -102,18 +186,15 @@ std::vector<LRef> Lowerer::lvalue(const ast::Expr* e) {
     auto* ix = static_cast<const ast::IndexExpr*>(e);
     std::vector<LRef> base = lvalue(ix->base.get());
     int idx = rvalue(ix->index.get());
-    for (LRef& r : base) {
-      if (ix->index_kind == ast::IndexKind::ArrayElement) {
-        if (!r.whole()) {
-          int t = load(r, e); // an element of a temporary copy (read-only use)
-          r = LRef{t};
-        }
-        r.index = idx;
-      } else {
-        if (r.comp >= 0) r = LRef{load(r, e)};
-        r.comp = idx;
-        if (ix->index_kind == ast::IndexKind::MatrixElement) r.comp2 = rvalue(ix->index2.get());
-      }
+    if (ix->index_kind == ast::IndexKind::ArrayElement) {
+      index_refs(base, ix->base->type.arraylen, idx, e);
+      return base;
+    }
+    int idx2 = ix->index_kind == ast::IndexKind::MatrixElement ? rvalue(ix->index2.get()) : -1;
+    for (LRef& r : base) { // a component or matrix element
+      if (r.comp >= 0) r = LRef{load(r, e)};
+      r.comp = idx;
+      r.comp2 = idx2;
     }
     return base;
   }
@@ -153,7 +234,8 @@ std::vector<int> Lowerer::struct_parts(const ast::Expr* e, const ast::Type& t) {
   const auto& fields = t.strct->fields;
   for (size_t i = 0; i < fields.size() && i < parts.size(); ++i) {
     if (fields[i]->type.base == ast::BaseType::Struct) {
-      auto sub = parts[i]->kind == K::InitList ? struct_parts(parts[i], fields[i]->type) : rvalue_flat(parts[i]);
+      auto sub = parts[i]->kind == K::InitList ? struct_parts(parts[i], fields[i]->type)
+                                               : rvalue_flat(parts[i]);
       out.insert(out.end(), sub.begin(), sub.end());
     } else {
       out.push_back(rvalue(parts[i]));
@@ -187,11 +269,19 @@ std::vector<int> Lowerer::rvalue_flat(const ast::Expr* e) {
     std::vector<int> v = rvalue_flat(a->rhs.get());
     for (size_t i = 0; i < dst.size() && i < v.size(); ++i) store(dst[i], v[i], e);
   }
-  const ast::Expr* src = e->kind == K::Assign ? static_cast<const ast::AssignExpr*>(e)->lhs.get() : e;
-  if (src->kind == K::Ternary || src->kind == K::Comma) {
-    error(e, "this struct-valued expression is not supported");
-    return {};
+  if (e->kind == K::Ternary) return ternary_flat(static_cast<const ast::TernaryExpr*>(e));
+  if (e->kind == K::Comma) {
+    auto* c = static_cast<const ast::CommaExpr*>(e);
+    for (size_t i = 0; i + 1 < c->exprs.size(); ++i) {
+      if (c->exprs[i]->type.base == ast::BaseType::Struct)
+        rvalue_flat(c->exprs[i].get());
+      else
+        rvalue(c->exprs[i].get());
+    }
+    return rvalue_flat(c->exprs.back().get());
   }
+  const ast::Expr* src =
+      e->kind == K::Assign ? static_cast<const ast::AssignExpr*>(e)->lhs.get() : e;
   std::vector<int> out;
   for (const LRef& r : lvalue(src)) out.push_back(load(r, e));
   return out;
@@ -220,6 +310,23 @@ int Lowerer::ternary(const ast::TernaryExpr* t, int hint) {
   int skip = emit("br", {}, 0, t, {-1});
   sh_.ops[size_t(j)].jumps[1] = here();
   store(LRef{res}, rvalue(t->else_expr.get(), res), t);
+  sh_.ops[size_t(skip)].jumps[0] = here();
+  return res;
+}
+
+// A struct-valued `c ? a : b`: one temporary per leaf, filled on either branch.
+std::vector<int> Lowerer::ternary_flat(const ast::TernaryExpr* t) {
+  std::vector<int> res;
+  for (const Leaf& l : leaves(t->type, t)) res.push_back(temp(irtype(l.type, t)));
+  int c = rvalue(t->cond.get());
+  int j = emit("cbr", {c}, 0, t, {-1, -1});
+  sh_.ops[size_t(j)].jumps[0] = here();
+  std::vector<int> a = rvalue_flat(t->then_expr.get());
+  for (size_t i = 0; i < res.size() && i < a.size(); ++i) store(LRef{res[i]}, a[i], t);
+  int skip = emit("br", {}, 0, t, {-1});
+  sh_.ops[size_t(j)].jumps[1] = here();
+  std::vector<int> b = rvalue_flat(t->else_expr.get());
+  for (size_t i = 0; i < res.size() && i < b.size(); ++i) store(LRef{res[i]}, b[i], t);
   sh_.ops[size_t(skip)].jumps[0] = here();
   return res;
 }
@@ -280,46 +387,83 @@ int Lowerer::rvalue(const ast::Expr* e, int hint) {
   where_ = e;
   int r = -1;
   switch (e->kind) {
-  case K::IntLit: r = ir::intern_int(sh_, static_cast<const ast::IntLit*>(e)->value); break;
-  case K::FloatLit: r = ir::intern_float(sh_, static_cast<const ast::FloatLit*>(e)->value); break;
-  case K::StringLit: r = ir::intern_string(sh_, static_cast<const ast::StringLit*>(e)->value); break;
+  case K::IntLit:
+    r = ir::intern_int(sh_, static_cast<const ast::IntLit*>(e)->value);
+    break;
+  case K::FloatLit:
+    r = ir::intern_float(sh_, static_cast<const ast::FloatLit*>(e)->value);
+    break;
+  case K::StringLit:
+    r = ir::intern_string(sh_, static_cast<const ast::StringLit*>(e)->value);
+    break;
   case K::Ident:
   case K::Index:
-  case K::Member: r = load(lvalue(e)[0], e); break;
+  case K::Member:
+    r = load(lvalue(e)[0], e);
+    break;
   case K::Unary: {
     auto* u = static_cast<const ast::UnaryExpr*>(e);
-    if (u->overload) { r = call_user(u->overload, {u->operand.get()}, e).at(0); break; }
+    if (u->overload) {
+      r = call_user(u->overload, {u->operand.get()}, e).at(0);
+      break;
+    }
     int x = rvalue(u->operand.get());
-    if (u->op == ast::UnaryOp::Plus) { r = x; break; }
+    if (u->op == ast::UnaryOp::Plus) {
+      r = x;
+      break;
+    }
     r = pick(hint, irtype(e->type, e));
-    emit(u->op == ast::UnaryOp::Neg ? "neg" : u->op == ast::UnaryOp::Not ? "not" : "compl", {r, x}, 1, e);
+    emit(u->op == ast::UnaryOp::Neg   ? "neg"
+         : u->op == ast::UnaryOp::Not ? "not"
+                                      : "compl",
+         {r, x}, 1, e);
     break;
   }
   case K::Binary: {
     auto* b = static_cast<const ast::BinaryExpr*>(e);
-    if (b->overload) { r = call_user(b->overload, {b->lhs.get(), b->rhs.get()}, e).at(0); break; }
-    if (b->op == ast::BinaryOp::LogicalAnd || b->op == ast::BinaryOp::LogicalOr) { r = logical(b); break; }
+    if (b->overload) {
+      r = call_user(b->overload, {b->lhs.get(), b->rhs.get()}, e).at(0);
+      break;
+    }
+    if (b->op == ast::BinaryOp::LogicalAnd || b->op == ast::BinaryOp::LogicalOr) {
+      r = logical(b);
+      break;
+    }
     int x = rvalue(b->lhs.get());
     int y = rvalue(b->rhs.get());
     r = pick(hint, irtype(e->type, e));
     emit(binop_opcode(b->op), {r, x, y}, 1, e);
     break;
   }
-  case K::Assign: r = assign(static_cast<const ast::AssignExpr*>(e), hint); break;
-  case K::IncDec: r = incdec(static_cast<const ast::IncDecExpr*>(e)); break;
-  case K::Ternary: r = ternary(static_cast<const ast::TernaryExpr*>(e), hint); break;
+  case K::Assign:
+    r = assign(static_cast<const ast::AssignExpr*>(e), hint);
+    break;
+  case K::IncDec:
+    r = incdec(static_cast<const ast::IncDecExpr*>(e));
+    break;
+  case K::Ternary:
+    r = ternary(static_cast<const ast::TernaryExpr*>(e), hint);
+    break;
   case K::Comma: {
     auto* c = static_cast<const ast::CommaExpr*>(e);
-    for (size_t i = 0; i < c->exprs.size(); ++i) r = rvalue(c->exprs[i].get(), i + 1 == c->exprs.size() ? hint : -1);
+    for (size_t i = 0; i < c->exprs.size(); ++i)
+      r = rvalue(c->exprs[i].get(), i + 1 == c->exprs.size() ? hint : -1);
     break;
   }
-  case K::Call: r = call(static_cast<const ast::CallExpr*>(e), hint); break;
-  case K::Construct: r = construct(static_cast<const ast::ConstructExpr*>(e), hint); break;
+  case K::Call:
+    r = call(static_cast<const ast::CallExpr*>(e), hint);
+    break;
+  case K::Construct:
+    r = construct(static_cast<const ast::ConstructExpr*>(e), hint);
+    break;
   case K::Cast: {
     auto* c = static_cast<const ast::CastExpr*>(e);
     int x = rvalue(c->operand.get());
     ir::Type t = irtype(c->type, e);
-    if (sh_.symbols[x].type == t) { r = x; break; }
+    if (sh_.symbols[x].type == t) {
+      r = x;
+      break;
+    }
     r = pick(hint, t);
     emit("assign", {r, x}, 1, e);
     break;
@@ -340,9 +484,9 @@ void Lowerer::store_init(const std::vector<LRef>& dst, const ast::Type& t, const
   if (init->kind == K::InitList && t.is_array()) {
     auto* l = static_cast<const ast::InitListExpr*>(init);
     for (size_t i = 0; i < l->elems.size(); ++i) {
-      int idx = ir::intern_int(sh_, int(i));
       std::vector<LRef> elem = dst;
-      for (LRef& r : elem) r.index = idx;
+      index_refs(elem, t.arraylen > 0 ? t.arraylen : int(l->elems.size()),
+                 ir::intern_int(sh_, int(i)), init);
       store_init(elem, t.element(), l->elems[i].get());
     }
     return;

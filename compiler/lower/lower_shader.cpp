@@ -35,10 +35,14 @@ bool Lowerer::const_flat(const ast::Expr* e, const ast::Type& t,
 
 static ir::ShaderType shader_type(ast::ShaderType t) {
   switch (t) {
-  case ast::ShaderType::Surface: return ir::ShaderType::Surface;
-  case ast::ShaderType::Displacement: return ir::ShaderType::Displacement;
-  case ast::ShaderType::Volume: return ir::ShaderType::Volume;
-  case ast::ShaderType::Shader: return ir::ShaderType::Shader;
+  case ast::ShaderType::Surface:
+    return ir::ShaderType::Surface;
+  case ast::ShaderType::Displacement:
+    return ir::ShaderType::Displacement;
+  case ast::ShaderType::Volume:
+    return ir::ShaderType::Volume;
+  case ast::ShaderType::Shader:
+    return ir::ShaderType::Shader;
   }
   return ir::ShaderType::Shader;
 }
@@ -48,6 +52,7 @@ LowerResult Lowerer::run() {
   const ast::ShaderDecl* sd = tu_.shader();
   if (!sd) {
     res.errors.push_back("error: no shader declared");
+    res.diags.push_back(LowerDiag{"no shader declared", {}});
     return res;
   }
   sh_.type = shader_type(sd->shader_type);
@@ -64,7 +69,8 @@ LowerResult Lowerer::run() {
   };
   sh_.metadata = metadata(sd->metadata);
   for (const auto& p : sd->params) {
-    std::vector<int> syms = declare(p.get(), p->is_output ? ir::SymKind::OutputParam : ir::SymKind::Param);
+    std::vector<int> syms =
+        declare(p.get(), p->is_output ? ir::SymKind::OutputParam : ir::SymKind::Param);
     std::vector<ir::Metadata> md = metadata(p->metadata);
     for (int s : syms) sh_.symbols[size_t(s)].metadata = md;
     if (!p->init) continue;
@@ -88,6 +94,7 @@ LowerResult Lowerer::run() {
   stmt(sd->body.get());
   if (!errors_.empty()) {
     res.errors = std::move(errors_);
+    res.diags = std::move(diags_);
     return res;
   }
   if (opt_.optimize) {
@@ -98,7 +105,10 @@ LowerResult Lowerer::run() {
     }
   }
   passes::analyze_derivatives(sh_);
-  for (const std::string& e : ir::verify(sh_)) res.errors.push_back("internal error: invalid IR: " + e);
+  for (const std::string& e : ir::verify(sh_)) {
+    res.errors.push_back("internal error: invalid IR: " + e);
+    res.diags.push_back(LowerDiag{"internal error: invalid IR: " + e, {}});
+  }
   if (res.errors.empty()) res.shader = std::move(sh_);
   return res;
 }

@@ -5,7 +5,9 @@
 #include "closure_registry.h"
 #include "ir/edit.h"
 #include "ir/opcodes.h"
+#include "sema/builtins.h"
 
+#include <algorithm>
 #include <bit>
 
 namespace lobe::lower {
@@ -23,8 +25,10 @@ void Lowerer::stmt(const ast::Stmt* s) {
     break;
   case S::Expr: {
     const ast::Expr* e = static_cast<const ast::ExprStmt*>(s)->expr.get();
-    if (e->type.base == ast::BaseType::Struct) rvalue_flat(e);
-    else rvalue(e);
+    if (e->type.base == ast::BaseType::Struct)
+      rvalue_flat(e);
+    else
+      rvalue(e);
     break;
   }
   case S::Decl:
@@ -120,7 +124,8 @@ void Lowerer::stmt(const ast::Stmt* s) {
     inlines_.back().returns.push_back(emit("br", {}, 0, s, {-1}));
     break;
   }
-  case S::Empty: break;
+  case S::Empty:
+    break;
   }
   where_ = saved;
   temp_release(mark);
@@ -176,20 +181,43 @@ std::vector<int> Lowerer::call_user(const ast::FunctionDecl* f,
   inlines_.pop_back();
   for (const auto& [r, t] : copy_back) store(r, t, where);
   for (auto& [p, old] : saved) {
-    if (old) vars_[p] = *old;
-    else vars_.erase(p);
+    if (old)
+      vars_[p] = *old;
+    else
+      vars_.erase(p);
   }
   return result;
 }
 
-// Builtins: `name [result] [outputs...] inputs... ["kw" value]...`. The outputs are the last
-// arguments (OSL's convention: sincos(x, s, c), getattribute(name, val)); their number comes
-// from the opcode table's written mask, or from the prototype's `output` params.
+// Builtins lowered to arithmetic instead of an opcode of their own: radians, degrees, and
+// arraylength of a sized array (a constant; struct arrays have no single symbol to ask).
+// Returns -2 when `c` is not one of them.
+int Lowerer::call_arith(const ast::CallExpr* c, int hint) {
+  if ((c->name == "radians" || c->name == "degrees") && c->args.size() == 1) {
+    constexpr double kPi = 3.14159265358979323846;
+    float k = float(c->name == "radians" ? kPi / 180.0 : 180.0 / kPi);
+    int x = rvalue(c->args[0].get());
+    int r = pick(hint, irtype(c->type, c));
+    emit("mul", {r, x, ir::intern_float(sh_, k)}, 1, c);
+    return r;
+  }
+  if (c->name == "arraylength" && c->args.size() == 1 && c->args[0]->type.arraylen > 0)
+    return ir::intern_int(sh_, c->args[0]->type.arraylen);
+  return -2;
+}
+
+// Builtins: `name [result] [outputs...] inputs... ["kw" value]...`: written operands first
+// (the result, then the `output` arguments in call order), then the other arguments in call
+// order, then keyword pairs. Which arguments are outputs comes from the builtin table's
+// signature, or a [[ builtin = 1 ]] prototype's `output` params; without either, from the
+// opcode table's written mask (the last arguments, OSL's convention).
 int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
   if (c->name == "exit") {
     emit("exit", {}, 0, c);
     return -1;
   }
+  int arith = call_arith(c, hint);
+  if (arith != -2) return arith;
   const ir::OpcodeInfo* info = ir::find_opcode(c->name);
   if (!info) {
     error(c, "no IR opcode for the builtin '" + c->name + "'");
@@ -197,12 +225,17 @@ int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
   }
   bool returns = !c->type.is_void();
   size_t npos = c->num_positional < 0 ? c->args.size() : size_t(c->num_positional);
-  size_t nout = size_t(std::popcount(info->written)) - (returns ? 1 : 0);
+  std::vector<bool> is_out(npos, false);
   if (c->callee.kind == ast::CalleeKind::User && c->callee.function) {
-    nout = 0;
-    for (const auto& p : c->callee.function->params) nout += p->is_output;
+    const auto& ps = c->callee.function->params;
+    for (size_t i = 0; i < npos && i < ps.size(); ++i) is_out[i] = ps[i]->is_output;
+  } else if (c->callee.builtin) {
+    const auto& ps = c->callee.builtin->params;
+    for (size_t i = 0; i < npos && i < ps.size(); ++i) is_out[i] = ps[i].output;
+  } else {
+    size_t nout = std::min(npos, size_t(std::popcount(info->written)) - (returns ? 1 : 0));
+    for (size_t i = npos - nout; i < npos; ++i) is_out[i] = true;
   }
-  nout = std::min(nout, npos);
   std::vector<int> args;
   uint32_t mask = 0;
   if (returns) {
@@ -210,14 +243,16 @@ int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
     mask |= 1;
   }
   std::vector<std::pair<LRef, int>> copy_back;
-  for (size_t i = npos - nout; i < npos; ++i) {
+  for (size_t i = 0; i < npos; ++i) {
+    if (!is_out[i]) continue;
     LRef r = lvalue(c->args[i].get())[0];
     int s = r.whole() ? r.sym : temp(irtype(c->args[i]->type, c));
     if (!r.whole()) copy_back.push_back({r, s});
     mask |= 1u << args.size();
     args.push_back(s);
   }
-  for (size_t i = 0; i < npos - nout; ++i) args.push_back(rvalue(c->args[i].get()));
+  for (size_t i = 0; i < npos; ++i)
+    if (!is_out[i]) args.push_back(rvalue(c->args[i].get()));
   for (const ast::KeywordArg& k : c->keywords) {
     args.push_back(ir::intern_string(sh_, k.name));
     args.push_back(rvalue(k.value));
@@ -242,8 +277,10 @@ int Lowerer::call_closure(const ast::CallExpr* c, const std::string& key, int hi
 
 int Lowerer::call(const ast::CallExpr* c, int hint) {
   switch (c->callee.kind) {
-  case ast::CalleeKind::Closure: return call_closure(c, c->callee.closure->key, hint);
-  case ast::CalleeKind::Builtin: return call_builtin(c, hint);
+  case ast::CalleeKind::Closure:
+    return call_closure(c, c->callee.closure->key, hint);
+  case ast::CalleeKind::Builtin:
+    return call_builtin(c, hint);
   case ast::CalleeKind::User: {
     const ast::FunctionDecl* f = c->callee.function;
     if (f && !f->body) {
@@ -255,7 +292,9 @@ int Lowerer::call(const ast::CallExpr* c, int hint) {
     std::vector<int> r = call_user(f, args, c);
     return r.empty() ? -1 : r[0];
   }
-  default: error(c, "internal: unresolved call to '" + c->name + "'"); return -1;
+  default:
+    error(c, "internal: unresolved call to '" + c->name + "'");
+    return -1;
   }
 }
 

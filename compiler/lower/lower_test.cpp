@@ -133,8 +133,9 @@ TEST(Lower, ClosureWithKeywordScaledByParam) {
   call->callee.kind = CalleeKind::Closure;
   call->callee.closure = registry::find_by_key("diffuse");
   ASSERT_NE(call->callee.closure, nullptr);
-  b.add(Builder::expr_stmt(Builder::assign(
-      Builder::ident(Ci), Builder::bin(BinaryOp::Mul, Builder::ident(kd), std::move(call), kClosure))));
+  b.add(Builder::expr_stmt(
+      Builder::assign(Builder::ident(Ci),
+                      Builder::bin(BinaryOp::Mul, Builder::ident(kd), std::move(call), kClosure))));
   EXPECT_EQ(b.lower_text(), R"(lobe-ir 1
 surface test
 symbols
@@ -172,8 +173,9 @@ TEST(Lower, InliningAliasesOutputArgsAndJumpsToEndOnReturn) {
   VarDecl* x = f->params[0].get();
   VarDecl* y = f->params[1].get();
   f->body = std::make_unique<CompoundStmt>();
-  f->body->stmts.push_back(Builder::expr_stmt(Builder::assign(
-      Builder::ident(y), Builder::bin(BinaryOp::Mul, Builder::ident(x), Builder::flit(2), kFloat))));
+  f->body->stmts.push_back(Builder::expr_stmt(
+      Builder::assign(Builder::ident(y),
+                      Builder::bin(BinaryOp::Mul, Builder::ident(x), Builder::flit(2), kFloat))));
   auto ret = std::make_unique<ReturnStmt>();
   ret->value = Builder::bin(BinaryOp::Add, Builder::ident(x), Builder::flit(1), kFloat);
   f->body->stmts.push_back(std::move(ret));
@@ -237,7 +239,8 @@ TEST(Lower, StructsFlattenIntoFieldSymbols) {
   cast2->type = kColor;
   cast2->implicit = true;
   cast2->operand = Builder::member(Builder::ident(s), "a", 0, kFloat);
-  b.add(Builder::expr_stmt(Builder::assign(Builder::member(Builder::ident(s), "c", 1, kColor), std::move(cast2))));
+  b.add(Builder::expr_stmt(
+      Builder::assign(Builder::member(Builder::ident(s), "c", 1, kColor), std::move(cast2))));
   b.tu.decls.insert(b.tu.decls.begin(), std::move(sd));
   EXPECT_EQ(b.lower_text(), R"(lobe-ir 1
 surface test
@@ -260,7 +263,8 @@ TEST(Lower, ParamInitOpsAndIfElse) {
   VarDecl* kd = b.param("Kd", kFloat, Builder::flit(0.25f));
   VarDecl* out = b.param("Cout", kFloat, Builder::flit(0), true);
   auto ifs = std::make_unique<IfStmt>();
-  ifs->cond = Builder::bin(BinaryOp::Gt, Builder::ident(kd), Builder::flit(0.5f), Type(BaseType::Int));
+  ifs->cond =
+      Builder::bin(BinaryOp::Gt, Builder::ident(kd), Builder::flit(0.5f), Type(BaseType::Int));
   ifs->then_stmt = Builder::expr_stmt(Builder::assign(Builder::ident(out), Builder::ident(kd)));
   ifs->else_stmt = Builder::expr_stmt(Builder::assign(Builder::ident(out), Builder::flit(0)));
   b.add(std::move(ifs));

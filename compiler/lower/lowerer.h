@@ -17,12 +17,16 @@ namespace lobe::lower {
 
 // A location a value can be stored to or loaded from: a symbol, optionally one array element
 // (`index`), and optionally one component (`comp`) or matrix element (`comp`, `comp2`).
-// Index operands are int symbols.
+// Index operands are int symbols. `slice` > 0 makes the location the `slice` consecutive
+// elements starting at `index`: an array field of one element of an array of structs, which
+// flattening stores as a run of elements of one long array (`S arr[4]` with `float a[3]` gives
+// `arr.a` of type float[12]; `arr[i].a` is the slice [3i, 3i+3)).
 struct LRef {
   int sym = -1;
   int index = -1;
   int comp = -1;
   int comp2 = -1;
+  int slice = 0;
   bool whole() const { return index < 0 && comp < 0; }
 };
 
@@ -57,17 +61,24 @@ public:
   std::vector<int> rvalue_flat(const ast::Expr* e); // struct value -> one symbol per leaf
   std::vector<LRef> lvalue(const ast::Expr* e);     // storage of an lvalue (one per leaf)
   int load(const LRef& r, const ast::Node* where);
+  // `refs` (the leaves of an array of length `len`) indexed by int symbol `idx`.
+  void index_refs(std::vector<LRef>& refs, int len, int idx, const ast::Node* where);
+  int int_add(int a, int b, const ast::Node* where); // a + b (folded when both are constants)
+  int int_mul(int a, int k, const ast::Node* where); // a * k for a constant k
+  int slice_elem(const LRef& r, int k, const ast::Node* where); // index of element k of a slice
   void store(const LRef& r, int value, const ast::Node* where);
   void store_init(const std::vector<LRef>& dst, const ast::Type& t, const ast::Expr* init);
   int pick(int hint, const ir::Type& t);
   int logical(const ast::BinaryExpr* b);
   int ternary(const ast::TernaryExpr* t, int hint);
+  std::vector<int> ternary_flat(const ast::TernaryExpr* t); // struct-valued ?:
   int assign(const ast::AssignExpr* a, int hint);
   int incdec(const ast::IncDecExpr* e);
   int construct(const ast::ConstructExpr* c, int hint);
   int call(const ast::CallExpr* c, int hint);
   std::vector<int> struct_parts(const ast::Expr* e, const ast::Type& t);
-  bool const_flat(const ast::Expr* e, const ast::Type& t, std::vector<std::vector<ir::ConstValue>>& out);
+  bool const_flat(const ast::Expr* e, const ast::Type& t,
+                  std::vector<std::vector<ir::ConstValue>>& out);
   int convert(int sym, const ir::Type& to, const ast::Node* where);
 
   // ---- lower_stmt.cpp
@@ -77,6 +88,7 @@ public:
                              const ast::Node* where);
   int call_builtin(const ast::CallExpr* c, int hint);
   int call_closure(const ast::CallExpr* c, const std::string& key, int hint);
+  int call_arith(const ast::CallExpr* c, int hint); // builtins lowered to arithmetic, or -2
 
   // Temporaries allocated since a statement began are free again when it ends.
   size_t temp_mark() const { return live_temps_.size(); }
@@ -86,6 +98,7 @@ public:
   LowerOptions opt_;
   ir::Shader sh_;
   std::vector<std::string> errors_;
+  std::vector<LowerDiag> diags_;
   std::unordered_map<const ast::VarDecl*, std::vector<int>> vars_;
   std::map<std::string, int> name_counts_;
   std::multimap<std::string, int> free_temps_; // keyed by type string

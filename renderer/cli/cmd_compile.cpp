@@ -1,10 +1,12 @@
-// `lobe compile file [-I dir] [-D NAME[=val]] [-U NAME] [-o out] [--emit=ast|ir|llvm|asm] [-O0|-O1]`
-// Compiles a shader and writes the requested form (default: Lobe IR text) to stdout or -o.
-// Diagnostics go to stderr; exit status 1 on errors in the input, 2 on usage errors or a form
-// that is not available yet.
+// `lobe compile file [-I dir] [-D NAME[=val]] [-U NAME] [-o out] [--emit=ast|ir|llvm|asm]
+// [-O0|-O1]` Compiles a shader and writes the requested form (default: Lobe IR text) to stdout or
+// -o. OSL source goes through the whole pipeline (compiler/lower/pipeline.h); Lobe IR text (.lir)
+// is parsed, verified and re-optimised. Diagnostics go to stderr; exit status 1 on errors in
+// the input, 2 on usage errors or a form that is not available yet (--emit=llvm|asm).
 #include "command.h"
 #include "load_shader.h"
 
+#include "ast/ast_dump.h"
 #include "ir/printer.h"
 #include "passes/constfold.h"
 #include "passes/dce.h"
@@ -31,22 +33,43 @@ int parse_args(int argc, char** argv, Options& o) {
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     auto value = [&](const char* opt, std::string& dst) {
-      if (a.size() > std::strlen(opt)) { dst = a.substr(std::strlen(opt)); return true; }
+      if (a.size() > std::strlen(opt)) {
+        dst = a.substr(std::strlen(opt));
+        return true;
+      }
       if (i + 1 >= argc) return false;
       dst = argv[++i];
       return true;
     };
     std::string v;
-    if (a == "-h" || a == "--help") { usage(stdout); return -1; }
-    else if (a.rfind("--emit=", 0) == 0) o.emit = a.substr(7);
-    else if (a == "-O0" || a == "-O1") o.opt = a[2] - '0';
-    else if (a.rfind("-I", 0) == 0) { if (!value("-I", v)) return 2; o.includes.push_back(v); }
-    else if (a.rfind("-D", 0) == 0) { if (!value("-D", v)) return 2; o.defines.push_back(v); }
-    else if (a.rfind("-U", 0) == 0) { if (!value("-U", v)) return 2; o.undefines.push_back(v); }
-    else if (a == "-o") { if (i + 1 >= argc) return 2; o.out = argv[++i]; }
-    else if (!a.empty() && a[0] == '-') { std::fprintf(stderr, "lobe compile: unknown option '%s'\n", a.c_str()); return 2; }
-    else if (o.file.empty()) o.file = a;
-    else { std::fprintf(stderr, "lobe compile: more than one input file\n"); return 2; }
+    if (a == "-h" || a == "--help") {
+      usage(stdout);
+      return -1;
+    } else if (a.rfind("--emit=", 0) == 0)
+      o.emit = a.substr(7);
+    else if (a == "-O0" || a == "-O1")
+      o.opt = a[2] - '0';
+    else if (a.rfind("-I", 0) == 0) {
+      if (!value("-I", v)) return 2;
+      o.includes.push_back(v);
+    } else if (a.rfind("-D", 0) == 0) {
+      if (!value("-D", v)) return 2;
+      o.defines.push_back(v);
+    } else if (a.rfind("-U", 0) == 0) {
+      if (!value("-U", v)) return 2;
+      o.undefines.push_back(v);
+    } else if (a == "-o") {
+      if (i + 1 >= argc) return 2;
+      o.out = argv[++i];
+    } else if (!a.empty() && a[0] == '-') {
+      std::fprintf(stderr, "lobe compile: unknown option '%s'\n", a.c_str());
+      return 2;
+    } else if (o.file.empty())
+      o.file = a;
+    else {
+      std::fprintf(stderr, "lobe compile: more than one input file\n");
+      return 2;
+    }
   }
   if (o.file.empty()) return 2;
   if (o.emit != "ast" && o.emit != "ir" && o.emit != "llvm" && o.emit != "asm") {
@@ -71,23 +94,45 @@ int write_output(const Options& o, const std::string& text) {
   return 0;
 }
 
+// OSL source: the typed AST (--emit=ast) or the verified IR, optimised at -O1.
+int compile_source(const Options& o, const std::string& path) {
+  lobe::lower::PipelineOptions po;
+  po.frontend.include_dirs = o.includes;
+  po.frontend.defines = o.defines;
+  po.frontend.undefines = o.undefines;
+  po.lower = o.emit != "ast";
+  po.optimize = o.opt > 0;
+  lobe::lower::PipelineResult r = lobe::lower::compile_osl({path, std::nullopt}, po);
+  std::fputs(r.diagnostics.c_str(), stderr);
+  if (!r.ok) return 1;
+  if (o.emit == "ast")
+    return write_output(o, lobe::ast::dump(*r.tu, {.types = true, .stdlib = false}));
+  return write_output(o, lobe::ir::print(*r.shader));
+}
+
 int run_compile(int argc, char** argv) {
   Options o;
   int st = parse_args(argc, argv, o);
   if (st < 0) return 0;
-  if (st) { usage(stderr); return 2; }
+  if (st) {
+    usage(stderr);
+    return 2;
+  }
   std::string path = lobe::cli::find_shader(o.file, o.includes);
   if (path.empty()) {
     std::fprintf(stderr, "lobe compile: cannot find shader '%s'\n", o.file.c_str());
     return 1;
   }
-  if (path.size() < 4 || path.compare(path.size() - 4, 4, ".lir") != 0) {
-    std::fprintf(stderr, "lobe compile: compiling OSL source is not yet available (the front end "
-                         "is not wired in); Lobe IR text (.lir) is accepted\n");
+  if (o.emit == "llvm" || o.emit == "asm") {
+    std::fprintf(stderr,
+                 "lobe compile: --emit=%s is not yet available (the runtime offers no "
+                 "IR-to-LLVM-text entry point)\n",
+                 o.emit.c_str());
     return 2;
   }
+  if (!lobe::cli::is_ir_text(path)) return compile_source(o, path);
   if (o.emit != "ir") {
-    std::fprintf(stderr, "lobe compile: --emit=%s is not yet available\n", o.emit.c_str());
+    std::fprintf(stderr, "lobe compile: --emit=%s needs OSL source\n", o.emit.c_str());
     return 2;
   }
   lobe::cli::Loaded l = lobe::cli::load_ir_text(path);
@@ -97,7 +142,8 @@ int run_compile(int argc, char** argv) {
   }
   if (o.opt > 0)
     for (int round = 0; round < 8; ++round)
-      if (!(lobe::passes::fold_constants(*l.shader) | lobe::passes::eliminate_dead_code(*l.shader))) break;
+      if (!(lobe::passes::fold_constants(*l.shader) | lobe::passes::eliminate_dead_code(*l.shader)))
+        break;
   lobe::passes::analyze_derivatives(*l.shader);
   return write_output(o, lobe::ir::print(*l.shader));
 }

@@ -19,10 +19,14 @@ int run_info(int argc, char** argv) {
       std::printf("usage: lobe info shader [-I dir]\n");
       return 0;
     }
-    if (a == "-I" && i + 1 < argc) dirs.push_back(argv[++i]);
-    else if (a.rfind("-I", 0) == 0 && a.size() > 2) dirs.push_back(a.substr(2));
-    else if (a == "-v") continue; // oslinfo's verbose flag: always verbose
-    else if (name.empty() && a[0] != '-') name = a;
+    if (a == "-I" && i + 1 < argc)
+      dirs.push_back(argv[++i]);
+    else if (a.rfind("-I", 0) == 0 && a.size() > 2)
+      dirs.push_back(a.substr(2));
+    else if (a == "-v")
+      continue; // oslinfo's verbose flag: always verbose
+    else if (name.empty() && a[0] != '-')
+      name = a;
     else {
       std::fprintf(stderr, "usage: lobe info shader [-I dir]\n");
       return 2;
@@ -37,15 +41,12 @@ int run_info(int argc, char** argv) {
     std::fprintf(stderr, "lobe info: cannot find shader '%s'\n", name.c_str());
     return 1;
   }
-  if (path.size() < 4 || path.compare(path.size() - 4, 4, ".lir") != 0) {
-    std::fprintf(stderr, "lobe info: reading OSL source is not yet available; Lobe IR text (.lir) is accepted\n");
-    return 2;
-  }
-  lobe::cli::Loaded l = lobe::cli::load_ir_text(path);
-  if (!l.shader) {
-    std::fputs(l.errors.c_str(), stderr);
-    return l.status;
-  }
+  lobe::lower::PipelineOptions po;
+  po.frontend.include_dirs = dirs;
+  lobe::cli::Loaded l =
+      lobe::cli::is_ir_text(path) ? lobe::cli::load_ir_text(path) : lobe::cli::load_osl(path, po);
+  std::fputs(l.errors.c_str(), stderr);
+  if (!l.shader) return l.status;
   std::string text = lobe::ir::describe(*l.shader);
   std::fwrite(text.data(), 1, text.size(), stdout);
   return 0;

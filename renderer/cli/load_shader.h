@@ -1,7 +1,9 @@
 // Shared by `lobe compile` and `lobe info`: finds a shader by name or path and loads it as
 // Lobe IR. Sources: Lobe IR text (.lir, as printed by `lobe compile --emit=ir`) and OSL
-// source (.osl) through the front end once it is available.
+// source (.osl, or any other name) through the compile pipeline (compiler/lower/pipeline.h).
 #pragma once
+
+#include "lower/pipeline.h"
 
 #include "ir/ir.h"
 #include "ir/parser.h"
@@ -26,7 +28,7 @@ inline std::string find_shader(const std::string& name, const std::vector<std::s
   for (const std::string& d : places)
     for (const char* ext : {".osl", ".lir"}) {
       fs::path p = fs::path(d) / (name + ext);
-      if (fs::is_regular_file(p, ec)) return p.string();
+      if (fs::is_regular_file(p, ec)) return p.lexically_normal().string();
     }
   return "";
 }
@@ -51,6 +53,23 @@ inline Loaded load_ir_text(const std::string& path) {
   }
   for (const std::string& e : ir::verify(*pr.shader)) r.errors += path + ": error: " + e + "\n";
   if (!r.errors.empty()) {
+    r.status = 1;
+    return r;
+  }
+  r.shader = std::move(pr.shader);
+  return r;
+}
+
+inline bool is_ir_text(const std::string& path) {
+  return path.size() >= 4 && path.compare(path.size() - 4, 4, ".lir") == 0;
+}
+
+// OSL source through the front end and lowering. Diagnostics (warnings too) in `errors`.
+inline Loaded load_osl(const std::string& path, const lower::PipelineOptions& options) {
+  Loaded r;
+  lower::PipelineResult pr = lower::compile_osl({path, std::nullopt}, options);
+  r.errors = pr.diagnostics;
+  if (!pr.ok || !pr.shader) {
     r.status = 1;
     return r;
   }
