@@ -26,7 +26,6 @@ const Row kTable[] = {
     ROW(warn_unknown_escape, Warning, "unknown escape sequence '\\%0'"),
     ROW(err_bad_number, Error, "invalid numeric literal '%0'"),
     ROW(err_int_too_large, Error, "integer literal '%0' is too large for int"),
-    ROW(err_unterminated_metadata, Error, "unterminated metadata block '[['"),
     // preprocessor
     ROW(err_include_not_found, Error, "'%0' file not found"),
     ROW(err_include_depth, Error, "#include nested too deeply (limit %0)"),
@@ -103,13 +102,10 @@ const Row kTable[] = {
     ROW(err_void_variable, Error, "variable '%0' declared void"),
     ROW(err_not_a_function, Error, "'%0' is not a function"),
     ROW(err_struct_ctor_args, Error, "constructor of struct '%0' needs %1 arguments, %2 given"),
-    ROW(err_wrong_arg_count, Error, "'%0' takes %1 arguments, %2 given"),
     ROW(err_array_assign_size, Error, "cannot assign '%0' to '%1': array lengths differ"),
     ROW(err_shader_redefinition, Error,
         "a file may declare only one shader ('%0' already declared)"),
-    ROW(warn_no_shader, Warning, "no shader declared in this file"),
     ROW(err_operator_not_struct, Error, "operator function '%0' needs a struct parameter"),
-    ROW(warn_unused_keyword, Warning, "keyword argument '%0' given twice; the last one wins"),
 };
 #undef ROW
 static_assert(sizeof(kTable) / sizeof(kTable[0]) == size_t(DiagId::kCount),

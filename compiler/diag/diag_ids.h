@@ -25,7 +25,6 @@ enum class DiagId : uint16_t {
   warn_unknown_escape,
   err_bad_number,
   err_int_too_large,
-  err_unterminated_metadata,
   // preprocessor
   err_include_not_found,
   err_include_depth,
@@ -98,12 +97,9 @@ enum class DiagId : uint16_t {
   err_void_variable,
   err_not_a_function,
   err_struct_ctor_args,
-  err_wrong_arg_count,
   err_array_assign_size,
   err_shader_redefinition,
-  warn_no_shader,
   err_operator_not_struct,
-  warn_unused_keyword,
   kCount
 };
 

@@ -47,7 +47,6 @@ std::string body_of(const std::string& stmts) {
 TEST(Sema, StandardHeaderTypeChecks) {
   Checked c("");
   EXPECT_TRUE(c.ok()) << c.text();
-  EXPECT_EQ(c.count(DiagId::warn_no_shader), 0);
 }
 
 TEST(Sema, LiteralsAndArithmeticCoercions) {
