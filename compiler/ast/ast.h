@@ -276,7 +276,9 @@ struct Callee {
 // name(args...). Struct constructors parse as calls too (the name is a struct).
 // After sema: args[0 .. num_positional) are the positional arguments converted to the callee's
 // parameter types (output parameters are never converted: they have exactly the parameter
-// type); the rest are keyword pairs (string name, value) summarised in `keywords`.
+// type; an array passed to an unsized array parameter keeps its sized type); the rest are
+// keyword pairs (string name, value) summarised in `keywords`. Variadic builtins (printf,
+// format, error, warning, concat) keep their extra arguments as written.
 struct CallExpr : Expr {
   std::string name;
   SourceRange name_range;
@@ -332,7 +334,8 @@ struct MemberExpr : Expr {
 };
 
 // { a, b, ... }: an array or struct initialiser; its type comes from context (sema). After
-// sema each element has the element / field type.
+// sema each element has the element / field type. It may be shorter than the array or struct:
+// the missing trailing elements / fields are zero.
 struct InitListExpr : Expr {
   std::vector<ExprPtr> elems;
   InitListExpr() : Expr(ExprKind::InitList) {}
