@@ -174,14 +174,59 @@ void strings(Builder& b) {
   b.add("regex_match", t_int(), {t_string(), t_string()});
 }
 
+// spline(basis, x, knots...) / (basis, x, knots[]) / (basis, x, nknots, knots[]) per value type;
+// splineinverse is float only. The variadic form takes at least four knots (a cubic segment).
+void splines(Builder& b) {
+  for (Type t : Builder::kGeneric) {
+    b.add("spline", t, {t_string(), t_float(), t, t, t, t}).extra = Sig::Extra::Any;
+    b.add("spline", t, {t_string(), t_float(), Type(t.base, -1)});
+    b.add("spline", t, {t_string(), t_float(), t_int(), Type(t.base, -1)});
+  }
+  b.add("splineinverse", t_float(),
+        {t_string(), t_float(), t_float(), t_float(), t_float(), t_float()})
+      .extra = Sig::Extra::Any;
+  b.add("splineinverse", t_float(), {t_string(), t_float(), Type(BaseType::Float, -1)});
+  b.add("splineinverse", t_float(), {t_string(), t_float(), t_int(), Type(BaseType::Float, -1)});
+}
+
+// Renderer services: attributes, messages, texture queries, rays, files.
+void services(Builder& b) {
+  const BaseType values[] = {BaseType::Int,   BaseType::Float,  BaseType::String, BaseType::Color,
+                             BaseType::Point, BaseType::Vector, BaseType::Normal, BaseType::Matrix};
+  for (BaseType v : values) {
+    for (int len : {0, -1}) {
+      Type t(v, len);
+      b.add("getattribute", t_int(), {t_string(), t}).params[1].output = true;
+      b.add("getattribute", t_int(), {t_string(), t_string(), t}).params[2].output = true;
+      b.add("getattribute", t_int(), {t_string(), t_int(), t}).params[2].output = true;
+      b.add("getattribute", t_int(), {t_string(), t_string(), t_int(), t}).params[3].output = true;
+      b.add("getmessage", t_int(), {t_string(), t}).params[1].output = true;
+      b.add("getmessage", t_int(), {t_string(), t_string(), t}).params[2].output = true;
+      b.add("setmessage", t_void(), {t_string(), t});
+      b.add("gettextureinfo", t_int(), {t_string(), t_string(), t}).params[2].output = true;
+    }
+  }
+  b.add("trace", t_int(), {t_point(), t_vector()}).extra = Sig::Extra::Keywords;
+  b.add("fprintf", t_void(), {t_string(), t_string()}).extra = Sig::Extra::Any;
+}
+
+void textures(Builder& b) {
+  // texture(filename, s, t, "keyword", value, ...) and friends: float or color.
+  for (Type r : {t_float(), t_color()}) {
+    b.add("texture", r, {t_string(), t_float(), t_float()}).extra = Sig::Extra::Keywords;
+    b.add("texture", r,
+          {t_string(), t_float(), t_float(), t_float(), t_float(), t_float(), t_float()})
+        .extra = Sig::Extra::Keywords; // with explicit derivatives dsdx dtdx dsdy dtdy
+    b.add("texture3d", r, {t_string(), t_point()}).extra = Sig::Extra::Keywords;
+    b.add("environment", r, {t_string(), t_vector()}).extra = Sig::Extra::Keywords;
+  }
+}
+
 void misc(Builder& b) {
   b.add("exit", t_void(), {});
   b.add("arraylength", t_int(), {t_float()}).array_param = true;
   b.add("isconnected", t_int(), {t_float()}).any_param = true;
   b.add("isconstant", t_int(), {t_float()}).any_param = true;
-  // texture(filename, s, t, "keyword", value, ...): float or color.
-  b.add("texture", t_float(), {t_string(), t_float(), t_float()}).extra = Sig::Extra::Keywords;
-  b.add("texture", t_color(), {t_string(), t_float(), t_float()}).extra = Sig::Extra::Keywords;
 }
 
 } // namespace
@@ -205,6 +250,9 @@ BuiltinTable::BuiltinTable() {
   color(b);
   patterns(b);
   strings(b);
+  splines(b);
+  services(b);
+  textures(b);
   misc(b);
   // Group by name, keeping each name's declaration order (the preference order).
   std::stable_sort(b.sigs.begin(), b.sigs.end(),

@@ -392,6 +392,26 @@ TEST(Sema, BuiltinTableCoversTheStandardLibrary) {
   EXPECT_EQ(sema::builtins().lookup("cellnoise").size(), 16u);
 }
 
+TEST(Sema, SplinesAndRendererServices) {
+  Checked c(
+      "shader s() { float knots[6] = {0, 0, 1, 2, 3, 3}; color ck[4] = {0, 1, 2, 3};"
+      " float a = spline(\"catmull-rom\", u, 0, 0, 1, 2, 3, 3);"
+      " color b = spline(\"linear\", u, color(0), color(0), color(1), color(1));"
+      " float k = spline(\"bspline\", u, knots) + spline(\"bspline\", u, 5, knots);"
+      " color d = spline(\"constant\", u, ck); float e = splineinverse(\"linear\", 0.5, knots);"
+      " float val; int ok = getattribute(\"object:name\", val) + getattribute(\"obj\", \"n\", val);"
+      " string names[2]; ok += getattribute(\"names\", names); setmessage(\"m\", val);"
+      " ok += getmessage(\"trace\", \"hitdist\", val) + gettextureinfo(\"t.exr\", \"exists\", ok);"
+      " ok += trace(P, N, \"maxdist\", 10.0); fprintf(\"log.txt\", \"%d\\n\", ok);"
+      " color env = environment(\"sky.exr\", I, \"blur\", 0.1); float t3 = texture3d(\"v.vdb\", "
+      "P); }");
+  EXPECT_TRUE(c.ok()) << c.text();
+  Checked bad("shader s() { float v; getattribute(\"a\", 1.0); int i = spline(\"linear\", u, 1, 2, "
+              "3, 4); }");
+  EXPECT_EQ(bad.count(DiagId::err_output_arg_not_lvalue), 1) << bad.text();
+  EXPECT_EQ(bad.count(DiagId::err_cannot_assign), 1) << bad.text();
+}
+
 TEST(Sema, StringAndMiscBuiltins) {
   Checked c("shader s() { string f = format(\"%d %s\", 1, \"x\"); printf(\"%g\\n\", P);"
             " int n = strlen(f) + startswith(f, \"a\") + hash(f) + regex_match(f, \"a.*\");"
