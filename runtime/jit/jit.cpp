@@ -12,6 +12,16 @@
 #include <llvm/Passes/PassBuilder.h>
 #include <llvm/Support/TargetSelect.h>
 #include <llvm/Target/TargetMachine.h>
+#include <llvm/TargetParser/Host.h>
+#include <llvm/Transforms/InstCombine/InstCombine.h>
+#include <llvm/Transforms/Scalar/ADCE.h>
+#include <llvm/Transforms/Scalar/DeadStoreElimination.h>
+#include <llvm/Transforms/Scalar/EarlyCSE.h>
+#include <llvm/Transforms/Scalar/GVN.h>
+#include <llvm/Transforms/Scalar/Reassociate.h>
+#include <llvm/Transforms/Scalar/SCCP.h>
+#include <llvm/Transforms/Scalar/SROA.h>
+#include <llvm/Transforms/Scalar/SimplifyCFG.h>
 
 #include <atomic>
 #include <chrono>
@@ -32,6 +42,22 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 }
 } // namespace
 
+// On x86-64 the target is the host's ISA level capped at x86-64-v3 (AVX2, FMA): with the
+// full host feature set (measured on znver4, AVX-512) shader code that calls libm ran 1.35x
+// slower than the same C++; at x86-64-v3 it matches it (docs/runtime.md, "Measured").
+void cap_x86_level(llvm::orc::JITTargetMachineBuilder& jtmb) {
+  if (!jtmb.getTargetTriple().isX86() || jtmb.getTargetTriple().isArch32Bit()) return;
+  llvm::StringMap<bool> host = llvm::sys::getHostCPUFeatures();
+  auto has = [&](const char* f) { return host.lookup(f); };
+  const char* cpu = "x86-64";
+  if (has("avx2") && has("fma") && has("bmi2") && has("f16c") && has("movbe"))
+    cpu = "x86-64-v3";
+  else if (has("sse4.2") && has("popcnt") && has("ssse3"))
+    cpu = "x86-64-v2";
+  jtmb.setCPU(cpu);
+  jtmb.getFeatures() = llvm::SubtargetFeatures();
+}
+
 Jit::~Jit() = default;
 
 std::unique_ptr<Jit> Jit::create(std::string& error) {
@@ -42,7 +68,8 @@ std::unique_ptr<Jit> Jit::create(std::string& error) {
     error = llvm::toString(jtmb.takeError());
     return nullptr;
   }
-  jtmb->setCodeGenOptLevel(llvm::CodeGenOptLevel::Default);
+  jtmb->setCodeGenOptLevel(llvm::CodeGenOptLevel::Less);
+  cap_x86_level(*jtmb);
   auto tm = jtmb->createTargetMachine();
   if (!tm) {
     error = llvm::toString(tm.takeError());
@@ -77,6 +104,9 @@ void Jit::configure(llvm::Module& module) const {
   module.setDataLayout(s_->tm->createDataLayout());
 }
 
+// -O1: a short function pipeline suited to shader code (straight-line, alloca-heavy, calls
+// into shadeops): SROA makes SSA, then CSE, combining, CFG clean-up, GVN and dead code.
+// -O2: LLVM's full per-module O2 pipeline (adds inlining, loop passes, vectorisation).
 void Jit::optimize(llvm::Module& module, int opt_level) const {
   if (opt_level <= 0) return;
   std::lock_guard<std::mutex> lock(s_->opt_mutex);
@@ -90,9 +120,24 @@ void Jit::optimize(llvm::Module& module, int opt_level) const {
   pb.registerFunctionAnalyses(fam);
   pb.registerLoopAnalyses(lam);
   pb.crossRegisterProxies(lam, fam, cgam, mam);
-  auto level = opt_level == 1 ? llvm::OptimizationLevel::O1 : llvm::OptimizationLevel::O2;
-  llvm::ModulePassManager mpm = pb.buildPerModuleDefaultPipeline(level);
-  mpm.run(module, mam);
+  if (opt_level >= 2) {
+    llvm::ModulePassManager mpm = pb.buildPerModuleDefaultPipeline(llvm::OptimizationLevel::O2);
+    mpm.run(module, mam);
+    return;
+  }
+  llvm::FunctionPassManager fpm;
+  fpm.addPass(llvm::SROAPass(llvm::SROAOptions::ModifyCFG));
+  fpm.addPass(llvm::EarlyCSEPass(true));
+  fpm.addPass(llvm::InstCombinePass());
+  fpm.addPass(llvm::SimplifyCFGPass());
+  fpm.addPass(llvm::SCCPPass());
+  fpm.addPass(llvm::GVNPass());
+  fpm.addPass(llvm::DSEPass());
+  fpm.addPass(llvm::InstCombinePass());
+  fpm.addPass(llvm::SimplifyCFGPass());
+  fpm.addPass(llvm::ADCEPass());
+  for (llvm::Function& f : module)
+    if (!f.isDeclaration()) fpm.run(f, fam);
 }
 
 bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::Module> module,
