@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <unordered_map>
 
 namespace lobe::lex {
 
@@ -168,8 +169,12 @@ Token Lexer::identifier() {
   size_t b = pos_;
   while (pos_ < text_.size() && ident_char(text_[pos_])) ++pos_;
   Token t = make(Tok::Ident, b);
-  for (const auto& k : kKeywords)
-    if (t.text == k.text) t.kind = k.tok;
+  static const std::unordered_map<std::string_view, Tok> kKeywordMap = [] {
+    std::unordered_map<std::string_view, Tok> m;
+    for (const auto& k : kKeywords) m.emplace(k.text, k.tok);
+    return m;
+  }();
+  if (auto it = kKeywordMap.find(t.text); it != kKeywordMap.end()) t.kind = it->second;
   return t;
 }
 
@@ -304,9 +309,11 @@ Token Lexer::string_literal() {
 
 // A punctuator, or Eof if none matches here. `]]` is two `]` tokens: `a[b[1]]` must index.
 Token Lexer::punctuator() {
+  char c = text_[pos_];
   for (const auto& p : kPuncts) {
-    size_t n = std::strlen(p.text);
-    if (text_.substr(pos_, n) == p.text) {
+    if (p.text[0] != c) continue;
+    size_t n = p.text[1] == '\0' ? 1 : (p.text[2] == '\0' ? 2 : 3);
+    if (text_.compare(pos_, n, p.text) == 0) {
       size_t b = pos_;
       pos_ += n;
       return make(p.tok, b);

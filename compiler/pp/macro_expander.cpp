@@ -24,16 +24,17 @@ PPToken pop(std::vector<PPToken>& stack) {
 } // namespace
 
 void Preprocessor::expand_from_file(Cursor& cur) {
-  Input in;
-  in.file = &cur;
-  const PPToken first = (*cur.toks)[cur.pos++];
-  const Macro* m = first.kind == PPKind::Ident ? find_macro(first.text) : nullptr;
+  const PPToken& first = (*cur.toks)[cur.pos++]; // copied only when it starts an expansion
+  bool ident = first.kind == PPKind::Ident;
+  const Macro* m = ident && !macros_.empty() ? find_macro(first.text) : nullptr;
   bool builtin =
-      first.kind == PPKind::Ident && (first.text == "__LINE__" || first.text == "__FILE__");
+      ident && first.text.size() == 8 && (first.text == "__LINE__" || first.text == "__FILE__");
   if (!m && !builtin) {
     emit_file_token(first);
     return;
   }
+  Input in;
+  in.file = &cur;
   in.pending.push_back(first);
   expansion_budget_ = kExpansionBudget;
   std::vector<PPToken> out;

@@ -25,6 +25,7 @@ public:
       : text_(t), base_(base), diags_(d) {}
 
   std::vector<PPToken> run() {
+    out_.reserve(text_.size() / 3 + 8);
     while (pos_ < text_.size()) step();
     push(PPKind::Newline, pos_, 0);
     push(PPKind::Eof, pos_, 0);
@@ -93,8 +94,9 @@ private:
       return;
     }
     for (const char* p : kPuncts) {
-      size_t n = std::char_traits<char>::length(p);
-      if (text_.substr(pos_, n) == p) {
+      if (p[0] != c) continue;
+      size_t n = p[1] == '\0' ? 1 : (p[2] == '\0' ? 2 : 3);
+      if (text_.compare(pos_, n, p) == 0) {
         push(PPKind::Punct, pos_, n);
         pos_ += n;
         return;
