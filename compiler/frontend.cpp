@@ -43,7 +43,17 @@ std::unique_ptr<ast::TranslationUnit> compile_to_ast(const SourceInput& input,
   ppo.include_dirs = options.include_dirs;
   ppo.defines = options.defines;
   ppo.undefines = options.undefines;
-  ppo.read_file = options.read_file;
+  // `#include "stdosl.h"` (which most OSL shaders write) finds the embedded header when no
+  // file of that name is on the search path; its include guard makes it a no-op.
+  ppo.read_file = [user =
+                       options.read_file](const std::string& path) -> std::optional<std::string> {
+    auto text = user ? user(path) : pp::read_file_from_disk(path);
+    if (text) return text;
+    auto slash = path.find_last_of('/');
+    if (path.substr(slash == std::string::npos ? 0 : slash + 1) == stdlib::kStdoslName)
+      return std::string(stdlib::stdosl_source());
+    return std::nullopt;
+  };
   pp::Preprocessor pp(sm, diags, ppo);
   int stdlib_id = -1;
   if (options.include_stdlib) {

@@ -39,7 +39,10 @@ void Preprocessor::define_predefined() {
 }
 
 std::optional<std::string> Preprocessor::read(const std::string& path) const {
-  if (opts_.read_file) return opts_.read_file(path);
+  return opts_.read_file ? opts_.read_file(path) : read_file_from_disk(path);
+}
+
+std::optional<std::string> read_file_from_disk(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
   std::ifstream in(path, std::ios::binary);
@@ -270,6 +273,7 @@ void Preprocessor::do_include(const std::vector<PPToken>& raw, Cursor& cur) {
   if (!angled) candidates.push_back(dirname(sm_.buffer_name(cur.buffer)) + name);
   for (const auto& d : opts_.include_dirs)
     candidates.push_back(d + (d.empty() || d.back() == '/' ? "" : "/") + name);
+  if (angled) candidates.push_back(name); // last: the working directory / built-in headers
   for (const auto& path : candidates) {
     auto text = read(path);
     if (!text) continue;

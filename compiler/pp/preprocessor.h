@@ -44,6 +44,9 @@ struct Macro {
   diag::SourceLoc def_loc;
 };
 
+// Reads a whole file from the file system (nullopt if it is not a readable regular file).
+std::optional<std::string> read_file_from_disk(const std::string& path);
+
 class Preprocessor {
 public:
   Preprocessor(diag::SourceManager& sm, diag::DiagnosticEngine& diags, PPOptions options);

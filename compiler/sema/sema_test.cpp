@@ -49,6 +49,17 @@ TEST(Sema, StandardHeaderTypeChecks) {
   EXPECT_TRUE(c.ok()) << c.text();
 }
 
+TEST(Sema, ExplicitIncludeOfTheStandardHeader) {
+  for (const char* inc : {"#include \"stdosl.h\"\n", "#include <stdosl.h>\n"}) {
+    diag::DiagnosticEngine diags;
+    frontend::FrontendOptions o;
+    o.include_stdlib = false;
+    std::string src = std::string(inc) + "shader s() { float m = mix(0.0, 1.0, 0.5) + M_PI; }";
+    auto tu = frontend::compile_to_ast({"t.osl", src}, o, diags);
+    EXPECT_FALSE(diags.has_errors()) << inc << diag::render_all(diags, *tu->sources);
+  }
+}
+
 TEST(Sema, LiteralsAndArithmeticCoercions) {
   EXPECT_EQ(body_of("float f = 1;"), "{ (var float f (icast float:float 1:int)) }");
   EXPECT_EQ(body_of("color c = 0.5 * color(1, 0, 0);"),
