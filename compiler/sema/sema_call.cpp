@@ -126,6 +126,9 @@ void Sema::call(ast::CallExpr* e, const Type* expected) {
     else if (!fits.empty())
       viable = fits;
   }
+  // A user function ties with a builtin of the same signature: the user's wins (it overrides).
+  if (viable.size() > 1 && std::any_of(viable.begin(), viable.end(), [](auto& c) { return c.fn; }))
+    std::erase_if(viable, [](const Candidate& c) { return c.builtin != nullptr; });
   bool all_builtin = std::all_of(viable.begin(), viable.end(), [](auto& c) { return c.builtin; });
   if (viable.size() > 1 && !all_builtin) {
     report_no_match(e, viable, true);

@@ -142,6 +142,20 @@ TEST(Sema, UserOverloadsAndCoercionOrder) {
   EXPECT_EQ(callee(2), "color");
 }
 
+TEST(Sema, UserFunctionOverridesBuiltinWithSameSignature) {
+  Checked c("float noise(point p) { return 0.25; }\nshader s() { float n = noise(P); color k = "
+            "noise(P); }");
+  ASSERT_TRUE(c.ok()) << c.text();
+  auto* d0 = static_cast<ast::DeclStmt*>(c.shader()->body->stmts[0].get());
+  auto* call = ast::as<ast::CallExpr>(static_cast<ast::VarDecl*>(d0->decls[0].get())->init.get());
+  ASSERT_NE(call, nullptr);
+  EXPECT_EQ(call->callee.kind, ast::CalleeKind::User);
+  auto* d1 = static_cast<ast::DeclStmt*>(c.shader()->body->stmts[1].get());
+  auto* call2 = ast::as<ast::CallExpr>(static_cast<ast::VarDecl*>(d1->decls[0].get())->init.get());
+  ASSERT_NE(call2, nullptr); // the color builtin matches the expected type exactly
+  EXPECT_EQ(call2->callee.kind, ast::CalleeKind::Builtin);
+}
+
 TEST(Sema, NoMatchListsCandidates) {
   Checked c("float f(float x) { return x; }\nfloat f(string s) { return 0; }\n"
             "shader s() { f(matrix(1)); }");
