@@ -187,7 +187,7 @@ void Sema::function_decl(ast::FunctionDecl* f) {
   pop_scope();
   loop_depth_ = loops;
   functions_.pop_back();
-  if (!f->return_type.is_void() && !f->return_type.is_error() && !has_return_value(f->body.get()))
+  if (!f->return_type.is_void() && !f->return_type.is_error() && !has_return(f->body.get()))
     error(DiagId::err_missing_return, f->name_range, {f->name});
 }
 
@@ -275,25 +275,25 @@ void Sema::metadata(ast::Metadata& md) {
 
 // True if the statement contains a `return` (nested function definitions excluded); a
 // `return;` without a value in a non-void function is reported where it is.
-bool Sema::has_return_value(const ast::Stmt* s) const {
+bool Sema::has_return(const ast::Stmt* s) const {
   if (!s) return false;
   switch (s->kind) {
   case ast::StmtKind::Return:
     return true;
   case ast::StmtKind::Compound:
     for (auto& c : static_cast<const ast::CompoundStmt*>(s)->stmts)
-      if (has_return_value(c.get())) return true;
+      if (has_return(c.get())) return true;
     return false;
   case ast::StmtKind::If: {
     auto* i = static_cast<const ast::IfStmt*>(s);
-    return has_return_value(i->then_stmt.get()) || has_return_value(i->else_stmt.get());
+    return has_return(i->then_stmt.get()) || has_return(i->else_stmt.get());
   }
   case ast::StmtKind::While:
-    return has_return_value(static_cast<const ast::WhileStmt*>(s)->body.get());
+    return has_return(static_cast<const ast::WhileStmt*>(s)->body.get());
   case ast::StmtKind::DoWhile:
-    return has_return_value(static_cast<const ast::DoWhileStmt*>(s)->body.get());
+    return has_return(static_cast<const ast::DoWhileStmt*>(s)->body.get());
   case ast::StmtKind::For:
-    return has_return_value(static_cast<const ast::ForStmt*>(s)->body.get());
+    return has_return(static_cast<const ast::ForStmt*>(s)->body.get());
   default:
     return false;
   }

@@ -62,7 +62,7 @@ private:
   void metadata(ast::Metadata& md);
   void check_recursion();
   void resolve_prototypes();
-  bool has_return_value(const ast::Stmt* s) const;
+  bool has_return(const ast::Stmt* s) const;
 
   // --- statements (sema_stmt.cpp)
   void stmt(ast::Stmt* s);
