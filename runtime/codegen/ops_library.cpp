@@ -402,28 +402,126 @@ void op_query(LayerEmitter& e, const ir::Op& op) {
 
 void op_setmessage(LayerEmitter&, const ir::Op&) {} // no message passing between shaders yet
 
-// texture lookups: no texture system is wired in yet; results are 0 (docs/runtime.md).
+// ---- textures -------------------------------------------------------------------------------
+
+// Fills a TextureArgs block from `"keyword", value` pairs starting at operand `first`.
+llvm::Value* texture_args(LayerEmitter& e, const ir::Op& op, size_t first) {
+  using shadeops::TextureArgs;
+  auto& B = e.b();
+  auto* block =
+      e.entry_alloca(llvm::ArrayType::get(B.getInt8Ty(), sizeof(TextureArgs)), 1, "texargs");
+  auto at = [&](size_t off) { return B.CreateConstInBoundsGEP1_64(B.getInt8Ty(), block, off); };
+  B.CreateStore(e.fconst(0), at(offsetof(TextureArgs, blur)));
+  B.CreateStore(e.fconst(1), at(offsetof(TextureArgs, width)));
+  B.CreateStore(e.fconst(0), at(offsetof(TextureArgs, fill)));
+  B.CreateStore(e.iconst(0), at(offsetof(TextureArgs, firstchannel)));
+  B.CreateStore(llvm::ConstantPointerNull::get(B.getPtrTy()), at(offsetof(TextureArgs, wrap)));
+  B.CreateStore(llvm::ConstantPointerNull::get(B.getPtrTy()), at(offsetof(TextureArgs, interp)));
+  B.CreateStore(e.iconst(0), at(offsetof(TextureArgs, has_missing)));
+  for (size_t i = first; i + 1 < op.args.size(); i += 2) {
+    std::string kw = const_string(e.arg(op, int(i)));
+    int v = int(i + 1);
+    if (kw == "blur" || kw == "sblur" || kw == "tblur" || kw == "rblur")
+      B.CreateStore(e.load_as(op, v, BaseType::Float, false)[0].v, at(offsetof(TextureArgs, blur)));
+    else if (kw == "width" || kw == "swidth" || kw == "twidth" || kw == "rwidth")
+      B.CreateStore(e.load_as(op, v, BaseType::Float, false)[0].v,
+                    at(offsetof(TextureArgs, width)));
+    else if (kw == "fill")
+      B.CreateStore(e.load_as(op, v, BaseType::Float, false)[0].v, at(offsetof(TextureArgs, fill)));
+    else if (kw == "firstchannel")
+      B.CreateStore(e.load_as(op, v, BaseType::Int, false)[0].v,
+                    at(offsetof(TextureArgs, firstchannel)));
+    else if (kw == "wrap" || kw == "swrap" || kw == "twrap" || kw == "rwrap")
+      B.CreateStore(e.load(op.args[size_t(v)])[0].v, at(offsetof(TextureArgs, wrap)));
+    else if (kw == "interp")
+      B.CreateStore(e.load(op.args[size_t(v)])[0].v, at(offsetof(TextureArgs, interp)));
+    else if (kw == "missingcolor") {
+      Val c = e.load_as(op, v, BaseType::Color, false);
+      for (size_t k = 0; k < 3; ++k)
+        B.CreateStore(c[k].v, at(offsetof(TextureArgs, missing) + 4 * k));
+      B.CreateStore(e.iconst(1), at(offsetof(TextureArgs, has_missing)));
+    }
+    // "alpha", "missingalpha", "time", "subimage": not supported, ignored
+  }
+  return block;
+}
+
+// texture a "file" s t [dsdx dtdx dsdy dtdy] "kw" v...; derivatives of the result follow s, t.
 void op_texture(LayerEmitter& e, const ir::Op& op) {
+  auto& B = e.b();
   const ir::Symbol& d = e.arg(op, 0);
-  Val z(size_t(d.type.components()), Dual{e.fconst(0)});
-  e.store(op.args[0],
-          e.convert(z, d.type.is_triple() ? BaseType::Color : BaseType::Float, d.type.base));
+  int n = d.type.components();
+  bool derivs = e.wants_derivs(op.args[0]);
+  Dual s = e.load_as(op, 2, BaseType::Float)[0], t = e.load_as(op, 3, BaseType::Float)[0];
+  bool explicit_d = op.args.size() >= 8 && e.arg(op, 4).type.base != BaseType::String;
+  auto orzero = [&](llvm::Value* v) { return v ? v : e.fconst(0); };
+  llvm::Value *dsdx = orzero(s.dx), *dtdx = orzero(t.dx), *dsdy = orzero(s.dy),
+              *dtdy = orzero(t.dy);
+  if (explicit_d) {
+    dsdx = e.load_as(op, 4, BaseType::Float, false)[0].v;
+    dtdx = e.load_as(op, 5, BaseType::Float, false)[0].v;
+    dsdy = e.load_as(op, 6, BaseType::Float, false)[0].v;
+    dtdy = e.load_as(op, 7, BaseType::Float, false)[0].v;
+  }
+  llvm::Value* args = texture_args(e, op, explicit_d ? 8 : 4);
+  llvm::Value* out = e.spill(std::vector<llvm::Value*>(size_t(n), e.fconst(0)));
+  llvm::Value* null = llvm::ConstantPointerNull::get(B.getPtrTy());
+  llvm::Value* dds = derivs ? e.spill(std::vector<llvm::Value*>(size_t(n), e.fconst(0))) : null;
+  llvm::Value* ddt = derivs ? e.spill(std::vector<llvm::Value*>(size_t(n), e.fconst(0))) : null;
+  e.call("lobe_texture", {e.sg(), e.env_ptr(), e.load(op.args[1])[0].v, s.v, t.v, dsdx, dtdx, dsdy,
+                          dtdy, e.iconst(n), out, dds, ddt, args});
+  std::vector<llvm::Value*> ov = e.reload(out, n), gs, gt;
+  if (derivs) {
+    gs = e.reload(dds, n);
+    gt = e.reload(ddt, n);
+  }
+  Val r;
+  for (int c = 0; c < n; ++c) {
+    Dual rc{ov[size_t(c)]};
+    if (derivs) { // d/dx = d/ds * ds/dx + d/dt * dt/dx
+      rc.dx = B.CreateFAdd(B.CreateFMul(gs[size_t(c)], dsdx), B.CreateFMul(gt[size_t(c)], dtdx));
+      rc.dy = B.CreateFAdd(B.CreateFMul(gs[size_t(c)], dsdy), B.CreateFMul(gt[size_t(c)], dtdy));
+    }
+    r.push_back(rc);
+  }
+  e.store(op.args[0], e.convert(r, n == 1 ? BaseType::Float : BaseType::Color, d.type.base));
+}
+
+// texture3d a "file" P "kw" v...; environment a "file" R "kw" v... (no result derivatives).
+void op_texture3d(LayerEmitter& e, const ir::Op& op) {
+  const ir::Symbol& d = e.arg(op, 0);
+  int n = d.type.components();
+  Val p = e.load_as(op, 2, BaseType::Vector);
+  std::vector<llvm::Value*> v, dx, dy;
+  for (const Dual& c : p) {
+    v.push_back(c.v);
+    dx.push_back(c.dx ? c.dx : e.fconst(0));
+    dy.push_back(c.dy ? c.dy : e.fconst(0));
+  }
+  llvm::Value* args = texture_args(e, op, 3);
+  llvm::Value* out = e.spill(std::vector<llvm::Value*>(size_t(n), e.fconst(0)));
+  e.call(op.opcode == "texture3d" ? "lobe_texture3d" : "lobe_environment",
+         {e.sg(), e.env_ptr(), e.load(op.args[1])[0].v, e.spill(v), e.spill(dx), e.spill(dy),
+          e.iconst(n), out, args});
+  Val r;
+  for (llvm::Value* x : e.reload(out, n)) r.push_back(Dual{x});
+  e.store(op.args[0], e.convert(r, n == 1 ? BaseType::Float : BaseType::Color, d.type.base));
 }
 
 const OpEntry kLibraryOps[] = {
-    {"printf", op_printf},     {"format", op_printf},        {"error", op_printf},
-    {"warning", op_printf},    {"fprintf", op_printf},       {"concat", op_string},
-    {"strlen", op_string},     {"startswith", op_string},    {"endswith", op_string},
-    {"stoi", op_string},       {"stof", op_string},          {"substr", op_string},
-    {"getchar", op_string},    {"regex_search", op_string},  {"regex_match", op_string},
-    {"hash", op_hash},         {"closure", op_closure},      {"noise", op_noise},
-    {"snoise", op_noise},      {"pnoise", op_noise},         {"psnoise", op_noise},
-    {"cellnoise", op_noise},   {"hashnoise", op_noise},      {"raytype", op_query},
-    {"backfacing", op_query},  {"surfacearea", op_query},    {"isconnected", op_query},
-    {"isconstant", op_query},  {"getattribute", op_query},   {"getmessage", op_query},
-    {"trace", op_query},       {"gettextureinfo", op_query}, {"setmessage", op_setmessage},
-    {"spline", op_spline},     {"splineinverse", op_spline}, {"texture", op_texture},
-    {"texture3d", op_texture}, {"environment", op_texture},
+    {"printf", op_printf},       {"format", op_printf},         {"error", op_printf},
+    {"warning", op_printf},      {"fprintf", op_printf},        {"concat", op_string},
+    {"strlen", op_string},       {"startswith", op_string},     {"endswith", op_string},
+    {"stoi", op_string},         {"stof", op_string},           {"substr", op_string},
+    {"getchar", op_string},      {"regex_search", op_string},   {"regex_match", op_string},
+    {"hash", op_hash},           {"closure", op_closure},       {"noise", op_noise},
+    {"snoise", op_noise},        {"pnoise", op_noise},          {"psnoise", op_noise},
+    {"cellnoise", op_noise},     {"hashnoise", op_noise},       {"raytype", op_query},
+    {"backfacing", op_query},    {"surfacearea", op_query},     {"isconnected", op_query},
+    {"isconstant", op_query},    {"getattribute", op_query},    {"getmessage", op_query},
+    {"trace", op_query},         {"gettextureinfo", op_query},  {"setmessage", op_setmessage},
+    {"spline", op_spline},       {"splineinverse", op_spline},  {"texture", op_texture},
+    {"texture3d", op_texture3d}, {"environment", op_texture3d},
 };
 
 } // namespace

@@ -25,7 +25,15 @@ private:
 };
 
 struct RuntimeEnv {
+  RuntimeEnv() = default;
+  RuntimeEnv(const RuntimeEnv&) = delete;
+  RuntimeEnv& operator=(const RuntimeEnv&) = delete;
+  ~RuntimeEnv();
+
   StringTable strings;
+  // OpenImageIO TextureSystem, created on the first texture lookup (texture.cpp).
+  void* texture_system = nullptr;
+  std::once_flag texture_once;
   // Renders a closure tree for printf("%s"); null: a built-in fallback format.
   std::string (*closure_printer)(const ClosureNode*) = nullptr;
 };

@@ -7,6 +7,7 @@
 // (float*, components in order), strings (interned const char*) and contexts.
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <string_view>
 
@@ -20,6 +21,21 @@ struct ShadeOpSymbol {
 
 std::span<const ShadeOpSymbol> shadeop_symbols();
 const ShadeOpSymbol* find_shadeop(std::string_view name);
+
+// Texture lookup options gathered from a texture call's keyword arguments; codegen fills this
+// struct by field offset and passes its address to lobe_texture / lobe_texture3d /
+// lobe_environment.
+struct TextureArgs {
+  float blur = 0;
+  float width = 1;
+  float fill = 0;
+  int32_t firstchannel = 0;
+  const char* wrap = nullptr;   // "black", "clamp", "periodic", "mirror" or null (file default)
+  const char* interp = nullptr; // "closest", "linear", "cubic", "smartcubic" or null (smartcubic)
+  int32_t has_missing = 0;
+  float missing[4] = {0, 0, 0,
+                      0}; // "missingcolor": used (without an error) when the file is missing
+};
 
 // Noise kinds for lobe_noise (noise("name", ...) and the named functions).
 enum NoiseKind : int { kPerlin = 0, kUPerlin = 1, kCell = 2, kHash = 3 };

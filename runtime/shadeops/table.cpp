@@ -41,6 +41,9 @@ void lobe_blackbody();
 void lobe_luminance();
 void lobe_noise();
 void lobe_spline();
+void lobe_texture();
+void lobe_texture3d();
+void lobe_environment();
 void lobe_splineinverse();
 }
 
@@ -85,6 +88,9 @@ const ShadeOpSymbol kTable[] = {
     {"lobe_luminance", addr(lobe_luminance), "fp"},
     {"lobe_noise", addr(lobe_noise), "vipippip"},
     {"lobe_spline", addr(lobe_spline), "vpfpiipp"},
+    {"lobe_texture", addr(lobe_texture), "vpppffffffipppp"},
+    {"lobe_texture3d", addr(lobe_texture3d), "vppppppipp"},
+    {"lobe_environment", addr(lobe_environment), "vppppppipp"},
     {"lobe_splineinverse", addr(lobe_splineinverse), "fpfpi"},
     // libm / libc
     {"sinf", addr(F1(::sinf)), "ff"},

@@ -1,0 +1,102 @@
+// Texture shadeops through OpenImageIO's TextureSystem (mip-mapped, filtered, cached):
+// texture(file, s, t) with screen-space derivatives, texture3d(file, P), environment(file, R).
+// One TextureSystem per RuntimeEnv (so per ShadingSystem), created on first use. A missing
+// file gives "missingcolor" when the shader supplies one, else 0 and a run-time error.
+#include "env.h"
+#include "lobe/context.h"
+#include "shadeops.h"
+
+#include <Imath/ImathVec.h>
+#include <OpenImageIO/texture.h>
+
+#include <algorithm>
+
+using lobe::ShaderGlobals;
+using lobe::shadeops::RuntimeEnv;
+using lobe::shadeops::TextureArgs;
+namespace OIIO = OIIO_NAMESPACE;
+
+namespace lobe::shadeops {
+
+RuntimeEnv::~RuntimeEnv() {
+  if (texture_system)
+    OIIO::TextureSystem::destroy(static_cast<OIIO::TextureSystem*>(texture_system));
+}
+
+} // namespace lobe::shadeops
+
+namespace {
+
+OIIO::TextureSystem* texsys(RuntimeEnv* env) {
+  std::call_once(env->texture_once,
+                 [env] { env->texture_system = OIIO::TextureSystem::create(false); });
+  return static_cast<OIIO::TextureSystem*>(env->texture_system);
+}
+
+OIIO::TextureOpt options(const TextureArgs* a) {
+  OIIO::TextureOpt opt;
+  opt.sblur = opt.tblur = opt.rblur = a->blur;
+  opt.swidth = opt.twidth = opt.rwidth = a->width;
+  opt.fill = a->fill;
+  opt.firstchannel = a->firstchannel;
+  if (a->wrap) opt.swrap = opt.twrap = opt.rwrap = OIIO::TextureOpt::decode_wrapmode(a->wrap);
+  if (a->interp) {
+    std::string m = a->interp;
+    opt.interpmode = m == "closest"                     ? OIIO::TextureOpt::InterpClosest
+                     : m == "linear" || m == "bilinear" ? OIIO::TextureOpt::InterpBilinear
+                     : m == "cubic" || m == "bicubic"   ? OIIO::TextureOpt::InterpBicubic
+                                                        : OIIO::TextureOpt::InterpSmartBicubic;
+  }
+  return opt;
+}
+
+// After a failed lookup: the shader's missing colour, or zeros and an error.
+void missing(ShaderGlobals* sg, OIIO::TextureSystem* ts, const TextureArgs* a, const char* file,
+             int n, float* out) {
+  for (int c = 0; c < n; ++c) out[c] = a->has_missing ? a->missing[std::min(c, 3)] : 0.0f;
+  std::string err = ts->geterror();
+  if (a->has_missing || !sg || !sg->context) return;
+  sg->context->errors++;
+  sg->context->message("ERROR: texture \"" + std::string(file) +
+                       "\": " + (err.empty() ? "cannot read" : err) + "\n");
+}
+
+} // namespace
+
+extern "C" {
+
+// out[n] = filtered lookup; dds/ddt (may be null) receive d out / ds, d out / dt.
+void lobe_texture(ShaderGlobals* sg, RuntimeEnv* env, const char* file, float s, float t,
+                  float dsdx, float dtdx, float dsdy, float dtdy, int n, float* out, float* dds,
+                  float* ddt, const TextureArgs* a) {
+  OIIO::TextureSystem* ts = texsys(env);
+  OIIO::TextureOpt opt = options(a);
+  if (!ts->texture(OIIO::ustring(file), opt, s, t, dsdx, dtdx, dsdy, dtdy, n, out, dds, ddt)) {
+    missing(sg, ts, a, file, n, out);
+    if (dds) std::fill(dds, dds + n, 0.0f);
+    if (ddt) std::fill(ddt, ddt + n, 0.0f);
+  }
+}
+
+// p, dpdx, dpdy: three floats each.
+void lobe_texture3d(ShaderGlobals* sg, RuntimeEnv* env, const char* file, const float* p,
+                    const float* dpdx, const float* dpdy, int n, float* out, const TextureArgs* a) {
+  OIIO::TextureSystem* ts = texsys(env);
+  OIIO::TextureOpt opt = options(a);
+  Imath::V3f P(p[0], p[1], p[2]), dx(dpdx[0], dpdx[1], dpdx[2]), dy(dpdy[0], dpdy[1], dpdy[2]),
+      dz(0, 0, 0);
+  if (!ts->texture3d(OIIO::ustring(file), opt, P, dx, dy, dz, n, out))
+    missing(sg, ts, a, file, n, out);
+}
+
+void lobe_environment(ShaderGlobals* sg, RuntimeEnv* env, const char* file, const float* r,
+                      const float* drdx, const float* drdy, int n, float* out,
+                      const TextureArgs* a) {
+  OIIO::TextureSystem* ts = texsys(env);
+  OIIO::TextureOpt opt = options(a);
+  Imath::V3f R(r[0], r[1], r[2]), dx(drdx[0], drdx[1], drdx[2]), dy(drdy[0], drdy[1], drdy[2]);
+  if (!ts->environment(OIIO::ustring(file), opt, R, dx, dy, n, out))
+    missing(sg, ts, a, file, n, out);
+}
+
+} // extern "C"
