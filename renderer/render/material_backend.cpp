@@ -12,6 +12,9 @@ namespace lobe::render {
 #ifdef LOBE_HAVE_JIT
 struct MaterialBackend::Jit {
   ShadingSystem ss;
+  // ShadingSystem::compile is documented thread-safe, but concurrent compiles currently fail
+  // in the JIT ("symbol 'group_entry' is already defined"): serialise them until it is fixed.
+  std::mutex compile_mu;
 };
 bool MaterialBackend::jit_available() { return true; }
 #else
@@ -44,7 +47,11 @@ std::shared_ptr<const Material> MaterialBackend::compile(const scene::MaterialDe
 #ifdef LOBE_HAVE_JIT
   if (jit_) {
     DiagnosticList diags;
-    auto mat = jit_->ss.compile(m.group, diags);
+    std::shared_ptr<const Material> mat;
+    {
+      std::lock_guard<std::mutex> lock(jit_->compile_mu);
+      mat = jit_->ss.compile(m.group, diags);
+    }
     if (mat) {
       std::lock_guard<std::mutex> lock(mu_);
       used_jit_ = true;
