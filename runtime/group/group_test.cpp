@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <thread>
 
 using namespace lobe;
 
@@ -241,6 +242,50 @@ end
   EXPECT_EQ(bit("dudx"), 1u); // Dx(u) reads u's derivatives
   EXPECT_EQ(bit("N"), 0u);
   EXPECT_EQ(bit("P"), 0u);
+}
+
+} // namespace
+
+namespace {
+
+// One compiled material shaded from several threads at once, each with its own context; and a
+// material that outlives its ShadingSystem.
+TEST(GroupThreads, ConcurrentShadingAndLifetime) {
+  std::shared_ptr<const Material> mat;
+  {
+    ShadingSystem ss;
+    DiagnosticList d;
+    ASSERT_TRUE(ss.add_shader_ir("sq", R"(lobe-ir 1
+surface sq
+symbols
+  global float u
+  oparam float r = 0
+  const string $f = "%g\n"
+main
+  mul r u u
+  printf $f r
+end
+)",
+                                 d));
+    auto g = ss.parse_group("shader sq l ;", "t", d);
+    mat = ss.compile(*g, d);
+    ASSERT_TRUE(mat);
+  } // the ShadingSystem is gone; the material keeps its JIT and strings alive
+  std::vector<std::thread> threads;
+  std::vector<std::string> outputs(4);
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&, t] {
+      ShadingContext ctx;
+      for (int i = 0; i < 100; ++i) {
+        ShaderGlobals sg{};
+        sg.context = &ctx;
+        sg.u = float(t + 1);
+        mat->shade(sg);
+      }
+      outputs[size_t(t)] = ctx.output.substr(0, ctx.output.find('\n'));
+    });
+  for (auto& th : threads) th.join();
+  EXPECT_EQ(outputs, (std::vector<std::string>{"1", "4", "9", "16"}));
 }
 
 } // namespace
