@@ -12,15 +12,26 @@
 // the lobe picks one with probability proportional to the luminance of those weights.
 // Sampling: visible normals (microfacet_dist.h), so the weight is ~ F G2 / G1.
 // wo below the surface means "inside": the lobe flips to that side and uses 1/eta.
-// Energy compensation (Kulla & Conty 2017), on by default for the reflection-only lobes of
-// conductors and generalized_schlick without transmission: an extra diffuse-like lobe
-// f_ms = F_ms (1 - E(wo))(1 - E(wi)) / (pi (1 - E_avg)), with E from energy_tables.h.
+// Energy compensation (Kulla & Conty 2017), on by default (keyword "energy_compensation"):
+//  - conductors and generalized_schlick without transmission: an extra diffuse-like lobe
+//    f_ms = F_ms (1 - E(wo))(1 - E(wi)) / (pi (1 - E_avg)), E from energy.h (Fresnel 1);
+//  - dielectrics (dielectric_bsdf, microfacet()): E_s(mu) = the lobe's own reflection +
+//    refraction albedo on side s (energy_dielectric.h; s = the side of wo, s' the other), and
+//      reflection  f = c_R,s (1 - E_s(mu_o))(1 - E_s(mu_i))  / (pi (1 - E_avg,s))
+//      refraction  f = c_T,s (1 - E_s(mu_o))(1 - E_s'(mu_i)) / (pi (1 - E_avg,s'))  [/ eta^2
+//                  in radiance transport], c_R,s + c_T,s = 1,
+//    so a lossless untinted lobe has albedo exactly 1 (up to the tables) from either side.
+//    c_T,out = 1 - F_avg(eta) (fit of Kulla & Conty) and c_T,in from the generalised
+//    reciprocity c_T,out (1 - E_avg,out) = eta^2 c_T,in (1 - E_avg,in) (clamped to <= 1).
+//    Reflection parts are scaled by reflection_tint, refraction parts by transmission_tint.
+// The compensation lobes are sampled by cosine, with a share proportional to their albedo.
 // Ranges: alpha >= 0 (clamped to [1e-4, 4]); eta > 0, |eta - 1| < 1e-4 is index-matched
 // (straight pass-through, a delta lobe); colours >= 0.
 #pragma once
 
 #include "common.h"
 #include "energy.h"
+#include "energy_dielectric.h"
 #include "fresnel.h"
 #include "lobe/bsdf.h"
 #include "microfacet_dist.h"
@@ -38,8 +49,15 @@ struct Microfacet {
   Vec3 f0, f90;          // Schlick
   float exponent = 5.0f; // Schlick
   Vec3 refl_tint{1, 1, 1}, trans_tint{0, 0, 0};
-  bool ms = false; // Kulla-Conty compensation lobe
+  bool ms = false; // Kulla-Conty compensation lobe (conductor form)
   Vec3 ms_color;   // F_ms / (pi (1 - E_avg))
+  // Dielectric compensation, per side of wo (0: relative IOR eta, 1: 1/eta): c_R, c_T and
+  // kr = c_R / (pi (1 - E_avg,s)), kt = c_T / (pi (1 - E_avg,s')).
+  struct DielMs {
+    float cr = 0, ct = 0, kr = 0, kt = 0;
+  };
+  bool ms_diel = false;
+  DielMs dms[2];
 
   static constexpr bool kOneSided = true;
 
@@ -82,12 +100,34 @@ struct Microfacet {
   }
 
   float E(float mu) const { return energy_E(mu, alpha_eff(), dist.beckmann); }
+  float Ed(float mu, float e) const { return dielectric_E(mu, alpha_eff(), e, dist.beckmann); }
   float alpha_eff() const { return std::sqrt(dist.ax * dist.ay); }
-  float ms_prob(float mu_o) const {
-    if (!ms) return 0.0f;
-    float m = luminance(ms_color) * (1.0f - E(mu_o)) * kPi;
-    float s = luminance(refl_tint * F(mu_o, eta)) * E(mu_o);
-    return m + s > 0.0f ? clampf(m / (m + s), 0.0f, 0.9f) : 0.0f;
+  int side(float e) const { return e == eta ? 0 : 1; }
+
+  // Albedos of the compensation lobe at wo (reflected, transmitted part; importance).
+  void ms_albedo(float mu_o, float e, Vec3& ar, Vec3& at) const {
+    ar = at = Vec3{};
+    if (ms)
+      ar = ms_color * (kPi * (1.0f - E(mu_o)) * (1.0f - energy_E_avg(alpha_eff(), dist.beckmann)));
+    if (ms_diel) {
+      const DielMs& s = dms[side(e)];
+      float lo = 1.0f - Ed(mu_o, e);
+      ar = refl_tint * (s.cr * lo);
+      at = trans_tint * (s.ct * lo);
+    }
+  }
+  // Probability p of sampling the compensation lobe at wo, and q, its reflected share.
+  void ms_probs(float mu_o, float e, float& p, float& q) const {
+    p = 0.0f, q = 1.0f;
+    if (!ms && !ms_diel) return;
+    Vec3 ar, at;
+    ms_albedo(mu_o, e, ar, at);
+    float mr = luminance(ar), mt = luminance(at), m = mr + mt;
+    Vec3 f = F(mu_o, e);
+    float ss = ms ? luminance(refl_tint * f) * E(mu_o)
+                  : luminance(refl_tint * f + trans_tint * (splat(1.0f) - f)) * Ed(mu_o, e);
+    p = m + ss > 0.0f ? clampf(m / (m + ss), 0.0f, 0.9f) : 0.0f;
+    q = m > 0.0f ? mr / m : 1.0f;
   }
 
   LobeEval eval(Vec3 wo, Vec3 wi, Transport mode) const {
@@ -102,13 +142,24 @@ struct Microfacet {
   // eval with wo.z > 0 and e the relative IOR below the surface.
   LobeEval eval_above(const Vec3& wo, const Vec3& wi, float e, Transport mode) const {
     LobeEval r = wi.z > 0.0f ? eval_reflect(wo, wi, e) : eval_refract(wo, wi, e, mode);
-    if (ms && wi.z > 0.0f) {
-      float p = ms_prob(wo.z);
-      float k2 = (1.0f - E(wo.z)) * (1.0f - E(wi.z));
-      r.value += ms_color * (k2 * wi.z);
-      r.pdf = (1.0f - p) * r.pdf + p * wi.z * kInvPi;
-    }
+    if (!ms && !ms_diel) return r;
+    float p, q;
+    ms_probs(wo.z, e, p, q);
+    float c = std::fabs(wi.z);
+    if (ms && wi.z > 0.0f) r.value += ms_color * ((1.0f - E(wo.z)) * (1.0f - E(wi.z)) * c);
+    if (ms_diel) r.value += diel_ms_value(wo.z, wi.z, e, mode);
+    r.pdf = (1.0f - p) * r.pdf + p * (wi.z > 0.0f ? q : 1.0f - q) * c * kInvPi;
     return r;
+  }
+
+  // Dielectric compensation value (times |wi.z|) for wo on the side with relative IOR e.
+  Vec3 diel_ms_value(float mu_o, float wz, float e, Transport mode) const {
+    const DielMs& s = dms[side(e)];
+    float lo = 1.0f - Ed(mu_o, e);
+    if (wz > 0.0f) return refl_tint * (s.kr * lo * (1.0f - Ed(wz, e)) * wz);
+    float v = s.kt * lo * (1.0f - Ed(-wz, 1.0f / e)) * -wz;
+    if (mode == Transport::Radiance) v /= e * e;
+    return trans_tint * v;
   }
 
   LobeEval eval_reflect(const Vec3& wo, const Vec3& wi, float e) const {
@@ -172,10 +223,16 @@ struct Microfacet {
 
   LobeSample sample_rough(const Vec3& wo, Vec3 u, float e, Transport mode) const {
     LobeSample s;
-    float p = ms_prob(wo.z);
-    if (u.z < p) { // compensation lobe: cosine-distributed
+    float p, q;
+    ms_probs(wo.z, e, p, q);
+    if (u.z < p) { // compensation lobe: cosine-distributed, reflected or transmitted
       s.wi = sample_cosine_hemisphere(u.x, u.y);
       s.flags = kFlagReflect | kFlagDiffuse;
+      if (u.z >= p * q) {
+        s.wi.z = -s.wi.z;
+        s.flags = kFlagTransmit | kFlagDiffuse;
+        s.eta = e;
+      }
     } else {
       u.z = minf((u.z - p) / (1.0f - p), kOneMinusEpsilon);
       Vec3 m = dist.sample_visible(wo, u.x, u.y);
@@ -202,19 +259,23 @@ struct Microfacet {
     return s;
   }
 
-  // Estimate: F(wo.z) E(wo.z) tinted, plus the compensation lobe's albedo; transmission
-  // counted as (1 - F) trans_tint.
+  // Estimate: (F(wo.z) reflection_tint + (1 - F) transmission_tint) E(wo.z), E the dielectric
+  // table (reflection + refraction) for dielectric Fresnel, the Fresnel-1 table otherwise,
+  // plus the compensation lobe's albedo.
   Vec3 albedo(Vec3 wo) const {
     float e = eta;
     if (wo.z < 0.0f) wo.z = -wo.z, e = 1.0f / eta;
     if (!(wo.z > 0.0f)) return {};
     Vec3 fr, ft;
     split(wo.z, e, fr, ft);
-    float E0 = delta ? 1.0f : E(wo.z);
-    Vec3 a = fr * E0 + ft * E0;
-    if (ms)
-      a += ms_color * (kPi * (1.0f - E(wo.z)) * (1.0f - energy_E_avg(alpha_eff(), dist.beckmann)));
-    return a;
+    float Er = delta ? 1.0f : E(wo.z), Et = Er;
+    if (!delta && fresnel == FresnelKind::Dielectric) { // split Ed = F Er + (1 - F) Et
+      float f = F(wo.z, e).x;
+      Et = f < 1.0f ? clampf((Ed(wo.z, e) - f * Er) / (1.0f - f), 0.0f, 1.0f) : 0.0f;
+    }
+    Vec3 a = fr * Er + ft * Et, ar, at;
+    ms_albedo(wo.z, e, ar, at);
+    return a + ar + at;
   }
 };
 

@@ -35,6 +35,30 @@ inline void enable_compensation(Microfacet& m, const Vec3& fa) {
   m.ms_color = fms * (1.0f / (kPi * (1.0f - ea)));
 }
 
+// Hemispherical average of the dielectric Fresnel for relative IOR e (Kulla & Conty's fit
+// for e > 1; from the denser side 1 - F_avg(1/e) = (1 - F_avg(e)) e^2).
+inline float fresnel_dielectric_avg(float e) {
+  if (e >= 1.0f) return (e - 1.0f) / (4.08567f + 1.00071f * e);
+  float r = 1.0f / e;
+  return 1.0f - (1.0f - (r - 1.0f) / (4.08567f + 1.00071f * r)) * e * e;
+}
+
+// Kulla-Conty compensation for a rough dielectric (reflection and/or refraction; see
+// microfacet.h): per side, c_T from the Fresnel average outside and generalised reciprocity.
+inline void enable_dielectric_compensation(Microfacet& m) {
+  if (m.delta || m.eta == 1.0f) return;
+  float a = m.alpha_eff(), e0 = m.eta;
+  float l0 = 1.0f - dielectric_E_avg(a, e0, m.dist.beckmann);
+  float l1 = 1.0f - dielectric_E_avg(a, 1.0f / e0, m.dist.beckmann);
+  if (!(l0 > 1e-5f) || !(l1 > 1e-5f)) return;
+  float ct0 = 1.0f - fresnel_dielectric_avg(e0);
+  float ct1 = ct0 * l0 / (e0 * e0 * l1);
+  if (ct1 > 1.0f) ct1 = 1.0f, ct0 = e0 * e0 * l1 / l0;
+  m.dms[0] = {1.0f - ct0, ct0, (1.0f - ct0) / (kPi * l0), ct0 / (kPi * l1)};
+  m.dms[1] = {1.0f - ct1, ct1, (1.0f - ct1) / (kPi * l1), ct1 / (kPi * l0)};
+  m.ms_diel = true;
+}
+
 inline Microfacet make_microfacet(const char* dist, float ax, float ay, float eta, int refract,
                                   int ec) {
   Microfacet m = microfacet_base(ax, ay, dist);
@@ -43,6 +67,7 @@ inline Microfacet make_microfacet(const char* dist, float ax, float ay, float et
   m.refl_tint = refract == 1 ? Vec3{} : splat(1.0f);
   m.trans_tint = refract >= 1 ? splat(1.0f) : Vec3{};
   if (m.refracts() && m.eta == 1.0f) m.delta = true;
+  if (ec) enable_dielectric_compensation(m);
   return m;
 }
 
@@ -63,6 +88,7 @@ inline Microfacet make_dielectric(const DielectricParams& p) {
   m.refl_tint = sanitize(p.reflection_tint);
   m.trans_tint = sanitize(p.transmission_tint);
   if (m.refracts() && m.eta == 1.0f) m.delta = true;
+  if (p.energy_compensation) enable_dielectric_compensation(m);
   return m;
 }
 

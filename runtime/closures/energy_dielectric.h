@@ -1,0 +1,82 @@
+// Directional albedo of this library's rough dielectric lobe (reflection + refraction, exact
+// Fresnel, importance transport, no tint), for Kulla-Conty energy compensation of
+// dielectric_bsdf and microfacet(): E(mu, alpha, eta) for light arriving from the side whose
+// relative IOR is eta (> 1: from outside) or 1/eta (from inside, with total internal
+// reflection), and E_avg = 2 int E(mu) mu dmu.
+//
+// The tables (energy_tables_dielectric_*.inc) are produced by energy_gen.cpp from the lobe's
+// own distributions and Fresnel (stratified visible normals, both Fresnel branches summed per
+// normal, double accumulation) and re-derived by independent quadrature in
+// energy_dielectric_test.cpp. Grid: mu = (i/31)^2 (32), alpha = (j/15)^2 (16),
+// eta = 1 + 2 (k/15)^2 (16, so eta in [1, 3]); trilinear in sqrt(mu), sqrt(alpha),
+// sqrt(eta - 1): the square-root axes put the nodes where E changes fastest (grazing angles,
+// small roughness, eta near 1). alpha > 1 uses 1, eta > 3 uses 3.
+#pragma once
+
+#include "common.h"
+
+namespace lobe::closures {
+
+inline constexpr int kDielMu = 32, kDielAlpha = 16, kDielEta = 16;
+inline constexpr float kDielEtaMax = 3.0f;
+// [distribution: 0 GGX, 1 Beckmann][side: 0 outside (eta), 1 inside (1/eta)][eta][alpha][mu]
+inline constexpr float kDielE[2][2][kDielEta][kDielAlpha][kDielMu] = {
+#include "energy_tables_dielectric_e.inc"
+};
+// [distribution][side][eta][alpha]
+inline constexpr float kDielEavg[2][2][kDielEta][kDielAlpha] = {
+#include "energy_tables_dielectric_eavg.inc"
+};
+
+// Grid coordinate of x in [0, 1] on n points: index i (<= n - 2) and fraction t.
+inline void diel_grid(float x, int n, int& i, float& t) {
+  float y = clampf(x, 0.0f, 1.0f) * static_cast<float>(n - 1);
+  i = static_cast<int>(y);
+  if (i >= n - 1) i = n - 2;
+  t = y - static_cast<float>(i);
+}
+
+// Side and table eta for a relative IOR e (e < 1: the inside table at 1/e).
+inline int diel_side(float e, float& eta) {
+  eta = e >= 1.0f ? e : 1.0f / maxf(e, 1e-6f);
+  return e >= 1.0f ? 0 : 1;
+}
+
+inline double diel_grid_mu(int i) { return double(i) * i / ((kDielMu - 1.0) * (kDielMu - 1.0)); }
+inline double diel_grid_alpha(int j) {
+  return double(j) * j / ((kDielAlpha - 1.0) * (kDielAlpha - 1.0));
+}
+inline double diel_grid_eta(int k) {
+  return 1.0 + (kDielEtaMax - 1.0) * double(k) * k / ((kDielEta - 1.0) * (kDielEta - 1.0));
+}
+
+inline float lerpf(float a, float b, float t) { return a + (b - a) * t; }
+
+// E for light arriving at cosine mu on the side with relative IOR e.
+inline float dielectric_E(float mu, float alpha, float e, bool beckmann) {
+  float eta;
+  int side = diel_side(e, eta);
+  int k, j, i;
+  float tk, tj, ti;
+  diel_grid(std::sqrt((eta - 1.0f) / (kDielEtaMax - 1.0f)), kDielEta, k, tk);
+  diel_grid(std::sqrt(maxf(alpha, 0.0f)), kDielAlpha, j, tj);
+  diel_grid(std::sqrt(maxf(mu, 0.0f)), kDielMu, i, ti);
+  const auto& t = kDielE[beckmann ? 1 : 0][side];
+  auto mu_lerp = [&](int kk, int jj) { return lerpf(t[kk][jj][i], t[kk][jj][i + 1], ti); };
+  auto alpha_lerp = [&](int kk) { return lerpf(mu_lerp(kk, j), mu_lerp(kk, j + 1), tj); };
+  return clampf(lerpf(alpha_lerp(k), alpha_lerp(k + 1), tk), 0.0f, 1.0f);
+}
+
+inline float dielectric_E_avg(float alpha, float e, bool beckmann) {
+  float eta;
+  int side = diel_side(e, eta);
+  int k, j;
+  float tk, tj;
+  diel_grid(std::sqrt((eta - 1.0f) / (kDielEtaMax - 1.0f)), kDielEta, k, tk);
+  diel_grid(std::sqrt(maxf(alpha, 0.0f)), kDielAlpha, j, tj);
+  const auto& t = kDielEavg[beckmann ? 1 : 0][side];
+  return clampf(lerpf(lerpf(t[k][j], t[k][j + 1], tj), lerpf(t[k + 1][j], t[k + 1][j + 1], tj), tk),
+                0.0f, 1.0f);
+}
+
+} // namespace lobe::closures
