@@ -104,11 +104,11 @@ void Jit::configure(llvm::Module& module) const {
   module.setDataLayout(s_->tm->createDataLayout());
 }
 
+// -O0: SROA only (turns the symbol allocas into SSA values; no other transformation).
 // -O1: a short function pipeline suited to shader code (straight-line, alloca-heavy, calls
 // into shadeops): SROA makes SSA, then CSE, combining, CFG clean-up, GVN and dead code.
 // -O2: LLVM's full per-module O2 pipeline (adds inlining, loop passes, vectorisation).
 void Jit::optimize(llvm::Module& module, int opt_level) const {
-  if (opt_level <= 0) return;
   std::lock_guard<std::mutex> lock(s_->opt_mutex);
   llvm::LoopAnalysisManager lam;
   llvm::FunctionAnalysisManager fam;
@@ -127,6 +127,11 @@ void Jit::optimize(llvm::Module& module, int opt_level) const {
   }
   llvm::FunctionPassManager fpm;
   fpm.addPass(llvm::SROAPass(llvm::SROAOptions::ModifyCFG));
+  if (opt_level <= 0) { // only SSA construction: instruction selection on allocas is slow
+    for (llvm::Function& f : module)
+      if (!f.isDeclaration()) fpm.run(f, fam);
+    return;
+  }
   fpm.addPass(llvm::EarlyCSEPass(true));
   fpm.addPass(llvm::InstCombinePass());
   fpm.addPass(llvm::SimplifyCFGPass());
