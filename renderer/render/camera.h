@@ -40,6 +40,8 @@ public:
   // World-space width of one pixel at distance 1 along the view axis (ray differentials).
   float pixel_spread() const { return 2 * tan_half_ / float(h_); }
   const Vec3& position() const { return eye_; }
+  const Vec3& right() const { return right_; }
+  const Vec3& up() const { return up_; }
 
 private:
   int w_ = 1, h_ = 1;

@@ -25,10 +25,17 @@ float weight_bsdf_hit(Strategy s, bool after_delta, float bsdf_pdf, float light_
 } // namespace
 
 // Shades `hit` seen along `dir` and flattens its closure into `bsdf`.
+// `path_length`: distance travelled from the camera (0 for light-sample points: no footprint).
 static void shade_into(const RenderScene& scene, const SurfaceHit& hit, const Vec3& dir,
-                       int raytype, ShadingContext& ctx, Bsdf& bsdf, TraceCounters& c, bool timed) {
+                       int raytype, ShadingContext& ctx, Bsdf& bsdf, TraceCounters& c, bool timed,
+                       float path_length = 0) {
   ShaderGlobals sg;
-  fill_globals(sg, hit, dir, raytype, ctx);
+  Footprint fp;
+  fp.angle = scene.camera().pixel_spread();
+  fp.width = fp.angle * path_length;
+  fp.right = scene.camera().right();
+  fp.up = scene.camera().up();
+  fill_globals(sg, hit, dir, raytype, ctx, scene.globals_read(hit.shape), fp);
   ctx.reset();
   auto t0 = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   scene.material(hit.shape).shade(sg);
@@ -49,6 +56,7 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
   float prev_pdf = 0;
   Vec3 prev_p;
   int raytype = kRayCamera;
+  float path_length = 0; // distance from the camera along the path (for ray footprints)
   Vertex v;
   for (int depth = 0;; ++depth) {
     ++c.rays;
@@ -60,7 +68,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
       }
       break;
     }
-    shade_into(scene_, v.hit, ray.dir, raytype, ctx, v.bsdf, c, time_);
+    path_length += v.hit.t;
+    shade_into(scene_, v.hit, ray.dir, raytype, ctx, v.bsdf, c, time_, path_length);
     const Vec3 wo = -ray.dir;
     if (!is_zero(v.bsdf.emission)) {
       float lp = lights.is_emitter(v.hit.shape) ? lights.pdf_area(prev_p, v.hit) : 0;

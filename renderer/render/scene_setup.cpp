@@ -23,8 +23,38 @@ MaterialCompiler native_compiler() {
   };
 }
 
+uint64_t derivative_bits() {
+  uint64_t b = 0;
+  for (const char* n : {"dPdx", "dPdy", "dIdx", "dIdy", "dudx", "dudy", "dvdx", "dvdy"})
+    b |= global_bit(n);
+  return b;
+}
+
+uint64_t tangent_bits() { return global_bit("dPdu") | global_bit("dPdv"); }
+
+// Screen derivatives: the footprint's screen axes projected into the tangent plane, scaled to
+// the pixel width there; u,v derivatives by least squares against dPdu, dPdv.
+static void fill_derivatives(ShaderGlobals& sg, const Footprint& fp) {
+  auto project = [&](const Vec3& a) { return normalize(a - sg.Ng * dot(a, sg.Ng)) * fp.width; };
+  sg.dPdx = project(fp.right);
+  sg.dPdy = project(-fp.up); // raster y grows downwards
+  float a = dot(sg.dPdu, sg.dPdu), b = dot(sg.dPdu, sg.dPdv), c = dot(sg.dPdv, sg.dPdv);
+  float det = a * c - b * b;
+  if (std::abs(det) > 1e-20f) {
+    auto solve = [&](const Vec3& d, float& du, float& dv) {
+      float p = dot(d, sg.dPdu), q = dot(d, sg.dPdv);
+      du = (c * p - b * q) / det;
+      dv = (a * q - b * p) / det;
+    };
+    solve(sg.dPdx, sg.dudx, sg.dvdx);
+    solve(sg.dPdy, sg.dudy, sg.dvdy);
+  }
+  sg.dIdx = fp.right * fp.angle;
+  sg.dIdy = -fp.up * fp.angle;
+}
+
 void fill_globals(ShaderGlobals& sg, const SurfaceHit& hit, const Vec3& dir, int raytype,
-                  ShadingContext& ctx) {
+                  ShadingContext& ctx, uint64_t reads, const Footprint& fp) {
   sg = ShaderGlobals{};
   sg.P = hit.P;
   sg.I = dir;
@@ -32,10 +62,14 @@ void fill_globals(ShaderGlobals& sg, const SurfaceHit& hit, const Vec3& dir, int
   sg.Ng = hit.Ng;
   sg.u = hit.u;
   sg.v = hit.v;
-  sg.dPdu = hit.dPdu;
-  sg.dPdv = hit.dPdv;
+  if (reads & (tangent_bits() | derivative_bits())) {
+    sg.dPdu = hit.dPdu;
+    sg.dPdv = hit.dPdv;
+  }
+  if ((reads & derivative_bits()) && fp.width > 0) fill_derivatives(sg, fp);
   sg.raytype = raytype;
   sg.backfacing = dot(dir, hit.Ng) > 0;
+  sg.surfacearea = 0;
   sg.context = &ctx;
 }
 
@@ -64,9 +98,11 @@ std::string RenderScene::compile_materials(const MaterialCompiler& compile) {
   ShaderGroup grey;
   grey.layers.push_back({"matte", "default", {{"color", "Cs", "0.5 0.5 0.5"}}});
   default_material_ = make_native_material(grey, err);
-  for (const scene::Shape& s : desc_.shapes)
+  for (const scene::Shape& s : desc_.shapes) {
     shape_material_.push_back(s.material >= 0 ? materials_[s.material].get()
                                               : default_material_.get());
+    shape_reads_.push_back(shape_material_.back()->globals_read());
+  }
   return "";
 }
 
@@ -146,7 +182,7 @@ void RenderScene::find_emitters(std::vector<LightSet::Emitter>& out) const {
                                     m.positions[m.indices[t + 2]] - m.positions[m.indices[t]]));
     }
     ShaderGlobals sg;
-    fill_globals(sg, h, -h.Ng, kRayShadow, ctx);
+    fill_globals(sg, h, -h.Ng, kRayShadow, ctx, globals_read(int(i)));
     ctx.reset();
     material(int(i)).shade(sg);
     Bsdf b;

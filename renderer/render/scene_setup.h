@@ -44,6 +44,8 @@ public:
   const EnvironmentLight& environment() const { return env_; }
   // Material of a shape (a grey matte for shapes without one).
   const Material& material(int shape) const { return *shape_material_[shape]; }
+  // What the shape's material reads (Material::globals_read bits, kGlobalFields order).
+  uint64_t globals_read(int shape) const { return shape_reads_[shape]; }
   const SetupStats& stats() const { return stats_; }
 
 private:
@@ -58,12 +60,27 @@ private:
   LightSet lights_;
   std::vector<std::shared_ptr<const Material>> materials_; // per scene material (null: unused)
   std::vector<const Material*> shape_material_;
+  std::vector<uint64_t> shape_reads_;
   std::shared_ptr<const Material> default_material_;
   SetupStats stats_;
 };
 
-// Fills the globals of a surface point seen along `dir` (only cheap fields; see shade_point).
+// Ray footprint for derivative globals: the world-space width of one pixel at the hit
+// (pixel angle times the distance travelled along the path) and the camera's screen axes.
+struct Footprint {
+  float width = 0;
+  float angle = 0; // pixel spread in radians (direction derivative)
+  Vec3 right{1, 0, 0}, up{0, 1, 0};
+};
+
+// Fills the globals of a surface point seen along `dir`. Only what `reads` (globals_read bits)
+// asks for beyond the basics is computed: tangents dPdu/dPdv, and the screen derivatives
+// (dPdx/dPdy, dudx.., dIdx/dIdy) estimated from the footprint; the rest stays zero.
 void fill_globals(ShaderGlobals& sg, const SurfaceHit& hit, const Vec3& dir, int raytype,
-                  ShadingContext& ctx);
+                  ShadingContext& ctx, uint64_t reads = ~uint64_t(0), const Footprint& fp = {});
+
+// Bits of kGlobalFields that need screen-space derivatives / surface tangents.
+uint64_t derivative_bits();
+uint64_t tangent_bits();
 
 } // namespace lobe::render
