@@ -39,6 +39,7 @@ end
                                            "\t\tmetadata: string options = \"ggx|beckmann\"\n"
                                            "    \"Nn\" \"normal\"\n"
                                            "\t\tDefault value: (computed at run time)\n"
+                                           "    \"s\" \"struct S\"\n"
                                            "    \"s.a\" \"float[2]\"\n"
                                            "\t\tDefault value: [ 1 2 ]\n"
                                            "    \"out\" \"output float\"\n"

@@ -182,9 +182,22 @@ int Lowerer::emit(const std::string& opcode, std::vector<int> args, uint32_t wri
 int Lowerer::global(const ast::VarDecl* v) {
   auto it = vars_.find(v);
   if (it != vars_.end()) return it->second[0];
+  // A global's symbol must carry the global's own name (the runtime binds it by name): a
+  // local that took the name first (`vector v` in an inlined function) is renamed.
   int s = sh_.find_symbol(v->name);
-  if (s < 0 || sh_.symbols[s].kind != SymKind::Global)
+  if (s >= 0 && sh_.symbols[size_t(s)].kind == SymKind::Local) {
+    std::string n;
+    int& count = name_counts_[v->name];
+    do n = v->name + "~" + std::to_string(count++);
+    while (sh_.find_symbol(n) >= 0);
+    sh_.symbols[size_t(s)].name = n;
+    s = -1;
+  }
+  if (s < 0 || sh_.symbols[size_t(s)].kind != SymKind::Global) {
+    bool free_name = s < 0;
     s = new_symbol(v->name, irtype(v->type, v), SymKind::Global, nullptr);
+    if (free_name) sh_.symbols[size_t(s)].name = v->name;
+  }
   vars_[v] = {s};
   return s;
 }
@@ -200,8 +213,8 @@ std::vector<int> Lowerer::declare(const ast::VarDecl* v, SymKind k) {
   return syms;
 }
 
-// The value of a constant expression (literals, casts, negation, arithmetic on constants,
-// constructors without a space name, initialiser lists), converted to `t`.
+// The value of a constant expression (literals, casts, negation, arithmetic and comparisons
+// on constants, constructors without a space name, initialiser lists), converted to `t`.
 bool Lowerer::const_values(const ast::Expr* e, const ir::Type& t,
                            std::vector<ir::ConstValue>& out) {
   using K = ast::ExprKind;
@@ -235,6 +248,20 @@ bool Lowerer::const_values(const ast::Expr* e, const ir::Type& t,
     if (!const_values(u->operand.get(), et, v)) return false;
     if (u->op == ast::UnaryOp::Plus) break;
     auto r = passes::evaluate(u->op == ast::UnaryOp::Neg ? "neg" : "compl", et, {{et, &v}});
+    if (!r) return false;
+    v = *r;
+    break;
+  }
+  case K::Binary: {
+    auto* b = static_cast<const ast::BinaryExpr*>(e);
+    const char* op = binop_opcode(b->op);
+    if (b->overload || std::string(op) == "nop") return false;
+    ir::Type lt = irtype(b->lhs->type, e), rt = irtype(b->rhs->type, e);
+    std::vector<ir::ConstValue> lv, rv;
+    if (lt.is_array() || rt.is_array() || !const_values(b->lhs.get(), lt, lv) ||
+        !const_values(b->rhs.get(), rt, rv))
+      return false;
+    auto r = passes::evaluate(op, et, {{lt, &lv}, {rt, &rv}});
     if (!r) return false;
     v = *r;
     break;

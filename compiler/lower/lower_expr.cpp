@@ -12,7 +12,7 @@ namespace lobe::lower {
 using ir::SymKind;
 using K = ast::ExprKind;
 
-static const char* binop_opcode(ast::BinaryOp op) {
+const char* binop_opcode(ast::BinaryOp op) {
   using B = ast::BinaryOp;
   switch (op) {
   case B::Add:

@@ -79,15 +79,19 @@ LowerResult Lowerer::run() {
       for (size_t i = 0; i < syms.size(); ++i) sh_.symbols[size_t(syms[i])].init = values[i];
       continue;
     }
-    int begin = here();
-    std::vector<LRef> dst;
-    for (int s : syms) dst.push_back(LRef{s});
-    size_t mark = temp_mark();
-    store_init(dst, p->type, p->init.get());
-    temp_release(mark);
-    for (int s : syms) {
-      sh_.symbols[size_t(s)].init_begin = begin;
-      sh_.symbols[size_t(s)].init_end = int(sh_.ops.size());
+    // Each symbol gets an init range of its own (the fields of a struct parameter may get
+    // values independently): the default is evaluated once per field, the other fields'
+    // parts going to temporaries.
+    for (size_t i = 0; i < syms.size(); ++i) {
+      int begin = here();
+      size_t mark = temp_mark();
+      std::vector<LRef> dst;
+      for (size_t j = 0; j < syms.size(); ++j)
+        dst.push_back(LRef{j == i ? syms[j] : temp(sh_.symbols[size_t(syms[j])].type)});
+      store_init(dst, p->type, p->init.get());
+      temp_release(mark);
+      sh_.symbols[size_t(syms[i])].init_begin = begin;
+      sh_.symbols[size_t(syms[i])].init_end = here();
     }
   }
   sh_.main_begin = here();

@@ -203,7 +203,39 @@ int Lowerer::call_arith(const ast::CallExpr* c, int hint) {
   }
   if (c->name == "arraylength" && c->args.size() == 1 && c->args[0]->type.arraylen > 0)
     return ir::intern_int(sh_, c->args[0]->type.arraylen);
+  if (c->name == "mod" && c->args.size() == 2) return floor_mod(c, hint);
   return -2;
+}
+
+// OSL's mod(a, b) is a - b*floor(a/b) (the result has the sign of b), unlike `%` and fmod()
+// (the IR's `mod`, the sign of a). Floats and triples: from div/floor/mul/sub. Ints: the
+// remainder r = a % b, plus b where r is nonzero and its sign differs from b's.
+int Lowerer::floor_mod(const ast::CallExpr* c, int hint) {
+  ir::Type t = irtype(c->type, c);
+  int a = rvalue(c->args[0].get());
+  int b = rvalue(c->args[1].get());
+  int r = temp(t);
+  if (t.base != ir::BaseType::Int) {
+    emit("div", {r, a, b}, 1, c);
+    emit("floor", {r, r}, 1, c);
+    emit("mul", {r, r, b}, 1, c);
+    int out = pick(hint, t);
+    emit("sub", {out, a, r}, 1, c);
+    return out;
+  }
+  ir::Type it{ir::BaseType::Int};
+  int zero = ir::intern_int(sh_, 0);
+  int nz = temp(it), rneg = temp(it), bneg = temp(it);
+  emit("mod", {r, a, b}, 1, c);
+  emit("neq", {nz, r, zero}, 1, c);
+  emit("lt", {rneg, r, zero}, 1, c);
+  emit("lt", {bneg, b, zero}, 1, c);
+  emit("neq", {rneg, rneg, bneg}, 1, c);
+  emit("bitand", {nz, nz, rneg}, 1, c);
+  emit("mul", {nz, nz, b}, 1, c);
+  int out = pick(hint, t);
+  emit("add", {out, r, nz}, 1, c);
+  return out;
 }
 
 // Builtins: `name [result] [outputs...] inputs... ["kw" value]...`: written operands first

@@ -37,6 +37,9 @@ struct Leaf {
   ast::Type type;
 };
 
+// The IR opcode of a binary operator ("add", "lt", ...; "nop" for && and ||).
+const char* binop_opcode(ast::BinaryOp op);
+
 class Lowerer {
 public:
   Lowerer(const ast::TranslationUnit& tu, const LowerOptions& opt) : tu_(tu), opt_(opt) {}
@@ -89,6 +92,7 @@ public:
   int call_builtin(const ast::CallExpr* c, int hint);
   int call_closure(const ast::CallExpr* c, const std::string& key, int hint);
   int call_arith(const ast::CallExpr* c, int hint); // builtins lowered to arithmetic, or -2
+  int floor_mod(const ast::CallExpr* c, int hint);  // OSL mod(): a - b*floor(a/b)
 
   // Temporaries allocated since a statement began are free again when it ends.
   size_t temp_mark() const { return live_temps_.size(); }
