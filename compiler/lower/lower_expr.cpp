@@ -481,6 +481,17 @@ int Lowerer::rvalue(const ast::Expr* e, int hint) {
 
 // Initialises `dst` (the leaves of a variable of type t) from an initialiser expression.
 void Lowerer::store_init(const std::vector<LRef>& dst, const ast::Type& t, const ast::Expr* init) {
+  if (init->kind == K::InitList && t.is_array() && t.base != ast::BaseType::Struct &&
+      dst.size() == 1 && dst[0].whole()) {
+    // An array of constants: one array constant and an arraycopy, not one store per element.
+    ir::Type at = sh_.symbols[size_t(dst[0].sym)].type;
+    std::vector<ir::ConstValue> cv;
+    if (at.arraylen > 0 && const_values(init, at, cv) &&
+        cv.size() == size_t(at.arraylen * at.components())) {
+      store(dst[0], ir::intern_const(sh_, at, cv), init);
+      return;
+    }
+  }
   if (init->kind == K::InitList && t.is_array()) {
     auto* l = static_cast<const ast::InitListExpr*>(init);
     for (size_t i = 0; i < l->elems.size(); ++i) {
