@@ -82,6 +82,23 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
     }
     if (depth >= max_depth_) break;
 
+    // Transparency (transparent() closures): pass straight through with probability
+    // p = T / (T + albedo) (by luminance), else scatter; each branch divides by its probability.
+    if (!is_zero(v.bsdf.transparency)) {
+      float t = luminance(v.bsdf.transparency), a = luminance(v.bsdf.albedo(wo));
+      float p = t > 0 ? std::min(1.0f, t / (t + std::max(a, 0.0f))) : 0.0f;
+      if (sampler.next() < p) {
+        beta = beta * v.bsdf.transparency / p;
+        ray = Ray{offset_ray_origin(v.hit.P, v.hit.Ng, ray.dir), ray.dir};
+        // Shadow rays treat transparent surfaces as opaque: light reached through one is
+        // found by this path alone, so it counts with weight 1.
+        after_delta = true;
+        if (is_zero(beta)) break;
+        continue;
+      }
+      beta = beta / (1 - p);
+    }
+
     // Next-event estimation.
     if (strategy_ != Strategy::BsdfOnly && v.bsdf.has_non_delta()) {
       float us = sampler.next(), u1 = sampler.next(), u2 = sampler.next();

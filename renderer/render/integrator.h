@@ -3,7 +3,8 @@
 // At each vertex: emission found by a BSDF-sampled ray is weighted against light sampling
 // (power heuristic); one light is sampled (point, spot, area, environment) and weighted
 // against BSDF sampling; delta lobes and delta lights are exact (weight 1). Russian roulette
-// after three bounces. Strategy::BsdfOnly and Strategy::LightOnly switch one technique off
+// after three bounces. transparent() closures are followed straight through, chosen against
+// scattering in proportion to transparency and albedo. Strategy::BsdfOnly and Strategy::LightOnly switch one technique off
 // (for the benchmark's comparison): BsdfOnly cannot see point and spot lights.
 #pragma once
 

@@ -135,6 +135,61 @@ TEST(Geometry, MeshSphereWithVertexNormalsInFurnace) {
   EXPECT_NEAR(mean, 0.5, 4 * err + 0.005);
 }
 
+// 0.5 * transparent() + 0.5 * diffuse(N): lossless, so the furnace renders to 1.
+class HalfTransparent final : public Material {
+public:
+  void shade(ShaderGlobals& sg) const override {
+    closures::Params d("diffuse");
+    d.set("N", sg.N);
+    closures::Params t("transparent");
+    auto *a = make(sg, d), *b = make(sg, t);
+    void* mem = sg.context->allocate(sizeof(ClosureAdd));
+    auto* sum = new (mem) ClosureAdd;
+    sum->id = kClosureAdd;
+    sum->a = a;
+    sum->b = b;
+    sg.Ci = sum;
+  }
+  uint64_t globals_read() const override { return global_bit("N"); }
+  bool read_output(const std::string&, const std::string&, std::vector<float>&) const override {
+    return false;
+  }
+  const CompileStats& stats() const override { return stats_; }
+
+private:
+  static ClosureComponent* make(ShaderGlobals& sg, const closures::Params& p) {
+    void* mem = sg.context->allocate(sizeof(ClosureComponent) + p.size());
+    auto* c = new (mem) ClosureComponent;
+    c->id = p.id();
+    c->weight = {0.5f, 0.5f, 0.5f};
+    std::memcpy(c->params(), p.data(), p.size());
+    return c;
+  }
+  CompileStats stats_;
+};
+
+TEST(Transparency, HalfTransparentLambertIsLosslessInFurnace) {
+  std::string err;
+  auto desc = scene::parse_json_scene(R"({"camera": {"eye": [0, 0, 4], "look_at": [0, 0, 0],
+    "fov": 12}, "materials": {"m": {"shader": "x"}},
+    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}],
+    "environment": {"type": "constant", "color": 1}})",
+                                      "t.json", err);
+  ASSERT_TRUE(desc) << err;
+  auto mat = std::make_shared<HalfTransparent>();
+  RenderScene s;
+  ASSERT_EQ(s.setup(
+                *desc, [&](const scene::MaterialDesc&, std::string&) { return mat; }, 16, 16),
+            "");
+  RenderOptions opt;
+  opt.spp = 32;
+  opt.max_depth = 64;
+  auto r = test::render(s, 16, 16, opt);
+  double mean, e;
+  test::mean_and_error(r.img, 0, mean, e);
+  EXPECT_NEAR(mean, 1.0, 4 * e + 2e-4);
+}
+
 TEST(Environment, LatLongMapFileLightsTheScene) {
   // A constant 0.25 map written as EXR: a white Lambert sphere renders to 0.25.
   auto path = (std::filesystem::temp_directory_path() / "lobe_globals_test_env.exr").string();
