@@ -1,9 +1,12 @@
 // Implements eliminate_dead_code. Liveness is per symbol over the whole shader (not per path):
-// simple, and exact enough for lowered code, where temporaries are written and read nearby.
+// simple, and exact enough for lowered code, where temporaries are written and read nearby;
+// plus dead stores within one basic block (lowering reuses temporaries, so a temporary is
+// often written, overwritten and read again in one block).
 #include "passes/dce.h"
 #include "ir/edit.h"
 #include "ir/opcodes.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace lobe::passes {
@@ -71,6 +74,63 @@ bool drop_unread_writes(const Shader& sh, std::vector<bool>& keep) {
   return any;
 }
 
+// True if `op` overwrites the whole of operand `a` (so an earlier value is dead): a pure op
+// writing it without reading it; arraycopy only between arrays of the same length.
+bool full_write(const Shader& sh, const Op& op, int a) {
+  const OpcodeInfo* info = find_opcode(op.opcode);
+  if (!info || !(info->flags & kPure) || !op.writes(a) || op_reads(op, a)) return false;
+  if (op.opcode == "arraycopy") {
+    const Type& d = sh.symbols[size_t(op.args[0])].type;
+    const Type& s = sh.symbols[size_t(op.args[1])].type;
+    return d.arraylen > 0 && d.arraylen == s.arraylen;
+  }
+  return true;
+}
+
+// Dead stores within a basic block of the main body: a pure op whose written temporaries and
+// locals are all overwritten later in the same block before anything reads them.
+bool drop_dead_stores(const Shader& sh, std::vector<bool>& keep) {
+  int n = int(sh.ops.size());
+  std::vector<bool> leader(size_t(n) + 1, false);
+  for (int i = sh.main_begin; i < n; ++i) {
+    const Op& op = sh.ops[size_t(i)];
+    for (int j : op.jumps) leader[size_t(std::clamp(j, 0, n))] = true;
+    if (!op.jumps.empty() || op.opcode == "exit") leader[size_t(i) + 1] = true;
+  }
+  bool any = false;
+  std::vector<char> killed(sh.symbols.size(), 0);
+  std::vector<int> touched;
+  for (int i = n - 1; i >= sh.main_begin; --i) {
+    if (leader[size_t(i) + 1]) { // block boundary after op i: nothing is known dead
+      for (int s : touched) killed[size_t(s)] = 0;
+      touched.clear();
+    }
+    if (!keep[size_t(i)]) continue;
+    const Op& op = sh.ops[size_t(i)];
+    const OpcodeInfo* info = find_opcode(op.opcode);
+    bool pure = info && (info->flags & kPure) && !(info->flags & (kEffect | kJump));
+    bool dead = pure && op.written_mask != 0;
+    for (size_t a = 0; a < op.args.size() && dead; ++a)
+      if (op.writes(int(a))) dead = killed[size_t(op.args[a])] && !op_reads(op, int(a));
+    if (dead) {
+      keep[size_t(i)] = false;
+      any = true;
+      continue;
+    }
+    for (size_t a = 0; a < op.args.size(); ++a) {
+      int s = op.args[a];
+      SymKind k = sh.symbols[size_t(s)].kind;
+      if (full_write(sh, op, int(a)) && (k == SymKind::Temp || k == SymKind::Local)) {
+        killed[size_t(s)] = 1;
+        touched.push_back(s);
+      }
+    }
+    for (size_t a = 0; a < op.args.size(); ++a)
+      if (op_reads(op, int(a))) killed[size_t(op.args[a])] = 0;
+  }
+  return any;
+}
+
 } // namespace
 
 // One round; removing ops can expose more (a jump now to the next op): the entry loops.
@@ -83,7 +143,10 @@ static bool dce_round(Shader& sh) {
       for (int i = s.init_begin; i < s.init_end; ++i) keep[i] = true; // conservatively whole range
   bool changed = false;
   for (int i = 0; i < n; ++i) {
-    if (!keep[i]) { changed = true; continue; }
+    if (!keep[i]) {
+      changed = true;
+      continue;
+    }
     Op& op = sh.ops[i];
     if (op.opcode == "cbr" && op.jumps.size() == 2 && op.jumps[0] == op.jumps[1]) {
       op.opcode = "br";
@@ -94,6 +157,7 @@ static bool dce_round(Shader& sh) {
     }
     if (trivial(op, i)) keep[i] = false, changed = true;
   }
+  changed |= drop_dead_stores(sh, keep);
   changed |= drop_unread_writes(sh, keep);
   if (changed) remove_ops(sh, keep);
   changed |= remove_unused_symbols(sh);

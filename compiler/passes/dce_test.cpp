@@ -159,4 +159,62 @@ end
   EXPECT_FALSE(changed);
 }
 
+// A temporary overwritten in the same block before any read loses the earlier write; across
+// a block boundary, after a partial write (compassign) or a shorter arraycopy it stays.
+TEST(Dce, RemovesStoresOverwrittenInTheSameBlock) {
+  const char* in = R"(lobe-ir 1
+surface s
+symbols
+  oparam float f = 0
+  oparam color c = 0 0 0
+  global float u
+  temp float $t0
+  temp color $t1
+  local float[2] a
+  local float[3] b
+  const float $c0 = 1
+  const int $c1 = 0
+  const float $c2 = 2
+  const float[3] $c3 = 1 2 3
+main
+  assign $t0 $c0
+  assign $t0 u
+  add f $t0 $c0
+  assign $t1 $c0
+  compassign $t1 $c1 u
+  assign c $t1
+  assign $t0 $c2
+  cbr u -> L9 L9
+L9:
+  mul f $t0 f
+  arraycopy b $c3
+  arraycopy b a
+  aref f b $c1
+  assign $t0 $c2
+  mul $t0 $t0 u
+  assign $t0 u
+  add f f $t0
+end
+)";
+  bool changed = false;
+  std::string out = run_pass(in, eliminate_dead_code, &changed);
+  EXPECT_TRUE(changed);
+  std::string main = out.substr(out.find("main\n"));
+  EXPECT_EQ(main, R"(main
+  assign $t0 u
+  add f $t0 $c0
+  assign $t1 $c0
+  compassign $t1 $c1 u
+  assign c $t1
+  assign $t0 $c2
+  mul f $t0 f
+  arraycopy b $c3
+  arraycopy b a
+  aref f b $c1
+  assign $t0 u
+  add f f $t0
+end
+)");
+}
+
 } // namespace
