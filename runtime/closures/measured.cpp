@@ -2,6 +2,8 @@
 // cache. See measured.h for the format.
 #include "measured.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <map>
@@ -81,14 +83,27 @@ bool load_merl(const std::string& path, MeasuredTable& table, std::string& error
     return error = "'" + path + "': not a MERL file (dimensions must be 90 90 180)", false;
   std::vector<double> buf(MeasuredTable::kCells);
   table.rgb.assign(3 * static_cast<size_t>(MeasuredTable::kCells), 0.0f);
+  size_t valid = 0;
   for (int c = 0; c < 3; ++c) {
-    if (std::fread(buf.data(), sizeof(double), buf.size(), f.get()) != buf.size())
-      return error = "'" + path + "': truncated MERL data", false;
+    size_t got = std::fread(buf.data(), sizeof(double), buf.size(), f.get());
+    if (got != buf.size())
+      return error = "'" + path + "': truncated MERL data (" + std::to_string(got) + " of " +
+                     std::to_string(buf.size()) + " values in channel " + std::to_string(c) + ")",
+             false;
     for (size_t i = 0; i < buf.size(); ++i) {
-      double v = buf[i] * kScale[c];
-      table.rgb[c * buf.size() + i] = (v > 0.0 && v < 1e30) ? static_cast<float>(v) : 0.0f;
+      if (!std::isfinite(buf[i]))
+        return error = "'" + path + "': non-finite value (NaN or Inf) at cell " +
+                       std::to_string(i) + " of channel " + std::to_string(c),
+               false;
+      double v = buf[i] * kScale[c]; // negative: no data, read as 0
+      table.rgb[c * buf.size() + i] = v > 0.0 ? static_cast<float>(std::min(v, 1e30)) : 0.0f;
+      valid += buf[i] >= 0.0;
     }
   }
+  if (std::fgetc(f.get()) != EOF)
+    return error = "'" + path + "': wrong size (trailing bytes after the MERL data)", false;
+  if (valid == 0) return error = "'" + path + "': no valid cell (all negative)", false;
+  table.sampler.build(table);
   return true;
 }
 

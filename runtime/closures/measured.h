@@ -6,13 +6,17 @@
 // theta_h indexed by a square-root mapping, phi_d folded by pi; channel scales 1/1500,
 // 1.15/1500, 1.66/1500; negative cells have no data (read as 0). Look-ups interpolate
 // trilinearly between cell centres (phi_d wraps with period pi), which keeps f(wi, wo) =
-// f(wo, wi): swapping the directions maps phi_d to phi_d + pi. Sampled by cosine (pdf cos/pi),
-// albedo by quadrature. Files load once per process into a shared read-only cache
-// (measured.cpp); a file that fails to load makes the lobe evaluate to nothing, and
-// load_merl() reports why. Native only: not part of the bitcode.
+// f(wo, wi): swapping the directions maps phi_d to phi_d + pi. Importance-sampled from
+// per-elevation tables of f cos (measured_sampler.h) mixed with 10% cosine sampling, so
+// pdf > 0 wherever f > 0; albedo by quadrature. Files load once per process into a shared
+// read-only cache (measured.cpp); a file that fails to load makes the lobe evaluate to
+// nothing, and load_merl() reports why: cannot open, short header, wrong dimensions, wrong
+// size (truncated or trailing bytes), NaN/Inf cells, or no valid cell at all. Negative cells
+// are "no data" and read as 0. Native only: not part of the bitcode.
 #pragma once
 
 #include "common.h"
+#include "measured_sampler.h"
 #include "quadrature.h"
 
 #include <string>
@@ -24,10 +28,12 @@ struct MeasuredTable {
   static constexpr int kThetaH = 90, kThetaD = 90, kPhiD = 180;
   static constexpr int kCells = kThetaH * kThetaD * kPhiD;
   std::vector<float> rgb; // 3 * kCells, already scaled; "no data" stored as 0
+  MeasuredSampler sampler;
   Vec3 lookup(const Vec3& wo, const Vec3& wi) const;
 };
 
-// Loads a MERL file; false with a message in `error` for a missing, short or malformed file.
+// Loads a MERL file and builds its sampler; false with a message in `error` for a missing,
+// short, long or malformed file.
 bool load_merl(const std::string& path, MeasuredTable& table, std::string& error);
 // Writes a MERL file tabulating f(wi, wo) (cell centres); false if the file cannot be written.
 using BrdfFunction = Vec3 (*)(const Vec3& wi, const Vec3& wo, void* user);
@@ -39,14 +45,21 @@ struct Measured {
   const MeasuredTable* table = nullptr;
   Vec3 tint{1, 1, 1};
   uint32_t flags() const { return kFlagReflect | kFlagGlossy; }
+  static constexpr float kMix = MeasuredSampler::kCosineShare;
   LobeEval eval(const Vec3& wo, const Vec3& wi) const {
     if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return {};
-    return {tint * table->lookup(wo, wi) * wi.z, wi.z * kInvPi};
+    float pdf = (1.0f - kMix) * table->sampler.pdf(wo, wi) + kMix * wi.z * kInvPi;
+    return {tint * table->lookup(wo, wi) * wi.z, pdf};
   }
   LobeSample sample(const Vec3& wo, const Vec3& u) const {
     LobeSample s;
     if (!(wo.z > 0.0f)) return s;
-    Vec3 wi = sample_cosine_hemisphere(u.x, u.y);
+    Vec3 wi;
+    if (u.z < kMix) {
+      wi = sample_cosine_hemisphere(u.x, u.y);
+    } else if (!table->sampler.sample(wo, u.x, u.y, wi)) {
+      return s;
+    }
     LobeEval e = eval(wo, wi);
     if (!(e.pdf > 0.0f)) return s;
     return {wi, e.value / e.pdf, e.pdf, flags(), 1.0f, true};
