@@ -122,6 +122,7 @@ int run_render(int argc, char** argv) {
     return 1;
   }
   double setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (const std::string& w : backend.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
   lobe::render::RenderOptions opt;
   opt.spp = st.spp;

@@ -151,8 +151,10 @@ void Geometry::surface(int shape, int prim, float bu, float bv, SurfaceHit& hit)
     hit.v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
     float st = std::sqrt(std::max(0.0f, 1 - d.y * d.y));
     hit.dPdu = Vec3{d.z, 0, -d.x} * (2 * kPi * s.radius);
-    float phi = std::atan2(d.x, d.z);
-    hit.dPdv = Vec3{d.y * std::sin(phi), -st, d.y * std::cos(phi)} * (kPi * s.radius);
+    // dP/dv = pi r (cos(theta) sin(phi), -sin(theta), cos(theta) cos(phi)), with
+    // sin(phi) = x / sin(theta), cos(phi) = z / sin(theta) (no second atan2).
+    float inv = st > 1e-7f ? 1.0f / st : 0.0f;
+    hit.dPdv = Vec3{d.y * d.x * inv, -st, d.y * d.z * inv} * (kPi * s.radius);
     return;
   }
   const scene::Mesh& m = meshes_[shape];

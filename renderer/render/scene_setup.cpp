@@ -23,14 +23,21 @@ MaterialCompiler native_compiler() {
   };
 }
 
+// Constants computed once (name lookups are too slow for every shading point).
 uint64_t derivative_bits() {
-  uint64_t b = 0;
-  for (const char* n : {"dPdx", "dPdy", "dIdx", "dIdy", "dudx", "dudy", "dvdx", "dvdy"})
-    b |= global_bit(n);
-  return b;
+  static const uint64_t bits = [] {
+    uint64_t b = 0;
+    for (const char* n : {"dPdx", "dPdy", "dIdx", "dIdy", "dudx", "dudy", "dvdx", "dvdy"})
+      b |= global_bit(n);
+    return b;
+  }();
+  return bits;
 }
 
-uint64_t tangent_bits() { return global_bit("dPdu") | global_bit("dPdv"); }
+uint64_t tangent_bits() {
+  static const uint64_t bits = global_bit("dPdu") | global_bit("dPdv");
+  return bits;
+}
 
 // Screen derivatives: the footprint's screen axes projected into the tangent plane, scaled to
 // the pixel width there; u,v derivatives by least squares against dPdu, dPdv.
