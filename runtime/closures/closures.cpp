@@ -182,8 +182,9 @@ const char* param_warning(int id, const unsigned char* params) {
   if (id == kDielectricId) thickness = as<DielectricParams>(params).thinfilm_thickness;
   if (id == kGeneralizedSchlickId)
     thickness = as<GeneralizedSchlickParams>(params).thinfilm_thickness;
-  return thickness != 0.0f ? "thin-film interference is not implemented; thinfilm_* ignored"
-                           : nullptr;
+  return thickness < 0.0f || thickness != thickness
+             ? "thinfilm_thickness is negative or NaN: no thin film"
+             : nullptr;
 }
 
 } // namespace lobe::closures

@@ -51,7 +51,7 @@ std::optional<BsdfSample> sample(int id, const unsigned char* params, const Vec3
 Color3 albedo(int id, const unsigned char* params, const Vec3& wo); // directional albedo
 uint32_t lobe_flags(int id, const unsigned char* params);           // LobeFlags (bsdf.h)
 bool has_implementation(int id);
-// A note about a parameter the library accepts but ignores (thin film), or null.
+// A note about a parameter value the library ignores (a negative thin-film thickness), or null.
 const char* param_warning(int id, const unsigned char* params);
 
 } // namespace lobe::closures

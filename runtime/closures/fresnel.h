@@ -79,6 +79,37 @@ inline Vec3 fresnel_schlick(float c, const Vec3& f0, const Vec3& f90, float p) {
   return f0 + (f90 - f0) * w;
 }
 
+// Thin-film interference (Airy summation of the multiple reflections inside a film of index
+// n2 and thickness d between media n1 and n3; Born & Wolf 1.6, Belcour & Barla 2017 sec. 3):
+//   r = (r12 + r23 e^{i delta}) / (1 + r12 r23 e^{i delta}),  delta = 4 pi n2 d cos(theta2) /
+//   lambda,
+// per polarisation (s, p), R = (|r_s|^2 + |r_p|^2) / 2. Cosines inside the film and the base
+// are complex (Snell with complex n3 for conductors; imaginary under total internal
+// reflection, which the same formula then handles). n1, n2 real; d and lambda in nm.
+inline Cpx cexp_i(Cpx z) { // e^{i z}
+  float m = std::exp(-z.im);
+  return {m * std::cos(z.re), m * std::sin(z.re)};
+}
+inline float fresnel_thin_film(float c1, float n1, float n2, Cpx n3, float d, float lambda) {
+  c1 = clampf(c1, 0.0f, 1.0f);
+  Cpx N1{n1, 0.0f}, N2{n2, 0.0f}, C1{c1, 0.0f}, one{1.0f, 0.0f};
+  float s1n1 = n1 * n1 * (1.0f - c1 * c1); // (n1 sin theta1)^2
+  Cpx C2 = csqrt(one - Cpx{s1n1, 0.0f} / (N2 * N2));
+  Cpx C3 = csqrt(one - Cpx{s1n1, 0.0f} / (n3 * n3));
+  if (norm2(C2) == 0.0f || norm2(n3) == 0.0f) return 1.0f;
+  Cpx E = cexp_i(Cpx{4.0f * kPi * n2 * d / lambda, 0.0f} * C2);
+  auto airy = [&](Cpx r12, Cpx r23) { return norm2((r12 + r23 * E) / (one + r12 * r23 * E)); };
+  Cpx rs12 = (N1 * C1 - N2 * C2) / (N1 * C1 + N2 * C2);
+  Cpx rs23 = (N2 * C2 - n3 * C3) / (N2 * C2 + n3 * C3);
+  Cpx rp12 = (N2 * C1 - N1 * C2) / (N2 * C1 + N1 * C2);
+  Cpx rp23 = (n3 * C2 - N2 * C3) / (n3 * C2 + N2 * C3);
+  float f = 0.5f * (airy(rs12, rs23) + airy(rp12, rp23));
+  return f == f ? clampf(f, 0.0f, 1.0f) : 1.0f;
+}
+
+// Wavelengths (nm) at which the RGB channels evaluate thin films.
+inline constexpr float kFilmLambda[3] = {650.0f, 550.0f, 450.0f};
+
 // Hemispherical average 2 int_0^1 F(mu) mu dmu of any Fresnel, by 8-point Gauss-Legendre
 // quadrature on mu (exact enough for the smooth Fresnel curves; used by energy compensation).
 template <class F> Vec3 fresnel_average(F&& fresnel) {

@@ -25,6 +25,9 @@
 //    reciprocity c_T,out (1 - E_avg,out) = eta^2 c_T,in (1 - E_avg,in) (clamped to <= 1).
 //    Reflection parts are scaled by reflection_tint, refraction parts by transmission_tint.
 // The compensation lobes are sampled by cosine, with a share proportional to their albedo.
+// Thin film (thinfilm_thickness in nm > 0, thinfilm_ior): F is replaced per channel by the
+// Airy-summation reflectance of film + base at 650/550/450 nm (fresnel.h); thickness 0 (or
+// negative/NaN) leaves the lobe exactly as without film. Compensation tables ignore the film.
 // Ranges: alpha >= 0 (clamped to [1e-4, 4]); eta > 0, |eta - 1| < 1e-4 is index-matched
 // (straight pass-through, a delta lobe); colours >= 0.
 #pragma once
@@ -49,8 +52,9 @@ struct Microfacet {
   Vec3 f0, f90;          // Schlick
   float exponent = 5.0f; // Schlick
   Vec3 refl_tint{1, 1, 1}, trans_tint{0, 0, 0};
-  bool ms = false; // Kulla-Conty compensation lobe (conductor form)
-  Vec3 ms_color;   // F_ms / (pi (1 - E_avg))
+  float film_d = 0.0f, film_n = 1.5f; // thin film (nm, index); film_d = 0: none
+  bool ms = false;                    // Kulla-Conty compensation lobe (conductor form)
+  Vec3 ms_color;                      // F_ms / (pi (1 - E_avg))
   // Dielectric compensation, per side of wo (0: relative IOR eta, 1: 1/eta): c_R, c_T and
   // kr = c_R / (pi (1 - E_avg,s)), kt = c_T / (pi (1 - E_avg,s')).
   struct DielMs {
@@ -70,6 +74,7 @@ struct Microfacet {
 
   // Fresnel reflectance for cosine c on the side whose relative IOR is `e`.
   Vec3 F(float c, float e) const {
+    if (film_d > 0.0f) return F_film(c, e);
     switch (fresnel) {
     case FresnelKind::One:
       return splat(1.0f);
@@ -87,6 +92,26 @@ struct Microfacet {
     }
     }
     return splat(1.0f);
+  }
+
+  // Thin film on the outer surface, per RGB wavelength: outside index 1, base index eta
+  // (dielectric), n + ik (conductor) or (1 + sqrt f0)/(1 - sqrt f0) per channel (Schlick).
+  // From inside (e != eta) the stack is traversed base -> film -> outside.
+  Vec3 F_film(float c, float e) const {
+    Vec3 r;
+    for (int ch = 0; ch < 3; ++ch) {
+      Cpx base{eta, 0.0f};
+      if (fresnel == FresnelKind::Conductor) base = {(&n.x)[ch], (&k.x)[ch]};
+      if (fresnel == FresnelKind::Schlick) {
+        float s = std::sqrt(clampf((&f0.x)[ch], 0.0f, 0.998f));
+        base = {(1.0f + s) / (1.0f - s), 0.0f};
+      }
+      bool inside = fresnel != FresnelKind::Conductor && e != eta;
+      (&r.x)[ch] =
+          inside ? fresnel_thin_film(c, base.re, film_n, {1.0f, 0.0f}, film_d, kFilmLambda[ch])
+                 : fresnel_thin_film(c, 1.0f, film_n, base, film_d, kFilmLambda[ch]);
+    }
+    return r;
   }
 
   // Reflection and refraction weights at cosine c, and the probability of reflecting.

@@ -59,6 +59,13 @@ inline void enable_dielectric_compensation(Microfacet& m) {
   m.ms_diel = true;
 }
 
+// Thin film from the keywords: a thickness that is not a positive finite number means none.
+inline void set_film(Microfacet& m, float thickness, float ior) {
+  if (!(thickness > 0.0f && thickness < 1e6f)) return;
+  m.film_d = thickness;
+  m.film_n = ior > 0.0f && ior < 1e3f ? ior : 1.0f;
+}
+
 inline Microfacet make_microfacet(const char* dist, float ax, float ay, float eta, int refract,
                                   int ec) {
   Microfacet m = microfacet_base(ax, ay, dist);
@@ -76,6 +83,7 @@ inline Microfacet make_conductor(const ConductorParams& p) {
   m.fresnel = FresnelKind::Conductor;
   m.n = vmax0(sanitize(p.ior));
   m.k = vmax0(sanitize(p.extinction));
+  set_film(m, p.thinfilm_thickness, p.thinfilm_ior);
   if (p.energy_compensation)
     enable_compensation(m, fresnel_average([&](float mu) { return m.F(mu, 1.0f); }));
   return m;
@@ -88,6 +96,7 @@ inline Microfacet make_dielectric(const DielectricParams& p) {
   m.refl_tint = sanitize(p.reflection_tint);
   m.trans_tint = sanitize(p.transmission_tint);
   if (m.refracts() && m.eta == 1.0f) m.delta = true;
+  set_film(m, p.thinfilm_thickness, p.thinfilm_ior);
   if (p.energy_compensation) enable_dielectric_compensation(m);
   return m;
 }
@@ -103,6 +112,7 @@ inline Microfacet make_generalized_schlick(const GeneralizedSchlickParams& p) {
   float s = std::sqrt(clampf((m.f0.x + m.f0.y + m.f0.z) / 3.0f, 0.0f, 0.998f));
   m.eta = sane_eta((1.0f + s) / (1.0f - s));
   if (m.refracts() && m.eta == 1.0f) m.delta = true;
+  set_film(m, p.thinfilm_thickness, p.thinfilm_ior);
   if (p.energy_compensation)
     enable_compensation(m, fresnel_average([&](float mu) { return m.F(mu, 2.0f) * m.refl_tint; }));
   return m;

@@ -39,7 +39,9 @@ TEST(Params, KeywordDefaultsParsed) {
   Params c("conductor_bsdf");
   EXPECT_FLOAT_EQ(reinterpret_cast<const ConductorParams*>(c.data())->thinfilm_ior, 1.5f);
   EXPECT_EQ(param_warning(c.id(), c.data()), nullptr);
-  c.set("thinfilm_thickness", 400.0f);
+  c.set("thinfilm_thickness", 400.0f); // implemented: no warning
+  EXPECT_EQ(param_warning(c.id(), c.data()), nullptr);
+  c.set("thinfilm_thickness", -1.0f);
   EXPECT_NE(param_warning(c.id(), c.data()), nullptr);
 }
 
