@@ -1,7 +1,7 @@
 // Implements eliminate_dead_code. Liveness is per symbol over the whole shader (not per path):
 // simple, and exact enough for lowered code, where temporaries are written and read nearby;
-// plus dead stores within one basic block (lowering reuses temporaries, so a temporary is
-// often written, overwritten and read again in one block).
+// plus dead stores found by liveness over the main body's control-flow graph (lowering reuses
+// temporaries, so a temporary is often written, overwritten and read again elsewhere).
 #include "passes/dce.h"
 #include "ir/edit.h"
 #include "ir/opcodes.h"
@@ -87,46 +87,93 @@ bool full_write(const Shader& sh, const Op& op, int a) {
   return true;
 }
 
-// Dead stores within a basic block of the main body: a pure op whose written temporaries and
-// locals are all overwritten later in the same block before anything reads them.
-bool drop_dead_stores(const Shader& sh, std::vector<bool>& keep) {
+bool tracked(const Symbol& s) { return s.kind == SymKind::Temp || s.kind == SymKind::Local; }
+
+// Basic blocks of the main body: [begin, end) and successor blocks.
+struct Block {
+  int begin = 0, end = 0;
+  std::vector<int> succ;
+};
+
+std::vector<Block> main_blocks(const Shader& sh, std::vector<int>& block_of) {
   int n = int(sh.ops.size());
   std::vector<bool> leader(size_t(n) + 1, false);
+  leader[size_t(sh.main_begin)] = true;
   for (int i = sh.main_begin; i < n; ++i) {
     const Op& op = sh.ops[size_t(i)];
-    for (int j : op.jumps) leader[size_t(std::clamp(j, 0, n))] = true;
+    for (int j : op.jumps) leader[size_t(std::clamp(j, sh.main_begin, n))] = true;
     if (!op.jumps.empty() || op.opcode == "exit") leader[size_t(i) + 1] = true;
   }
+  std::vector<Block> blocks;
+  block_of.assign(size_t(n) + 1, -1);
+  for (int i = sh.main_begin; i < n; ++i) {
+    if (leader[size_t(i)]) blocks.push_back({i, i, {}});
+    blocks.back().end = i + 1;
+    block_of[size_t(i)] = int(blocks.size()) - 1;
+  }
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    const Op& last = sh.ops[size_t(blocks[b].end - 1)];
+    std::vector<int> targets = last.jumps;
+    if (last.opcode != "br" && last.opcode != "cbr" && last.opcode != "exit")
+      targets.push_back(blocks[b].end);
+    for (int t : targets)
+      if (t >= sh.main_begin && t < n) blocks[b].succ.push_back(block_of[size_t(t)]);
+  }
+  return blocks;
+}
+
+// Updates `live` (backwards) across op `op`: its full writes end liveness, its reads start it.
+void step_back(const Shader& sh, const Op& op, std::vector<char>& live) {
+  for (size_t a = 0; a < op.args.size(); ++a)
+    if (full_write(sh, op, int(a))) live[size_t(op.args[a])] = 0;
+  for (size_t a = 0; a < op.args.size(); ++a)
+    if (op_reads(op, int(a))) live[size_t(op.args[a])] = 1;
+}
+
+// Dead stores in the main body by liveness over its control-flow graph: a pure op whose
+// written temporaries and locals are read on no path before being overwritten. (Init ops
+// run before the main body, so nothing they read is written here.)
+bool drop_dead_stores(const Shader& sh, std::vector<bool>& keep) {
+  std::vector<int> block_of;
+  std::vector<Block> blocks = main_blocks(sh, block_of);
+  size_t ns = sh.symbols.size();
+  std::vector<std::vector<char>> live_in(blocks.size(), std::vector<char>(ns, 0));
+  auto live_out = [&](const Block& b) {
+    std::vector<char> out(ns, 0);
+    for (int s : b.succ)
+      for (size_t k = 0; k < ns; ++k) out[k] |= live_in[size_t(s)][k];
+    return out;
+  };
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (size_t b = blocks.size(); b-- > 0;) {
+      std::vector<char> live = live_out(blocks[b]);
+      for (int i = blocks[b].end - 1; i >= blocks[b].begin; --i)
+        if (keep[size_t(i)]) step_back(sh, sh.ops[size_t(i)], live);
+      if (live != live_in[b]) live_in[b] = std::move(live), changed = true;
+    }
+  }
   bool any = false;
-  std::vector<char> killed(sh.symbols.size(), 0);
-  std::vector<int> touched;
-  for (int i = n - 1; i >= sh.main_begin; --i) {
-    if (leader[size_t(i) + 1]) { // block boundary after op i: nothing is known dead
-      for (int s : touched) killed[size_t(s)] = 0;
-      touched.clear();
-    }
-    if (!keep[size_t(i)]) continue;
-    const Op& op = sh.ops[size_t(i)];
-    const OpcodeInfo* info = find_opcode(op.opcode);
-    bool pure = info && (info->flags & kPure) && !(info->flags & (kEffect | kJump));
-    bool dead = pure && op.written_mask != 0;
-    for (size_t a = 0; a < op.args.size() && dead; ++a)
-      if (op.writes(int(a))) dead = killed[size_t(op.args[a])] && !op_reads(op, int(a));
-    if (dead) {
-      keep[size_t(i)] = false;
-      any = true;
-      continue;
-    }
-    for (size_t a = 0; a < op.args.size(); ++a) {
-      int s = op.args[a];
-      SymKind k = sh.symbols[size_t(s)].kind;
-      if (full_write(sh, op, int(a)) && (k == SymKind::Temp || k == SymKind::Local)) {
-        killed[size_t(s)] = 1;
-        touched.push_back(s);
+  for (const Block& b : blocks) {
+    std::vector<char> live = live_out(b);
+    for (int i = b.end - 1; i >= b.begin; --i) {
+      if (!keep[size_t(i)]) continue;
+      const Op& op = sh.ops[size_t(i)];
+      const OpcodeInfo* info = find_opcode(op.opcode);
+      bool dead = info && (info->flags & kPure) && !(info->flags & (kEffect | kJump)) &&
+                  op.written_mask != 0;
+      for (size_t a = 0; a < op.args.size() && dead; ++a) {
+        if (!op.writes(int(a))) continue;
+        int s = op.args[a];
+        dead = tracked(sh.symbols[size_t(s)]) && !live[size_t(s)] && !op_reads(op, int(a));
+      }
+      if (dead) {
+        keep[size_t(i)] = false;
+        any = true;
+      } else {
+        step_back(sh, op, live);
       }
     }
-    for (size_t a = 0; a < op.args.size(); ++a)
-      if (op_reads(op, int(a))) killed[size_t(op.args[a])] = 0;
   }
   return any;
 }

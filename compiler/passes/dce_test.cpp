@@ -217,4 +217,59 @@ end
 )");
 }
 
+// Liveness over the control-flow graph: a store overwritten on every path before any read is
+// dead even across blocks; one read on some path (or around a loop) stays.
+TEST(Dce, RemovesStoresDeadOnEveryPathAcrossBlocks) {
+  const char* in = R"(lobe-ir 1
+surface s
+symbols
+  oparam float f = 0
+  oparam float g = 0
+  global float u
+  temp float $t0
+  temp float $t1
+  local int i
+  local int t
+  const float $c0 = 1
+  const float $c1 = 2
+  const int $c2 = 0
+  const int $c3 = 3
+  const int $c4 = 1
+main
+  assign $t0 $c0
+  assign $t1 $c0
+  cbr u -> La Lb
+La:
+  assign $t0 u
+  add f f $t1
+  br -> Lc
+Lb:
+  assign $t0 $c1
+Lc:
+  add f f $t0
+  assign i $c2
+  assign $t1 $c1
+Ld:
+  lt t i $c3
+  cbr t -> Le Lf
+Le:
+  add g g $t1
+  assign $t1 u
+  add i i $c4
+  br -> Ld
+Lf:
+end
+)";
+  std::string out = run_pass(in, eliminate_dead_code);
+  std::string main = out.substr(out.find("main\n"));
+  // `assign $t0 $c0` is overwritten on both branches: dead. `assign $t1 $c0` is read on the
+  // La path: kept. `assign $t1 $c1` before the loop is read in its first iteration: kept.
+  EXPECT_EQ(main.find("assign $t0 $c0"), std::string::npos) << main;
+  EXPECT_NE(main.find("assign $t1 $c0"), std::string::npos) << main;
+  EXPECT_NE(main.find("assign $t1 $c1"), std::string::npos) << main;
+  EXPECT_NE(main.find("assign $t1 u"), std::string::npos) << main;
+  EXPECT_NE(main.find("assign $t0 u"), std::string::npos) << main;
+  EXPECT_NE(main.find("assign $t0 $c1"), std::string::npos) << main;
+}
+
 } // namespace
