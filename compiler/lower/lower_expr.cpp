@@ -382,7 +382,22 @@ int Lowerer::construct(const ast::ConstructExpr* c, int hint) {
   return dst;
 }
 
+// Casts, constructors and arithmetic whose operands are all constants become one constant
+// (`color(1)`, `-2`, `float(1) / 3`): no temporaries holding converted literals.
+int Lowerer::folded(const ast::Expr* e) {
+  if (e->kind != K::Cast && e->kind != K::Construct && e->kind != K::Unary && e->kind != K::Binary)
+    return -1;
+  if (e->type.is_array() || e->type.base == ast::BaseType::Struct ||
+      e->type.base == ast::BaseType::Closure || e->type.base == ast::BaseType::Void)
+    return -1;
+  ir::Type t = irtype(e->type, e);
+  std::vector<ir::ConstValue> v;
+  if (!const_values(e, t, v) || v.size() != size_t(t.components())) return -1;
+  return ir::intern_const(sh_, t, v);
+}
+
 int Lowerer::rvalue(const ast::Expr* e, int hint) {
+  if (int c = folded(e); c >= 0) return c;
   const ast::Node* saved = where_;
   where_ = e;
   int r = -1;

@@ -60,7 +60,8 @@ public:
   bool const_values(const ast::Expr* e, const ir::Type& t, std::vector<ir::ConstValue>& out);
 
   // ---- lower_expr.cpp
-  int rvalue(const ast::Expr* e, int hint = -1);    // non-struct value -> symbol
+  int rvalue(const ast::Expr* e, int hint = -1); // non-struct value -> symbol
+  int folded(const ast::Expr* e); // the constant an all-constant expression folds to, or -1
   std::vector<int> rvalue_flat(const ast::Expr* e); // struct value -> one symbol per leaf
   std::vector<LRef> lvalue(const ast::Expr* e);     // storage of an lvalue (one per leaf)
   int load(const LRef& r, const ast::Node* where);

@@ -77,13 +77,14 @@ std::function<float(float, float)> float_binop(const std::string& op) {
 }
 
 std::optional<Values> compare(const std::string& op, const std::vector<ConstArg>& s) {
-  auto t = wider(s[0].type, s[1].type);
-  if (!t) {
-    bool strings = s[0].type == Type{BaseType::String} && s[1].type == s[0].type;
-    if (!strings || (op != "eq" && op != "neq")) return std::nullopt;
+  bool strings = s[0].type == Type{BaseType::String} && s[1].type == s[0].type;
+  if (strings) { // compared by content: strings have no numeric value to widen
+    if (op != "eq" && op != "neq") return std::nullopt;
     bool same = (*s[0].value)[0].s == (*s[1].value)[0].s;
     return Values{iv(op == "eq" ? same : !same)};
   }
+  auto t = wider(s[0].type, s[1].type);
+  if (!t) return std::nullopt;
   auto a = convert_const(s[0].type, *s[0].value, *t);
   auto b = convert_const(s[1].type, *s[1].value, *t);
   if (!a || !b) return std::nullopt;

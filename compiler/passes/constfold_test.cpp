@@ -174,4 +174,27 @@ end
   EXPECT_FALSE(changed);
 }
 
+TEST(ConstFold, StringComparesByContent) {
+  const char* in = R"(lobe-ir 1
+surface s
+symbols
+  oparam int a = 0
+  oparam int b = 0
+  oparam int c = 0
+  const string $c0 = "a"
+  const string $c1 = "b"
+  const string $c2 = "a"
+main
+  neq a $c0 $c1
+  eq b $c0 $c1
+  eq c $c0 $c2
+end
+)";
+  std::string out = run_pass(in, fold_constants);
+  // "a" != "b" is 1, "a" == "b" is 0, "a" == "a" is 1 (by content, not by a numeric value).
+  EXPECT_NE(out.find("const int $c3 = 1"), std::string::npos) << out;
+  EXPECT_NE(out.find("const int $c4 = 0"), std::string::npos) << out;
+  EXPECT_EQ(main_of(out), "main\n  assign a $c3\n  assign b $c4\n  assign c $c3\nend\n");
+}
+
 } // namespace

@@ -241,6 +241,20 @@ TEST(FrontEndGaps, UnsizedArrayParameterStaysUnsized) {
   EXPECT_NE(ir.find("arraylength n a"), std::string::npos) << ir;
 }
 
+// All-constant casts, constructors and arithmetic lower to one constant, with no temporaries
+// for converted literals: color(1) * 0.5 + float(1) / 4 is the constant 0.75 0.75 0.75.
+TEST(ConstantExpressions, LowerToOneConstant) {
+  lobe::lower::PipelineResult r = compile_text(
+      "shader k(output color c = 0, output int n = 0) { c = color(1) * 0.5 + float(1) / 4; "
+      "n = -2 * 3; }\n");
+  ASSERT_TRUE(r.ok) << r.diagnostics;
+  std::string ir = lobe::ir::print(*r.shader);
+  EXPECT_NE(ir.find("color $c0 = 0.75 0.75 0.75"), std::string::npos) << ir;
+  EXPECT_NE(ir.find("int $c1 = -6"), std::string::npos) << ir;
+  EXPECT_EQ(ir.find("temp"), std::string::npos) << ir;
+  EXPECT_EQ(ir.find("mul"), std::string::npos) << ir;
+}
+
 // ---- builtins -------------------------------------------------------------------------------
 
 // Every function in the type checker's builtin table has an IR opcode or a lowering of its own.
