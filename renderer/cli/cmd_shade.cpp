@@ -142,10 +142,10 @@ void print_diags(const lobe::DiagnosticList& d) {
 }
 
 // Finds `var` among the layers' parameters, last layer first.
-bool read_var(const lobe::Material& m, const lobe::ShaderGroup& g, const std::string& var,
-              std::vector<float>& v) {
+bool read_var(const lobe::Material& m, const lobe::ShadingContext& ctx, const lobe::ShaderGroup& g,
+              const std::string& var, std::vector<float>& v) {
   for (size_t i = g.layers.size(); i-- > 0;)
-    if (m.read_output(g.layers[i].name, var, v)) return true;
+    if (m.read_output(ctx, g.layers[i].name, var, v)) return true;
   return false;
 }
 
@@ -192,7 +192,7 @@ int run_shade(int argc, char** argv) {
       lobe::ShaderGlobals sg = grid_point(o, x, y, ctx);
       mat->shade(sg);
       for (size_t k = 0; k < o.outputs.size(); ++k) {
-        if (!read_var(*mat, o.group, o.outputs[k].var, v) || v.empty()) continue;
+        if (!read_var(*mat, ctx, o.group, o.outputs[k].var, v) || v.empty()) continue;
         float* px = images[k].pixel(x, y);
         for (int c = 0; c < 3; ++c) px[c] = v[v.size() >= 3 ? size_t(c) : 0];
       }
@@ -202,7 +202,7 @@ int run_shade(int argc, char** argv) {
   std::fflush(stdout);
   int status = 0;
   for (size_t k = 0; k < o.outputs.size(); ++k) {
-    if (!read_var(*mat, o.group, o.outputs[k].var, v)) {
+    if (!read_var(*mat, ctx, o.group, o.outputs[k].var, v)) {
       std::fprintf(stderr, "lobe shade: no output variable '%s'\n", o.outputs[k].var.c_str());
       status = 1;
       continue;

@@ -289,3 +289,43 @@ end
 }
 
 } // namespace
+
+namespace {
+
+// compile() from several threads at once: distinct instance values, one shared cache.
+TEST(GroupThreads, ConcurrentCompiles) {
+  ShadingSystem ss;
+  DiagnosticList d;
+  ASSERT_TRUE(ss.add_shader_ir("scaled", R"(lobe-ir 1
+surface scaled
+symbols
+  global float u
+  param float k = 1
+  oparam float r = 0
+main
+  mul r u k
+end
+)",
+                               d));
+  std::vector<std::thread> threads;
+  std::vector<float> results(8, -1);
+  for (int t = 0; t < 8; ++t)
+    threads.emplace_back([&, t] {
+      DiagnosticList diags;
+      auto g = ss.parse_group("param float k " + std::to_string(t % 4) + " ; shader scaled l ;",
+                              "t", diags);
+      auto mat = ss.compile(*g, diags);
+      if (!mat) return;
+      ShadingContext ctx;
+      ShaderGlobals sg{};
+      sg.context = &ctx;
+      sg.u = 2;
+      mat->shade(sg);
+      std::vector<float> out;
+      if (mat->read_output(ctx, "l", "r", out)) results[size_t(t)] = out[0];
+    });
+  for (auto& th : threads) th.join();
+  EXPECT_EQ(results, (std::vector<float>{0, 2, 4, 6, 0, 2, 4, 6}));
+}
+
+} // namespace

@@ -35,11 +35,22 @@ void MaterialImpl::shade(ShaderGlobals& sg) const {
 
 bool MaterialImpl::read_output(const std::string& layer, const std::string& param,
                                std::vector<float>& dst) const {
+  const ShadingContext* ctx = last_context_.load(std::memory_order_relaxed);
+  return read_from((ctx && ctx->groupdata_owner == this) ? ctx->groupdata.data()
+                                                         : groupdata_.data(),
+                   layer, param, dst);
+}
+
+bool MaterialImpl::read_output(const ShadingContext& ctx, const std::string& layer,
+                               const std::string& param, std::vector<float>& dst) const {
+  return read_from(ctx.groupdata_owner == this ? ctx.groupdata.data() : groupdata_.data(), layer,
+                   param, dst);
+}
+
+bool MaterialImpl::read_from(const unsigned char* gd, const std::string& layer,
+                             const std::string& param, std::vector<float>& dst) const {
   auto it = slots_.find(layer + "." + param);
   if (it == slots_.end()) return false;
-  const ShadingContext* ctx = last_context_.load(std::memory_order_relaxed);
-  const unsigned char* gd =
-      (ctx && ctx->groupdata_owner == this) ? ctx->groupdata.data() : groupdata_.data();
   const OutputSlot& s = it->second;
   if (s.type.base == ir::BaseType::String || s.type.base == ir::BaseType::Closure) return false;
   int n = s.type.components() * std::max(1, s.type.arraylen);

@@ -34,9 +34,14 @@ public:
   uint64_t globals_read() const override { return globals_; }
   bool read_output(const std::string& layer, const std::string& param,
                    std::vector<float>& dst) const override;
+  bool read_output(const ShadingContext& ctx, const std::string& layer, const std::string& param,
+                   std::vector<float>& dst) const override;
   const CompileStats& stats() const override { return stats_; }
 
 private:
+  bool read_from(const unsigned char* gd, const std::string& layer, const std::string& param,
+                 std::vector<float>& dst) const;
+
   std::shared_ptr<jit::Jit> jit_;
   std::shared_ptr<shadeops::RuntimeEnv> env_; // strings baked into the code live here
   jit::CompiledGroup code_;
@@ -58,6 +63,10 @@ public:
   bool read_output(const std::string& layer, const std::string& param,
                    std::vector<float>& dst) const override {
     return m_->read_output(layer, param, dst);
+  }
+  bool read_output(const ShadingContext& ctx, const std::string& layer, const std::string& param,
+                   std::vector<float>& dst) const override {
+    return m_->read_output(ctx, layer, param, dst);
   }
   const CompileStats& stats() const override { return stats_; }
 

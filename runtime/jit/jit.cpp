@@ -34,6 +34,7 @@ struct Jit::State {
   llvm::orc::JITDylib* runtime = nullptr;  // shadeops and libm, as absolute symbols
   std::atomic<uint64_t> counter{0};
   mutable std::mutex opt_mutex; // the TargetMachine is shared by optimiser runs
+  std::mutex compile_mutex;     // LLJIT's compiler (one TargetMachine) is not re-entrant
 };
 
 namespace {
@@ -153,6 +154,7 @@ bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::
   times.optimize_ms = ms_since(t0);
   auto t1 = std::chrono::steady_clock::now();
   auto& lljit = *s_->lljit;
+  std::lock_guard<std::mutex> lock(s_->compile_mutex);
   std::string name = "lobe_group_" + std::to_string(s_->counter++);
   auto jd = lljit.createJITDylib(name);
   if (!jd) {
@@ -180,6 +182,7 @@ bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::
 
 void Jit::remove(CompiledGroup& group) {
   if (!group.dylib) return;
+  std::lock_guard<std::mutex> lock(s_->compile_mutex);
   llvm::consumeError(s_->lljit->getExecutionSession().removeJITDylib(*group.dylib));
   group = {};
 }

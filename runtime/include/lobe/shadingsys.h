@@ -44,8 +44,8 @@ struct Connection {
 // values and the connections between them. Built from OSL's group text or by hand.
 struct ShaderGroup {
   struct Layer {
-    std::string shader;   // shader name (found on the search path) or file path
-    std::string name;     // layer name
+    std::string shader; // shader name (found on the search path) or file path
+    std::string name;   // layer name
     std::vector<InstanceValue> values;
   };
   std::string name;
@@ -54,11 +54,11 @@ struct ShaderGroup {
 };
 
 struct CompileOptions {
-  std::vector<std::string> include_dirs;   // -I for #include and shader search
-  std::vector<std::string> defines;        // "NAME" or "NAME=value"
+  std::vector<std::string> include_dirs; // -I for #include and shader search
+  std::vector<std::string> defines;      // "NAME" or "NAME=value"
   std::vector<std::string> undefines;
-  int opt_level = 2;       // 0: no specialisation, LLVM -O0; 1/2: specialise, optimise
-  bool specialize = true;  // fold instance values into constants before LLVM optimises
+  int opt_level = 2;      // 0: no specialisation, LLVM -O0; 1/2: specialise, optimise
+  bool specialize = true; // fold instance values into constants before LLVM optimises
 };
 
 // Time spent per stage, for --stats and bench/.
@@ -79,8 +79,16 @@ public:
   virtual uint64_t globals_read() const = 0;
   // Reads an output parameter of a layer after shade() (for testshade-style `-o`); returns
   // false if absent. `dst` receives components as floats (ints converted).
+  // (Reads the most recent shade() on any thread; that thread's ShadingContext must still
+  // exist. With several threads, use the form below.)
   virtual bool read_output(const std::string& layer, const std::string& param,
                            std::vector<float>& dst) const = 0;
+  // As above, for the most recent shade() that used `ctx`.
+  virtual bool read_output(const ShadingContext& ctx, const std::string& layer,
+                           const std::string& param, std::vector<float>& dst) const {
+    (void)ctx;
+    return read_output(layer, param, dst);
+  }
   virtual const CompileStats& stats() const = 0;
 };
 
