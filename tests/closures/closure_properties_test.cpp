@@ -92,7 +92,7 @@ TEST_P(ClosureProperties, ChiSquare) {
     for (const Incident& inc : c.incident) {
       Chi2Options o;
       o.samples = kSettings.chi2_samples;
-      o.max_sub = kSettings.chi2_max_sub;
+      o.cell_tolerance = kSettings.chi2_cell_tolerance;
       o.n_tests = n_tests;
       o.seed = 0x5eed0000u + GetParam();
       Chi2Result r = chi2_test(lobe, inc.wo, o);

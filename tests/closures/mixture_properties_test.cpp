@@ -59,7 +59,7 @@ LOBE_TEST(MixtureProperties, ChiSquare) {
     for (const Vec3& wo : kIncident) {
       Chi2Options o;
       o.samples = kSettings.chi2_samples;
-      o.max_sub = kSettings.chi2_max_sub;
+      o.cell_tolerance = kSettings.chi2_cell_tolerance;
       o.n_tests = static_cast<int>(cases.size() * std::size(kIncident));
       Chi2Result r = chi2_test(lobe, wo, o);
       EXPECT_TRUE(r.passed) << m.name << " wo.z " << wo.z << ": " << r.message;

@@ -15,7 +15,7 @@ namespace lobe::verify::suite {
 struct Settings {
   Level level;
   uint64_t chi2_samples;
-  int chi2_max_sub;
+  double chi2_cell_tolerance; // expected samples of integration error per cell
   uint64_t consistency_samples;
   uint64_t albedo_samples;
   uint64_t quadrature_evals;
@@ -39,10 +39,11 @@ struct Settings {
 #define LOBE_INSTANTIATE(...) LOBE_INSTANTIATE_(LOBE_SUITE_PREFIX, __VA_ARGS__)
 
 #ifdef LOBE_VERIFY_FULL
-inline constexpr Settings kSettings{Level::Full, 1000000, 32,     200000, 1000000,
+inline constexpr Settings kSettings{Level::Full, 1000000, 0.05,   200000, 1000000,
                                     3000000,     100000,  100000, 1000};
 #else
-inline constexpr Settings kSettings{Level::Quick, 100000, 32, 10000, 50000, 400000, 5000, 5000, 0};
+inline constexpr Settings kSettings{Level::Quick, 100000, 0.05, 10000, 50000,
+                                    400000,       5000,   5000, 0};
 #endif
 
 // Registry ids of every testable closure (a BSDF entry with an implementation).

@@ -1,7 +1,8 @@
 // Chi-square goodness of fit of a lobe's sample() against its pdf() (the test of Mitsuba 3's
 // and pbrt-v4's BSDF suites): sample directions are binned on a (phi, cos theta) grid, pdf()
-// is integrated over every cell with an adaptive sub-grid, sparse cells are pooled and the
-// statistic's p-value is compared with a Sidak-corrected significance.
+// is integrated over every cell adaptively, sparse cells are pooled and the
+// statistic's p-value is compared with a Sidak-corrected significance. pdf() is integrated per
+// cell by recursive adaptive cubature (3x3 Gauss-Legendre, quadrants split while they disagree).
 #pragma once
 
 #include "lobe_view.h"
@@ -13,12 +14,11 @@
 namespace lobe::verify {
 
 struct Chi2Options {
-  int phi_res = 50;           // cells in phi over [0, 2 pi)
-  int cos_res = 100;          // cells in cos theta per hemisphere the lobe reaches
-  uint64_t samples = 1000000; // sample() calls
-  int min_sub = 4;            // sub-grid per cell for integrating pdf(), doubled while the
-  int max_sub = 32;           //   integral still changes (adaptive), up to max_sub
-  double min_expected = 5.0;  // cells expecting fewer samples are pooled into one
+  int phi_res = 50;            // cells in phi over [0, 2 pi)
+  int cos_res = 100;           // cells in cos theta per hemisphere the lobe reaches
+  uint64_t samples = 1000000;  // sample() calls
+  double cell_tolerance = 0.1; // pdf() cell integrals accurate to this many expected samples
+  double min_expected = 5.0;   // cells expecting fewer samples are pooled into one
   double significance = 0.01;
   int n_tests = 1; // configurations in the suite (Sidak correction)
   uint64_t seed = 1;
