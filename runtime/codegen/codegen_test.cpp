@@ -97,7 +97,9 @@ ShaderGlobals grid_globals(ShadingContext& ctx, float u, float v, float dudx, fl
 }
 
 // Runs `text` at -O0 and -O2 on one point; both must print the same, which is returned.
-std::string run(const std::string& text, float u = 0.5f, float v = 0.5f) {
+// `setup` may adjust the globals (e.g. object2common) before the shader runs.
+std::string run(const std::string& text, float u = 0.5f, float v = 0.5f,
+                void (*setup)(ShaderGlobals&) = nullptr) {
   std::string results[2];
   for (int pass = 0; pass < 2; ++pass) {
     shadeops::RuntimeEnv env;
@@ -108,6 +110,7 @@ std::string run(const std::string& text, float u = 0.5f, float v = 0.5f) {
     if (!c) return "<compile error: " + error + ">";
     ShadingContext ctx;
     ShaderGlobals sg = grid_globals(ctx, u, v, 0.25f, 0.5f);
+    if (setup) setup(sg);
     std::vector<unsigned char> gd = c->groupdata;
     reinterpret_cast<void (*)(ShaderGlobals*, void*)>(c->code.entry)(&sg, gd.data());
     results[pass] = ctx.output;
@@ -375,3 +378,42 @@ end
 }
 
 } // namespace
+
+// matrix("from", "to") is the transform from space `from` to space `to`:
+// M = from2common * inverse(to2common). With object2common a translation by (1,2,3) and a
+// scale by 2 (row vectors, p' = p M), "object" -> "world" is that matrix itself and
+// "world" -> "object" its inverse (scale 0.5, translation -(1,2,3)/2). This used to load the
+// "to" string pointer as a matrix (garbage, and a crash at -O2).
+TEST(Codegen, MatrixFromSpaceToSpace) {
+  const char* ir = R"(lobe-ir 1
+shader t
+symbols
+  local matrix g
+  local matrix h
+  local point p
+  const string $obj = "object"
+  const string $world = "world"
+  const float $one = 1
+  const string $f = "%g\n%g\n%g\n"
+main
+  construct g $obj $world
+  construct h $world $obj
+  construct p $one $one $one
+  transform p g p
+  printf $f g h p
+end
+)";
+  auto setup = [](ShaderGlobals& sg) {
+    static const float o2c[16] = {2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 1, 2, 3, 1};
+    sg.object2common = o2c;
+  };
+  // p = (1,1,1) * g = (2+1, 2+2, 2+3).
+  EXPECT_EQ(run(ir, 0.5f, 0.5f, setup),
+            "2 0 0 0 0 2 0 0 0 0 2 0 1 2 3 1\n"
+            "0.5 0 0 0 0 0.5 0 0 0 0 0.5 0 -0.5 -1 -1.5 1\n"
+            "3 4 5\n");
+  // Without an object transform (lobe shade's grid), every named space is the identity.
+  EXPECT_EQ(run(ir), "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n"
+                     "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n"
+                     "1 1 1\n");
+}

@@ -96,17 +96,19 @@ std::vector<llvm::Value*> values(const Val& v) {
 }
 
 void construct_matrix(LayerEmitter& e, const ir::Op& op, size_t first) {
-  size_t n = op.args.size() - first;
   Val m(16, Dual{e.fconst(0)});
-  if (n == 2 && e.arg(op, int(first)).type.base == BaseType::String) { // matrix("from", "to")
+  // matrix("from", "to"): the transform from space `from` to space `to`. Both names are
+  // strings, so op_construct's "spaced" test set first = 2; decide on the argument types.
+  if (op.args.size() == 3 && e.arg(op, 1).type.base == BaseType::String &&
+      e.arg(op, 2).type.base == BaseType::String) {
     llvm::Value* out = e.spill(values(m));
-    e.call("lobe_get_matrix",
-           {e.sg(), e.load(op.args[first])[0].v, e.load(op.args[first + 1])[0].v, out});
+    e.call("lobe_get_matrix", {e.sg(), e.load(op.args[1])[0].v, e.load(op.args[2])[0].v, out});
     m.clear();
     for (llvm::Value* v : e.reload(out, 16)) m.push_back(Dual{v});
     e.store(op.args[0], m);
     return;
   }
+  size_t n = op.args.size() - first;
   if (n == 1)
     m = e.load_as(op, int(first), BaseType::Matrix, false);
   else
