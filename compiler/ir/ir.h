@@ -83,6 +83,10 @@ struct Symbol {
   // Params whose default is not a constant: ops [init_begin, init_end) of Shader::ops compute
   // it; they run only when the parameter gets neither a connection nor an instance value.
   int init_begin = -1, init_end = -1;
+  // An unsized array param (`float[]`) with a computed default: the default's length (a
+  // constant default tells it by its value count). The runtime sizes the array per instance:
+  // the instance value's length, else this (see docs/ir.md).
+  int default_len = 0;
   std::vector<Metadata> metadata;
   std::string struct_name; // the flattened struct's type name for a struct-field param ("" otherwise)
   SourceLoc loc;

@@ -3,6 +3,7 @@
 // errors at the right line and column.
 #include "ir/parser.h"
 #include "ir/printer.h"
+#include "ir/verifier.h"
 
 #include <gtest/gtest.h>
 
@@ -191,6 +192,7 @@ symbols
   param float amp = 1 [[ float min = 0, float max = 10, string widget = "slider" ]]
   param matrix M = 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1
   param string[] names = "a" "b c"
+  param float[] w init=0:0 len=3
   global point P derivs
   global normal N
   temp float $t0 derivs
@@ -245,6 +247,22 @@ TEST(IrText, ExplicitWrittenMaskSurvives) {
   EXPECT_EQ(r.shader->ops[0].written_mask, 5u);
   EXPECT_EQ(r.shader->name, "odd name");
   EXPECT_NE(print(*r.shader).find("compref z \"x y\" z wmask=5"), std::string::npos);
+}
+
+// An unsized array param with a computed default carries the default's length as `len=N`.
+TEST(IrText, UnsizedParamDefaultLengthSurvives) {
+  ParseResult r = parse(kPrograms[1]);
+  ASSERT_TRUE(r.shader) << r.error.to_string();
+  const Symbol& w = r.shader->symbols[size_t(r.shader->find_symbol("w"))];
+  EXPECT_EQ(w.type.arraylen, -1);
+  EXPECT_EQ(w.default_len, 3);
+  EXPECT_NE(print(*r.shader).find("  param float[] w init=0:0 len=3\n"), std::string::npos);
+  EXPECT_TRUE(verify(*r.shader).empty());
+  Shader bad = *r.shader;
+  bad.symbols[size_t(bad.find_symbol("amp"))].default_len = 2; // not an unsized array
+  auto errs = verify(bad);
+  ASSERT_EQ(errs.size(), 1u);
+  EXPECT_EQ(errs[0], "symbol 'amp': len=2 only on unsized array parameters");
 }
 
 struct BadCase {

@@ -249,6 +249,8 @@ void Parser::symbol_line(std::vector<Token>& toks) {
       if (colon == std::string::npos) throw Fail{t.col, "expected init=BEGIN:END"};
       s.init_begin = integer(Token{t.text.substr(5, colon - 5), false, t.col}, "init begin");
       s.init_end = integer(Token{t.text.substr(colon + 1), false, t.col}, "init end");
+    } else if (t.text.rfind("len=", 0) == 0) {
+      s.default_len = integer(Token{t.text.substr(4), false, t.col}, "default length");
     } else if (t.text.rfind("struct=", 0) == 0) {
       s.struct_name = t.text.substr(7);
       if (s.struct_name.empty() && i + 1 < toks.size() && toks[i + 1].quoted)

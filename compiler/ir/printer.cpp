@@ -2,7 +2,7 @@
 //   lobe-ir 1
 //   surface name [[ metadata ]]
 //   symbols
-//     kind type name [= values] [derivs] [init=B:E] [struct=S] [[ metadata ]] [@file:line:col]
+//     kind type name [= values] [derivs] [init=B:E] [len=N] [struct=S] [[ metadata ]] [@loc]
 //   init                          (only when there are parameter-initialisation ops)
 //     opcode args... [-> Ltarget...] [wmask=N] [@loc]
 //   main
@@ -102,6 +102,7 @@ static std::string print_symbol(const Symbol& s) {
   if (s.derivs) line += " derivs";
   if (s.init_begin >= 0)
     line += " init=" + std::to_string(s.init_begin) + ":" + std::to_string(s.init_end);
+  if (s.default_len > 0) line += " len=" + std::to_string(s.default_len);
   if (!s.struct_name.empty()) line += " struct=" + format_name(s.struct_name);
   append(line, format_metadata(s.metadata));
   append(line, format_loc(s.loc));

@@ -67,6 +67,8 @@ void Verifier::symbols() {
     bool is_param = s.kind == SymKind::Param || s.kind == SymKind::OutputParam;
     if (is_param && !s.init.empty() && s.type.arraylen >= 0 && s.init.size() != n)
       error("default has " + std::to_string(s.init.size()) + " values, needs " + std::to_string(n));
+    if (s.default_len != 0 && (!is_param || s.type.arraylen >= 0 || s.default_len < 0))
+      error("len=" + std::to_string(s.default_len) + " only on unsized array parameters");
     if (s.init_begin >= 0 || s.init_end >= 0) {
       if (!is_param) error("init ops on a symbol that is not a parameter");
       if (s.init_begin < 0 || s.init_begin > s.init_end || s.init_end > sh_.main_begin)
