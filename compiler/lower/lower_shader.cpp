@@ -7,6 +7,8 @@
 #include "passes/dce.h"
 #include "passes/derivs.h"
 
+#include <algorithm>
+
 namespace lobe::lower {
 
 // Per-leaf constant defaults of a (struct) parameter, or false if any part is not constant.
@@ -93,6 +95,9 @@ LowerResult Lowerer::run() {
       sh_.symbols[size_t(syms[i])].init_begin = begin;
       sh_.symbols[size_t(syms[i])].init_end = here();
     }
+    // An unsized array keeps `T[]`; the length of its computed default goes beside it.
+    if (p->type.is_unsized_array() && p->type.base != ast::BaseType::Struct && syms.size() == 1)
+      sh_.symbols[size_t(syms[0])].default_len = std::max(0, p->init->type.arraylen);
   }
   sh_.main_begin = here();
   stmt(sd->body.get());

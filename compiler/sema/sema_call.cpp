@@ -47,6 +47,30 @@ std::string closure_signature(const registry::ClosureEntry& c) {
 
 constexpr size_t kMaxCandidateNotes = 12;
 
+// Preference among candidates that tie on argument cost and on the expected return type:
+// float, int, then any triple (equal: point, vector and normal, like colour, are not ordered
+// against each other, so the table order or an ambiguity decides), matrix, string, the rest.
+int return_rank(const Type& t) {
+  if (t.is_array()) return 5;
+  switch (t.base) {
+  case ast::BaseType::Float:
+    return 0;
+  case ast::BaseType::Int:
+    return 1;
+  case ast::BaseType::Color:
+  case ast::BaseType::Point:
+  case ast::BaseType::Vector:
+  case ast::BaseType::Normal:
+    return 2;
+  case ast::BaseType::Matrix:
+    return 3;
+  case ast::BaseType::String:
+    return 4;
+  default:
+    return 5;
+  }
+}
+
 } // namespace
 
 std::string Sema::Candidate::signature() const {
@@ -129,6 +153,14 @@ void Sema::call(ast::CallExpr* e, const Type* expected) {
   // A user function ties with a builtin of the same signature: the user's wins (it overrides).
   if (viable.size() > 1 && std::any_of(viable.begin(), viable.end(), [](auto& c) { return c.fn; }))
     std::erase_if(viable, [](const Candidate& c) { return c.builtin != nullptr; });
+  // Still tied (no expected type, or it did not decide): prefer float, then int, then the
+  // triples, as OSL does; the builtin table lists float results first for the same reason.
+  if (viable.size() > 1) {
+    auto rank = [](const Candidate& c) { return return_rank(c.ret()); };
+    int best_rank = rank(*std::min_element(viable.begin(), viable.end(),
+                                           [&](auto& a, auto& b) { return rank(a) < rank(b); }));
+    std::erase_if(viable, [&](const Candidate& c) { return rank(c) != best_rank; });
+  }
   bool all_builtin = std::all_of(viable.begin(), viable.end(), [](auto& c) { return c.builtin; });
   if (viable.size() > 1 && !all_builtin) {
     report_no_match(e, viable, true);

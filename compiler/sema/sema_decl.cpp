@@ -45,13 +45,18 @@ bool same_params(const ast::FunctionDecl* a, const ast::FunctionDecl* b) {
     if (!(a->params[i]->type == b->params[i]->type)) return false;
   return true;
 }
+// OSL overloads by return type too: `float pick()` and `color pick()` are two functions.
+bool same_signature(const ast::FunctionDecl* a, const ast::FunctionDecl* b) {
+  return same_params(a, b) && a->return_type == b->return_type;
+}
 } // namespace
 
-// Functions overload by parameter types; a definition supersedes an earlier prototype.
+// Functions overload by parameter types and return type; a definition supersedes an earlier
+// prototype of the same signature.
 void Sema::declare_function(ast::FunctionDecl* f) {
   auto& set = scopes_.back().funcs[f->name];
   for (auto& existing : set) {
-    if (!same_params(existing, f)) continue;
+    if (!same_signature(existing, f)) continue;
     if (existing->body && f->body) {
       error(DiagId::err_redefinition, f->name_range, {f->name});
       error(DiagId::note_previous_decl, existing->name_range);
@@ -80,8 +85,8 @@ std::vector<ast::FunctionDecl*> Sema::lookup_functions(const std::string& name) 
     auto it = s->funcs.find(name);
     if (it == s->funcs.end()) continue;
     for (auto* f : it->second) {
-      bool hidden = false; // an inner overload with the same parameters hides an outer one
-      for (auto* o : out) hidden |= same_params(o, f);
+      bool hidden = false; // an inner overload of the same signature hides an outer one
+      for (auto* o : out) hidden |= same_signature(o, f);
       if (!hidden) out.push_back(f);
     }
   }
@@ -216,7 +221,10 @@ void Sema::var_decl(ast::VarDecl* v) {
   if (v->init) {
     if (v->init->kind == ast::ExprKind::InitList) {
       init_list(v->init, v->type);
-      if (v->type.arraylen < 0 && v->init->type.is_array())
+      // A local `float a[] = {...}` takes the list's length; a shader parameter stays unsized
+      // (an instance value of another length may replace its default).
+      if (v->type.arraylen < 0 && v->init->type.is_array() &&
+          v->storage != ast::Storage::ShaderParam)
         v->type.arraylen = v->init->type.arraylen;
     } else {
       expr(v->init, &v->type);

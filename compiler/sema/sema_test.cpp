@@ -126,6 +126,50 @@ TEST(Sema, OverloadsByArgumentsAndReturnType) {
   EXPECT_EQ(call_of(1)->callee.kind, ast::CalleeKind::Builtin);
 }
 
+// User functions overload by return type alone, as builtins do: the type the context expects
+// picks one (initialiser, cast, assignment); without one, float is preferred, then int, then
+// the triples. A tie among triples with nothing to decide it is ambiguous.
+TEST(Sema, UserOverloadsByReturnTypeOnly) {
+  Checked c("float pick() { return 1; }\ncolor pick() { return 2; }\nint pick() { return 3; }\n"
+            "shader s() { float f = pick(); color c = pick(); color k = (color) pick();"
+            " int i = pick(); c = pick(); float g = pick() * 2; }");
+  ASSERT_TRUE(c.ok()) << c.text();
+  std::string b = c.body();
+  EXPECT_NE(b.find("(var float f (call pick:float))"), std::string::npos) << b;
+  EXPECT_NE(b.find("(var color c (call pick:color))"), std::string::npos) << b;
+  EXPECT_NE(b.find("(var color k (cast color:color (call pick:color)))"), std::string::npos) << b;
+  EXPECT_NE(b.find("(var int i (call pick:int))"), std::string::npos) << b;
+  EXPECT_NE(b.find("(=:color c:color (call pick:color))"), std::string::npos) << b;
+  EXPECT_NE(b.find("(*:float (call pick:float)"), std::string::npos) << b; // no context: float
+
+  Checked no_float("int two() { return 2; }\ncolor two() { return 3; }\n"
+                   "shader s() { float g = two() * 2; }");
+  ASSERT_TRUE(no_float.ok()) << no_float.text();
+  EXPECT_NE(no_float.body().find("(*:int (call two:int)"), std::string::npos) << no_float.body();
+
+  Checked tie(
+      "point q() { return 1; }\nvector q() { return 2; }\nshader s() { float d = q()[0]; }");
+  EXPECT_EQ(tie.count(DiagId::err_ambiguous_call), 1) << tie.text();
+  EXPECT_EQ(tie.count(DiagId::note_candidate), 2) << tie.text();
+  std::string t = tie.text();
+  EXPECT_NE(t.find("t.osl:1:7: note: candidate: point q()"), std::string::npos) << t;
+  EXPECT_NE(t.find("t.osl:2:8: note: candidate: vector q()"), std::string::npos) << t;
+}
+
+// Same parameters and the same return type is still a redefinition, with a note at the first.
+TEST(Sema, RedefinitionOfAFunctionNeedsTheSameReturnType) {
+  Checked c("float pick() { return 1; }\ncolor pick() { return 2; }\ncolor pick() { return 3; }\n"
+            "shader s() { }");
+  EXPECT_EQ(c.count(DiagId::err_redefinition), 1) << c.text();
+  std::string t = c.text();
+  EXPECT_NE(t.find("t.osl:3:7: error: redefinition of 'pick'"), std::string::npos) << t;
+  EXPECT_NE(t.find("t.osl:2:7: note: previous definition is here"), std::string::npos) << t;
+  // A prototype is completed by the definition of its own return type only.
+  Checked proto("color pick();\nfloat pick() { return 1; }\ncolor pick() { return 2; }\n"
+                "shader s() { color c = pick(); float f = pick(); }");
+  EXPECT_TRUE(proto.ok()) << proto.text();
+}
+
 TEST(Sema, UserOverloadsAndCoercionOrder) {
   Checked c("float f(float x) { return 1; }\n"
             "float f(color x) { return 2; }\n"
@@ -316,7 +360,13 @@ TEST(Sema, ShaderParamsDefaultsAndMetadata) {
   Checked c("surface s(normal Nn = N, vector T = normalize(dPdu), float k = 1 [[ float min = 0 ]],"
             " float arr[] = {1, 2}, color tint = k) { Ci = k * diffuse(Nn); }");
   ASSERT_TRUE(c.ok()) << c.text();
-  EXPECT_EQ(c.shader()->params[3]->type.arraylen, 2);
+  // An unsized parameter stays unsized (an instance value may have another length); its
+  // default keeps its own length.
+  EXPECT_TRUE(c.shader()->params[3]->type.is_unsized_array());
+  EXPECT_EQ(c.shader()->params[3]->init->type.arraylen, 2);
+  Checked local("shader s() { float a[] = {1, 2, 3}; int n = arraylength(a); }");
+  ASSERT_TRUE(local.ok()) << local.text();
+  EXPECT_NE(local.body().find("(var float[3] a"), std::string::npos) << local.body();
   Checked bad("surface s(float k = 1 [[ float min = u ]]) {}");
   EXPECT_EQ(bad.count(DiagId::err_metadata_not_const), 1) << bad.text();
 }

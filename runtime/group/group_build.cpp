@@ -9,6 +9,7 @@
 #include "passes/dce.h"
 #include "passes/derivs.h"
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <set>
@@ -195,9 +196,28 @@ uint64_t globals_mask(const ir::Shader& sh) {
   return mask;
 }
 
+// Unsized array parameters (`float[]`) get their length per instance, here, before
+// specialisation and layout: a connection's source length, else the instance value's, else
+// the default's (its value count, or `default_len` for a computed default). The layer's copy
+// then has only sized arrays, so layout and codegen need no run-time lengths.
+void size_unsized_params(ir::Shader& sh, const std::map<std::string, int>& lengths) {
+  for (ir::Symbol& s : sh.symbols) {
+    if (!is_param(s) || s.type.arraylen >= 0) continue;
+    auto it = lengths.find(s.name);
+    int len = it != lengths.end() ? it->second : 0;
+    if (len <= 0) len = s.init.empty() ? s.default_len : int(s.init.size()) / s.type.components();
+    if (len <= 0) continue; // no default to size it (the layout falls back to one element)
+    s.type.arraylen = len;
+    s.default_len = 0;
+  }
+}
+
+// Writes at most the symbol's storage (a connection may have fixed a length other than the
+// instance value's).
 void write_value(unsigned char* p, const ir::Symbol& s, const std::vector<ir::ConstValue>& v,
                  shadeops::RuntimeEnv* env) {
-  for (size_t k = 0; k < v.size(); ++k) {
+  size_t cap = size_t(s.type.components()) * size_t(std::max(1, s.type.arraylen));
+  for (size_t k = 0; k < v.size() && k < cap; ++k) {
     if (s.type.base == ir::BaseType::Int)
       std::memcpy(p + 4 * k, &v[k].i, 4);
     else if (s.type.base == ir::BaseType::String) {
@@ -282,8 +302,15 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
   for (size_t i = 0; i < n; ++i) {
     if (!needed[i]) continue;
     auto sh = std::make_unique<ir::Shader>(*sources[i]);
-    for (auto& [name, len] : lengths[i])
-      if (len > 0) sh->symbols[size_t(sh->find_symbol(name))].type.arraylen = len;
+    std::map<std::string, int> len = lengths[i];
+    for (const Link& l : links) { // a whole array connected: the source's (already sized) length
+      if (l.dst_layer != int(i) || l.dst.elem >= 0 || l.src.elem >= 0) continue;
+      const ir::Shader& src = *out.shaders[size_t(new_index[size_t(l.src_layer)])];
+      int ss = src.find_symbol(l.src.symbol);
+      if (ss >= 0 && src.symbols[size_t(ss)].type.arraylen > 0)
+        len[l.dst.symbol] = src.symbols[size_t(ss)].type.arraylen;
+    }
+    size_unsized_params(*sh, len);
     std::set<std::string> connected;
     for (const Link& l : links)
       if (l.dst_layer == int(i)) connected.insert(l.dst.symbol);

@@ -199,6 +199,51 @@ TEST_F(Groups, CacheHitsAndReadOutput) {
   EXPECT_FALSE(c.mat->stats().cache_hit);
 }
 
+// Unsized array parameters (`float[]`) take their length per instance: the default's (its
+// values, or `len=` for a computed default), an instance value's, or a connected array's
+// (a connection wins over an instance value). arraylength() and the elements follow.
+const char* kSizes = R"(lobe-ir 1
+shader sizes
+symbols
+  param float[] a = 1 2
+  param float[] b init=0:2 len=3
+  temp int $na
+  temp int $nb
+  temp int $k
+  temp float $ta
+  temp float $tb
+  const int $i0 = 0
+  const int $i1 = 1
+  const int $i2 = 2
+  const float $c5 = 5
+  const string $fmt = "a %d alast %g b %d blast %g\n"
+init
+  aassign b $i0 $c5
+  aassign b $i2 $c5
+main
+  useparam a b
+  arraylength $na a
+  arraylength $nb b
+  sub $k $na $i1
+  aref $ta a $k
+  sub $k $nb $i1
+  aref $tb b $k
+  printf $fmt $na $ta $nb $tb
+end
+)";
+
+TEST_F(Groups, UnsizedArrayLengthComesFromTheInstance) {
+  DiagnosticList d;
+  ASSERT_TRUE(ss.add_shader_ir("sizes", kSizes, d)) << d[0].text;
+  EXPECT_EQ(both("shader sizes s ;"), "a 2 alast 2 b 3 blast 5\n");
+  EXPECT_EQ(both("param float[] a 4 5 6 ; param float[] b 7 8 ; shader sizes s ;"),
+            "a 3 alast 6 b 2 blast 8\n");
+  EXPECT_EQ(both("param float[] a 9 ; shader sizes s ;"), "a 1 alast 9 b 3 blast 5\n");
+  // upstream's f is float[2] = {a, 10}: the connection fixes a's length, not the value.
+  EXPECT_EQ(both("shader upstream u ; param float[] a 4 5 6 ; shader sizes s ; connect u.f s.a ;"),
+            "upstream ran\na 2 alast 10 b 3 blast 5\n");
+}
+
 TEST_F(Groups, ErrorsAreDiagnostics) {
   DiagnosticList d;
   auto g = ss.parse_group("shader nosuchshader x ;", "t", d);

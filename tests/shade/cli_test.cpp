@@ -51,6 +51,14 @@ TEST(ShadeCli, GroupTextAndGrid) {
             "upstream ran\nCin 0.5 1 1.5 g 0 h 0 pr 0 0\n");
 }
 
+// `float a[] = {1, 2}` stays unsized: an instance value of another length sets arraylength.
+TEST(ShadeCli, UnsizedArrayParameterTakesTheInstanceLength) {
+  EXPECT_EQ(both("unsized_array"), "arraylength 2 sum 3 last 2\n");
+  EXPECT_EQ(both("-param:type=float[] a \"1 2 3\" unsized_array"), "arraylength 3 sum 6 last 3\n");
+  EXPECT_EQ(both("-param:type=float[] a \"0.5 1 1.5 2 4\" unsized_array"),
+            "arraylength 5 sum 9 last 4\n");
+}
+
 TEST(ShadeCli, WritesOutputImage) {
   auto file = std::filesystem::temp_directory_path() / "lobe_shade_cli_test.exr";
   std::filesystem::remove(file);
