@@ -242,13 +242,18 @@ void op_noise(LayerEmitter& e, const ir::Op& op) {
              : o == "cellnoise"              ? shadeops::kCell
              : o == "hashnoise"              ? shadeops::kHash
                                              : shadeops::kUPerlin;
+  // noise("name", ...): a constant known name selects the kind here; a name known only at run
+  // time (or an unknown constant, so that -O0 and -O2 agree when specialisation makes a name
+  // constant) dispatches in lobe_noise_named, which reports an unknown name as a run-time error.
+  bool named = false;
   if (e.arg(op, 1).type.base == BaseType::String) {
-    if (!is_const_string(e.arg(op, 1)))
-      return e.fail(op, "the noise type must be a constant string");
-    std::string name = const_string(e.arg(op, 1));
-    kind = name == "gabor" ? shadeops::kUPerlin : shadeops::noise_kind_from_name(name);
-    if (kind < 0) return e.fail(op, "unknown noise type '" + name + "'");
     first = 2;
+    named = true;
+    if (is_const_string(e.arg(op, 1))) {
+      std::string name = const_string(e.arg(op, 1));
+      kind = name == "gabor" ? shadeops::kUPerlin : shadeops::noise_kind_from_name(name);
+      named = kind < 0;
+    }
   }
   bool periodic = o == "pnoise" || o == "psnoise";
   size_t nargs = op.args.size() - first, ncoord = periodic ? nargs / 2 : nargs;
@@ -276,7 +281,13 @@ void op_noise(LayerEmitter& e, const ir::Op& op) {
   for (const Dual& d : x) any_d |= d.dx || d.dy;
   llvm::Value* grad = any_d ? e.spill(std::vector<llvm::Value*>(size_t(nout * nin), e.fconst(0)))
                             : llvm::ConstantPointerNull::get(e.b().getPtrTy());
-  e.call("lobe_noise", {e.iconst(kind), in, e.iconst(nin), pp, out, e.iconst(nout), grad});
+  if (named)
+    e.call("lobe_noise_named",
+           {e.sg(), e.load(op.args[1])[0].v, in, e.iconst(nin), pp, out, e.iconst(nout), grad,
+            e.string_const(op.loc.file.empty() ? e.shader().name : op.loc.file),
+            e.iconst(op.loc.line)});
+  else
+    e.call("lobe_noise", {e.iconst(kind), in, e.iconst(nin), pp, out, e.iconst(nout), grad});
   std::vector<llvm::Value*> ov = e.reload(out, nout), gv;
   if (any_d) gv = e.reload(grad, nout * nin);
   DualOps d(e);

@@ -6,6 +6,9 @@
 // also returns its analytic derivative so that Dx(noise(P)) follows the chain rule.
 #include "shadeops.h"
 
+#include "lobe/context.h"
+#include "lobe/shading.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -114,6 +117,25 @@ void lobe_noise(int kind, const float* x, int nin, const float* period, float* o
     out[j] = v;
     if (grad)
       for (int k = 0; k < nin; ++k) grad[j * nin + k] = gj[k];
+  }
+}
+
+// noise(name, ...) with a name known only at run time (OSL's genericnoise): dispatches on the
+// name like the constant case in codegen ("gabor" is the gradient noise). An unknown name is a
+// run-time error naming the source location; the result (and its gradient) is 0.
+void lobe_noise_named(lobe::ShaderGlobals* sg, const char* name, const float* x, int nin,
+                      const float* period, float* out, int nout, float* grad, const char* file,
+                      int line) {
+  std::string_view n = name ? name : "";
+  int kind = n == "gabor" ? lobe::shadeops::kUPerlin : lobe::shadeops::noise_kind_from_name(n);
+  if (kind >= 0) return lobe_noise(kind, x, nin, period, out, nout, grad);
+  for (int j = 0; j < nout; ++j) out[j] = 0;
+  if (grad)
+    for (int k = 0; k < nout * nin; ++k) grad[k] = 0;
+  if (sg && sg->context) {
+    sg->context->errors++;
+    sg->context->message("ERROR: Unknown noise type \"" + std::string(n) + "\": " + file + ":" +
+                         std::to_string(line) + "\n");
   }
 }
 

@@ -25,6 +25,8 @@ void lobe_blackbody(float*, float);
 void lobe_wavelength_color(float*, float);
 void lobe_noise(int, const float*, int, const float*, float*, int, float*);
 void lobe_range_error(ShaderGlobals*, int, int, const char*, int);
+void lobe_noise_named(ShaderGlobals*, const char*, const float*, int, const float*, float*, int,
+                      float*, const char*, int);
 }
 
 TEST(Format, TriplesIntsAndStrings) {
@@ -146,6 +148,34 @@ TEST(Noise, LatticeRangeDerivativeCellPeriod) {
   lobe_noise(kPerlin, q1, 1, per, &v1, 1, nullptr);
   lobe_noise(kPerlin, q2, 1, per, &v2, 1, nullptr);
   EXPECT_NEAR(v1, v2, 1e-5);
+}
+
+// noise(name, ...) with a run-time name dispatches to the same kind as the constant case; an
+// unknown name gives 0 (and a zero gradient) and reports a run-time error with the location.
+TEST(Noise, NamedDispatchAndUnknownName) {
+  const std::pair<const char*, int> names[] = {
+      {"perlin", kPerlin}, {"snoise", kPerlin},   {"simplex", kPerlin}, {"uperlin", kUPerlin},
+      {"noise", kUPerlin}, {"usimplex", kUPerlin}, {"gabor", kUPerlin}, {"cell", kCell},
+      {"cellnoise", kCell}, {"hash", kHash},       {"hashnoise", kHash}};
+  float p[3] = {0.3f, 1.7f, -0.4f}, per[3] = {2, 3, 4};
+  for (auto& [name, kind] : names)
+    for (const float* period : {static_cast<const float*>(nullptr), static_cast<const float*>(per)}) {
+      float a[3], b[3], ga[9], gb[9];
+      lobe_noise(kind, p, 3, period, a, 3, ga);
+      lobe_noise_named(nullptr, name, p, 3, period, b, 3, gb, "t.osl", 1);
+      for (int k = 0; k < 3; ++k) EXPECT_EQ(a[k], b[k]) << name;
+      for (int k = 0; k < 9; ++k) EXPECT_EQ(ga[k], gb[k]) << name;
+    }
+  ShadingContext ctx;
+  ShaderGlobals sg{};
+  sg.context = &ctx;
+  float out[3] = {7, 7, 7}, grad[9];
+  std::fill(grad, grad + 9, 7.0f);
+  lobe_noise_named(&sg, "perln", p, 3, nullptr, out, 3, grad, "t.osl", 12);
+  for (float v : out) EXPECT_EQ(v, 0.0f);
+  for (float g : grad) EXPECT_EQ(g, 0.0f);
+  EXPECT_EQ(ctx.errors, 1);
+  EXPECT_EQ(ctx.output, "ERROR: Unknown noise type \"perln\": t.osl:12\n");
 }
 
 TEST(Errors, RangeErrorReportsLocation) {

@@ -40,6 +40,7 @@ void lobe_wavelength_color();
 void lobe_blackbody();
 void lobe_luminance();
 void lobe_noise();
+void lobe_noise_named();
 void lobe_spline();
 void lobe_texture();
 void lobe_texture3d();
@@ -87,6 +88,7 @@ const ShadeOpSymbol kTable[] = {
     {"lobe_blackbody", addr(lobe_blackbody), "vpf"},
     {"lobe_luminance", addr(lobe_luminance), "fp"},
     {"lobe_noise", addr(lobe_noise), "vipippip"},
+    {"lobe_noise_named", addr(lobe_noise_named), "vpppippippi"},
     {"lobe_spline", addr(lobe_spline), "vpfpiipp"},
     {"lobe_texture", addr(lobe_texture), "vpppffffffipppp"},
     {"lobe_texture3d", addr(lobe_texture3d), "vppppppipp"},
