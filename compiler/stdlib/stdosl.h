@@ -76,7 +76,7 @@ void fresnel(vector I, normal N, float eta, output float Kr, output float Kt, ou
     F *= sqr(beta / (g + c));
     Kr = F;
     Kt = (1 - Kr) * eta * eta;
-    T = refract(I, N, 1.0 / eta);
+    T = refract(I, N, eta);
   } else {
     Kr = 1;
     Kt = 0;
