@@ -25,9 +25,18 @@ struct Cell {
 class Integrator {
 public:
   Integrator(const LobeView& lobe, const Vec3& wo, Transport mode)
-      : lobe_(lobe), wo_(wo), mode_(mode) {}
+      : lobe_(lobe), wo_(wo), mode_(mode) {
+    double l = std::sqrt(double(wo.x) * wo.x + double(wo.y) * wo.y + double(wo.z) * wo.z);
+    n_[0] = wo.x / l, n_[1] = wo.y / l, n_[2] = wo.z / l;
+    // Tangents of wo's frame (Duff et al.), in double.
+    double sign = std::copysign(1.0, n_[2]), a = -1.0 / (sign + n_[2]), b = n_[0] * n_[1] * a;
+    t_[0] = 1.0 + sign * n_[0] * n_[0] * a, t_[1] = sign * b, t_[2] = -sign * n_[0];
+    b_[0] = b, b_[1] = sign + n_[1] * n_[1] * a, b_[2] = -n_[1];
+  }
 
-  // 3x3 Gauss-Legendre product rule of eval().value over [phi0,phi1] x [c0,c1] (dw = dphi dc).
+  // 3x3 Gauss-Legendre product rule of eval().value over [phi0,phi1] x [c0,c1] of the
+  // half-vector domain: m = (sin cos phi, sin sin phi, c) in wo's frame, c = wo.m in [0, 1],
+  // wi = 2 c m - wo, dwi = 4 c dm = 4 c dphi dc.
   Color3d gauss(double phi0, double phi1, double c0, double c1) {
     Color3d sum;
     double hp = 0.5 * (phi1 - phi0), mp = 0.5 * (phi1 + phi0);
@@ -37,11 +46,15 @@ public:
       double s = std::sqrt(std::fmax(0.0, 1.0 - c * c));
       for (int i = 0; i < 3; ++i) {
         double phi = mp + hp * kGlX[i];
-        Vec3 wi{static_cast<float>(s * std::cos(phi)), static_cast<float>(s * std::sin(phi)),
-                static_cast<float>(c)};
+        double mx = s * std::cos(phi), my = s * std::sin(phi), w[3];
+        for (int k = 0; k < 3; ++k) {
+          double m = mx * t_[k] + my * b_[k] + c * n_[k];
+          w[k] = 2.0 * c * m - n_[k];
+        }
+        Vec3 wi{static_cast<float>(w[0]), static_cast<float>(w[1]), static_cast<float>(w[2])};
         Vec3 v = lobe_.eval(wo_, wi, mode_).value;
         ++evals;
-        if (finite_nonneg(v)) sum.add(v, kGlW[i] * kGlW[j]);
+        if (finite_nonneg(v)) sum.add(v, kGlW[i] * kGlW[j] * 4.0 * c);
       }
     }
     return sum * (hp * hc);
@@ -63,6 +76,7 @@ private:
   const LobeView& lobe_;
   Vec3 wo_;
   Transport mode_;
+  double n_[3], t_[3], b_[3];
 };
 
 } // namespace
@@ -101,10 +115,10 @@ QuadratureResult albedo_quadrature(const LobeView& lobe, const Vec3& wo, Transpo
   Color3d total;
   double err = 0;
   int ncos = 2 * opt.base_cos;
-  double dphi = 2.0 * M_PI / opt.base_phi, dc = 2.0 / ncos;
+  double dphi = 2.0 * M_PI / opt.base_phi, dc = 1.0 / ncos;
   for (int j = 0; j < ncos; ++j)
     for (int i = 0; i < opt.base_phi; ++i) {
-      Cell c = in.make_cell(i * dphi, (i + 1) * dphi, -1.0 + j * dc, -1.0 + (j + 1) * dc);
+      Cell c = in.make_cell(i * dphi, (i + 1) * dphi, j * dc, (j + 1) * dc);
       total += c.fine;
       err += c.error;
       heap.push(c);

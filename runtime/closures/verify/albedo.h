@@ -2,9 +2,12 @@
 // two independent ways:
 //  - Monte Carlo through sample(): the mean sample weight (failed samples count 0), with its
 //    standard error, so a test can use a 4-sigma tolerance;
-//  - deterministic quadrature of eval() in double precision: globally adaptive cubature over
-//    (phi, cos theta) that splits the cell with the largest error estimate first. Delta lobes
-//    are invisible to eval() and therefore to the quadrature.
+//  - deterministic quadrature of eval() in double precision: globally adaptive cubature that
+//    splits the cell with the largest error estimate first, over the half-vector domain around
+//    wo (m = (phi, c = wo.m) with pole wo, wi = 2 c m - wo, dwi = 4 c dm; exact over the whole
+//    sphere, and a glossy reflection lobe is as wide in m as its roughness, while in wi it is a
+//    sliver ~2 wo.z alpha wide at grazing incidence). Delta lobes are invisible to eval() and
+//    therefore to the quadrature.
 #pragma once
 
 #include "lobe_view.h"

@@ -14,10 +14,11 @@ namespace {
 struct Grid {
   int phi_res, cos_res;
   double cos_min, cos_max;
-  int index(const Vec3& w) const {
-    double c = std::clamp(static_cast<double>(w.z), -1.0, 1.0);
+  // Cell of w (-1: outside the grid); also returns w's phi and cos theta.
+  int index(const Vec3& w, double& phi, double& c) const {
+    c = std::clamp(static_cast<double>(w.z), -1.0, 1.0);
     if (c < cos_min || c > cos_max) return -1;
-    double phi = std::atan2(static_cast<double>(w.y), static_cast<double>(w.x));
+    phi = std::atan2(static_cast<double>(w.y), static_cast<double>(w.x));
     if (phi < 0) phi += 2.0 * M_PI;
     int ip = std::min(phi_res - 1, static_cast<int>(phi / (2.0 * M_PI) * phi_res));
     int ic = std::min(cos_res - 1, static_cast<int>((c - cos_min) / (cos_max - cos_min) * cos_res));
@@ -41,38 +42,78 @@ Grid make_grid(uint32_t flags, const Vec3& wo, const Chi2Options& opt) {
 constexpr double kGlX[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
 constexpr double kGlW[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
 
+// Bounding box (phi, cos theta) of the samples binned in one cell; empty: lo > hi.
+struct SampleBox {
+  double phi0 = INFINITY, phi1 = -INFINITY, c0 = INFINITY, c1 = -INFINITY;
+  void add(double phi, double c) {
+    phi0 = std::fmin(phi0, phi), phi1 = std::fmax(phi1, phi);
+    c0 = std::fmin(c0, c), c1 = std::fmax(c1, c);
+  }
+  bool empty() const { return !(phi0 <= phi1); }
+};
+
 // Integral of pdf() over one cell by recursive adaptive cubature: a 3x3 Gauss-Legendre rule
 // per region, a region split into quadrants while the quadrants' sum differs from the region's
 // own estimate by more than the tolerance (divided by sqrt 2 per level: errors of many small
 // regions add like random signs). The tolerance is a fraction k of the cell's own Poisson
 // standard deviation, so integration error adds a negligible, bounded amount to the statistic
 // (k = 0.05: at most ~0.0025 per cell against a per-cell mean of 1); at most kMaxDepth levels
-// and kMaxEvals pdf() calls per cell. Sharp lobes at grazing incidence put all their mass in a
-// sliver of one cell; the recursion follows it. A cell that received samples but whose estimate
-// explains less than a quarter of them is refined everywhere down to kForceDepth, so a peak
-// between all the coarse nodes is found.
+// and kMaxEvals pdf() calls per cell.
+// A lobe can be far narrower than a cell: at grazing incidence a sharp reflection lobe is a
+// sliver ~2 wo.z alpha wide in azimuth (1.4e-4 rad at cos 0.0014, alpha 0.05, against cells
+// 0.126 rad wide) that no node of the coarse rules touches. When the adaptive estimate makes
+// the cell's observed count implausible (Poisson P(N >= observed) < kImplausible), the cell is
+// integrated again as a partition: the bounding box of its samples (padded), refined down to
+// at least kForceDepth levels, plus the up to four rectangles around it, adaptively. The
+// samples only say where to look; the estimate is still the integral of pdf() over the whole
+// cell, so a pdf that is really too small where the samples are is still caught.
 class CellIntegrator {
 public:
   CellIntegrator(const LobeView& lobe, const Vec3& wo) : lobe_(lobe), wo_(wo) {}
 
   // `samples`: the test's sample count; `observed`: samples binned in this cell; `k`: allowed
-  // error in units of the cell's Poisson standard deviation sqrt(expected).
+  // error in units of the cell's Poisson standard deviation sqrt(expected); `box`: where the
+  // cell's samples lie.
   double integrate(double phi0, double phi1, double c0, double c1, double samples, double observed,
-                   double k) {
+                   double k, const SampleBox& box) {
     evals_ = 0;
-    need_ = 0.25 * observed / samples;
     Box b{phi0, phi1, c0, c1};
     double coarse = gauss(b);
     double expected = std::fmax(std::fmax(coarse * samples, observed), 1.0);
-    return refine(b, coarse, k * std::sqrt(expected) / samples, 0, false);
+    double tol = k * std::sqrt(expected) / samples;
+    double est = refine(b, coarse, tol, 0, 0);
+    if (observed < 1 || box.empty() || !implausible(observed, est * samples)) return est;
+    // Padded sample box, clipped to the cell, and the rectangles around it.
+    double pp = 0.25 * (box.phi1 - box.phi0) + 1e-4 * (phi1 - phi0);
+    double pc = 0.25 * (box.c1 - box.c0) + 1e-4 * (c1 - c0);
+    Box s{std::fmax(phi0, box.phi0 - pp), std::fmin(phi1, box.phi1 + pp),
+          std::fmax(c0, box.c0 - pc), std::fmin(c1, box.c1 + pc)};
+    Box parts[5] = {s,
+                    {phi0, s.phi0, c0, c1},
+                    {s.phi1, phi1, c0, c1},
+                    {s.phi0, s.phi1, c0, s.c0},
+                    {s.phi0, s.phi1, s.c1, c1}};
+    double sum = 0, t = tol / std::sqrt(5.0);
+    for (int i = 0; i < 5; ++i) {
+      const Box& p = parts[i];
+      if (!(p.phi1 > p.phi0) || !(p.c1 > p.c0)) continue;
+      sum += refine(p, gauss(p), t, 0, i == 0 ? kForceDepth : 0);
+    }
+    return sum;
   }
 
 private:
   struct Box {
     double phi0, phi1, c0, c1;
   };
-  static constexpr int kMaxDepth = 10, kForceDepth = 5;
+  static constexpr int kMaxDepth = 10, kForceDepth = 3;
   static constexpr long kMaxEvals = 1000000; // per cell: bounds the cost of a pathological cell
+  static constexpr double kImplausible = 1e-4;
+
+  // Poisson: P(N >= n | mean) = P(n, mean), the regularised lower incomplete gamma.
+  static bool implausible(double n, double mean) {
+    return mean <= 0 || gamma_p(n, mean) < kImplausible;
+  }
 
   double gauss(const Box& b) {
     double hp = 0.5 * (b.phi1 - b.phi0), mp = 0.5 * (b.phi1 + b.phi0);
@@ -91,8 +132,9 @@ private:
     return sum * hp * hc;
   }
 
-  // `force`: the whole cell's estimate explains too few of its samples; refine everywhere.
-  double refine(const Box& b, double coarse, double tol, int depth, bool force) {
+  // Refines while the quadrants disagree with the region's estimate, and unconditionally for
+  // the first `force` levels.
+  double refine(const Box& b, double coarse, double tol, int depth, int force) {
     double pm = 0.5 * (b.phi0 + b.phi1), cm = 0.5 * (b.c0 + b.c1);
     Box q[4] = {{b.phi0, pm, b.c0, cm},
                 {pm, b.phi1, b.c0, cm},
@@ -101,18 +143,14 @@ private:
     double v[4], fine = 0;
     for (int k = 0; k < 4; ++k) fine += (v[k] = gauss(q[k]));
     if (depth >= kMaxDepth || evals_ > kMaxEvals) return fine;
-    bool converged = std::fabs(fine - coarse) <= tol;
-    if (depth == 0) force = fine < need_;
-    bool forced = force && depth < kForceDepth;
-    if (converged && !forced) return fine;
+    if (depth >= force && std::fabs(fine - coarse) <= tol) return fine;
     double sum = 0;
-    for (int k = 0; k < 4; ++k) sum += refine(q[k], v[k], tol * M_SQRT1_2, depth + 1, forced);
+    for (int k = 0; k < 4; ++k) sum += refine(q[k], v[k], tol * M_SQRT1_2, depth + 1, force);
     return sum;
   }
 
   const LobeView& lobe_;
   Vec3 wo_;
-  double need_ = 0;
   long evals_ = 0;
 };
 
@@ -184,6 +222,7 @@ Chi2Result chi2_test(const LobeView& lobe, const Vec3& wo, const Chi2Options& op
   size_t ncell = static_cast<size_t>(g.phi_res) * g.cos_res;
   r.observed.assign(ncell, 0.0);
   r.expected.assign(ncell, 0.0);
+  std::vector<SampleBox> boxes(ncell);
 
   Pcg32 rng(opt.seed);
   for (uint64_t k = 0; k < opt.samples; ++k) {
@@ -194,11 +233,14 @@ Chi2Result chi2_test(const LobeView& lobe, const Vec3& wo, const Chi2Options& op
       ++r.specular;
       continue;
     }
-    int idx = g.index(s->wi);
-    if (idx < 0)
+    double phi, c;
+    int idx = g.index(s->wi, phi, c);
+    if (idx < 0) {
       ++r.outside;
-    else
+    } else {
       r.observed[idx] += 1.0;
+      boxes[idx].add(phi, c);
+    }
   }
 
   double dphi = 2.0 * M_PI / g.phi_res, dc = (g.cos_max - g.cos_min) / g.cos_res;
@@ -208,7 +250,7 @@ Chi2Result chi2_test(const LobeView& lobe, const Vec3& wo, const Chi2Options& op
       double c0 = g.cos_min + ic * dc, phi0 = ip * dphi;
       size_t idx = static_cast<size_t>(ic) * g.phi_res + ip;
       double integral = cells.integrate(phi0, phi0 + dphi, c0, c0 + dc, double(opt.samples),
-                                        r.observed[idx], opt.cell_tolerance);
+                                        r.observed[idx], opt.cell_tolerance, boxes[idx]);
       r.pdf_integral += integral;
       r.expected[idx] = integral * opt.samples;
     }

@@ -2,7 +2,8 @@
 // and pbrt-v4's BSDF suites): sample directions are binned on a (phi, cos theta) grid, pdf()
 // is integrated over every cell adaptively, sparse cells are pooled and the
 // statistic's p-value is compared with a Sidak-corrected significance. pdf() is integrated per
-// cell by recursive adaptive cubature (3x3 Gauss-Legendre, quadrants split while they disagree).
+// cell by recursive adaptive cubature (3x3 Gauss-Legendre, quadrants split while they disagree),
+// and again around the cell's samples when the estimate cannot explain them (chi2.cpp).
 #pragma once
 
 #include "lobe_view.h"
