@@ -3,6 +3,7 @@
 // per component.
 #include "passes/consteval.h"
 
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -72,7 +73,13 @@ std::function<float(float, float)> float_binop(const std::string& op) {
   if (op == "mod" || op == "fmod") return [](float a, float b) { return b == 0 ? 0.0f : std::fmod(a, b); };
   if (op == "min") return [](float a, float b) { return std::fmin(a, b); };
   if (op == "max") return [](float a, float b) { return std::fmax(a, b); };
-  if (op == "pow") return [](float a, float b) { return std::pow(a, b); };
+  if (op == "pow") // OSL's safe_pow, as runtime/codegen/ops_math.cpp computes it
+    return [](float a, float b) {
+      if (b == 0) return 1.0f;
+      if (a == 0 || (a < 0 && b != std::floor(b))) return 0.0f;
+      float p = std::pow(a, b);
+      return p > FLT_MAX ? FLT_MAX : p < -FLT_MAX ? -FLT_MAX : p;
+    };
   return nullptr;
 }
 

@@ -1,12 +1,18 @@
 // The math library: per-component functions of floats and triples, each with its derivative
-// (chain rule). Special values follow IEEE (libm) except where docs/ir.md gives OSL's safe
-// rule: sqrt and inversesqrt of negatives are 0, fmod by 0 is 0.
+// (chain rule). Out-of-domain inputs follow OSL's "safe" math (OIIO safe_* / fast_*, what OSL's
+// shadeops use), docs/runtime.md: log/log2/log10/logb clamp the argument to [FLT_MIN, FLT_MAX]
+// (log(0) = log(FLT_MIN) = -87.3365), asin/acos clamp to [-1, 1], pow is safe_pow (x^0 = 1,
+// 0^y = 0, negative x with a non-integer y gives 0, the result is clamped to +-FLT_MAX), sqrt
+// and inversesqrt of values outside the domain are 0, fmod by 0 is 0. Where the argument is
+// clamped the derivative is 0, so derivatives stay finite. The constant folder
+// (compiler/passes/consteval.cpp) computes pow the same way.
 #include "duals.h"
 #include "op_tables.h"
 
 #include <llvm/IR/Constants.h>
 #include <llvm/IR/Intrinsics.h>
 
+#include <cfloat>
 #include <cmath>
 #include <functional>
 
@@ -27,6 +33,25 @@ llvm::Value* fdiv(LayerEmitter& e, llvm::Value* a, llvm::Value* b) {
   return e.b().CreateFDiv(a, b);
 }
 
+// v clamped to [-FLT_MAX, FLT_MAX] (NaN stays NaN).
+llvm::Value* clamp_big(LayerEmitter& e, llvm::Value* v) {
+  auto& B = e.b();
+  v = B.CreateSelect(B.CreateFCmpOGT(v, e.fconst(FLT_MAX)), e.fconst(FLT_MAX), v);
+  return B.CreateSelect(B.CreateFCmpOLT(v, e.fconst(-FLT_MAX)), e.fconst(-FLT_MAX), v);
+}
+
+// OIIO safe_pow: y == 0 gives 1, x == 0 gives 0, x < 0 with a non-integer y gives 0, otherwise
+// pow(x, y) clamped to +-FLT_MAX.
+llvm::Value* safe_pow(LayerEmitter& e, llvm::Value* x, llvm::Value* y) {
+  auto& B = e.b();
+  llvm::Value* p = clamp_big(e, B.CreateBinaryIntrinsic(llvm::Intrinsic::pow, x, y));
+  llvm::Value* nonint = B.CreateFCmpUNE(y, intr(e, llvm::Intrinsic::floor, y));
+  llvm::Value* zero = B.CreateOr(B.CreateFCmpOEQ(x, e.fconst(0)),
+                                 B.CreateAnd(B.CreateFCmpOLT(x, e.fconst(0)), nonint));
+  p = B.CreateSelect(zero, e.fconst(0), p);
+  return B.CreateSelect(B.CreateFCmpOEQ(y, e.fconst(0)), e.fconst(1), p);
+}
+
 // The unary functions: value and derivative.
 Dual unary(LayerEmitter& e, DualOps& d, const std::string& name, const Dual& x) {
   auto& B = e.b();
@@ -45,15 +70,20 @@ Dual unary(LayerEmitter& e, DualOps& d, const std::string& name, const Dual& x) 
       llvm::Value* c = intr(e, llvm::Intrinsic::cos, v);
       return fdiv(e, one, fmul(e, c, c));
     });
-  if (name == "asin")
-    return by_libm("asinf", [&] {
-      return fdiv(e, one, intr(e, llvm::Intrinsic::sqrt, B.CreateFSub(one, fmul(e, v, v))));
+  if (name == "asin" || name == "acos") { // OIIO safe_asin / safe_acos: x clamped to [-1, 1]
+    bool as = name == "asin";
+    llvm::Value* hi = B.CreateFCmpOGE(v, one);
+    llvm::Value* lo = B.CreateFCmpOLE(v, e.fconst(-1));
+    llvm::Value* r = libm(e, as ? "asinf" : "acosf", v);
+    r = B.CreateSelect(hi, e.fconst(as ? float(M_PI_2) : 0.0f),
+                       B.CreateSelect(lo, e.fconst(as ? float(-M_PI_2) : float(M_PI)), r));
+    return d.chain(x, r, [&] {
+      llvm::Value* inside = B.CreateFCmpOLT(intr(e, llvm::Intrinsic::fabs, v), one);
+      llvm::Value* s = intr(e, llvm::Intrinsic::sqrt,
+                            B.CreateSelect(inside, B.CreateFSub(one, fmul(e, v, v)), one));
+      return B.CreateSelect(inside, fdiv(e, e.fconst(as ? 1.0f : -1.0f), s), e.fconst(0));
     });
-  if (name == "acos")
-    return by_libm("acosf", [&] {
-      return fdiv(e, e.fconst(-1),
-                  intr(e, llvm::Intrinsic::sqrt, B.CreateFSub(one, fmul(e, v, v))));
-    });
+  }
   if (name == "atan")
     return by_libm("atanf", [&] { return fdiv(e, one, B.CreateFAdd(one, fmul(e, v, v))); });
   if (name == "sinh") return by_libm("sinhf", [&] { return libm(e, "coshf", v); });
@@ -71,12 +101,23 @@ Dual unary(LayerEmitter& e, DualOps& d, const std::string& name, const Dual& x) 
     return d.chain(x, r, [&] { return fmul(e, r, e.fconst(float(M_LN2))); });
   }
   if (name == "expm1") return by_libm("expm1f", [&] { return intr(e, llvm::Intrinsic::exp, v); });
-  if (name == "log") return by_intr(llvm::Intrinsic::log, [&] { return fdiv(e, one, v); });
-  if (name == "log2")
-    return by_intr(llvm::Intrinsic::log2, [&] { return fdiv(e, e.fconst(float(1 / M_LN2)), v); });
-  if (name == "log10")
-    return by_intr(llvm::Intrinsic::log10, [&] { return fdiv(e, e.fconst(float(1 / M_LN10)), v); });
-  if (name == "logb") return Dual{libm(e, "logbf", v)};
+  if (name == "log" || name == "log2" || name == "log10" || name == "logb") {
+    // OIIO safe_log*/fast_logb: the argument (|x| for logb) clamped to [FLT_MIN, FLT_MAX], so
+    // log(0) = log(FLT_MIN) = -87.3365, log2(0) = -126, logb(0) = -126; NaN stays NaN.
+    llvm::Value* a = name == "logb" ? intr(e, llvm::Intrinsic::fabs, v) : v;
+    llvm::Value* below = B.CreateFCmpOLT(a, e.fconst(FLT_MIN));
+    llvm::Value* above = B.CreateFCmpOGT(a, e.fconst(FLT_MAX));
+    llvm::Value* c = B.CreateSelect(below, e.fconst(FLT_MIN),
+                                    B.CreateSelect(above, e.fconst(FLT_MAX), a));
+    if (name == "logb") return Dual{libm(e, "logbf", c)};
+    I id = name == "log"    ? llvm::Intrinsic::log
+           : name == "log2" ? llvm::Intrinsic::log2
+                            : llvm::Intrinsic::log10;
+    double k = name == "log" ? 1.0 : name == "log2" ? 1 / M_LN2 : 1 / M_LN10;
+    return d.chain(x, intr(e, id, c), [&] {
+      return B.CreateSelect(B.CreateOr(below, above), e.fconst(0), fdiv(e, e.fconst(float(k)), c));
+    });
+  }
   if (name == "sqrt" || name == "inversesqrt") {
     llvm::Value* pos =
         name == "sqrt" ? B.CreateFCmpOGE(v, e.fconst(0)) : B.CreateFCmpOGT(v, e.fconst(0));
@@ -195,16 +236,18 @@ void op_nary(LayerEmitter& e, const ir::Op& op) {
     Dual z = a.size() > 2 ? a[2][c] : x;
     Dual out;
     if (o == "pow") {
-      llvm::Value* p = B.CreateBinaryIntrinsic(llvm::Intrinsic::pow, x.v, y.v);
+      llvm::Value* p = safe_pow(e, x.v, y.v);
       out = Dual{p};
-      if (x.dx || x.dy) { // y x^(y-1)
-        llvm::Value* k = B.CreateFMul(y.v, B.CreateBinaryIntrinsic(llvm::Intrinsic::pow, x.v,
-                                                                   B.CreateFSub(y.v, e.fconst(1))));
+      if (x.dx || x.dy) { // y x^(y-1), with safe_pow (0 where x^y is 0 by the safe rule)
+        llvm::Value* k =
+            clamp_big(e, B.CreateFMul(y.v, safe_pow(e, x.v, B.CreateFSub(y.v, e.fconst(1)))));
         out.dx = d.scale(x.dx, k);
         out.dy = d.scale(x.dy, k);
       }
-      if (y.dx || y.dy) { // x^y ln x
-        llvm::Value* k = B.CreateFMul(p, intr(e, llvm::Intrinsic::log, x.v));
+      if (y.dx || y.dy) { // x^y ln x for x > 0, else 0 (OSL's dual safe_pow)
+        llvm::Value* pos = B.CreateFCmpOGT(x.v, e.fconst(0));
+        llvm::Value* lx = intr(e, llvm::Intrinsic::log, B.CreateSelect(pos, x.v, e.fconst(1)));
+        llvm::Value* k = B.CreateSelect(pos, clamp_big(e, B.CreateFMul(p, lx)), e.fconst(0));
         out.dx = d.dadd(out.dx, d.scale(y.dx, k));
         out.dy = d.dadd(out.dy, d.scale(y.dy, k));
       }
