@@ -172,6 +172,13 @@ void strings(Builder& b) {
   b.add("getchar", t_int(), {t_string(), t_int()});
   b.add("regex_search", t_int(), {t_string(), t_string()});
   b.add("regex_match", t_int(), {t_string(), t_string()});
+  // (subject, int results[], pattern): results receives (begin, end) offset pairs.
+  b.add("regex_search", t_int(), {t_string(), Type(BaseType::Int, -1), t_string()})
+      .params[1]
+      .output = true;
+  b.add("regex_match", t_int(), {t_string(), Type(BaseType::Int, -1), t_string()})
+      .params[1]
+      .output = true;
 }
 
 // spline(basis, x, knots...) / (basis, x, knots[]) / (basis, x, nknots, knots[]) per value type;

@@ -499,3 +499,18 @@ TEST(Sema, StringAndMiscBuiltins) {
             " float pi = M_PI; }");
   EXPECT_TRUE(c.ok()) << c.text();
 }
+
+TEST(Sema, RegexWithResultsArray) {
+  Checked c("shader s() { int r[4]; int a = regex_search(\"foo1\", r, \"[0-9]\");"
+            " int b = regex_match(\"foo1\", r, \"f(o+)1\"); }");
+  ASSERT_TRUE(c.ok()) << c.text();
+  EXPECT_NE(c.body().find("(call regex_search:int \"foo1\":string r:int[4] \"[0-9]\":string)"),
+            std::string::npos)
+      << c.body();
+  // The results array is written: it must be an int array variable.
+  Checked bad("shader s() { float f[2]; int a = regex_search(\"x\", f, \"x\");"
+              " int b = regex_match(\"x\", {1, 2}, \"x\"); }");
+  EXPECT_EQ(bad.count(DiagId::err_no_matching_call) + bad.count(DiagId::err_output_arg_not_lvalue),
+            2)
+      << bad.text();
+}

@@ -115,6 +115,15 @@ void op_string(LayerEmitter& e, const ir::Op& op) {
         op.args.size() > 3 ? e.load_as(op, 3, BaseType::Int)[0].v : e.iconst(0x7fffffff);
     r = e.call("lobe_substr",
                {e.env_ptr(), str(e, op, 1), e.load_as(op, 2, BaseType::Int)[0].v, len});
+  } else if ((o == "regex_search" || o == "regex_match") && op.args.size() == 4) {
+    // regex_x result results[] subject pattern: the shadeop fills a buffer, copied to results.
+    int n = std::max(0, e.arg(op, 1).type.arraylen);
+    llvm::Value* buf = e.spill(std::vector<llvm::Value*>(size_t(std::max(n, 1)), e.iconst(0)),
+                               e.i32());
+    r = e.call("lobe_regex_results", {str(e, op, 2), str(e, op, 3),
+                                      e.iconst(o == "regex_match" ? 1 : 0), buf, e.iconst(n)});
+    std::vector<llvm::Value*> got = e.reload(buf, n, e.i32());
+    for (int i = 0; i < n; ++i) e.store(op.args[1], Val{Dual{got[size_t(i)]}}, e.iconst(i));
   } else if (o == "regex_search" || o == "regex_match") {
     r = e.call("lobe_regex", {str(e, op, 1), str(e, op, int(op.args.size()) - 1),
                               e.iconst(o == "regex_match" ? 1 : 0)});

@@ -101,4 +101,25 @@ int lobe_regex(const char* s, const char* pattern, int full_match) {
   }
 }
 
+// regex_search / regex_match (subject, int results[n], pattern): results[2k], results[2k+1] are
+// the begin and end byte offsets of sub-match k (k = 0 the whole match), as many as fit; entries
+// past the last sub-match (all of them when nothing matched) get the pattern's length, as OSL's
+// osl_regex_impl writes. An invalid pattern matches nothing.
+int lobe_regex_results(const char* s, const char* pattern, int full_match, int* results, int n) {
+  int matched = 0, nsub = 0;
+  std::cmatch m;
+  try {
+    std::regex re(pattern);
+    matched = full_match ? std::regex_match(s, m, re) : std::regex_search(s, m, re);
+    nsub = matched ? int(m.size()) : 0;
+  } catch (...) {
+    matched = 0;
+  }
+  for (int r = 0; r < n; ++r) {
+    const std::csub_match* k = r / 2 < nsub ? &m[size_t(r / 2)] : nullptr;
+    results[r] = k ? int(((r & 1) ? k->second : k->first) - s) : int(std::strlen(pattern));
+  }
+  return matched;
+}
+
 } // extern "C"

@@ -17,6 +17,7 @@ extern "C" {
 const char* lobe_substr(RuntimeEnv*, const char*, int, int);
 const char* lobe_concat(RuntimeEnv*, const char*, const char*);
 int lobe_regex(const char*, const char*, int);
+int lobe_regex_results(const char*, const char*, int, int*, int);
 void lobe_mat_inverse(float*, const float*);
 float lobe_mat_det(const float*);
 void lobe_transform(float*, const float*, const float*, int);
@@ -59,6 +60,20 @@ TEST(Strings, InternedAndSubstr) {
   EXPECT_EQ(lobe_regex("foo123", "[0-9]+", 0), 1);
   EXPECT_EQ(lobe_regex("foo123", "[0-9]+", 1), 0);
   EXPECT_EQ(lobe_regex("foo", "(", 0), 0); // invalid pattern: no match, no crash
+}
+
+TEST(Strings, RegexResults) {
+  int m[5] = {-1, -1, -1, -1, -1};
+  EXPECT_EQ(lobe_regex_results("ab12", "b([0-9])", 0, m, 5), 1);
+  EXPECT_EQ(m[0], 1); // "b1": [1, 3), group 1 "1": [2, 3), then the pattern's length (8)
+  EXPECT_EQ(m[1], 3);
+  EXPECT_EQ(m[2], 2);
+  EXPECT_EQ(m[3], 3);
+  EXPECT_EQ(m[4], 8);
+  EXPECT_EQ(lobe_regex_results("ab12", "b([0-9])", 1, m, 2), 0); // not a full match
+  EXPECT_EQ(m[0], 8);
+  EXPECT_EQ(lobe_regex_results("x", "(", 0, m, 1), 0); // invalid pattern
+  EXPECT_EQ(m[0], 1);
 }
 
 TEST(Matrix, InverseDeterminantTransform) {

@@ -24,6 +24,7 @@ void lobe_stof();
 void lobe_getchar();
 void lobe_strhash();
 void lobe_regex();
+void lobe_regex_results();
 void lobe_closure_component();
 void lobe_closure_add();
 void lobe_closure_mul();
@@ -72,6 +73,7 @@ const ShadeOpSymbol kTable[] = {
     {"lobe_getchar", addr(lobe_getchar), "ipi"},
     {"lobe_strhash", addr(lobe_strhash), "ip"},
     {"lobe_regex", addr(lobe_regex), "ippi"},
+    {"lobe_regex_results", addr(lobe_regex_results), "ippipi"},
     {"lobe_closure_component", addr(lobe_closure_component), "ppipi"},
     {"lobe_closure_add", addr(lobe_closure_add), "pppp"},
     {"lobe_closure_mul", addr(lobe_closure_mul), "pppp"},
