@@ -100,6 +100,21 @@ inline Vec3 sample_cosine_hemisphere(float u1, float u2) {
   return {x, y, safe_sqrt(1.0f - x * x - y * y)};
 }
 
+// Half vector m = normalize(wo + wi) of unit wo, wi, returning wo.m = wi.m = |wo + wi| / 2:
+// free of the cancellation in dot(wo, m) = (1 + wo.wi) / |wo + wi| when wi is near -wo (grazing
+// reflection), where a one-ulp change of |wi| moves dot(wo, m) by ~1e-7 / |wo + wi|^2
+// relative, and symmetric in (wo, wi) (reciprocity). 0 (and m = 0) for wi = -wo.
+inline float half_vector(const Vec3& wo, const Vec3& wi, Vec3& m) {
+  Vec3 h = wo + wi;
+  float l = length(h);
+  if (!(l > 0.0f) || !(l < INFINITY)) {
+    m = {};
+    return 0.0f;
+  }
+  m = h * (1.0f / l);
+  return 0.5f * l;
+}
+
 inline Vec3 reflect_z(const Vec3& w) { return {-w.x, -w.y, w.z}; }
 inline Vec3 reflect(const Vec3& w, const Vec3& m) { return m * (2.0f * dot(w, m)) - w; }
 

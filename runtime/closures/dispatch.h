@@ -195,7 +195,12 @@ LobeSample sample_lobe(const L& l, const Frame& f, const Vec3& wo, const Vec3& u
     s = l.sample(o, uc);
   if (!s.ok || !(s.pdf > 0.0f && s.pdf < INFINITY)) return {};
   s.wi.z *= sign;
-  s.wi = normalize(f.to_world(s.wi));
+  // The lobe evaluated s.wi; a direction that is already unit is not normalised again, since
+  // one ulp moves sharp lobes at grazing incidence by more than 1e-4 and then sample() would
+  // disagree with eval()/pdf() at the direction it returns (exact for an orthonormal frame
+  // aligned with the axes; otherwise to the rounding of the frame change).
+  s.wi = f.to_world(s.wi);
+  if (!(std::fabs(dot(s.wi, s.wi) - 1.0f) <= 1e-6f)) s.wi = normalize(s.wi);
   s.weight = sanitize(s.weight);
   if (is_zero(s.wi)) return {};
   return s;

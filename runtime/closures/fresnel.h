@@ -29,6 +29,19 @@ inline float fresnel_dielectric(float c, float eta) {
   return f == f ? clampf(f, 0.0f, 1.0f) : 1.0f;
 }
 
+// The same from both cosines, c (incident side) and ct (transmitted side), eta = eta_t / eta_i:
+// for a refracting pair whose cosines are known from the geometry. Swapping the sides
+// (c <-> ct, eta -> 1/eta) only flips the signs of r_s and r_p, so F is the same.
+inline float fresnel_dielectric(float c, float ct, float eta) {
+  c = clampf(c, 0.0f, 1.0f);
+  ct = clampf(ct, 0.0f, 1.0f);
+  if (!(eta > 0.0f)) return 1.0f;
+  float rs = (c - eta * ct) / (c + eta * ct);
+  float rp = (eta * c - ct) / (eta * c + ct);
+  float f = 0.5f * (rs * rs + rp * rp);
+  return f == f ? clampf(f, 0.0f, 1.0f) : 1.0f;
+}
+
 // Minimal complex arithmetic (std::complex is avoided to keep bitcode free of library calls).
 struct Cpx {
   float re = 0, im = 0;
@@ -43,11 +56,18 @@ inline Cpx operator/(Cpx a, Cpx b) {
   float d = norm2(b);
   return {(a.re * b.re + a.im * b.im) / d, (a.im * b.re - a.re * b.im) / d};
 }
+// Principal square root (real part >= 0), algebraically: with r = |z|, the larger of
+// sqrt((r +- re)/2) is computed directly and the other from im / (2 t), so nothing cancels.
+// Two square roots and a division (the polar form needs atan2, cos and sin).
 inline Cpx csqrt(Cpx z) {
-  float m = std::sqrt(std::sqrt(norm2(z)));
-  if (m == 0.0f) return {};
-  float half = 0.5f * std::atan2(z.im, z.re);
-  return {m * std::cos(half), m * std::sin(half)};
+  float r = std::sqrt(norm2(z));
+  if (r == 0.0f) return {};
+  if (z.re >= 0.0f) {
+    float t = std::sqrt(0.5f * (r + z.re));
+    return {t, z.im / (2.0f * t)};
+  }
+  float t = std::sqrt(0.5f * (r - z.re));
+  return {std::fabs(z.im) / (2.0f * t), std::copysign(t, z.im)};
 }
 
 // Exact conductor Fresnel for one channel, index n + i k.

@@ -47,7 +47,7 @@ struct Phong {
     if (!(wo.z > 0.0f)) return s;
     Frame f;
     make_frame(reflect_z(wo), f);
-    Vec3 wi = f.to_world(sample_cos_power(n, u.x, u.y));
+    Vec3 wi = normalize(f.to_world(sample_cos_power(n, u.x, u.y)));
     LobeEval e = eval(wo, wi);
     if (!(e.pdf > 0.0f)) return s;
     return {wi, e.value / e.pdf, e.pdf, flags(), 1.0f, true};
@@ -70,8 +70,8 @@ struct BlinnPhong {
   uint32_t flags() const { return kFlagReflect | kFlagGlossy; }
   LobeEval eval(const Vec3& wo, const Vec3& wi) const {
     if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return {};
-    Vec3 m = normalize(wo + wi);
-    float c = dot(wo, m);
+    Vec3 m;
+    float c = half_vector(wo, wi, m);
     if (!(c > 0.0f)) return {};
     float d = D(m);
     float g = minf(1.0f, 2.0f * m.z * minf(wo.z, wi.z) / c);
@@ -82,7 +82,7 @@ struct BlinnPhong {
     LobeSample s;
     if (!(wo.z > 0.0f)) return s;
     Vec3 m = sample_cos_power(n + 1.0f, u.x, u.y); // density D(m) cos theta_m
-    Vec3 wi = reflect(wo, m);
+    Vec3 wi = normalize(reflect(wo, m));
     if (!(wi.z > 0.0f)) return s;
     LobeEval e = eval(wo, wi);
     if (!(e.pdf > 0.0f)) return s;
@@ -102,8 +102,9 @@ struct Ward {
     float ax = beck.ax, ay = beck.ay;
     float e = (sqr(h.x / ax) + sqr(h.y / ay)) / (h.z * h.z);
     float f = dot(h, h) / (kPi * ax * ay * sqr(h.z * h.z)) * std::exp(-e);
-    Vec3 m = normalize(h);
-    float pdf = beck.D(m) * m.z / (4.0f * dot(wo, m));
+    Vec3 m;
+    float c = half_vector(wo, wi, m);
+    float pdf = beck.D(m) * m.z / (4.0f * c);
     return {splat(f * wi.z), pdf};
   }
   LobeSample sample(const Vec3& wo, const Vec3& u) const {
@@ -111,7 +112,7 @@ struct Ward {
     if (!(wo.z > 0.0f)) return s;
     float r = std::sqrt(-std::log(maxf(1.0f - u.x, 1e-30f))), phi = 2.0f * kPi * u.y;
     Vec3 m = normalize(Vec3{-beck.ax * r * std::cos(phi), -beck.ay * r * std::sin(phi), 1.0f});
-    Vec3 wi = reflect(wo, m);
+    Vec3 wi = normalize(reflect(wo, m));
     if (!(wi.z > 0.0f) || !(dot(wo, m) > 0.0f)) return s;
     LobeEval e = eval(wo, wi);
     if (!(e.pdf > 0.0f)) return s;

@@ -114,9 +114,26 @@ struct Microfacet {
     return r;
   }
 
+  // Fresnel reflectance at a refracting microfacet from both cosines (c_above with the normal's
+  // side, c_below on the other; both > 0), for the side whose relative IOR is `e`. Needing no
+  // transmitted cosine from Snell's law, it avoids sqrt(1 - (1 - c^2)/e^2), whose cancellation
+  // near the critical angle costs ~1e-3 relative from inside, and it is the same float
+  // expression from either side (generalised reciprocity).
+  Vec3 F_refract(float c_above, float c_below, float e) const {
+    if (film_d > 0.0f) return F(e == eta ? c_above : c_below, e);
+    switch (fresnel) {
+    case FresnelKind::Dielectric:
+      return splat(fresnel_dielectric(c_above, c_below, eta));
+    case FresnelKind::Schlick: // Schlick at the outside angle, as F() from either side
+      return fresnel_schlick(c_above, f0, f90, exponent);
+    default:
+      return F(e == eta ? c_above : c_below, e);
+    }
+  }
+
   // Reflection and refraction weights at cosine c, and the probability of reflecting.
-  float split(float c, float e, Vec3& fr, Vec3& ft) const {
-    Vec3 f = F(c, e);
+  float split(float c, float e, Vec3& fr, Vec3& ft) const { return split_F(F(c, e), e, fr, ft); }
+  float split_F(const Vec3& f, float e, Vec3& fr, Vec3& ft) const {
     fr = f * refl_tint;
     ft = (splat(1.0f) - f) * trans_tint;
     if (e == 1.0f && !delta) ft = {}; // index-matched rough refraction is handled as delta
@@ -188,8 +205,8 @@ struct Microfacet {
   }
 
   LobeEval eval_reflect(const Vec3& wo, const Vec3& wi, float e) const {
-    Vec3 m = normalize(wo + wi);
-    float c = dot(wo, m);
+    Vec3 m;
+    float c = half_vector(wo, wi, m);
     if (!(c > 0.0f) || !(m.z > 0.0f)) return {};
     Vec3 fr, ft;
     float pr = split(c, e, fr, ft);
@@ -200,14 +217,18 @@ struct Microfacet {
 
   LobeEval eval_refract(const Vec3& wo, const Vec3& wi, float e, Transport mode) const {
     if (e == 1.0f) return {};
-    Vec3 m = normalize(wi * e + wo);
-    if (m.z < 0.0f) m = -m;
+    // ht = e wi + wo, m = +-ht/|ht|: then ci + co/e = (ht/e).m = +-|ht|/e, so Walter's
+    // denominator (ci + co/e)^2 is |ht|^2/e^2, without the cancellation of ci against co/e.
+    Vec3 ht = wi * e + wo;
+    float l2 = dot(ht, ht);
+    if (!(l2 > 0.0f) || !(l2 < INFINITY)) return {};
+    Vec3 m = ht * ((ht.z < 0.0f ? -1.0f : 1.0f) / std::sqrt(l2));
     float ci = dot(wi, m), co = dot(wo, m);
     if (!(m.z > 0.0f) || !(ci < 0.0f) || !(co > 0.0f)) return {}; // back-facing microfacet
     Vec3 fr, ft;
-    float pr = split(co, e, fr, ft);
-    float denom = sqr(ci + co / e);
-    if (!(denom > 0.0f)) return {};
+    bool above = e == eta; // wo on the normal's side
+    float pr = split_F(F_refract(above ? co : -ci, above ? -ci : co, e), e, fr, ft);
+    float denom = l2 / (e * e);
     float D = dist.D(m);
     float f = D * dist.G2(wo, wi) * std::fabs(ci * co) / (wo.z * denom); // times |wi.z|
     if (mode == Transport::Radiance) f /= e * e;
@@ -275,6 +296,7 @@ struct Microfacet {
         if (!(s.wi.z < 0.0f)) return s;
       }
     }
+    s.wi = normalize(s.wi); // evaluated at the direction returned (see dispatch.h)
     if (s.wi.z == 0.0f || ((s.flags & kFlagReflect) && s.wi.z < 0.0f)) return s;
     LobeEval ev = eval_above(wo, s.wi, e, mode);
     if (!(ev.pdf > 0.0f)) return s;
