@@ -49,7 +49,13 @@ void set_defaults(const ClosureEntry& e, ClosureConfig& c) {
     }
   if (has(e, "ior", ArgType::Color)) c.params.set("ior", Vec3{0.2f, 0.9f, 1.1f});
   if (has(e, "extinction", ArgType::Color)) c.params.set("extinction", Vec3{3.9f, 2.4f, 2.2f});
-  if (has(e, "f0", ArgType::Color)) c.params.set("f0", Vec3{0.9f, 0.5f, 0.04f});
+  if (has(e, "f0", ArgType::Color)) {
+    c.params.set("f0", Vec3{0.9f, 0.5f, 0.04f});
+    // generalized_schlick_bsdf refracts with the IOR whose normal-incidence reflectance is the
+    // mean of f0 (docs/closures.md): eta = (1 + sqrt f0)/(1 - sqrt f0), 5.51 here.
+    double s = std::sqrt((0.9 + 0.5 + 0.04) / 3.0);
+    if (transmits) c.eta_below = (1.0 + s) / (1.0 - s);
+  }
   if (has(e, "refract", ArgType::Int)) c.params.set("refract", 2);
 }
 
