@@ -265,8 +265,20 @@ std::vector<int> Lowerer::rvalue_flat(const ast::Expr* e) {
   }
   if (e->kind == K::Assign) {
     auto* a = static_cast<const ast::AssignExpr*>(e);
-    std::vector<LRef> dst = lvalue(a->lhs.get());
     std::vector<int> v = rvalue_flat(a->rhs.get());
+    std::vector<LRef> dst = lvalue(a->lhs.get());
+    // A value that is another leaf of the target (`a = vec2(a.y, a.x)`) is read before the
+    // stores overwrite it: copy the values first.
+    bool alias = false;
+    for (size_t i = 0; i < v.size(); ++i)
+      for (size_t j = 0; j < dst.size() && v[i] >= 0; ++j)
+        alias |= i != j && dst[j].whole() && v[i] == dst[j].sym;
+    for (size_t i = 0; alias && i < v.size(); ++i) {
+      if (v[i] < 0) continue;
+      int t = temp(sh_.symbols[size_t(v[i])].type);
+      emit("assign", {t, v[i]}, 1, e);
+      v[i] = t;
+    }
     for (size_t i = 0; i < dst.size() && i < v.size(); ++i) store(dst[i], v[i], e);
   }
   if (e->kind == K::Ternary) return ternary_flat(static_cast<const ast::TernaryExpr*>(e));
