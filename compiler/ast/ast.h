@@ -225,6 +225,9 @@ struct AssignExpr : Expr {
   bool compound = false;
   BinaryOp op = BinaryOp::Add; // meaningful when compound
   ExprPtr lhs, rhs;
+  // sema, compound with a struct operand: the user operator function; the assignment is then
+  // `lhs = overload(lhs, rhs)` (rhs coerced to its second parameter, lhs matching exactly).
+  FunctionDecl* overload = nullptr;
   AssignExpr() : Expr(ExprKind::Assign) {}
 };
 

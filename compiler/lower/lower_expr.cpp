@@ -265,7 +265,8 @@ std::vector<int> Lowerer::rvalue_flat(const ast::Expr* e) {
   }
   if (e->kind == K::Assign) {
     auto* a = static_cast<const ast::AssignExpr*>(e);
-    std::vector<int> v = rvalue_flat(a->rhs.get());
+    std::vector<int> v = a->overload ? call_user(a->overload, {a->lhs.get(), a->rhs.get()}, e)
+                                     : rvalue_flat(a->rhs.get());
     std::vector<LRef> dst = lvalue(a->lhs.get());
     // A value that is another leaf of the target (`a = vec2(a.y, a.x)`) is read before the
     // stores overwrite it: copy the values first.
@@ -353,6 +354,11 @@ int Lowerer::assign(const ast::AssignExpr* a, int hint) {
   bool direct = dst.whole() && a->rhs->kind != K::InitList;
   if (!a->compound) {
     int v = rvalue(a->rhs.get(), direct ? dst.sym : -1);
+    store(dst, v, a);
+    return dst.whole() ? dst.sym : v;
+  }
+  if (a->overload) { // `x op= s` with a struct s: x = __operator__op__(x, s)
+    int v = call_user(a->overload, {a->lhs.get(), a->rhs.get()}, a).at(0);
     store(dst, v, a);
     return dst.whole() ? dst.sym : v;
   }

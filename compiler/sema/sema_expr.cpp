@@ -117,7 +117,7 @@ void Sema::ident(ast::IdentExpr* e) {
 
 // A user function __operator__<name>__ taking the operands (struct operators).
 bool Sema::operator_overload(ast::Expr* e, const char* opname, std::vector<ExprPtr*> operands,
-                             ast::FunctionDecl*& out) {
+                             ast::FunctionDecl*& out, int exact) {
   std::string fname = std::string("__operator__") + opname + "__";
   ast::FunctionDecl* best = nullptr;
   int best_cost = 1 << 30;
@@ -126,6 +126,7 @@ bool Sema::operator_overload(ast::Expr* e, const char* opname, std::vector<ExprP
     int cost = 0;
     for (size_t i = 0; i < operands.size() && cost >= 0; ++i) {
       int c = conversion_cost((*operands[i])->type, f->params[i]->type);
+      if (int(i) == exact && !((*operands[i])->type == f->params[i]->type)) c = kNoConversion;
       cost = c == kNoConversion ? -1 : cost + c;
     }
     if (cost >= 0 && cost < best_cost) {
@@ -330,6 +331,21 @@ void Sema::assign(ast::AssignExpr* e) {
     error(DiagId::err_bad_binary, e->range,
           {std::string(ast::to_string(e->op)) + "=", tname(lt), tname(rt)});
   };
+  // OSL rewrites `a op= b` as `a = a op b`: with a struct operand, the operator overload
+  // __operator__op__(a, b) applies and its result is assigned to a.
+  if (lt.is_struct() || rt.is_struct()) {
+    if (!operator_overload(e, ast::operator_name(e->op), {&e->lhs, &e->rhs}, e->overload, 0)) {
+      fail();
+      return;
+    }
+    Type result = e->type;
+    e->type = lt;
+    if (lt.is_struct() ? !(result == lt) : conversion_cost(result, lt) == kNoConversion) {
+      error(DiagId::err_cannot_assign, e->range, {tname(result), tname(lt)});
+      e->overload = nullptr;
+    }
+    return;
+  }
   if (lt.is_closure()) {
     if (e->op == Op::Add && rt.is_closure()) return;
     if (e->op == Op::Mul && (rt.is_numeric() || rt.base == BaseType::Color) && !rt.is_array()) {

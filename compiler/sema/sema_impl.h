@@ -80,8 +80,10 @@ private:
   void unary(ast::UnaryExpr* e);
   void binary(ast::BinaryExpr* e);
   bool closure_binary(ast::BinaryExpr* e);
+  // `exact`: index of an operand that must match its parameter without conversion (the
+  // target of a compound assignment, which stays an lvalue), or -1.
   bool operator_overload(ast::Expr* e, const char* opname, std::vector<ExprPtr*> operands,
-                         ast::FunctionDecl*& out);
+                         ast::FunctionDecl*& out, int exact = -1);
   void assign(ast::AssignExpr* e);
   void incdec(ast::IncDecExpr* e);
   void ternary(ast::TernaryExpr* e, const ast::Type* expected);

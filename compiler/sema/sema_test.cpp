@@ -315,6 +315,25 @@ TEST(Sema, OperatorOverloading) {
   EXPECT_EQ(c.diags.error_count(), 1) << c.text();
 }
 
+TEST(Sema, CompoundAssignmentUsesOperatorOverloads) {
+  // OSL rewrites `a op= b` as `a = a op b`, so the struct overloads apply.
+  const std::string decls = "struct V2 { float x, y; };\n"
+                            "V2 __operator__add__(V2 a, V2 b) { return V2(a.x + b.x, a.y + b.y); }\n"
+                            "V2 __operator__mul__(V2 a, float s) { return V2(a.x * s, a.y * s); }\n"
+                            "float __operator__sub__(V2 a, V2 b) { return a.x - b.x; }\n";
+  Checked c(decls + "shader s() { V2 p = V2(1, 2), q = V2(3, 4); p += q; p *= 2; }");
+  ASSERT_TRUE(c.ok()) << c.text();
+  EXPECT_NE(c.body().find("(+=:V2 p:V2 q:V2)"), std::string::npos) << c.body();
+  EXPECT_NE(c.body().find("(*=:V2 p:V2 (icast float:float 2:int))"), std::string::npos) << c.body();
+  // No overload (no __operator__div__), and an overload whose result is not the target's type.
+  Checked bad(decls + "shader s() { V2 p = V2(1, 2), q = p; p /= q; p -= q; }");
+  EXPECT_EQ(bad.count(DiagId::err_bad_binary), 1) << bad.text();
+  EXPECT_EQ(bad.count(DiagId::err_cannot_assign), 1) << bad.text();
+  EXPECT_NE(bad.text().find("invalid operands to binary '/=' ('V2' and 'V2')"), std::string::npos)
+      << bad.text();
+  EXPECT_NE(bad.text().find("cannot assign 'float' to 'V2'"), std::string::npos) << bad.text();
+}
+
 TEST(Sema, FunctionRules) {
   Checked c("float f(float x) { if (x > 0) x = 1; }\n" // missing return + readonly write
             "float g(float x) { return g(x); }\n"      // recursion
