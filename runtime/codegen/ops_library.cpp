@@ -413,6 +413,8 @@ void op_query(LayerEmitter& e, const ir::Op& op) {
         v |= (c.src_layer == e.layer() && c.src_symbol == s) ? 2 : 0;
     r = Val{Dual{e.iconst(v)}};
   } else if (o == "isconstant") {
+    // A constant of the shader as written; specialisation resolves isconstant before it turns
+    // params into constants (runtime/group/group_build.cpp), so the answer is the same.
     r = Val{Dual{e.iconst(e.arg(op, 1).kind == ir::SymKind::Const ? 1 : 0)}};
   } else { // getattribute, getmessage, trace, gettextureinfo: nothing known; outputs untouched
     r = Val{Dual{e.iconst(0)}};

@@ -127,6 +127,21 @@ bool fold_string_compares(ir::Shader& sh) {
 void specialize_layer(ir::Shader& sh,
                       const std::map<std::string, std::vector<ir::ConstValue>>& values,
                       const std::set<std::string>& connected) {
+  // isconstant answers for the shader before specialisation (docs/language.md), as codegen
+  // does without it: resolve it now, before params become constants.
+  for (ir::Op& op : sh.ops) {
+    if (op.opcode != "isconstant" || op.args.size() != 2) continue;
+    ir::Symbol c;
+    c.name = "$isconstant" + std::to_string(sh.symbols.size());
+    c.type = ir::Type{ir::BaseType::Int, 0};
+    c.kind = SymKind::Const;
+    bool k = sh.symbols[size_t(op.args[1])].kind == SymKind::Const;
+    c.init = {ir::ConstValue{k ? 1 : 0, 0.0f, ""}};
+    sh.symbols.push_back(c);
+    op.opcode = "assign";
+    op.args = {op.args[0], int(sh.symbols.size()) - 1};
+    op.written_mask = 1;
+  }
   std::set<int> written = written_symbols(sh);
   for (size_t i = 0; i < sh.symbols.size(); ++i) {
     ir::Symbol& s = sh.symbols[i];
