@@ -100,6 +100,10 @@ enum class DiagId : uint16_t {
   err_array_assign_size,
   err_shader_redefinition,
   err_operator_not_struct,
+  err_format_too_few_args,
+  err_format_too_many_args,
+  err_format_arg_type,
+  err_format_struct_arg,
   kCount
 };
 

@@ -6,6 +6,7 @@
 #include "closure_registry.h"
 
 #include <algorithm>
+#include <cstring>
 #include <map>
 
 namespace lobe::sema {
@@ -235,6 +236,7 @@ void Sema::apply_candidate(ast::CallExpr* e, const Candidate& c) {
   e->callee.kind = ast::CalleeKind::Builtin;
   e->callee.builtin = c.builtin;
   e->type = c.builtin->ret;
+  check_format_args(e);
   if (c.builtin->extra == BuiltinSig::Extra::Keywords) {
     e->num_positional = int(n);
     for (size_t i = n; i + 1 < e->args.size(); i += 2) {
@@ -247,6 +249,65 @@ void Sema::apply_candidate(ast::CallExpr* e, const Candidate& c) {
         e->keywords.push_back({name->value, -1, e->args[i + 1].get()});
     }
   }
+}
+
+// printf, format, error, warning, fprintf with a literal format string: the arguments must
+// match its conversions in number, and in kind as OSL's type checker requires (%d %i %o %x %X
+// an int; %f %g %e (and F G E a A) a float, triple or matrix, or an array of them; a string or
+// closure only %s; %s prints anything). `%%` is a literal percent sign.
+void Sema::check_format_args(ast::CallExpr* e) {
+  static const char* const kPrinters[] = {"printf", "format", "error", "warning", "fprintf"};
+  if (std::find_if(std::begin(kPrinters), std::end(kPrinters),
+                   [&](const char* n) { return e->name == n; }) == std::end(kPrinters))
+    return;
+  size_t fmt_i = e->name == "fprintf" ? 1 : 0;
+  if (e->args.size() <= fmt_i) return;
+  auto* lit = ast::as<ast::StringLit>(e->args[fmt_i].get());
+  if (!lit) return;
+  const std::string& f = lit->value;
+  size_t arg = fmt_i + 1, needed = 0;
+  bool reported = false;
+  for (size_t i = 0; i < f.size(); ++i) {
+    if (f[i] != '%') continue;
+    if (i + 1 < f.size() && f[i + 1] == '%') {
+      ++i;
+      continue;
+    }
+    size_t start = i++;
+    while (i < f.size() && std::strchr("0123456789.#-+ lh", f[i])) ++i;
+    if (i >= f.size()) break; // a lone '%' at the end prints as itself
+    char conv = f[i];
+    ++needed;
+    if (arg >= e->args.size() || reported) {
+      ++arg;
+      continue;
+    }
+    const ast::Expr* a = e->args[arg].get();
+    const Type& t = a->type;
+    std::string spec = f.substr(start, i + 1 - start);
+    bool int_conv = std::strchr("dioxXu", conv), float_conv = std::strchr("fFgGeEaA", conv);
+    std::string argno = std::to_string(arg + 1);
+    if (t.base == BaseType::Struct) {
+      error(DiagId::err_format_struct_arg, a->range, {argno, e->name, tname(t)});
+      reported = true;
+    } else if (t.base == BaseType::String || t.base == BaseType::Closure) {
+      if (int_conv || float_conv) {
+        error(DiagId::err_format_arg_type, a->range,
+              {spec, int_conv ? "an int" : "a float, triple or matrix", argno, e->name, tname(t)});
+        reported = true;
+      }
+    } else if (t.base == BaseType::Int ? float_conv : int_conv) {
+      error(DiagId::err_format_arg_type, a->range,
+            {spec, int_conv ? "an int" : "a float, triple or matrix", argno, e->name, tname(t)});
+      reported = true;
+    }
+    ++arg;
+  }
+  if (reported) return;
+  size_t given = e->args.size() - fmt_i - 1;
+  if (needed != given)
+    error(needed > given ? DiagId::err_format_too_few_args : DiagId::err_format_too_many_args,
+          e->range, {e->name, std::to_string(needed), std::to_string(given)});
 }
 
 void Sema::report_no_match(ast::CallExpr* e, const std::vector<Candidate>& cands, bool ambiguous) {

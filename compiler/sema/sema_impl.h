@@ -101,6 +101,7 @@ private:
   bool closure_call(ast::CallExpr* e);
   int candidate_cost(const Candidate& c, const std::vector<ExprPtr>& args) const;
   void apply_candidate(ast::CallExpr* e, const Candidate& c);
+  void check_format_args(ast::CallExpr* e);
   void report_no_match(ast::CallExpr* e, const std::vector<Candidate>& cands, bool ambiguous);
   std::string arg_types(const std::vector<ExprPtr>& args) const;
 
