@@ -1,12 +1,16 @@
 // `lobe compile file [-I dir] [-D NAME[=val]] [-U NAME] [-o out] [--emit=ast|ir|llvm|asm]
-// [-O0|-O1]` Compiles a shader and writes the requested form (default: Lobe IR text) to stdout or
-// -o. OSL source goes through the whole pipeline (compiler/lower/pipeline.h); Lobe IR text (.lir)
-// is parsed, verified and re-optimised. Diagnostics go to stderr; exit status 1 on errors in
-// the input, 2 on usage errors or a form that is not available yet (--emit=llvm|asm).
+// [-O0|-O1|-O2]` Compiles a shader and writes the requested form (default: Lobe IR text) to
+// stdout or -o. OSL source goes through the whole pipeline (compiler/lower/pipeline.h); Lobe IR
+// text (.lir) is parsed, verified and re-optimised. --emit=llvm|asm compile the shader (OSL or
+// IR text) as a one-layer group the way the ShadingSystem does (its defaults, specialised
+// above -O0) and print the LLVM IR after the JIT's pipeline at that level, or the host assembly
+// (runtime/group/emit_text.h). Diagnostics go to stderr; exit status 1 on errors in the
+// input, 2 on usage errors.
 #include "command.h"
 #include "load_shader.h"
 
 #include "ast/ast_dump.h"
+#include "emit_text.h"
 #include "ir/printer.h"
 #include "passes/constfold.h"
 #include "passes/dce.h"
@@ -25,7 +29,7 @@ struct Options {
 
 void usage(FILE* f) {
   std::fprintf(f, "usage: lobe compile file.osl|file.lir [-I dir] [-D NAME[=val]] [-U NAME]\n"
-                  "                    [-o out] [--emit=ast|ir|llvm|asm] [-O0|-O1]\n");
+                  "                    [-o out] [--emit=ast|ir|llvm|asm] [-O0|-O1|-O2]\n");
 }
 
 // Returns 0 on success, 2 on a usage error (message printed).
@@ -47,7 +51,7 @@ int parse_args(int argc, char** argv, Options& o) {
       return -1;
     } else if (a.rfind("--emit=", 0) == 0)
       o.emit = a.substr(7);
-    else if (a == "-O0" || a == "-O1")
+    else if (a == "-O0" || a == "-O1" || a == "-O2")
       o.opt = a[2] - '0';
     else if (a.rfind("-I", 0) == 0) {
       if (!value("-I", v)) return 2;
@@ -124,11 +128,22 @@ int run_compile(int argc, char** argv) {
     return 1;
   }
   if (o.emit == "llvm" || o.emit == "asm") {
-    std::fprintf(stderr,
-                 "lobe compile: --emit=%s is not yet available (the runtime offers no "
-                 "IR-to-LLVM-text entry point)\n",
-                 o.emit.c_str());
-    return 2;
+    lobe::CompileOptions co;
+    co.include_dirs = o.includes;
+    co.defines = o.defines;
+    co.undefines = o.undefines;
+    co.opt_level = o.opt;
+    lobe::DiagnosticList diags;
+    std::string text;
+    bool ok = lobe::group::emit_shader_text(
+        path, co, o.emit == "asm" ? lobe::group::EmitForm::Assembly : lobe::group::EmitForm::LlvmIr,
+        text, diags);
+    for (const lobe::Diagnostic& d : diags) {
+      std::fputs(d.text.c_str(), stderr);
+      if (d.text.empty() || d.text.back() != '\n') std::fputc('\n', stderr);
+    }
+    if (!ok) return 1;
+    return write_output(o, text);
   }
   if (!lobe::cli::is_ir_text(path)) return compile_source(o, path);
   if (o.emit != "ir") {

@@ -8,8 +8,10 @@
 #include <llvm/ExecutionEngine/Orc/LLJIT.h>
 #include <llvm/ExecutionEngine/Orc/ThreadSafeModule.h>
 #include <llvm/IR/LLVMContext.h>
+#include <llvm/IR/LegacyPassManager.h>
 #include <llvm/IR/Module.h>
 #include <llvm/Passes/PassBuilder.h>
+#include <llvm/Support/raw_ostream.h>
 #include <llvm/Support/TargetSelect.h>
 #include <llvm/Target/TargetMachine.h>
 #include <llvm/TargetParser/Host.h>
@@ -177,6 +179,20 @@ bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::
   times.codegen_ms = ms_since(t1);
   out.entry = addr->toPtr<void*>();
   out.dylib = &*jd;
+  return true;
+}
+
+bool Jit::emit_assembly(llvm::Module& module, std::string& out, std::string& error) const {
+  std::lock_guard<std::mutex> lock(s_->opt_mutex); // the TargetMachine is shared
+  llvm::SmallString<0> text;
+  llvm::raw_svector_ostream os(text);
+  llvm::legacy::PassManager pm;
+  if (s_->tm->addPassesToEmitFile(pm, os, nullptr, llvm::CodeGenFileType::AssemblyFile)) {
+    error = "the target machine cannot emit assembly";
+    return false;
+  }
+  pm.run(module);
+  out.assign(text.begin(), text.end());
   return true;
 }
 

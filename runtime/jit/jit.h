@@ -47,6 +47,9 @@ public:
 
   // Runs the optimisation pipeline only (used by add(), and by tests/benchmarks).
   void optimize(llvm::Module& module, int opt_level) const;
+  // The host assembly of `module` (configured for this JIT) from the JIT's TargetMachine, as
+  // the JIT would compile it (`lobe compile --emit=asm`). The module is consumed by codegen.
+  bool emit_assembly(llvm::Module& module, std::string& out, std::string& error) const;
 
 private:
   Jit() = default;
