@@ -68,7 +68,15 @@ SourceLoc SourceManager::file_loc(SourceLoc loc, const Segment** seg) const {
   if (it == b.segments.begin()) return {};
   const Segment& s = *(it - 1);
   if (seg) *seg = &s;
-  return s.linear ? s.loc.advanced(off - s.out_offset) : s.loc;
+  if (!s.linear) return s.loc;
+  // Past the end of the piece's file (a newline the preprocessor added): the file's end.
+  SourceLoc r = s.loc.advanced(off - s.out_offset);
+  int src = buffer_of(s.loc);
+  if (src >= 0) {
+    const Buffer& f = *buffers_[size_t(src)];
+    if (r.offset > f.base + f.text.size()) r = SourceLoc{uint32_t(f.base + f.text.size())};
+  }
+  return r;
 }
 
 int SourceManager::physical_line(const Buffer& b, uint32_t offset) {

@@ -229,6 +229,16 @@ bool Preprocessor::eval_condition(const std::vector<PPToken>& line, size_t from)
 // A token spelled in the current file: copy the text since the previous one (whitespace and
 // comments included) when nothing intervened, so one linear segment covers long stretches.
 void Preprocessor::emit_file_token(const PPToken& t) {
+  // The newline the tokenizer adds at the end of a file (empty text): only whitespace and
+  // comments lie before it, so nothing is copied (an unterminated comment is not lexed, and
+  // reported, a second time), and the output position after it maps to the file's end, where
+  // the parser reports an unexpected end of file.
+  if (t.kind == PPKind::Newline && t.text.empty()) {
+    if (!out_.empty() && out_.back() != '\n') out_ += '\n';
+    segs_.push_back({uint32_t(out_.size()), t.loc, true, "", {}});
+    contiguous_ = false;
+    return;
+  }
   if (contiguous_ && t.loc.offset >= last_end_) {
     const std::string& text = sm_.buffer_text(sm_.buffer_of(t.loc));
     uint32_t base = sm_.buffer_start(sm_.buffer_of(t.loc)).offset;

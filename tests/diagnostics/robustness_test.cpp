@@ -1,6 +1,7 @@
 // The front end on hostile input: truncated shaders, random bytes, 10 000-deep nesting of every
 // nestable construct, and a 5 MB file. Each must give diagnostics (or compile), never crash or
 // hang.
+#include "diag/source_manager.h"
 #include "frontend.h"
 
 #include <gtest/gtest.h>
@@ -70,6 +71,62 @@ TEST(Robustness, EveryTruncationOfAShader) {
     Compiled r(kShader.substr(0, n), false);
     (void)r;
   }
+}
+
+// A truncated file (no final newline) reports its errors inside the file, never at the
+// preprocessed text: each diagnostic names r.osl at a line and column of the truncated text
+// (the end of the file at the latest), and an unterminated comment is reported once.
+TEST(Robustness, TruncationErrorsPointIntoTheFile) {
+  const std::string src = kShader + "float f() { /* unterminated\n return 1; }\n";
+  for (size_t n = 1; n < src.size(); n += 7) {
+    std::string text = src.substr(0, n);
+    Compiled r(text, false);
+    std::vector<std::string> lines;
+    std::istringstream in(text + "\n");
+    for (std::string l; std::getline(in, l);) lines.push_back(l);
+    int comments = 0;
+    for (auto& d : r.diags.diagnostics()) {
+      comments += d.id == diag::DiagId::err_unterminated_comment;
+      diag::PresumedLoc p = r.tu->sources->presumed(d.range.begin);
+      ASSERT_STREQ(p.file, "r.osl") << "at " << n << ": " << d.message;
+      ASSERT_GE(p.line, 1);
+      ASSERT_LE(size_t(p.line), lines.size()) << "at " << n << ": " << d.message;
+      ASSERT_LE(size_t(p.column), lines[size_t(p.line - 1)].size() + 1)
+          << "at " << n << ": " << d.message;
+    }
+    EXPECT_LE(comments, 1) << "at " << n;
+  }
+}
+
+TEST(Robustness, EndOfFileErrorsAtTheEndOfTheFile) {
+  Compiled a("shader t() {\n  float x = 1 +", false);
+  EXPECT_EQ(diag::render_all(a.diags, *a.tu->sources),
+            "r.osl:2:16: error: expected expression, found 'end of file'\n"
+            "  float x = 1 +\n"
+            "               ^\n"
+            "r.osl:2:16: error: expected '}', found 'end of file'\n"
+            "  float x = 1 +\n"
+            "               ^\n"
+            "r.osl:1:12: note: to match this '{'\n"
+            "shader t() {\n"
+            "           ^\n");
+  Compiled b("shader t() {\n  /* comment", false);
+  EXPECT_EQ(diag::render_all(b.diags, *b.tu->sources),
+            "r.osl:2:3: error: unterminated /* comment\n"
+            "  /* comment\n"
+            "  ^~\n"
+            "r.osl:2:13: error: expected '}', found 'end of file'\n"
+            "  /* comment\n"
+            "            ^\n"
+            "r.osl:1:12: note: to match this '{'\n"
+            "shader t() {\n"
+            "           ^\n");
+  // With a final newline the end of the file is the start of the line after the last.
+  Compiled c("shader t() {\n", false);
+  EXPECT_NE(diag::render_all(c.diags, *c.tu->sources)
+                .find("r.osl:2:1: error: expected '}', found 'end of file'"),
+            std::string::npos)
+      << diag::render_all(c.diags, *c.tu->sources);
 }
 
 TEST(Robustness, TruncatedCorpusFiles) {
