@@ -233,9 +233,25 @@ std::vector<int> Lowerer::struct_parts(const ast::Expr* e, const ast::Type& t) {
   std::vector<int> out;
   const auto& fields = t.strct->fields;
   for (size_t i = 0; i < fields.size() && i < parts.size(); ++i) {
-    if (fields[i]->type.base == ast::BaseType::Struct) {
-      auto sub = parts[i]->kind == K::InitList ? struct_parts(parts[i], fields[i]->type)
-                                               : rvalue_flat(parts[i]);
+    const ast::Type& ft = fields[i]->type;
+    if (ft.base == ast::BaseType::Struct && ft.is_array() && parts[i]->kind == K::InitList) {
+      // An array of structs from `{ elem, ... }`: one array temporary per leaf (the
+      // struct-of-arrays layout), zeroed when the list is short, filled element by element.
+      std::vector<LRef> dst;
+      auto* l = static_cast<const ast::InitListExpr*>(parts[i]);
+      for (const Leaf& leaf : leaves(ft, parts[i])) {
+        ir::Type lt = irtype(leaf.type, parts[i]);
+        int tmp = temp(lt);
+        if (int(l->elems.size()) < ft.arraylen && lt.base != ir::BaseType::Closure)
+          store(LRef{tmp}, ir::intern_const(sh_, lt, std::vector<ir::ConstValue>(
+                                                       size_t(lt.arraylen * lt.components()))),
+                parts[i]);
+        dst.push_back(LRef{tmp});
+        out.push_back(tmp);
+      }
+      store_init(dst, ft, parts[i]);
+    } else if (ft.base == ast::BaseType::Struct) {
+      auto sub = parts[i]->kind == K::InitList ? struct_parts(parts[i], ft) : rvalue_flat(parts[i]);
       out.insert(out.end(), sub.begin(), sub.end());
     } else {
       out.push_back(rvalue(parts[i]));
