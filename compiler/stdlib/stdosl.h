@@ -130,6 +130,11 @@ float smooth_linearstep(float edge0, float edge1, float x_, float eps_) {
   }
   return result;
 }
+color smooth_linearstep(color edge0, color edge1, color x, color eps) {
+  return color(smooth_linearstep(edge0[0], edge1[0], x[0], eps[0]),
+               smooth_linearstep(edge0[1], edge1[1], x[1], eps[1]),
+               smooth_linearstep(edge0[2], edge1[2], x[2], eps[2]));
+}
 
 // Antialiased step: a filtered step over the filter width of its argument.
 float aastep(float edge, float s, float dedge, float ds) {
