@@ -361,7 +361,9 @@ void Sema::assign(ast::AssignExpr* e) {
   case Op::Sub:
   case Op::Mul:
   case Op::Div:
-    ok = lt.is_scalar_or_triple() || lt.is_matrix();
+    // As `a = a op b`: a matrix adds and subtracts only matrices (no float as a diagonal).
+    ok = lt.is_scalar_or_triple() ||
+         (lt.is_matrix() && (rt.is_matrix() || (e->op != Op::Add && e->op != Op::Sub)));
     break;
   case Op::Mod:
     ok = lt.is_scalar_or_triple();
