@@ -237,6 +237,14 @@ bool Lowerer::const_values(const ast::Expr* e, const ir::Type& t,
     auto* c = static_cast<const ast::CastExpr*>(e);
     ir::Type ot = irtype(c->operand->type, e);
     if (!const_values(c->operand.get(), ot, v)) return false;
+    if (et.base == ir::BaseType::Matrix && !et.is_array() && !ot.is_array() &&
+        (ot.base == ir::BaseType::Int || ot.base == ir::BaseType::Float)) {
+      // A number as a matrix: the diagonal matrix (`matrix m = 1` is the identity).
+      float d = ot.base == ir::BaseType::Int ? float(v[0].i) : v[0].f;
+      v.assign(16, ir::ConstValue{});
+      for (int i = 0; i < 4; ++i) v[size_t(i * 5)].f = d;
+      break;
+    }
     auto cv = passes::convert_const(ot, v, et);
     if (!cv) return false;
     v = *cv;

@@ -163,6 +163,21 @@ TEST(LobeInfo, FindsTheShaderByNameAndPrintsOslinfoStyle) {
   for (const char* w : want) EXPECT_NE(r.out.find(w), std::string::npos) << w << "\nin\n" << r.out;
 }
 
+TEST(LobeInfo, NumberAsMatrixDefaultPrintsItsSixteenValues) {
+  // As oslinfo does: `matrix m = 1` is the identity, `matrix s = 2.5` a diagonal.
+  fs::path dir = scratch("mats.osl", "shader mats(matrix m = 1, matrix s = 2.5, matrix w = "
+                                     "matrix(\"world\", 1)) { }\n");
+  CliRun r = lobe("info mats.osl", dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "shader \"mats\"\n"
+                   "    \"m\" \"matrix\"\n"
+                   "\t\tDefault value: [ 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1 ]\n"
+                   "    \"s\" \"matrix\"\n"
+                   "\t\tDefault value: [ 2.5 0 0 0 0 2.5 0 0 0 0 2.5 0 0 0 0 2.5 ]\n"
+                   "    \"w\" \"matrix\"\n"
+                   "\t\tDefault value: (computed at run time)\n");
+}
+
 TEST(LobeInfo, UnknownShaderIsAnError) {
   CliRun r = lobe("info no_such_shader_here");
   EXPECT_EQ(r.status, 1);
