@@ -56,7 +56,7 @@ private:
 };
 
 struct Args {
-  std::string scene, output, backend = "auto", strategy = "mis";
+  std::string scene, output, backend = "auto", strategy = "mis", closures = "jit";
   std::vector<int> res;
   int spp = 0, threads = 0, max_depth = 0;
   long long seed = -1;
@@ -84,6 +84,10 @@ int run_render(int argc, char** argv) {
   app.add_option("--exposure", a.exposure, "exposure in stops for PNG output");
   app.add_option("--materials", a.backend, "material backend: auto, jit or native")
       ->check(CLI::IsMember({"auto", "jit", "native"}));
+  app.add_option("--closures", a.closures,
+                 "closure evaluation for JIT materials: jit (kernels compiled from the closure "
+                 "library's bitcode, inlined per material) or native")
+      ->check(CLI::IsMember({"jit", "native"}));
   app.add_option("--strategy", a.strategy, "light transport: mis, bsdf or light")
       ->check(CLI::IsMember({"mis", "bsdf", "light"}));
   app.add_flag("-q,--quiet", a.quiet, "no progress or summary");
@@ -116,6 +120,7 @@ int run_render(int argc, char** argv) {
 
   lobe::render::MaterialBackend backend(a.backend);
   lobe::render::RenderScene scene;
+  scene.use_closure_kernels(a.closures == "jit");
   auto t0 = std::chrono::steady_clock::now();
   if (std::string e = scene.setup(desc, backend.compiler(), st.width, st.height); !e.empty()) {
     std::fprintf(stderr, "lobe render: %s\n", e.c_str());
@@ -123,6 +128,8 @@ int run_render(int argc, char** argv) {
   }
   double setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const std::string& w : backend.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  for (const std::string& w : scene.stats().warnings)
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
 
   lobe::render::RenderOptions opt;
   opt.spp = st.spp;
@@ -150,11 +157,12 @@ int run_render(int argc, char** argv) {
   if (!a.quiet) {
     uint64_t rays = stats.counters.rays + stats.counters.shadow_rays;
     std::fprintf(stderr,
-                 "%s%s: %dx%d, %d spp, %s materials (%d compiled in %.2fs, setup %.2fs), "
-                 "render %.2fs, %.2f Mrays/s\n",
+                 "%s%s: %dx%d, %d spp, %s materials (%d compiled in %.2fs, %d with closure "
+                 "kernels, setup %.2fs), render %.2fs, %.2f Mrays/s\n",
                  stats.cancelled ? "interrupted: wrote the finished samples to " : "wrote ",
                  out.c_str(), st.width, st.height, st.spp, backend.name().c_str(),
-                 scene.stats().materials_compiled, scene.stats().compile_seconds, setup_s,
+                 scene.stats().materials_compiled, scene.stats().compile_seconds,
+                 scene.stats().closure_kernels, setup_s,
                  stats.seconds, stats.seconds > 0 ? double(rays) / stats.seconds / 1e6 : 0.0);
   }
   return stats.cancelled ? 130 : 0;

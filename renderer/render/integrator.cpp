@@ -39,7 +39,7 @@ static void shade_into(const RenderScene& scene, const SurfaceHit& hit, const Ve
   ctx.reset();
   auto t0 = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   scene.material(hit.shape).shade(sg);
-  bsdf.build(sg.Ci, -dir, hit.Ng);
+  bsdf.build(sg.Ci, -dir, hit.Ng, scene.closure_kernels(hit.shape));
   ++c.shades;
   if (timed)
     c.shade_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

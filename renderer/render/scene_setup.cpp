@@ -95,7 +95,16 @@ std::string RenderScene::compile_materials(const MaterialCompiler& compile) {
     std::string err;
     materials_[todo[i]] = compile(m, err);
     if (!materials_[todo[i]]) errors[i] = m.where + ": material '" + m.name + "': " + err;
+    else if (use_kernels_) materials_[todo[i]]->closure_kernels(); // compiled here, in parallel
   });
+  for (int mi : todo) {
+    if (!materials_[mi] || !use_kernels_) continue;
+    if (materials_[mi]->closure_kernels()) ++stats_.closure_kernels;
+    std::string ke = materials_[mi]->closure_kernels_error();
+    if (!ke.empty())
+      stats_.warnings.push_back("material '" + desc_.materials[mi].name +
+                                "': closure kernels unavailable, native closures used: " + ke);
+  }
   stats_.compile_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   stats_.materials_compiled = static_cast<int>(todo.size());
@@ -109,6 +118,7 @@ std::string RenderScene::compile_materials(const MaterialCompiler& compile) {
     shape_material_.push_back(s.material >= 0 ? materials_[s.material].get()
                                               : default_material_.get());
     shape_reads_.push_back(shape_material_.back()->globals_read());
+    shape_kernels_.push_back(use_kernels_ ? shape_material_.back()->closure_kernels() : nullptr);
   }
   return "";
 }

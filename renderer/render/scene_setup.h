@@ -29,10 +29,16 @@ struct SetupStats {
   double compile_seconds = 0; // wall time of the parallel compile of all used materials
   int materials_compiled = 0;
   int emitters = 0;
+  int closure_kernels = 0;         // materials whose closures run as JIT-compiled kernels
+  std::vector<std::string> warnings; // e.g. closure kernels that failed to compile
 };
 
 class RenderScene {
 public:
+  // Whether materials evaluate their closures through their JIT-compiled closure kernels
+  // (Material::closure_kernels(), compiled in parallel at setup) or the native library.
+  // Set before setup(); on by default.
+  void use_closure_kernels(bool on) { use_kernels_ = on; }
   // "" on success, else an error naming the scene element.
   std::string setup(const scene::SceneDesc& desc, const MaterialCompiler& compile, int width,
                     int height);
@@ -46,6 +52,8 @@ public:
   const Material& material(int shape) const { return *shape_material_[shape]; }
   // What the shape's material reads (Material::globals_read bits, kGlobalFields order).
   uint64_t globals_read(int shape) const { return shape_reads_[shape]; }
+  // The closure kernels of a shape's material (null: the native closure library).
+  const ClosureKernels* closure_kernels(int shape) const { return shape_kernels_[shape]; }
   const SetupStats& stats() const { return stats_; }
 
 private:
@@ -61,6 +69,8 @@ private:
   std::vector<std::shared_ptr<const Material>> materials_; // per scene material (null: unused)
   std::vector<const Material*> shape_material_;
   std::vector<uint64_t> shape_reads_;
+  std::vector<const ClosureKernels*> shape_kernels_;
+  bool use_kernels_ = true;
   std::shared_ptr<const Material> default_material_;
   SetupStats stats_;
 };

@@ -24,12 +24,38 @@ bool usable_weight(const Color3& w) {
   return is_finite(w) && (w.x > 0.0f || w.y > 0.0f || w.z > 0.0f);
 }
 
+int mode_of(Transport t) { return t == Transport::Importance ? 1 : 0; }
+
+// One lobe's eval/sample/albedo through the material's JIT kernels when they cover its id,
+// else through the native library.
+BsdfEval lobe_eval(const ClosureKernels* k, const Lobe& l, const Vec3& wo, const Vec3& wi,
+                   Transport mode) {
+  if (!k || !k->covers(l.id)) return closures::eval(l.id, l.params, wo, wi, mode);
+  closures::LobeEval e;
+  k->eval(l.id, l.params, &wo, &wi, mode_of(mode), &e);
+  return BsdfEval{e.value, e.pdf};
+}
+std::optional<BsdfSample> lobe_sample(const ClosureKernels* k, const Lobe& l, const Vec3& wo,
+                                      const Vec3& u, Transport mode) {
+  if (!k || !k->covers(l.id)) return closures::sample(l.id, l.params, wo, u, mode);
+  closures::LobeSample s;
+  if (!k->sample(l.id, l.params, &wo, &u, mode_of(mode), &s) || !s.ok) return std::nullopt;
+  return BsdfSample{s.wi, s.weight, s.pdf, s.flags, s.eta};
+}
+Color3 lobe_albedo(const ClosureKernels* k, int id, const unsigned char* p, const Vec3& wo) {
+  if (!k || !k->covers(id)) return closures::albedo(id, p, wo);
+  Vec3 a;
+  k->albedo(id, p, &wo, &a);
+  return a;
+}
+
 // Collects a tree into a Bsdf; one instance per build() call.
 struct Flattener {
   Bsdf& bsdf;
   Lobe* lobes;
   int& n;
   const Vec3& wo;
+  const ClosureKernels* kernels;
 
   void visit(const ClosureNode* node, const Color3& w, int depth) {
     if (!node || depth > 64 || !is_finite(w)) return;
@@ -75,7 +101,7 @@ struct Flattener {
     visit(q.top, w, depth + 1);
     Color3 a; // top albedo per unit weight
     for (int i = first; i < n; ++i)
-      a += lobes[i].weight * closures::albedo(lobes[i].id, lobes[i].params, wo);
+      a += lobes[i].weight * lobe_albedo(kernels, lobes[i].id, lobes[i].params, wo);
     auto frac = [](float x, float wc) {
       return wc > 0.0f ? closures::clampf(x / wc, 0.0f, 1.0f) : 1.0f;
     };
@@ -93,16 +119,18 @@ bool side_ok(uint32_t flags, const Vec3& wo, const Vec3& wi, const Vec3& ng) {
 
 } // namespace
 
-void Bsdf::build(const ClosureNode* closure, const Vec3& wo, const Vec3& Ng) {
+void Bsdf::build(const ClosureNode* closure, const Vec3& wo, const Vec3& Ng,
+                 const ClosureKernels* kernels) {
   *this = Bsdf{};
   ng_ = normalize(Ng);
-  Flattener f{*this, lobes_, n_lobes_, wo};
+  kernels_ = kernels;
+  Flattener f{*this, lobes_, n_lobes_, wo, kernels};
   f.visit(closure, Color3{1, 1, 1}, 0);
   total_select_ = 0.0f;
   for (int i = 0; i < n_lobes_; ++i) {
     Lobe& l = lobes_[i];
     l.flags = closures::lobe_flags(l.id, l.params);
-    float s = luminance(l.weight * closures::albedo(l.id, l.params, wo));
+    float s = luminance(l.weight * lobe_albedo(kernels, l.id, l.params, wo));
     // A lobe with no albedo estimate at wo still gets a small share, so that it is sampled.
     l.select_weight = closures::maxf(s, 1e-3f * luminance(l.weight));
     total_select_ += l.select_weight;
@@ -121,7 +149,7 @@ BsdfEval Bsdf::eval(const Vec3& wo, const Vec3& wi, Transport mode) const {
   for (int i = 0; i < n_lobes_; ++i) {
     const Lobe& l = lobes_[i];
     if ((l.flags & kLobeSpecular) || !side_ok(l.flags, wo, wi, ng_)) continue;
-    BsdfEval e = closures::eval(l.id, l.params, wo, wi, mode);
+    BsdfEval e = lobe_eval(kernels_, l, wo, wi, mode);
     r.value += l.weight * e.value;
     r.pdf += (l.select_weight / total_select_) * e.pdf;
   }
@@ -141,7 +169,7 @@ std::optional<BsdfSample> Bsdf::sample(const Vec3& wo, const Vec3& u, Transport 
   const Lobe& l = lobes_[i];
   float p_pick = l.select_weight / total_select_;
   float ux = closures::clampf(x / l.select_weight, 0.0f, closures::kOneMinusEpsilon);
-  auto s = closures::sample(l.id, l.params, wo, {ux, u.y, u.z}, mode);
+  auto s = lobe_sample(kernels_, l, wo, {ux, u.y, u.z}, mode);
   if (!s || !side_ok(s->flags, wo, s->wi, ng_)) return std::nullopt;
   if (s->flags & kLobeSpecular) {
     s->weight = closures::sanitize(l.weight * s->weight / p_pick);
@@ -158,7 +186,7 @@ std::optional<BsdfSample> Bsdf::sample(const Vec3& wo, const Vec3& u, Transport 
 Color3 Bsdf::albedo(const Vec3& wo) const {
   Color3 a;
   for (int i = 0; i < n_lobes_; ++i)
-    a += lobes_[i].weight * closures::albedo(lobes_[i].id, lobes_[i].params, wo);
+    a += lobes_[i].weight * lobe_albedo(kernels_, lobes_[i].id, lobes_[i].params, wo);
   return a;
 }
 

@@ -2,6 +2,8 @@
 // thread's ShadingContext (so shade() is re-entrant across threads), and reads outputs back.
 #include "material.h"
 
+#include "closure_kernels.h"
+
 #include "lobe/context.h"
 
 #include <cstring>
@@ -11,12 +13,32 @@ namespace lobe::group {
 MaterialImpl::MaterialImpl(std::shared_ptr<jit::Jit> jit, std::shared_ptr<shadeops::RuntimeEnv> env,
                            jit::CompiledGroup code, std::vector<unsigned char> groupdata,
                            std::map<std::string, OutputSlot> slots, uint64_t globals,
-                           CompileStats stats)
+                           CompileStats stats, std::vector<int> closure_ids)
     : jit_(std::move(jit)), env_(std::move(env)), code_(code),
       entry_(reinterpret_cast<Entry>(code.entry)), groupdata_(std::move(groupdata)),
-      slots_(std::move(slots)), globals_(globals), stats_(stats) {}
+      slots_(std::move(slots)), globals_(globals), stats_(stats),
+      closure_ids_(std::move(closure_ids)) {}
 
-MaterialImpl::~MaterialImpl() { jit_->remove(code_); }
+MaterialImpl::~MaterialImpl() {
+  jit_->remove(kernels_code_);
+  jit_->remove(code_);
+}
+
+const ClosureKernels* MaterialImpl::closure_kernels() const {
+  std::call_once(kernels_once_, [this] {
+    if (closure_ids_.empty()) return;
+    jit::JitTimes times;
+    kernels_ok_ = jit::compile_closure_kernels(*jit_, closure_ids_, kernels_, kernels_code_,
+                                               times, kernels_error_) &&
+                  kernels_.eval != nullptr;
+  });
+  return kernels_ok_ ? &kernels_ : nullptr;
+}
+
+std::string MaterialImpl::closure_kernels_error() const {
+  closure_kernels();
+  return kernels_error_;
+}
 
 void MaterialImpl::shade(ShaderGlobals& sg) const {
   sg.Ci = nullptr;

@@ -11,6 +11,7 @@
 #include <atomic>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -27,7 +28,8 @@ public:
 
   MaterialImpl(std::shared_ptr<jit::Jit> jit, std::shared_ptr<shadeops::RuntimeEnv> env,
                jit::CompiledGroup code, std::vector<unsigned char> groupdata,
-               std::map<std::string, OutputSlot> slots, uint64_t globals, CompileStats stats);
+               std::map<std::string, OutputSlot> slots, uint64_t globals, CompileStats stats,
+               std::vector<int> closure_ids = {});
   ~MaterialImpl() override;
 
   void shade(ShaderGlobals& sg) const override;
@@ -37,6 +39,8 @@ public:
   bool read_output(const ShadingContext& ctx, const std::string& layer, const std::string& param,
                    std::vector<float>& dst) const override;
   const CompileStats& stats() const override { return stats_; }
+  const ClosureKernels* closure_kernels() const override;
+  std::string closure_kernels_error() const override;
 
 private:
   bool read_from(const unsigned char* gd, const std::string& layer, const std::string& param,
@@ -51,6 +55,13 @@ private:
   uint64_t globals_;
   CompileStats stats_;
   mutable std::atomic<const ShadingContext*> last_context_{nullptr};
+  // Closure kernels, compiled on first use (closure_kernels()).
+  std::vector<int> closure_ids_; // registry ids of the closures the group can create
+  mutable std::once_flag kernels_once_;
+  mutable ClosureKernels kernels_;
+  mutable jit::CompiledGroup kernels_code_;
+  mutable bool kernels_ok_ = false;
+  mutable std::string kernels_error_;
 };
 
 // A cache hit: the same compiled material, with the stats of this request.
@@ -69,6 +80,8 @@ public:
     return m_->read_output(ctx, layer, param, dst);
   }
   const CompileStats& stats() const override { return stats_; }
+  const ClosureKernels* closure_kernels() const override { return m_->closure_kernels(); }
+  std::string closure_kernels_error() const override { return m_->closure_kernels_error(); }
 
 private:
   std::shared_ptr<const Material> m_;

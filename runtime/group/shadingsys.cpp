@@ -5,6 +5,7 @@
 #include "codegen.h"
 #include "group_build.h"
 #include "group_text.h"
+#include "closure_registry.h"
 #include "ir/printer.h"
 #include "jit.h"
 #include "lobe/bsdf.h"
@@ -14,6 +15,7 @@
 #include <llvm/IR/LLVMContext.h>
 #include <llvm/IR/Module.h>
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <mutex>
@@ -139,8 +141,20 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
         slots[b.layer_names[li] + "." + sh.symbols[s].name] = {
             size_t(b.plan.layers[li].symbol_offset[s]), sh.symbols[s].type};
   }
+  // Registry ids of the closures the specialised layers can create (for closure kernels).
+  std::vector<int> closure_ids;
+  for (const auto& shp : b.shaders)
+    for (const ir::Op& op : shp->ops) {
+      if (op.opcode != "closure" || op.args.size() < 2) continue;
+      const ir::Symbol& key = shp->symbols[size_t(op.args[1])];
+      if (key.kind != ir::SymKind::Const || key.init.empty()) continue;
+      int id = registry::id_of(key.init[0].s);
+      if (id >= 0 && std::find(closure_ids.begin(), closure_ids.end(), id) == closure_ids.end())
+        closure_ids.push_back(id);
+    }
   return std::make_shared<group::MaterialImpl>(jit, env, code, std::move(b.groupdata),
-                                               std::move(slots), b.globals_read, stats);
+                                               std::move(slots), b.globals_read, stats,
+                                               std::move(closure_ids));
 }
 
 std::shared_ptr<const Material> ShadingSystem::compile(const ShaderGroup& group,

@@ -151,6 +151,15 @@ void Jit::optimize(llvm::Module& module, int opt_level) const {
 bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::Module> module,
               int opt_level, const std::string& entry, CompiledGroup& out, JitTimes& times,
               std::string& error) {
+  std::vector<void*> addresses;
+  return add(std::move(context), std::move(module), opt_level, {entry}, addresses, out, times,
+             error);
+}
+
+bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::Module> module,
+              int opt_level, const std::vector<std::string>& entries,
+              std::vector<void*>& addresses, CompiledGroup& out, JitTimes& times,
+              std::string& error) {
   auto t0 = std::chrono::steady_clock::now();
   optimize(*module, opt_level);
   times.optimize_ms = ms_since(t0);
@@ -167,17 +176,21 @@ bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::
   llvm::orc::ThreadSafeModule tsm(std::move(module), std::move(context));
   if (auto err = lljit.addIRModule(*jd, std::move(tsm))) {
     error = llvm::toString(std::move(err));
-    (void)lljit.getExecutionSession().removeJITDylib(*jd);
-    return false;
-  }
-  auto addr = lljit.lookup(*jd, entry);
-  if (!addr) {
-    error = llvm::toString(addr.takeError());
     llvm::consumeError(lljit.getExecutionSession().removeJITDylib(*jd));
     return false;
   }
+  addresses.clear();
+  for (const std::string& entry : entries) {
+    auto addr = lljit.lookup(*jd, entry);
+    if (!addr) {
+      error = llvm::toString(addr.takeError());
+      llvm::consumeError(lljit.getExecutionSession().removeJITDylib(*jd));
+      return false;
+    }
+    addresses.push_back(addr->toPtr<void*>());
+  }
   times.codegen_ms = ms_since(t1);
-  out.entry = addr->toPtr<void*>();
+  out.entry = addresses.empty() ? nullptr : addresses.front();
   out.dylib = &*jd;
   return true;
 }

@@ -9,6 +9,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 namespace llvm {
 class LLVMContext;
@@ -43,6 +44,11 @@ public:
   bool add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::Module> module,
            int opt_level, const std::string& entry, CompiledGroup& out, JitTimes& times,
            std::string& error);
+  // As add(), for a module with several entry points: `addresses[i]` is that of `entries[i]`;
+  // out.entry is the first.
+  bool add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::Module> module,
+           int opt_level, const std::vector<std::string>& entries, std::vector<void*>& addresses,
+           CompiledGroup& out, JitTimes& times, std::string& error);
   void remove(CompiledGroup& group);
 
   // Runs the optimisation pipeline only (used by add(), and by tests/benchmarks).

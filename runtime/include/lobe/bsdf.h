@@ -46,6 +46,32 @@ struct BsdfSample {
   float eta = 1;      // relative IOR crossed by a transmission sample (1 for reflection)
 };
 
+// The closure functions of one material, JIT-compiled from the closure library's LLVM bitcode
+// with only that material's closures linked in and inlined (Material::closure_kernels(),
+// runtime/jit/closure_kernels.h). C ABI, as lobe_closure_eval/_sample/_albedo in
+// docs/closures.md ("Bitcode for the JIT"); `out` points to the library's LobeEval/LobeSample.
+// A Bsdf built with kernels calls them for the ids they cover and the native library for the
+// rest; both give the same results to float rounding (tests/closures/jit_kernels_test.cpp).
+struct ClosureKernels {
+  using EvalFn = void (*)(int id, const unsigned char* params, const Vec3* wo, const Vec3* wi,
+                          int mode, void* out);
+  using SampleFn = int (*)(int id, const unsigned char* params, const Vec3* wo, const Vec3* u,
+                           int mode, void* out);
+  using AlbedoFn = void (*)(int id, const unsigned char* params, const Vec3* wo, Vec3* out);
+  EvalFn eval = nullptr;
+  SampleFn sample = nullptr;
+  AlbedoFn albedo = nullptr;
+  uint64_t ids[2] = {0, 0}; // bit i: registry id i is compiled in
+
+  static constexpr int kMaxIds = 128;
+  bool covers(int id) const {
+    return id >= 0 && id < kMaxIds && ((ids[id >> 6] >> (id & 63)) & 1u) != 0;
+  }
+  void add(int id) {
+    if (id >= 0 && id < kMaxIds) ids[id >> 6] |= uint64_t{1} << (id & 63);
+  }
+};
+
 // One weighted lobe: a registry component plus its weight and a pointer to its parameter
 // block (owned by the ShadingContext arena the closure was built in).
 struct Lobe {
@@ -62,7 +88,9 @@ public:
 
   // Flattens `closure` (may be null: black) for a point with geometric normal `Ng`, viewed
   // from `wo`. Emission, transparency, holdout and debug components are collected separately.
-  void build(const ClosureNode* closure, const Vec3& wo, const Vec3& Ng);
+  // `kernels` (may be null: the native library) evaluates and samples the lobes.
+  void build(const ClosureNode* closure, const Vec3& wo, const Vec3& Ng,
+             const ClosureKernels* kernels = nullptr);
 
   BsdfEval eval(const Vec3& wo, const Vec3& wi, Transport mode = Transport::Radiance) const;
   float pdf(const Vec3& wo, const Vec3& wi) const;
@@ -88,6 +116,7 @@ private:
   int n_lobes_ = 0;
   float total_select_ = 0;
   Vec3 ng_; // normalised geometric normal, (0,0,0) when unknown: no side test
+  const ClosureKernels* kernels_ = nullptr;
 };
 
 // Human-readable form of a closure tree in OSL's print format:

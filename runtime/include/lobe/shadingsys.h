@@ -9,6 +9,7 @@
 //   Bsdf bsdf; bsdf.build(sg.Ci, -sg.I, sg.Ng);
 #pragma once
 
+#include "lobe/bsdf.h"
 #include "lobe/context.h"
 #include "lobe/shading.h"
 
@@ -90,6 +91,12 @@ public:
     return read_output(layer, param, dst);
   }
   virtual const CompileStats& stats() const = 0;
+  // The closure library's eval/sample/albedo for this material's closures, JIT-compiled and
+  // inlined (bsdf.h, ClosureKernels); compiled on the first call, from any thread. Null when
+  // the material has no BSDF closures the bitcode provides, or when compiling them failed
+  // (closure_kernels_error() says why): Bsdf then uses the native library.
+  virtual const ClosureKernels* closure_kernels() const { return nullptr; }
+  virtual std::string closure_kernels_error() const { return {}; }
 };
 
 class ShadingSystem {

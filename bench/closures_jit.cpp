@@ -1,0 +1,176 @@
+// Closure speed, native against JIT-inlined, side by side in one run: for every BSDF entry
+// with bitcode, ns per eval() and per sample() through the native library (closures::eval /
+// closures::sample, the C++ compiled by the project's compiler) and through closure kernels
+// (the same C++ compiled by clang-19 to bitcode, linked into a JIT module with a dispatcher
+// over the ids and inlined; runtime/jit/closure_kernels.h). Then a two-lobe material's Bsdf
+// (diffuse + GGX dielectric) evaluated and sampled both ways. Inputs: 1024 direction pairs
+// above the surface and 1024 random triples, the first quick configuration of each closure.
+//
+//   build/bench/closures_jit [benchmark flags]      e.g. --benchmark_repetitions=3
+#include "closure_kernels.h"
+#include "closure_registry.h"
+#include "closures.h"
+#include "common.h"
+#include "configs.h"
+#include "rng.h"
+
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <new>
+#include <string>
+#include <vector>
+
+using namespace lobe;
+using namespace lobe::verify;
+
+namespace {
+
+ClosureKernels g_kernels;
+
+struct Inputs {
+  std::vector<Vec3> dirs, us;
+  Inputs() {
+    Pcg32 rng(7);
+    for (int i = 0; i < 1024; ++i) {
+      Vec3 d = uniform_sphere(rng.next_double(), rng.next_double());
+      d.z = std::fabs(d.z);
+      dirs.push_back(d);
+      us.push_back(rng.next_vec3());
+    }
+  }
+};
+const Inputs& inputs() {
+  static Inputs in;
+  return in;
+}
+
+void BM_EvalNative(benchmark::State& state, int id) {
+  closures::Params p = configs_for(id, Level::Quick).front().params;
+  const Inputs& in = inputs();
+  size_t k = 0;
+  for (auto _ : state) {
+    BsdfEval e = closures::eval(id, p.data(), in.dirs[k & 1023], in.dirs[(k + 7) & 1023]);
+    benchmark::DoNotOptimize(e);
+    ++k;
+  }
+}
+void BM_EvalJit(benchmark::State& state, int id) {
+  closures::Params p = configs_for(id, Level::Quick).front().params;
+  const Inputs& in = inputs();
+  size_t k = 0;
+  for (auto _ : state) {
+    closures::LobeEval e;
+    g_kernels.eval(id, p.data(), &in.dirs[k & 1023], &in.dirs[(k + 7) & 1023], 0, &e);
+    benchmark::DoNotOptimize(e);
+    ++k;
+  }
+}
+void BM_SampleNative(benchmark::State& state, int id) {
+  closures::Params p = configs_for(id, Level::Quick).front().params;
+  const Inputs& in = inputs();
+  size_t k = 0;
+  for (auto _ : state) {
+    auto s = closures::sample(id, p.data(), in.dirs[k & 1023], in.us[(k + 3) & 1023]);
+    benchmark::DoNotOptimize(s);
+    ++k;
+  }
+}
+void BM_SampleJit(benchmark::State& state, int id) {
+  closures::Params p = configs_for(id, Level::Quick).front().params;
+  const Inputs& in = inputs();
+  size_t k = 0;
+  for (auto _ : state) {
+    closures::LobeSample s;
+    int ok = g_kernels.sample(id, p.data(), &in.dirs[k & 1023], &in.us[(k + 3) & 1023], 0, &s);
+    benchmark::DoNotOptimize(ok);
+    benchmark::DoNotOptimize(s);
+    ++k;
+  }
+}
+
+// A diffuse + rough dielectric material flattened into a Bsdf, with or without kernels.
+struct Material2 {
+  closures::Params a{"diffuse"}, b{"dielectric_bsdf"};
+  alignas(16) unsigned char storage[2][sizeof(ClosureComponent) + closures::Params::kMaxBytes];
+  ClosureAdd sum;
+  Material2() {
+    a.set("N", Vec3{0, 0, 1});
+    b.set("N", Vec3{0, 0, 1}).set("roughness_x", 0.2f).set("roughness_y", 0.2f);
+    b.set("ior", 1.5f).set("reflection_tint", Vec3{1, 1, 1});
+    const closures::Params* ps[2] = {&a, &b};
+    ClosureNode* nodes[2];
+    for (int i = 0; i < 2; ++i) {
+      auto* c = new (storage[i]) ClosureComponent;
+      c->id = ps[i]->id();
+      c->weight = Color3{0.5f, 0.5f, 0.5f};
+      std::memcpy(c->params(), ps[i]->data(), ps[i]->size());
+      nodes[i] = c;
+    }
+    sum.id = kClosureAdd;
+    sum.a = nodes[0];
+    sum.b = nodes[1];
+  }
+};
+
+void BM_Material(benchmark::State& state, bool jit, bool sample) {
+  static Material2 m;
+  const Inputs& in = inputs();
+  Vec3 wo = normalize(Vec3{0.3f, 0.2f, 0.9f});
+  Bsdf bsdf;
+  bsdf.build(&m.sum, wo, Vec3{0, 0, 1}, jit ? &g_kernels : nullptr);
+  size_t k = 0;
+  for (auto _ : state) {
+    if (sample) {
+      auto s = bsdf.sample(wo, in.us[k & 1023]);
+      benchmark::DoNotOptimize(s);
+    } else {
+      BsdfEval e = bsdf.eval(wo, in.dirs[k & 1023]);
+      benchmark::DoNotOptimize(e);
+    }
+    ++k;
+  }
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  std::string err;
+  std::unique_ptr<jit::Jit> jit = jit::Jit::create(err);
+  if (!jit) {
+    std::fprintf(stderr, "closures_jit: %s\n", err.c_str());
+    return 1;
+  }
+  std::vector<int> ids;
+  auto all = registry::closures();
+  for (int id = 0; id < int(all.size()); ++id)
+    if ((all[size_t(id)].flags & (registry::kReflect | registry::kTransmit)) &&
+        closures::has_implementation(id) && std::string(all[size_t(id)].key) != "measured_bsdf")
+      ids.push_back(id);
+  jit::CompiledGroup code;
+  jit::JitTimes times;
+  if (!jit::compile_closure_kernels(*jit, ids, g_kernels, code, times, err)) {
+    std::fprintf(stderr, "closures_jit: %s\n", err.c_str());
+    return 1;
+  }
+  std::printf("kernels for %zu closures: optimise %.1f ms, machine code %.1f ms\n", ids.size(),
+              times.optimize_ms, times.codegen_ms);
+  for (int id : ids) {
+    std::string key = all[size_t(id)].key;
+    benchmark::RegisterBenchmark(("eval/native/" + key).c_str(), BM_EvalNative, id);
+    benchmark::RegisterBenchmark(("eval/jit/" + key).c_str(), BM_EvalJit, id);
+    benchmark::RegisterBenchmark(("sample/native/" + key).c_str(), BM_SampleNative, id);
+    benchmark::RegisterBenchmark(("sample/jit/" + key).c_str(), BM_SampleJit, id);
+  }
+  benchmark::RegisterBenchmark("material_eval/native", BM_Material, false, false);
+  benchmark::RegisterBenchmark("material_eval/jit", BM_Material, true, false);
+  benchmark::RegisterBenchmark("material_sample/native", BM_Material, false, true);
+  benchmark::RegisterBenchmark("material_sample/jit", BM_Material, true, true);
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  jit->remove(code);
+  return 0;
+}

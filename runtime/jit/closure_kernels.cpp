@@ -1,0 +1,175 @@
+// Closure kernels (closure_kernels.h): dispatchers over a material's closure ids, with the
+// closure library's bitcode linked in lazily and inlined.
+#include "closure_kernels.h"
+
+#include "closure_registry.h"
+
+#include <llvm/Bitcode/BitcodeReader.h>
+#include <llvm/IR/IRBuilder.h>
+#include <llvm/IR/LLVMContext.h>
+#include <llvm/IR/Module.h>
+#include <llvm/Linker/Linker.h>
+#include <llvm/Support/MemoryBuffer.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+
+namespace lobe::jit {
+namespace {
+
+const char* const kEntries[3] = {"lobe_kernels_eval", "lobe_kernels_sample", "lobe_kernels_albedo"};
+const char* const kSuffix[3] = {"_eval", "_sample", "_albedo"};
+
+// The bitcode file's bytes, read once per process.
+const std::string* bitcode_bytes(std::string& error) {
+  static std::once_flag once;
+  static std::string bytes, failure;
+  std::call_once(once, [] {
+    std::string path = closure_bitcode_path();
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    if (in) ss << in.rdbuf();
+    bytes = ss.str();
+    if (bytes.empty()) failure = "cannot read the closure bitcode '" + path + "'";
+  });
+  if (!failure.empty()) {
+    error = failure;
+    return nullptr;
+  }
+  return &bytes;
+}
+
+// The per-key functions a dispatcher calls, declared in `mod` with the library's types.
+struct Case {
+  int id;
+  llvm::FunctionCallee fn[3];
+};
+
+// `void|i32 name(i32 id, args...)`: switch (id) { case k: return lobe_closure_<key>_*(args) }.
+void emit_dispatcher(llvm::Module& mod, int which, llvm::FunctionType* callee_type,
+                     const std::vector<Case>& cases) {
+  llvm::LLVMContext& ctx = mod.getContext();
+  std::vector<llvm::Type*> params{llvm::Type::getInt32Ty(ctx)};
+  for (llvm::Type* t : callee_type->params()) params.push_back(t);
+  llvm::Type* ret = callee_type->getReturnType();
+  auto* type = llvm::FunctionType::get(ret, params, false);
+  auto* f = llvm::Function::Create(type, llvm::Function::ExternalLinkage, kEntries[which], mod);
+  llvm::IRBuilder<> b(llvm::BasicBlock::Create(ctx, "entry", f));
+  auto* none = llvm::BasicBlock::Create(ctx, "none", f);
+  auto* sw = b.CreateSwitch(f->getArg(0), none, unsigned(cases.size()));
+  std::vector<llvm::Value*> args;
+  for (unsigned i = 1; i < f->arg_size(); ++i) args.push_back(f->getArg(i));
+  for (const Case& c : cases) {
+    auto* bb = llvm::BasicBlock::Create(ctx, "id" + std::to_string(c.id), f);
+    sw->addCase(b.getInt32(uint32_t(c.id)), bb);
+    b.SetInsertPoint(bb);
+    llvm::Value* r = b.CreateCall(c.fn[which], args);
+    if (ret->isVoidTy())
+      b.CreateRetVoid();
+    else
+      b.CreateRet(r);
+  }
+  b.SetInsertPoint(none); // not reached: Bsdf calls only for covered ids
+  if (ret->isVoidTy())
+    b.CreateRetVoid();
+  else
+    b.CreateRet(llvm::Constant::getNullValue(ret));
+}
+
+// Everything but the dispatchers becomes internal (so unused code is dropped and the lobes
+// inline), and the library's per-function CPU attributes go (the JIT's target applies).
+void internalize(llvm::Module& mod) {
+  auto is_entry = [](llvm::StringRef n) {
+    for (const char* e : kEntries)
+      if (n == e) return true;
+    return false;
+  };
+  for (llvm::Function& f : mod) {
+    f.removeFnAttr("target-cpu");
+    f.removeFnAttr("target-features");
+    f.removeFnAttr("tune-cpu");
+    if (f.isDeclaration() || is_entry(f.getName())) continue;
+    f.setComdat(nullptr);
+    f.setLinkage(llvm::GlobalValue::InternalLinkage);
+  }
+  for (llvm::GlobalVariable& g : mod.globals()) {
+    if (g.isDeclaration()) continue;
+    g.setComdat(nullptr);
+    g.setLinkage(llvm::GlobalValue::InternalLinkage);
+  }
+}
+
+} // namespace
+
+std::string closure_bitcode_path() {
+  if (const char* env = std::getenv("LOBE_CLOSURES_BC"); env && *env) return env;
+#ifdef LOBE_CLOSURES_BC
+  return LOBE_CLOSURES_BC;
+#else
+  return "lobe_closures.bc";
+#endif
+}
+
+bool compile_closure_kernels(Jit& jit, const std::vector<int>& ids, ClosureKernels& out,
+                             CompiledGroup& code, JitTimes& times, std::string& error) {
+  const std::string* bytes = bitcode_bytes(error);
+  if (!bytes) return false;
+  auto ctx = std::make_unique<llvm::LLVMContext>();
+  auto lib = llvm::getLazyBitcodeModule(llvm::MemoryBufferRef(*bytes, "lobe_closures.bc"), *ctx);
+  if (!lib) {
+    error = "closure bitcode: " + llvm::toString(lib.takeError());
+    return false;
+  }
+  std::unique_ptr<llvm::Module> library = std::move(*lib);
+  auto mod = std::make_unique<llvm::Module>("closure_kernels", *ctx);
+  jit.configure(*mod);
+  library->setTargetTriple(mod->getTargetTriple());
+  library->setDataLayout(mod->getDataLayout());
+
+  std::vector<Case> cases;
+  llvm::FunctionType* types[3] = {nullptr, nullptr, nullptr};
+  ClosureKernels k;
+  auto entries = registry::closures();
+  for (int id : ids) {
+    if (id < 0 || id >= int(entries.size()) || id >= ClosureKernels::kMaxIds || k.covers(id))
+      continue;
+    Case c{id, {}};
+    bool complete = true;
+    for (int w = 0; w < 3; ++w) {
+      std::string name = std::string("lobe_closure_") + entries[size_t(id)].key + kSuffix[w];
+      llvm::Function* lf = library->getFunction(name);
+      if (!lf) {
+        complete = false;
+        break;
+      }
+      types[w] = lf->getFunctionType();
+      c.fn[w] = mod->getOrInsertFunction(name, lf->getFunctionType());
+    }
+    if (!complete) continue; // no bitcode for this closure: the native library serves it
+    cases.push_back(c);
+    k.add(id);
+  }
+  if (cases.empty()) {
+    out = ClosureKernels{};
+    return true; // nothing to compile: every lobe goes to the native library
+  }
+  for (int w = 0; w < 3; ++w) emit_dispatcher(*mod, w, types[w], cases);
+  if (llvm::Linker::linkModules(*mod, std::move(library), llvm::Linker::Flags::LinkOnlyNeeded)) {
+    error = "closure bitcode: linking failed";
+    return false;
+  }
+  internalize(*mod);
+  std::vector<void*> addresses;
+  if (!jit.add(std::move(ctx), std::move(mod), 2, {kEntries[0], kEntries[1], kEntries[2]},
+               addresses, code, times, error))
+    return false;
+  k.eval = reinterpret_cast<ClosureKernels::EvalFn>(addresses[0]);
+  k.sample = reinterpret_cast<ClosureKernels::SampleFn>(addresses[1]);
+  k.albedo = reinterpret_cast<ClosureKernels::AlbedoFn>(addresses[2]);
+  out = k;
+  return true;
+}
+
+} // namespace lobe::jit

@@ -1,0 +1,204 @@
+// Closure kernels (runtime/jit/closure_kernels.h): the closure library compiled by clang-19 to
+// bitcode, linked into a JIT module and inlined, against the same C++ compiled natively. For
+// every BSDF entry of the registry, its quick configurations and its parameter extremes, over
+// random direction pairs on the whole sphere and random numbers: eval (value, pdf), sample
+// (ok, direction, weight, pdf, flags, eta) and albedo agree to 1e-6 relative (1e-6 absolute
+// below magnitude 1). The two builds differ only in code generation (inlining, FMA
+// contraction), so agreement is expected to float rounding.
+#include "closure_kernels.h"
+#include "closure_registry.h"
+#include "closures.h"
+#include "common.h"
+#include "configs.h"
+#include "param_stress.h"
+#include "rng.h"
+
+#include "lobe/shadingsys.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+using namespace lobe;
+using namespace lobe::verify;
+
+namespace {
+
+bool close(float a, float b, double* worst) {
+  if (!std::isfinite(a) || !std::isfinite(b)) return false;
+  double d =
+      std::fabs(double(a) - double(b)) / std::fmax(1.0, std::fmax(std::fabs(a), std::fabs(b)));
+  *worst = std::fmax(*worst, d);
+  return d <= 1e-6;
+}
+bool close(const Vec3& a, const Vec3& b, double* worst) {
+  return close(a.x, b.x, worst) && close(a.y, b.y, worst) && close(a.z, b.z, worst);
+}
+
+// The BSDF entries the bitcode provides (every implemented reflect/transmit entry but the
+// file-reading measured_bsdf).
+std::vector<int> bsdf_ids() {
+  std::vector<int> ids;
+  auto all = registry::closures();
+  for (int id = 0; id < int(all.size()); ++id)
+    if ((all[size_t(id)].flags & (registry::kReflect | registry::kTransmit)) &&
+        closures::has_implementation(id) && std::string(all[size_t(id)].key) != "measured_bsdf")
+      ids.push_back(id);
+  return ids;
+}
+
+struct Kernels {
+  std::unique_ptr<jit::Jit> jit;
+  ClosureKernels k;
+  jit::CompiledGroup code;
+  ~Kernels() {
+    if (jit) jit->remove(code);
+  }
+};
+
+class JitKernels : public ::testing::Test {
+protected:
+  static void SetUpTestSuite() {
+    std::string err;
+    kernels_ = new Kernels;
+    kernels_->jit = jit::Jit::create(err);
+    ASSERT_TRUE(kernels_->jit) << err;
+    jit::JitTimes t;
+    ASSERT_TRUE(jit::compile_closure_kernels(*kernels_->jit, bsdf_ids(), kernels_->k,
+                                             kernels_->code, t, err))
+        << err;
+  }
+  static void TearDownTestSuite() {
+    delete kernels_;
+    kernels_ = nullptr;
+  }
+  static Kernels* kernels_;
+};
+Kernels* JitKernels::kernels_ = nullptr;
+
+TEST_F(JitKernels, CoverEveryBsdfWithBitcode) {
+  for (int id : bsdf_ids()) EXPECT_TRUE(kernels_->k.covers(id)) << registry::closures()[id].key;
+  EXPECT_FALSE(kernels_->k.covers(registry::id_of("measured_bsdf")));
+  EXPECT_FALSE(kernels_->k.covers(registry::id_of("emission")));
+}
+
+TEST_F(JitKernels, AgreeWithNativeLibrary) {
+  const ClosureKernels& k = kernels_->k;
+  double worst = 0;
+  for (int id : bsdf_ids()) {
+    const char* key = registry::closures()[size_t(id)].key;
+    std::vector<closures::Params> blocks;
+    std::vector<ClosureConfig> cs = configs_for(id, Level::Quick);
+    for (const ClosureConfig& c : cs) blocks.push_back(c.params);
+    for (const ParamVariant& v : param_variants(cs.front().params)) blocks.push_back(v.params);
+    Pcg32 rng(77 + uint64_t(id));
+    int mismatches = 0;
+    for (const closures::Params& p : blocks)
+      for (int n = 0; n < 200; ++n) {
+        Vec3 wo = uniform_sphere(rng.next_double(), rng.next_double());
+        Vec3 wi = uniform_sphere(rng.next_double(), rng.next_double());
+        if (n % 4 == 0) wo.z = std::fabs(wo.z); // more pairs above the surface
+        Vec3 u = rng.next_vec3();
+        for (int mode = 0; mode < 2; ++mode) {
+          Transport t = mode ? Transport::Importance : Transport::Radiance;
+          BsdfEval ne = closures::eval(id, p.data(), wo, wi, t);
+          closures::LobeEval je;
+          k.eval(id, p.data(), &wo, &wi, mode, &je);
+          bool ok = close(ne.value, je.value, &worst) && close(ne.pdf, je.pdf, &worst);
+          auto ns = closures::sample(id, p.data(), wo, u, t);
+          closures::LobeSample js;
+          bool jok = k.sample(id, p.data(), &wo, &u, mode, &js) != 0;
+          ok = ok && jok == bool(ns);
+          if (ok && ns)
+            ok = close(ns->wi, js.wi, &worst) && close(ns->weight, js.weight, &worst) &&
+                 close(ns->pdf, js.pdf, &worst) && ns->flags == js.flags &&
+                 close(ns->eta, js.eta, &worst);
+          if (mode == 0) {
+            Vec3 ja;
+            k.albedo(id, p.data(), &wo, &ja);
+            ok = ok && close(closures::albedo(id, p.data(), wo), ja, &worst);
+          }
+          if (!ok && ++mismatches <= 3)
+            ADD_FAILURE() << key << ": native and JIT differ at wo (" << wo.x << ", " << wo.y
+                          << ", " << wo.z << "), wi (" << wi.x << ", " << wi.y << ", " << wi.z
+                          << "), mode " << mode << ": eval " << ne.value.x << "/" << je.value.x
+                          << " pdf " << ne.pdf << "/" << je.pdf << " sample " << bool(ns) << "/"
+                          << jok << " u (" << u.x << ", " << u.y << ", " << u.z << ")"
+                          << (ns ? " native wi (" + std::to_string(ns->wi.x) + ", " +
+                                       std::to_string(ns->wi.y) + ", " + std::to_string(ns->wi.z) +
+                                       ") w " + std::to_string(ns->weight.x) + " pdf " +
+                                       std::to_string(ns->pdf)
+                                 : std::string())
+                          << (jok ? " jit wi (" + std::to_string(js.wi.x) + ", " +
+                                        std::to_string(js.wi.y) + ", " + std::to_string(js.wi.z) +
+                                        ") w " + std::to_string(js.weight.x) + " pdf " +
+                                        std::to_string(js.pdf)
+                                  : std::string());
+        }
+      }
+  }
+  std::printf("largest relative difference, native vs JIT: %.3g\n", worst);
+}
+
+// A material's kernels hold only its own closures; its Bsdf gives the native results.
+TEST(MaterialKernels, OnlyTheMaterialsClosuresAndSameMixture) {
+  ShadingSystem ss;
+  DiagnosticList d;
+  ASSERT_TRUE(ss.add_shader_ir("two", R"(lobe-ir 1
+surface two
+symbols
+  global normal N
+  global closure Ci
+  local closure a
+  local closure b
+  const string $c0 = "diffuse"
+  const string $c1 = "phong"
+  const float $c2 = 20
+main
+  closure a $c0 N
+  closure b $c1 N $c2
+  add Ci a b
+end
+)",
+                               d));
+  DiagnosticList diags;
+  auto g = ss.parse_group("shader two layer ;", "t", diags);
+  ASSERT_TRUE(g);
+  auto mat = ss.compile(*g, diags);
+  ASSERT_TRUE(mat) << (diags.empty() ? "" : diags.front().text);
+  const ClosureKernels* k = mat->closure_kernels();
+  ASSERT_NE(k, nullptr) << mat->closure_kernels_error();
+  EXPECT_TRUE(k->covers(registry::id_of("diffuse")));
+  EXPECT_TRUE(k->covers(registry::id_of("phong")));
+  EXPECT_FALSE(k->covers(registry::id_of("ward")));
+  EXPECT_FALSE(k->covers(registry::id_of("dielectric_bsdf")));
+
+  ShadingContext ctx;
+  ShaderGlobals sg{};
+  sg.context = &ctx;
+  sg.N = sg.Ng = {0, 0, 1};
+  mat->shade(sg);
+  Vec3 wo = normalize(Vec3{0.3f, 0.1f, 0.9f});
+  Bsdf native, jitted;
+  native.build(sg.Ci, wo, sg.Ng);
+  jitted.build(sg.Ci, wo, sg.Ng, k);
+  ASSERT_EQ(jitted.lobe_count(), 2);
+  double worst = 0;
+  Pcg32 rng(5);
+  for (int n = 0; n < 500; ++n) {
+    Vec3 wi = uniform_sphere(rng.next_double(), rng.next_double());
+    BsdfEval a = native.eval(wo, wi), b = jitted.eval(wo, wi);
+    EXPECT_TRUE(close(a.value, b.value, &worst) && close(a.pdf, b.pdf, &worst));
+    Vec3 u = rng.next_vec3();
+    auto sa = native.sample(wo, u), sb = jitted.sample(wo, u);
+    ASSERT_EQ(bool(sa), bool(sb));
+    if (sa) {
+      EXPECT_TRUE(close(sa->wi, sb->wi, &worst) && close(sa->weight, sb->weight, &worst));
+    }
+  }
+  // Lambert (1/pi) plus Phong at wo: eval at the mirror direction is positive and finite.
+  EXPECT_GT(native.eval(wo, Vec3{-wo.x, -wo.y, wo.z}).value.x, 1.0f / float(M_PI) * wo.z);
+}
+
+} // namespace
