@@ -12,6 +12,7 @@
 //     -O0 | -O1 | -O2         optimisation (-O0 also turns specialisation off)
 //     --stats                 compile time per stage and shading time per point
 //     -I dir, -D NAME[=val]   include/search path, preprocessor definition
+//     -U NAME                 undefine a preprocessor macro
 //
 // Shaders are found by name on the search path (name.osl, name.lir) or by path. Printed output
 // follows OSL's formatting; each connection is announced as `Connect A.out to B.in` first.
@@ -20,6 +21,7 @@
 #include "grid.h"
 #include "image.h"
 #include "lobe/shadingsys.h"
+#include "shader_source.h"
 
 #include <chrono>
 #include <cstdio>
@@ -49,7 +51,7 @@ void usage(FILE* f) {
   std::fprintf(f, "usage: lobe shade [options] shadername [more layers]\n"
                   "  -g W H  -param[:type=T] name value  -layer NAME shader  -connect A out B in\n"
                   "  -group file  --center  --raytype name  -o var file.exr|png  -O0|-O1|-O2\n"
-                  "  --stats  -I dir  -D NAME[=val]\n");
+                  "  --stats  -I dir  -D NAME[=val]  -U NAME\n");
 }
 
 std::string layer_name_for(const std::string& shader) {
@@ -110,6 +112,9 @@ int parse_args(int argc, char** argv, Options& o) {
     } else if (a.rfind("-D", 0) == 0) {
       std::string d = a.size() > 2 ? a.substr(2) : (need(1) ? argv[++i] : "");
       o.compile.defines.push_back(d);
+    } else if (a.rfind("-U", 0) == 0) {
+      std::string d = a.size() > 2 ? a.substr(2) : (need(1) ? argv[++i] : "");
+      o.compile.undefines.push_back(d);
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "lobe shade: unknown or incomplete option '%s'\n", a.c_str());
       return 2;
@@ -137,8 +142,12 @@ bool read_text(const std::string& path, std::string& out) {
   return true;
 }
 
+// Each diagnostic's text is already a complete block ending in a newline (as lobe compile
+// prints them): no blank line between them.
 void print_diags(const lobe::DiagnosticList& d) {
-  for (const auto& x : d) std::fprintf(stderr, "%s\n", x.text.c_str());
+  for (const auto& x : d)
+    std::fprintf(stderr, "%s%s", x.text.c_str(),
+                 !x.text.empty() && x.text.back() == '\n' ? "" : "\n");
 }
 
 // Finds `var` among the layers' parameters, last layer first.
@@ -171,6 +180,14 @@ int run_shade(int argc, char** argv) {
   if (o.group.layers.empty()) {
     usage(stderr);
     return 2;
+  }
+  // Shaders named without a path resolve on the search path here, so that one found in the
+  // working directory is `x.osl` (as for lobe compile and OSL) in diagnostics and __FILE__,
+  // not `./x.osl`.
+  for (auto& l : o.group.layers) {
+    std::string p = lobe::group::find_shader_file(l.shader, o.compile);
+    if (p.rfind("./", 0) == 0) p.erase(0, 2);
+    if (!p.empty()) l.shader = p;
   }
   for (const auto& c : o.group.connections)
     std::printf("Connect %s.%s to %s.%s\n", c.src_layer.c_str(), c.src_param.c_str(),

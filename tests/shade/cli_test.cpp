@@ -8,9 +8,7 @@
 
 namespace {
 
-std::string run(const std::string& args) {
-  std::string cmd =
-      std::string(LOBE_EXE) + " shade -I " + LOBE_SHADE_CORPUS + "/layers " + args + " 2>&1";
+std::string run_cmd(const std::string& cmd) {
   std::string out;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return "<popen failed>";
@@ -19,6 +17,11 @@ std::string run(const std::string& args) {
   while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
   pclose(p);
   return out;
+}
+
+std::string run(const std::string& args) {
+  return run_cmd(std::string(LOBE_EXE) + " shade -I " + LOBE_SHADE_CORPUS + "/layers " + args +
+                 " 2>&1");
 }
 
 // Runs at -O0 and -O2 (specialisation off and on); both must print the same.
@@ -67,6 +70,37 @@ TEST(ShadeCli, WritesOutputImage) {
   EXPECT_TRUE(std::filesystem::exists(file));
   EXPECT_GT(std::filesystem::file_size(file), 0u);
   std::filesystem::remove(file);
+}
+
+// Runs `lobe shade args` in directory `dir` (stdout and stderr together).
+std::string run_in(const std::filesystem::path& dir, const std::string& args) {
+  return run_cmd("cd '" + dir.string() + "' && " + LOBE_EXE + " shade " + args + " 2>&1");
+}
+
+std::filesystem::path scratch_dir(const std::string& name, const std::string& text) {
+  auto dir = std::filesystem::temp_directory_path() / "lobe_shade_cli_scratch";
+  std::filesystem::create_directories(dir);
+  FILE* f = std::fopen((dir / name).string().c_str(), "wb");
+  std::fputs(text.c_str(), f);
+  std::fclose(f);
+  return dir;
+}
+
+// -D and -U as for lobe compile; a shader found by name in the working directory is `w.osl`
+// in __FILE__ and in diagnostics (not `./w.osl`), which follow one another without blank lines.
+TEST(ShadeCli, PreprocessorOptionsFileNamesAndDiagnosticsAsLobeCompile) {
+  auto dir = scratch_dir("w.osl", "shader w()\n{\n#ifdef FOO\n    printf(\"foo\\n\");\n#endif\n"
+                                  "    printf(\"%s\\n\", __FILE__);\n}\n");
+  EXPECT_EQ(run_in(dir, "-DFOO w"), "foo\nw.osl\n");
+  EXPECT_EQ(run_in(dir, "-D FOO -U FOO w"), "w.osl\n");
+  EXPECT_EQ(run_in(dir, "-D FOO -UFOO w.osl"), "w.osl\n");
+  scratch_dir("bad.osl", "shader bad()\n{\n    float x = 1 + nope;\n    int y = \"s\";\n}\n");
+  EXPECT_EQ(run_in(dir, "bad"), "bad.osl:3:19: error: use of undeclared identifier 'nope'\n"
+                                "    float x = 1 + nope;\n"
+                                "                  ^~~~\n"
+                                "bad.osl:4:13: error: cannot assign 'string' to 'int'\n"
+                                "    int y = \"s\";\n"
+                                "            ^~~\n");
 }
 
 TEST(ShadeCli, ErrorsAndUsage) {
