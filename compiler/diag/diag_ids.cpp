@@ -78,7 +78,7 @@ const Row kTable[] = {
     ROW(err_not_assignable, Error, "expression is not assignable"),
     ROW(err_write_readonly_param, Error,
         "cannot write to parameter '%0': it is not declared 'output'"),
-    ROW(err_write_readonly_global, Error, "cannot write to global '%0' in a %1"),
+    ROW(err_write_readonly_global, Error, "cannot write to global '%0' in %1"),
     ROW(err_output_arg_not_lvalue, Error,
         "argument %0 of '%1' is an output parameter and needs a writable variable"),
     ROW(err_missing_return, Error, "non-void function '%0' does not return a value"),

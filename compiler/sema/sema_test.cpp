@@ -239,6 +239,13 @@ TEST(Sema, GlobalsAndWritability) {
   EXPECT_EQ(bad.count(DiagId::err_shader_redefinition), 1);
   Checked disp("displacement d() { P += N; Ci = 0; }");
   EXPECT_EQ(disp.count(DiagId::err_write_readonly_global), 1) << disp.text();
+  EXPECT_NE(disp.text().find("cannot write to global 'Ci' in a shader of type 'displacement'"),
+            std::string::npos)
+      << disp.text();
+  Checked generic("shader g() { u = 1; }");
+  EXPECT_NE(generic.text().find("cannot write to global 'u' in a shader of type 'shader'"),
+            std::string::npos)
+      << generic.text();
 }
 
 TEST(Sema, ShadingFunctions) {
