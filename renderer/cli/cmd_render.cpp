@@ -16,6 +16,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <mutex>
 #include <unistd.h>
 
@@ -118,7 +119,12 @@ int run_render(int argc, char** argv) {
   if (app.count("--exposure")) st.exposure = a.exposure;
   std::string out = !a.output.empty() ? a.output : (!st.output.empty() ? st.output : "lobe.png");
 
-  lobe::render::MaterialBackend backend(a.backend);
+  // Shaders are found next to the scene file (whatever the working directory), then in
+  // stdlib_shaders/.
+  std::vector<std::string> shader_dirs;
+  if (!a.scene.empty())
+    shader_dirs.push_back(std::filesystem::absolute(a.scene).parent_path().string());
+  lobe::render::MaterialBackend backend(a.backend, shader_dirs);
   lobe::render::RenderScene scene;
   scene.use_closure_kernels(a.closures == "jit");
   auto t0 = std::chrono::steady_clock::now();
