@@ -11,10 +11,9 @@ namespace lobe::render {
 
 #ifdef LOBE_HAVE_JIT
 struct MaterialBackend::Jit {
+  // ShadingSystem::compile is thread-safe (it serialises only the LLJIT step itself), so
+  // materials compile in parallel; only this backend's own bookkeeping is locked (mu_).
   ShadingSystem ss;
-  // ShadingSystem::compile is documented thread-safe, but concurrent compiles currently fail
-  // in the JIT ("symbol 'group_entry' is already defined"): serialise them until it is fixed.
-  std::mutex compile_mu;
 };
 bool MaterialBackend::jit_available() { return true; }
 #else
@@ -47,11 +46,7 @@ std::shared_ptr<const Material> MaterialBackend::compile(const scene::MaterialDe
 #ifdef LOBE_HAVE_JIT
   if (jit_) {
     DiagnosticList diags;
-    std::shared_ptr<const Material> mat;
-    {
-      std::lock_guard<std::mutex> lock(jit_->compile_mu);
-      mat = jit_->ss.compile(m.group, diags);
-    }
+    std::shared_ptr<const Material> mat = jit_->ss.compile(m.group, diags);
     if (mat) {
       std::lock_guard<std::mutex> lock(mu_);
       used_jit_ = true;
