@@ -41,28 +41,38 @@ MaterialCompiler MaterialBackend::compiler() {
   return [this](const scene::MaterialDesc& m, std::string& error) { return compile(m, error); };
 }
 
+namespace {
+
+// The errors among `diags`, one per line ("error: " dropped from one-line messages: the
+// renderer prefixes its own location).
+std::string error_text(const DiagnosticList& diags) {
+  std::string text;
+  for (const Diagnostic& d : diags) {
+    if (d.severity == Diagnostic::Severity::Warning) continue;
+    std::string t = d.text;
+    if (t.rfind("error: ", 0) == 0 && t.find('\n') == std::string::npos) t = t.substr(7);
+    text += (text.empty() ? "" : "\n") + t;
+  }
+  return text.empty() ? "compile failed" : text;
+}
+
+} // namespace
+
+// A JIT error is the user's error and is reported as such: the native twins stand in only
+// when the JIT is unavailable (a build without it), never for a material the JIT rejected.
 std::shared_ptr<const Material> MaterialBackend::compile(const scene::MaterialDesc& m,
                                                          std::string& error) {
 #ifdef LOBE_HAVE_JIT
   if (jit_) {
     DiagnosticList diags;
     std::shared_ptr<const Material> mat = jit_->ss.compile(m.group, diags);
-    if (mat) {
-      std::lock_guard<std::mutex> lock(mu_);
-      used_jit_ = true;
-      return mat;
-    }
-    std::string text;
-    for (const Diagnostic& d : diags) text += (text.empty() ? "" : "\n") + d.text;
-    bool fallback = mode_ == "auto" && m.group.layers.size() == 1 &&
-                    has_native_material(m.group.layers[0].shader);
-    if (!fallback) {
-      error = "compile failed:\n" + text;
+    if (!mat) {
+      error = error_text(diags);
       return nullptr;
     }
     std::lock_guard<std::mutex> lock(mu_);
-    warnings_.push_back(m.where + ": JIT failed, using the native '" + m.group.layers[0].shader +
-                        "':\n" + text);
+    used_jit_ = true;
+    return mat;
   }
 #endif
   if (mode_ == "jit") {

@@ -1,9 +1,9 @@
 // Which implementation compiles scene materials: the JIT (ShadingSystem, OSL source from the
 // stdlib_shaders/ folder and the scene's folder) or the native C++ stdlib twins.
 //
-// "auto" uses the JIT when this build has it (LOBE_HAVE_JIT) and falls back to the native
-// version of a stdlib shader only if the JIT fails on it (recorded in warnings()); "jit" never
-// falls back; "native" never uses the JIT.
+// "auto" uses the JIT when this build has it (LOBE_HAVE_JIT), else the native versions of the
+// stdlib shaders; a material the JIT rejects is an error in every mode (never replaced by its
+// native twin). "jit" fails without the JIT; "native" never uses it.
 #pragma once
 
 #include "scene_setup.h"

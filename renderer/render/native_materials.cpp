@@ -5,6 +5,7 @@
 
 #include "lobe/context.h"
 
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -22,21 +23,66 @@ uint64_t global_bit(const char* name) {
 
 namespace {
 
-// Instance values by name: numbers (1 or 3) or a string.
+// The parameters of each native shader, as declared in its .osl file.
+enum class PType { Float, Color, String };
+struct ParamSpec {
+  const char* name;
+  PType type;
+};
+
+const std::vector<ParamSpec>* params_of(const std::string& shader) {
+  using P = PType;
+  static const std::map<std::string, std::vector<ParamSpec>> kParams = {
+      {"matte", {{"Cs", P::Color}, {"Kd", P::Float}, {"roughness", P::Float}}},
+      {"plastic",
+       {{"Cs", P::Color}, {"Kd", P::Float}, {"Ks", P::Float}, {"roughness", P::Float},
+        {"ior", P::Float}}},
+      {"metal",
+       {{"preset", P::String}, {"ior", P::Color}, {"extinction", P::Color},
+        {"roughness", P::Float}, {"tint", P::Color}}},
+      {"brushed_metal",
+       {{"preset", P::String}, {"roughness_along", P::Float}, {"roughness_across", P::Float},
+        {"tint", P::Color}}},
+      {"glass",
+       {{"transmission_color", P::Color}, {"reflection_color", P::Color}, {"ior", P::Float},
+        {"roughness", P::Float}}},
+      {"emitter", {{"Cs", P::Color}, {"power", P::Float}}},
+      {"mirror", {{"Cs", P::Color}}},
+      {"constant_background", {{"Cs", P::Color}}},
+  };
+  auto it = kParams.find(shader);
+  return it == kParams.end() ? nullptr : &it->second;
+}
+
+// Instance values by name, checked against the shader's parameters as the JIT checks them
+// (runtime/group/instance_values.cpp): a string parameter takes the text; a float exactly one
+// number; a color one number (grey) or three. Messages match the JIT's.
 class ParamValues {
 public:
-  bool parse(const ShaderGroup::Layer& layer, std::string& error) {
+  bool parse(const ShaderGroup::Layer& layer, const std::vector<ParamSpec>& specs,
+             std::string& error) {
     for (const InstanceValue& iv : layer.values) {
-      if (iv.type == "string") {
+      const ParamSpec* spec = nullptr;
+      for (const ParamSpec& ps : specs)
+        if (iv.name == ps.name) spec = &ps;
+      if (!spec) continue;
+      if (spec->type == PType::String) {
         strings_[iv.name] = iv.value;
         continue;
       }
       std::istringstream in(iv.value);
       std::vector<float> v;
-      float x;
-      while (in >> x) v.push_back(x);
-      if (v.empty() || !in.eof()) {
-        error = "parameter '" + iv.name + "': cannot read \"" + iv.value + "\" as " + iv.type;
+      bool ok = true;
+      for (std::string w; in >> w;) {
+        char* end = nullptr;
+        float x = std::strtof(w.c_str(), &end);
+        ok &= end != w.c_str() && !*end;
+        v.push_back(x);
+      }
+      ok &= spec->type == PType::Float ? v.size() == 1 : (v.size() == 1 || v.size() == 3);
+      if (!ok) {
+        error = "layer '" + layer.name + "': value '" + iv.value + "' does not fit parameter '" +
+                iv.name + "' of type " + (spec->type == PType::Float ? "float" : "color");
         return false;
       }
       nums_[iv.name] = v;
@@ -145,8 +191,10 @@ ShadeFn make_shader(const std::string& name, const ParamValues& p) {
   }
   if (name == "metal" || name == "brushed_metal") {
     bool brushed = name == "brushed_metal";
-    MetalIor custom{p.c("ior", {0.18299f, 0.42108f, 1.37340f}),
-                    p.c("extinction", {3.42420f, 2.34590f, 1.77040f})};
+    // brushed_metal has no ior/extinction: an unknown preset is aluminium, as in its .osl.
+    MetalIor custom = brushed ? metal_preset("aluminium", {})
+                              : MetalIor{p.c("ior", {0.18299f, 0.42108f, 1.37340f}),
+                                         p.c("extinction", {3.42420f, 2.34590f, 1.77040f})};
     MetalIor m = metal_preset(p.s("preset", brushed ? "aluminium" : "gold"), custom);
     float rx = brushed ? p.f("roughness_along", 0.15f) : p.f("roughness", 0.3f);
     float ry = brushed ? p.f("roughness_across", 0.6f) : rx;
@@ -229,7 +277,7 @@ std::shared_ptr<const Material> make_native_material(const ShaderGroup& group, s
     return nullptr;
   }
   ParamValues p;
-  if (!p.parse(l, error)) return nullptr;
+  if (!p.parse(l, *params_of(l.shader), error)) return nullptr;
   return std::make_shared<NativeMaterial>(make_shader(l.shader, p), reads_of(l.shader));
 }
 

@@ -100,3 +100,46 @@ TEST(RenderCli, ShadersNextToTheSceneFileAreFoundFromAnyFolder) {
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NEAR(mean_channel(d / "x.exr", "albedo.G"), 0.5, 1e-6);
 }
+
+// A value the shader cannot take is an error (exit 1, file, material, parameter) in every
+// backend: the native twins are no fallback for a material the JIT rejects.
+TEST(RenderCli, BadInstanceValuesAreErrorsInEveryBackend) {
+  fs::path d = temp_dir("bad_values");
+  struct Case {
+    const char* params;
+    const char* message;
+  } cases[] = {
+      {R"({"Cs": "red"})", "value 'red' does not fit parameter 'Cs' of type color"},
+      {R"({"Cs": [1, 0.5]})", "value '1 0.5' does not fit parameter 'Cs' of type color"},
+      {R"({"roughness": [0.1, 0.2, 0.3]})",
+       "value '0.1 0.2 0.3' does not fit parameter 'roughness' of type float"},
+  };
+  for (const Case& c : cases) {
+    fs::path scene = d / "s.json";
+    write_file(scene, furnace_json(std::string(R"({"shader": "matte", "params": )") + c.params + "}"));
+    for (const char* mode : {"auto", "jit", "native"}) {
+      CmdResult r = render(std::string("--materials ") + mode + " " + scene.string() + " -o " +
+                           (d / "o.png").string());
+      EXPECT_EQ(r.status, 1) << mode << " " << c.params;
+      EXPECT_EQ(r.out, "lobe render: " + scene.string() + ": /materials/m: material 'm': layer 'm': " +
+                           c.message + "\n")
+          << mode;
+    }
+  }
+}
+
+// In auto mode the JIT's own error is reported, not the native twins' limitation.
+TEST(RenderCli, JitErrorsAreReportedAsTheyAre) {
+  fs::path d = temp_dir("jit_error");
+  fs::path scene = d / "s.json";
+  write_file(scene, furnace_json(R"({"group": "param float ior 1.45 ; shader glass g ; connect g.x h.y ;"})"));
+  CmdResult r = render(scene.string() + " -o " + (d / "o.png").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.out, "lobe render: " + scene.string() +
+                       ": /materials/m: material 'm': connect g.x h.y: no such layer\n");
+  r = render("--materials native " + scene.string() + " -o " + (d / "o.png").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.out, "lobe render: " + scene.string() +
+                       ": /materials/m: material 'm': native materials take a single layer "
+                       "without connections\n");
+}
