@@ -143,12 +143,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "closures_jit: %s\n", err.c_str());
     return 1;
   }
-  std::vector<int> ids;
+  std::vector<int> ids; // every closure the property suites test: all BSDFs with bitcode
   auto all = registry::closures();
   for (int id = 0; id < int(all.size()); ++id)
-    if ((all[size_t(id)].flags & (registry::kReflect | registry::kTransmit)) &&
-        closures::has_implementation(id) && std::string(all[size_t(id)].key) != "measured_bsdf")
-      ids.push_back(id);
+    if (is_testable(id)) ids.push_back(id);
   jit::CompiledGroup code;
   jit::JitTimes times;
   if (!jit::compile_closure_kernels(*jit, ids, g_kernels, code, times, err)) {

@@ -36,15 +36,12 @@ bool close(const Vec3& a, const Vec3& b, double* worst) {
   return close(a.x, b.x, worst) && close(a.y, b.y, worst) && close(a.z, b.z, worst);
 }
 
-// The BSDF entries the bitcode provides (every implemented reflect/transmit entry but the
-// file-reading measured_bsdf).
+// The BSDF entries the bitcode provides: the property suites' testable entries (every
+// implemented reflect/transmit entry but the file-reading measured_bsdf).
 std::vector<int> bsdf_ids() {
   std::vector<int> ids;
-  auto all = registry::closures();
-  for (int id = 0; id < int(all.size()); ++id)
-    if ((all[size_t(id)].flags & (registry::kReflect | registry::kTransmit)) &&
-        closures::has_implementation(id) && std::string(all[size_t(id)].key) != "measured_bsdf")
-      ids.push_back(id);
+  for (int id = 0; id < int(registry::closures().size()); ++id)
+    if (is_testable(id)) ids.push_back(id);
   return ids;
 }
 
