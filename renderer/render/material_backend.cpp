@@ -70,6 +70,16 @@ std::shared_ptr<const Material> MaterialBackend::compile(const scene::MaterialDe
       error = error_text(diags);
       return nullptr;
     }
+    // The JIT ignores an instance value for a parameter the shader lacks (with a warning, as
+    // OSL does); in a scene that is a mistake (a misspelt parameter), so it is an error.
+    for (const Diagnostic& d : diags)
+      if (d.severity == Diagnostic::Severity::Warning &&
+          d.text.find("' has no parameter '") != std::string::npos) {
+        error = d.text.substr(d.text.rfind("warning: ", 0) == 0 ? 9 : 0);
+        if (size_t cut = error.rfind("; value ignored"); cut != std::string::npos)
+          error.resize(cut);
+        return nullptr;
+      }
     std::lock_guard<std::mutex> lock(mu_);
     used_jit_ = true;
     return mat;

@@ -65,7 +65,13 @@ public:
       const ParamSpec* spec = nullptr;
       for (const ParamSpec& ps : specs)
         if (iv.name == ps.name) spec = &ps;
-      if (!spec) continue;
+      if (!spec) { // as the renderer reports the JIT's warning for it
+        std::string names;
+        for (const ParamSpec& ps : specs) names += (names.empty() ? "" : ", ") + std::string(ps.name);
+        error = "layer '" + layer.name + "': shader '" + layer.shader + "' has no parameter '" +
+                iv.name + "' (its parameters: " + names + ")";
+        return false;
+      }
       if (spec->type == PType::String) {
         strings_[iv.name] = iv.value;
         continue;

@@ -258,8 +258,12 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     for (const InstanceValue& v : group.layers[i].values) {
       int s = sources[i]->find_symbol(v.name);
       if (s < 0 || !is_param(sources[i]->symbols[size_t(s)])) {
+        std::string names; // the shader's parameters, as a hint
+        for (const ir::Symbol& ps : sources[i]->symbols)
+          if (is_param(ps)) names += (names.empty() ? "" : ", ") + ps.name;
         diags.push_back(warn("layer '" + group.layers[i].name + "': shader '" + sources[i]->name +
-                             "' has no parameter '" + v.name + "'; value ignored"));
+                             "' has no parameter '" + v.name + "' (its parameters: " + names +
+                             "); value ignored"));
         continue;
       }
       std::vector<ir::ConstValue> cv;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -35,7 +36,8 @@ CmdResult run_cmd(const std::string& cmd) {
 
 // A fresh folder for one test's files.
 fs::path temp_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("lobe_render_cli_" + name);
+  fs::path d = fs::temp_directory_path() /
+               ("lobe_render_cli_" + name + "_" + std::to_string(getpid()));
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
@@ -142,4 +144,29 @@ TEST(RenderCli, JitErrorsAreReportedAsTheyAre) {
   EXPECT_EQ(r.out, "lobe render: " + scene.string() +
                        ": /materials/m: material 'm': native materials take a single layer "
                        "without connections\n");
+}
+
+// An instance value for a parameter the shader does not have is an error naming the file,
+// the material, the parameter and the shader's parameters, in every backend.
+TEST(RenderCli, UnknownParametersAreErrors) {
+  fs::path d = temp_dir("unknown_param");
+  fs::path scene = d / "s.json";
+  write_file(scene, furnace_json(R"({"shader": "matte", "params": {"Cz": 1}})"));
+  for (const char* mode : {"auto", "jit", "native"}) {
+    CmdResult r = render(std::string("--materials ") + mode + " " + scene.string() + " -o " +
+                         (d / "o.png").string());
+    EXPECT_EQ(r.status, 1) << mode;
+    EXPECT_EQ(r.out, "lobe render: " + scene.string() +
+                         ": /materials/m: material 'm': layer 'm': shader 'matte' has no "
+                         "parameter 'Cz' (its parameters: Cs, Kd, roughness)\n")
+        << mode;
+  }
+  // A shader next to the scene: its own parameters are listed.
+  write_file(d / "tinted.osl", kTinted);
+  write_file(scene, furnace_json(R"({"shader": "tinted", "params": {"colour": [1, 0, 0]}})"));
+  CmdResult r = render(scene.string() + " -o " + (d / "o.png").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.out, "lobe render: " + scene.string() +
+                       ": /materials/m: material 'm': layer 'm': shader 'tinted' has no "
+                       "parameter 'colour' (its parameters: c)\n");
 }
