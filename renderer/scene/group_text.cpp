@@ -13,8 +13,16 @@ struct Token {
   int line = 1;
 };
 
+// "where: line N" (N inside the text), or "where:L" with L the file line when the text starts
+// on file line first_line > 0.
+std::string located(const std::string& where, int first_line, int line) {
+  return first_line > 0 ? where + ":" + std::to_string(first_line + line - 1)
+                        : where + ": line " + std::to_string(line);
+}
+
 // Splits into words, quoted strings and ';' tokens.
-std::vector<Token> tokenize(const std::string& s, std::string& error, const std::string& where) {
+std::vector<Token> tokenize(const std::string& s, std::string& error, const std::string& where,
+                            int first_line) {
   std::vector<Token> out;
   int line = 1;
   for (size_t i = 0; i < s.size();) {
@@ -28,7 +36,7 @@ std::vector<Token> tokenize(const std::string& s, std::string& error, const std:
     } else if (c == '"') {
       size_t end = s.find('"', i + 1);
       if (end == std::string::npos) {
-        error = where + ": line " + std::to_string(line) + ": unterminated string";
+        error = located(where, first_line, line) + ": unterminated string";
         return {};
       }
       out.push_back({s.substr(i + 1, end - i - 1), true, line});
@@ -65,15 +73,15 @@ bool is_param_type(const std::string& word) {
 }
 
 std::optional<ShaderGroup> parse_group_text(const std::string& text, const std::string& where,
-                                            bool allow_bare, std::string& error) {
+                                            bool allow_bare, std::string& error, int first_line) {
   error.clear();
-  std::vector<Token> toks = tokenize(text, error, where);
+  std::vector<Token> toks = tokenize(text, error, where, first_line);
   if (!error.empty()) return std::nullopt;
   ShaderGroup group;
   std::vector<InstanceValue> pending;
   size_t i = 0;
   auto fail = [&](int line, const std::string& msg) {
-    error = where + ": line " + std::to_string(line) + ": " + msg;
+    error = located(where, first_line, line) + ": " + msg;
     return std::nullopt;
   };
   while (i < toks.size()) {

@@ -16,9 +16,11 @@
 
 namespace lobe::scene {
 
-// `where` prefixes messages ("scene.xml:12"); line numbers inside the text are added.
+// `where` prefixes messages: "where: line N: msg" with N counted inside the text; or, with
+// `first_line` > 0 (the file line the text starts on), "where:L: msg" with L the file line.
 std::optional<ShaderGroup> parse_group_text(const std::string& text, const std::string& where,
-                                            bool allow_bare, std::string& error);
+                                            bool allow_bare, std::string& error,
+                                            int first_line = 0);
 
 // True for OSL parameter type names: int float color point vector normal string matrix,
 // optionally with an array suffix ("float[3]").

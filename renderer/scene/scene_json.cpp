@@ -353,10 +353,15 @@ std::optional<SceneDesc> parse_json_scene(const std::string& text, const std::st
     // nlohmann reports a byte offset; turn it into a line and column.
     size_t off = std::min(e.byte, text.size()), line = 1, col = 1;
     for (size_t i = 0; i + 1 < off; ++i) text[i] == '\n' ? (++line, col = 1) : ++col;
+    // e.what() is "[json.exception.parse_error.101] parse error at line L, column C: <what>";
+    // the position is ours already, so keep only <what>.
     std::string what = e.what();
-    size_t cut = what.find("]: ");
+    if (size_t at = what.find(" parse error"); at != std::string::npos) {
+      size_t colon = what.find(": ", at);
+      if (colon != std::string::npos) what = what.substr(colon + 2);
+    }
     error = path + ":" + std::to_string(line) + ":" + std::to_string(col) +
-            ": invalid JSON: " + (cut == std::string::npos ? what : what.substr(cut + 3));
+            ": invalid JSON: " + what;
     return std::nullopt;
   }
   try {

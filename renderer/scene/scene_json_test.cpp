@@ -107,6 +107,11 @@ TEST(SceneJson, ErrorsNamePointerAndExpectation) {
 TEST(SceneJson, SyntaxErrorsGiveLineAndColumn) {
   std::string err = error_of("{\n  \"camera\": {\n    \"fov\": ,\n  }\n}");
   EXPECT_EQ(err.rfind("t.json:3:", 0), 0u) << err;
+  // The position once, then nlohmann's message without its own "[json.exception...] parse
+  // error at line L, column C:" prefix.
+  err = error_of("{\n  \"shapes\": [\n    {\"type\": \"sphere\", \"radius\": 1,}\n  ]}");
+  EXPECT_EQ(err, "t.json:3:36: invalid JSON: syntax error while parsing object key - unexpected "
+                 "'}'; expected string literal");
 }
 
 TEST(SceneJson, GroupTextErrorsAreLocated) {

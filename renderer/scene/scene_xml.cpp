@@ -53,11 +53,13 @@ public:
   std::vector<std::string> warnings;
 
 private:
-  std::string at(const pugi::xml_node& n) const {
-    ptrdiff_t off = n.offset_debug();
+  int line_of(ptrdiff_t off) const {
     int line = 1;
     for (ptrdiff_t i = 0; i < off && i < ptrdiff_t(text_.size()); ++i) line += text_[i] == '\n';
-    return path_ + ":" + std::to_string(line);
+    return line;
+  }
+  std::string at(const pugi::xml_node& n) const {
+    return path_ + ":" + std::to_string(line_of(n.offset_debug()));
   }
   bool fail(const pugi::xml_node& n, const std::string& msg) {
     error = at(n) + ": " + msg;
@@ -116,8 +118,16 @@ private:
     m.name = n.attribute("name") ? n.attribute("name").value()
                                  : "group" + std::to_string(s.materials.size());
     std::string err;
-    auto g = parse_group_text(n.child_value(), at(n), true, err);
-    if (!g) return fail(n, err.substr(err.find(": ") + 2));
+    // Errors carry the file line of the mistake: the group text starts on the line of its
+    // first text node (right after <ShaderGroup>).
+    pugi::xml_node text = n.first_child();
+    int first = line_of(text && text.type() == pugi::node_pcdata ? text.offset_debug()
+                                                                 : n.offset_debug());
+    auto g = parse_group_text(n.child_value(), path_, true, err, first);
+    if (!g) {
+      error = err;
+      return false;
+    }
     m.group = std::move(*g);
     m.group.name = m.name;
     current_ = static_cast<int>(s.materials.size());

@@ -49,6 +49,16 @@ TEST(SceneXml, ErrorsCarryLines) {
   EXPECT_EQ(err.rfind("t.xml:3: unknown element <Cone>", 0), 0u) << err;
   EXPECT_FALSE(parse_xml_scene("<World>\n<Background/>\n</World>", "t.xml", err));
   EXPECT_NE(err.find("needs a <ShaderGroup>"), std::string::npos);
+  // A mistake inside a <ShaderGroup> is reported at its file line (5), not a line counted
+  // inside the group.
+  EXPECT_FALSE(parse_xml_scene("<World>\n<Camera fov=\"40\"/>\n<ShaderGroup>\ncolor Cs 0.5 0.5 "
+                               "0.5;\nshadr matte m;\n</ShaderGroup>\n</World>",
+                               "t.xml", err));
+  EXPECT_EQ(err, "t.xml:5: expected `param`, `shader` or `connect`, found `shadr`");
+  EXPECT_FALSE(parse_xml_scene("<World>\n<ShaderGroup>shader matte m;\nfloat Kd \"x;</ShaderGroup>"
+                               "\n</World>",
+                               "t.xml", err));
+  EXPECT_EQ(err, "t.xml:3: unterminated string");
   EXPECT_FALSE(parse_xml_scene("<World><Sphere", "t.xml", err));
   EXPECT_NE(err.find("invalid XML"), std::string::npos);
 }
