@@ -118,6 +118,11 @@ int run_render(int argc, char** argv) {
   if (a.seed >= 0) st.seed = uint64_t(a.seed);
   if (app.count("--exposure")) st.exposure = a.exposure;
   std::string out = !a.output.empty() ? a.output : (!st.output.empty() ? st.output : "lobe.png");
+  // A bad output path is found now, not after a long render.
+  if (std::string e = lobe::image::check_writable(out); !e.empty()) {
+    std::fprintf(stderr, "lobe render: %s\n", e.c_str());
+    return 1;
+  }
 
   // Shaders are found next to the scene file (whatever the working directory), then in
   // stdlib_shaders/.
@@ -143,7 +148,7 @@ int run_render(int argc, char** argv) {
   opt.seed = st.seed;
   opt.threads = a.threads;
   opt.strategy = parse_strategy(a.strategy);
-  opt.aovs = lobe::image::is_float_format(out);
+  opt.aovs = lobe::image::keeps_all_channels(out); // AOV channels only where they are kept
   ProgressBar bar(!a.quiet && isatty(STDERR_FILENO));
   std::signal(SIGINT, on_sigint);
   lobe::render::RenderStats stats;

@@ -3,9 +3,12 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 
 namespace lobe::image {
 
@@ -31,6 +34,26 @@ static std::string lower_extension(const std::string& path) {
 bool is_float_format(const std::string& path) {
   std::string ext = lower_extension(path);
   return ext == "exr" || ext == "hdr" || ext == "pfm";
+}
+
+bool keeps_all_channels(const std::string& path) { return lower_extension(path) == "exr"; }
+
+std::string check_writable(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::string ext = lower_extension(path);
+  if (ext.empty() || fs::path(path).filename().string().find('.') == std::string::npos)
+    return path + ": no image extension (expected .exr, .png, .jpg, .tif or .hdr)";
+  if (!OIIO::ImageOutput::create(path)) {
+    OIIO::geterror(); // clear it
+    return path + ": cannot write ." + ext + " images (expected .exr, .png, .jpg, .tif or .hdr)";
+  }
+  fs::path dir = fs::path(path).parent_path();
+  if (dir.empty()) dir = ".";
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return path + ": folder " + dir.string() + " does not exist";
+  if (fs::exists(path, ec) ? access(path.c_str(), W_OK) != 0 : access(dir.c_str(), W_OK) != 0)
+    return path + ": not writable";
+  return "";
 }
 
 float srgb_encode(float x) {
@@ -83,10 +106,19 @@ std::string write_image(const std::string& path, const Image& img, const WriteOp
   if (img.pixels.size() != size_t(img.width) * img.height * img.channels.size())
     return path + ": pixel buffer size does not match the image size";
   if (is_float_format(path)) {
-    OIIO::ImageSpec spec(img.width, img.height, img.nchannels(), OIIO::TypeDesc::FLOAT);
-    spec.channelnames = img.channels;
-    if (lower_extension(path) == "exr") spec.attribute("compression", "zip");
-    return write_with(path, spec, img.pixels.data());
+    if (keeps_all_channels(path)) {
+      OIIO::ImageSpec spec(img.width, img.height, img.nchannels(), OIIO::TypeDesc::FLOAT);
+      spec.channelnames = img.channels;
+      spec.attribute("compression", "zip");
+      return write_with(path, spec, img.pixels.data());
+    }
+    // .hdr and the like: the first three channels (one repeated).
+    std::vector<float> rgb(size_t(img.width) * img.height * 3);
+    for (size_t p = 0; p < size_t(img.width) * img.height; ++p)
+      for (int c = 0; c < 3; ++c)
+        rgb[p * 3 + c] = img.pixels[p * img.nchannels() + std::min(c, img.nchannels() - 1)];
+    OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::FLOAT);
+    return write_with(path, spec, rgb.data());
   }
   std::vector<uint8_t> rgb = to_display(img, opt);
   OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);

@@ -44,6 +44,15 @@ struct WriteOptions {
 // True when `path`'s extension names a floating-point format we write linearly (.exr, .hdr).
 bool is_float_format(const std::string& path);
 
+// True when `path` is an EXR: the only output that keeps every channel (AOVs). Other float
+// formats (.hdr) keep the first three.
+bool keeps_all_channels(const std::string& path);
+
+// Checks, before anything is rendered, that `path` can be written: an extension this
+// OpenImageIO has a writer for, and an existing, writable folder (and file, if it exists).
+// "" if so, else "path: why".
+std::string check_writable(const std::string& path);
+
 // Writes `img` to `path`, format chosen from the extension.
 std::string write_image(const std::string& path, const Image& img, const WriteOptions& opt = {});
 

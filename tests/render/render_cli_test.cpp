@@ -170,3 +170,33 @@ TEST(RenderCli, UnknownParametersAreErrors) {
                        ": /materials/m: material 'm': layer 'm': shader 'tinted' has no "
                        "parameter 'colour' (its parameters: c)\n");
 }
+
+// The output is checked before rendering: a known extension and a writable folder. .hdr keeps
+// RGB only (AOVs are written to EXR alone).
+TEST(RenderCli, OutputIsCheckedBeforeRendering) {
+  fs::path d = temp_dir("output");
+  fs::path scene = d / "s.json";
+  // 2^20 spp would take minutes: an error must come before any rendering.
+  write_file(scene, furnace_json(R"({"shader": "matte"})"));
+  struct Case {
+    std::string out, message;
+  } cases[] = {
+      {(d / "x.pfm").string(),
+       (d / "x.pfm").string() + ": cannot write .pfm images (expected .exr, .png, .jpg, .tif or .hdr)"},
+      {(d / "x").string(),
+       (d / "x").string() + ": no image extension (expected .exr, .png, .jpg, .tif or .hdr)"},
+      {(d / "nope" / "x.png").string(),
+       (d / "nope" / "x.png").string() + ": folder " + (d / "nope").string() + " does not exist"},
+  };
+  for (const Case& c : cases) {
+    CmdResult r = render("--spp 1048576 " + scene.string() + " -o " + c.out);
+    EXPECT_EQ(r.status, 1) << c.out;
+    EXPECT_EQ(r.out, "lobe render: " + c.message + "\n");
+  }
+  CmdResult r = render(scene.string() + " -o " + (d / "x.hdr").string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  lobe::image::Image img;
+  ASSERT_EQ(lobe::image::read_image((d / "x.hdr").string(), img), "");
+  EXPECT_EQ(img.nchannels(), 3);
+  EXPECT_EQ(img.width, 8);
+}
