@@ -169,7 +169,7 @@ ShadeFn make_shader(const std::string& name, const ParamValues& p) {
     return [=](ShaderGlobals& sg, ShadingContext& ctx) -> const ClosureNode* {
       if (rough > 0) {
         closures::Params q("oren_nayar_diffuse_bsdf");
-        q.set("N", sg.N).set("albedo", albedo).set("roughness", rough);
+        q.set("N", sg.N).set("albedo", albedo).set("roughness", rough).set("energy_compensation", 1);
         return component(ctx, q, {1, 1, 1});
       }
       closures::Params q("diffuse");

@@ -45,6 +45,7 @@ TEST(JitMaterials, StdlibShadersMatchNativeTwins) {
   MaterialBackend jit("jit");
   const char* materials[] = {
       R"({"shader": "matte", "params": {"Cs": 0.35}})",
+      R"({"shader": "matte", "params": {"Cs": 1, "roughness": 0.8}})",
       R"({"shader": "plastic", "params": {"Cs": [0.2, 0.5, 0.8]}})",
       R"({"shader": "metal", "params": {"preset": "copper", "roughness": 0.4}})",
       R"({"shader": "glass", "params": {"ior": 1.33}})",
