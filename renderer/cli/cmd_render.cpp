@@ -158,6 +158,13 @@ int run_render(int argc, char** argv) {
   std::signal(SIGINT, SIG_DFL);
   bar.finish();
 
+  // Shader run-time messages (a texture that cannot be read, error()...), once each with a
+  // count, after the progress bar.
+  lobe::render::ShaderMessages messages = scene.stats().messages;
+  lobe::render::merge_messages(stats.counters.messages, messages);
+  for (const std::string& m : scene.describe(messages))
+    std::fprintf(stderr, "warning: %s\n", m.c_str());
+
   lobe::image::WriteOptions wo;
   wo.exposure = st.exposure;
   wo.tonemap = lobe::image::ToneMap::Filmic;

@@ -30,6 +30,7 @@ struct TraceCounters {
   uint64_t shadow_rays = 0; // occlusion queries
   uint64_t shades = 0;      // Material::shade calls
   double shade_seconds = 0; // time inside Material::shade + Bsdf::build (when timed)
+  ShaderMessages messages;  // what shader code reported (texture errors, error(), printf)
 };
 
 class PathTracer {

@@ -111,6 +111,7 @@ image::Image render_image(const RenderScene& scene, int width, int height, const
       stats->counters.shadow_rays += ts.counters.shadow_rays;
       stats->counters.shades += ts.counters.shades;
       stats->counters.shade_seconds += ts.counters.shade_seconds;
+      merge_messages(ts.counters.messages, stats->counters.messages);
     }
     stats->cancelled = cancel && cancel->load();
   }

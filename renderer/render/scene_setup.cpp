@@ -13,6 +13,7 @@
 #include <tbb/parallel_for.h>
 
 #include <chrono>
+#include <cstring>
 #include <set>
 
 namespace lobe::render {
@@ -21,6 +22,58 @@ MaterialCompiler native_compiler() {
   return [](const scene::MaterialDesc& m, std::string& error) {
     return make_native_material(m.group, error);
   };
+}
+
+void collect_messages(ShadingContext& ctx, int material, ShaderMessages& out) {
+  size_t start = 0;
+  const std::string& t = ctx.output;
+  while (start < t.size()) {
+    size_t end = t.find('\n', start);
+    if (end == std::string::npos) end = t.size();
+    if (end > start) ++out[{material, t.substr(start, end - start)}];
+    start = end + 1;
+  }
+  ctx.output.clear();
+}
+
+void merge_messages(const ShaderMessages& from, ShaderMessages& into) {
+  for (const auto& [key, n] : from) into[key] += n;
+}
+
+std::vector<std::string> RenderScene::describe(const ShaderMessages& all) const {
+  // OpenImageIO explains a failed texture once; later lookups of the same file only say
+  // "cannot read": those are counted with the explained line.
+  ShaderMessages messages = all;
+  const std::string vague = ": cannot read";
+  for (auto it = messages.begin(); it != messages.end();) {
+    const std::string& t = it->first.second;
+    if (t.size() > vague.size() && t.compare(t.size() - vague.size(), vague.size(), vague) == 0) {
+      std::string prefix = t.substr(0, t.size() - vague.size() + 2); // up to ": "
+      auto other = messages.lower_bound({it->first.first, prefix});
+      auto same = [&](ShaderMessages::iterator o) {
+        return o != messages.end() && o->first.first == it->first.first &&
+               o->first.second.rfind(prefix, 0) == 0;
+      };
+      if (other == it) ++other;
+      if (same(other)) {
+        other->second += it->second;
+        it = messages.erase(it);
+        continue;
+      }
+    }
+    ++it;
+  }
+  std::vector<std::string> lines;
+  for (const auto& [key, n] : messages) {
+    std::string where = key.first >= 0 ? desc_.materials[size_t(key.first)].where + ": material '" +
+                                             desc_.materials[size_t(key.first)].name + "'"
+                                       : desc_.path + ": the default material";
+    std::string text = key.second;
+    for (const char* p : {"ERROR: ", "WARNING: "})
+      if (text.rfind(p, 0) == 0) text = text.substr(std::strlen(p));
+    lines.push_back(where + ": " + text + (n > 1 ? " (" + std::to_string(n) + " times)" : ""));
+  }
+  return lines;
 }
 
 // Constants computed once (name lookups are too slow for every shading point).
@@ -168,6 +221,7 @@ std::string RenderScene::build_environment() {
           fill_globals(sg, h, d, kRayCamera, ctx);
           ctx.reset();
           m.shade(sg);
+          if (!ctx.output.empty()) collect_messages(ctx, e.material, stats_.messages);
           Bsdf b;
           b.build(sg.Ci, -d, h.Ng);
           return b.background * k;
@@ -181,7 +235,8 @@ std::string RenderScene::build_environment() {
 
 // An emitter is a shape whose material emits at a probe point; its power estimate
 // (pi * area * luminance of the probe's emission) decides how often it is sampled.
-void RenderScene::find_emitters(std::vector<LightSet::Emitter>& out) const {
+void RenderScene::find_emitters(std::vector<LightSet::Emitter>& out,
+                                ShaderMessages& messages) const {
   ShadingContext ctx;
   for (size_t i = 0; i < desc_.shapes.size(); ++i) {
     const scene::Shape& s = desc_.shapes[i];
@@ -202,6 +257,7 @@ void RenderScene::find_emitters(std::vector<LightSet::Emitter>& out) const {
     fill_globals(sg, h, -h.Ng, kRayShadow, ctx, globals_read(int(i)));
     ctx.reset();
     material(int(i)).shade(sg);
+    if (!ctx.output.empty()) collect_messages(ctx, material_index(int(i)), messages);
     Bsdf b;
     b.build(sg.Ci, h.Ng, h.Ng);
     float lum = luminance(b.emission);
@@ -217,7 +273,7 @@ std::string RenderScene::setup(const scene::SceneDesc& desc, const MaterialCompi
   if (std::string e = compile_materials(compile); !e.empty()) return e;
   if (std::string e = build_environment(); !e.empty()) return e;
   std::vector<LightSet::Emitter> emitters;
-  find_emitters(emitters);
+  find_emitters(emitters, stats_.messages);
   stats_.emitters = static_cast<int>(emitters.size());
   lights_.build(geo_, desc_.lights, emitters, env_.valid() ? &env_ : nullptr);
   return "";

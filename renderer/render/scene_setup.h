@@ -12,6 +12,7 @@
 #include "lobe/shadingsys.h"
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,12 +26,20 @@ using MaterialCompiler =
 
 MaterialCompiler native_compiler();
 
+// What shader code sent to a ShadingContext while shading (texture errors, error(),
+// warning(), printf): each line counted per scene material (-1: the default material).
+using ShaderMessages = std::map<std::pair<int, std::string>, uint64_t>;
+// Moves the lines of ctx.output into `out` under `material` and clears ctx.output.
+void collect_messages(ShadingContext& ctx, int material, ShaderMessages& out);
+void merge_messages(const ShaderMessages& from, ShaderMessages& into);
+
 struct SetupStats {
   double compile_seconds = 0; // wall time of the parallel compile of all used materials
   int materials_compiled = 0;
   int emitters = 0;
   int closure_kernels = 0;         // materials whose closures run as JIT-compiled kernels
   std::vector<std::string> warnings; // e.g. closure kernels that failed to compile
+  ShaderMessages messages;           // from shading at setup (emitter probes, background table)
 };
 
 class RenderScene {
@@ -55,11 +64,16 @@ public:
   // The closure kernels of a shape's material (null: the native closure library).
   const ClosureKernels* closure_kernels(int shape) const { return shape_kernels_[shape]; }
   const SetupStats& stats() const { return stats_; }
+  // Scene material of a shape (-1: the default grey matte).
+  int material_index(int shape) const { return desc_.shapes[size_t(shape)].material; }
+  // One line per message: "<material's place>: material 'name': <text>[ (N times)]", the
+  // shader's "ERROR: "/"WARNING: " prefix dropped.
+  std::vector<std::string> describe(const ShaderMessages& messages) const;
 
 private:
   std::string compile_materials(const MaterialCompiler& compile);
   std::string build_environment();
-  void find_emitters(std::vector<LightSet::Emitter>& out) const;
+  void find_emitters(std::vector<LightSet::Emitter>& out, ShaderMessages& messages) const;
 
   scene::SceneDesc desc_;
   Geometry geo_;

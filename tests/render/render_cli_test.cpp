@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -199,4 +200,43 @@ TEST(RenderCli, OutputIsCheckedBeforeRendering) {
   ASSERT_EQ(lobe::image::read_image((d / "x.hdr").string(), img), "");
   EXPECT_EQ(img.nchannels(), 3);
   EXPECT_EQ(img.width, 8);
+}
+
+// A texture that cannot be read renders black but is reported after the render, once, with
+// the material and a count; textures nobody reads are never opened, and shaders no shape uses
+// are never compiled (here: a missing shader, a missing texture on an unused material and on
+// a branch never taken).
+TEST(RenderCli, ShaderRunTimeErrorsAreReportedOnceAfterTheRender) {
+  fs::path d = temp_dir("texture");
+  write_file(d / "textured.osl", R"(surface textured(string file = "none.exr", float branch = 0) {
+    color c = color(0.5);
+    if (branch > 0) c = texture(file, u, v);
+    if (branch > 1) c = texture("never_taken.exr", u, v);
+    Ci = c * diffuse(N);
+})");
+  std::string missing = (d / "missing.exr").string();
+  write_file(d / "s.json",
+             furnace_json(R"({"shader": "textured", "params": {"file": ")" + missing +
+                              R"(", "branch": 1}})",
+                          R"(, "unused": {"shader": "textured", "params": {"file": "also_missing.exr", "branch": 1}},
+                           "unused_broken": {"shader": "doesnotexist"})"));
+  CmdResult r = render((d / "s.json").string() + " -o " + (d / "o.exr").string(), d);
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::string prefix = "warning: " + (d / "s.json").string() + ": /materials/m: material 'm': texture \"" +
+                       missing + "\": ";
+  EXPECT_EQ(r.out.rfind(prefix, 0), 0u) << r.out;
+  EXPECT_NE(r.out.find(" times)\n"), std::string::npos) << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out; // one line in all
+  EXPECT_EQ(r.out.find("also_missing"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("never_taken"), std::string::npos) << r.out;
+  EXPECT_NEAR(mean_channel(d / "o.exr", "albedo.R"), 0, 1e-9); // black, as reported
+
+  // The same shader on the branch without a texture: nothing to report.
+  write_file(d / "s.json",
+             furnace_json(R"({"shader": "textured", "params": {"file": ")" + missing + R"("}})",
+                          R"(, "unused_broken": {"shader": "doesnotexist"})"));
+  r = render((d / "s.json").string() + " -o " + (d / "o.exr").string(), d);
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out, "");
+  EXPECT_NEAR(mean_channel(d / "o.exr", "albedo.R"), 0.5, 1e-6);
 }
