@@ -3,6 +3,11 @@
 // --plot PREFIX, writes PREFIX_polar.png (the lobe in the plane of incidence for several view
 // angles) and PREFIX_albedo.png (directional albedo against angle) through gnuplot. Query
 // mode for scripts: --eval, --sample, --albedo, printed as CSV or JSON.
+//
+// `lobe brdf --shader NAME [--param NAME VALUE]...` does the same for a compiled material: the
+// shader (found on the search path, stdlib_shaders/ included, or by path) is compiled with its
+// instance values, run at a point with N = Ng = (0,0,1), dPdu = (1,0,0), I = -wo, and its Ci
+// closure is flattened into a Bsdf that evaluates through the material's JIT closure kernels.
 #include "command.h"
 
 #include "albedo.h"
@@ -14,12 +19,16 @@
 #include "rng.h"
 #include "stress.h"
 
+#include "lobe/context.h"
+#include "lobe/shadingsys.h"
+
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -31,6 +40,9 @@ namespace {
 
 struct Options {
   std::string expr;
+  std::string shader;                    // --shader: a material instead of a closure call
+  std::vector<std::string> params;       // --param name value (pairs)
+  std::vector<std::string> include_dirs; // -I
   uint64_t samples = 200000;
   std::string plot;
   std::vector<std::string> evals, samples_u;
@@ -139,18 +151,78 @@ int run_query(const Options& o, const LobeView& lobe, const Vec3& wo, Transport 
   return 0;
 }
 
+// --- a compiled material as a lobe -----------------------------------------------------------
+
+// The Ci of a material at one point, seen from wo: shaded again (I = -wo) and flattened into a
+// Bsdf whenever wo changes, since both the closure and the Bsdf's lobe selection depend on it.
+class ShaderLobe : public LobeView {
+public:
+  explicit ShaderLobe(std::shared_ptr<const Material> m) : m_(std::move(m)) {}
+  BsdfEval eval(const Vec3& wo, const Vec3& wi, Transport mode) const override {
+    return at(wo).eval(wo, wi, mode);
+  }
+  float pdf(const Vec3& wo, const Vec3& wi) const override { return at(wo).pdf(wo, wi); }
+  std::optional<BsdfSample> sample(const Vec3& wo, const Vec3& u, Transport mode) const override {
+    return at(wo).sample(wo, u, mode);
+  }
+  Color3 albedo(const Vec3& wo) const override { return at(wo).albedo(wo); }
+  uint32_t flags() const override {
+    uint32_t f = 0;
+    const Bsdf& b = at(Vec3{0, 0, 1});
+    for (int i = 0; i < b.lobe_count(); ++i) f |= b.lobe(i).flags;
+    return f;
+  }
+  // The closure tree printed as OSL prints it, for the report.
+  std::string describe() const { return closure_to_string(shade(Vec3{0, 0, 1})); }
+
+private:
+  const ClosureNode* shade(const Vec3& wo) const {
+    ctx_.reset();
+    ShaderGlobals sg{};
+    sg.context = &ctx_;
+    sg.N = sg.Ng = Vec3{0, 0, 1};
+    sg.dPdu = Vec3{1, 0, 0};
+    sg.dPdv = Vec3{0, 1, 0};
+    sg.I = Vec3{-wo.x, -wo.y, -wo.z};
+    sg.u = sg.v = 0.5f;
+    sg.raytype = kRayCamera;
+    m_->shade(sg);
+    return sg.Ci;
+  }
+  const Bsdf& at(const Vec3& wo) const {
+    if (!built_ || !(wo == wo_)) {
+      bsdf_.build(shade(wo), wo, Vec3{0, 0, 1}, m_->closure_kernels());
+      wo_ = wo;
+      built_ = true;
+    }
+    return bsdf_;
+  }
+  std::shared_ptr<const Material> m_;
+  mutable ShadingContext ctx_;
+  mutable Bsdf bsdf_;
+  mutable Vec3 wo_;
+  mutable bool built_ = false;
+};
+
+// What the report prints about the lobe: a name, an optional note, the IOR below the surface
+// for the generalised reciprocity check.
+struct Subject {
+  std::string name;
+  std::string note;
+  double eta_below = 1.0;
+};
+
 // --- report and plots -------------------------------------------------------------------------
 
 const double kTableAngles[] = {0, 15, 30, 45, 60, 75, 85, 89};
 
-void report(const Options& o, const ParsedClosure& pc, const LobeView& lobe, Transport mode) {
+void report(const Options& o, const Subject& pc, const LobeView& lobe, Transport mode) {
   uint32_t f = lobe.flags();
-  std::printf("closure   %s\nflags     %s%s%s%s%s\n", pc.key.c_str(),
+  std::printf("closure   %s\nflags     %s%s%s%s%s\n", pc.name.c_str(),
               f & kLobeReflect ? "reflect " : "", f & kLobeTransmit ? "transmit " : "",
               f & kLobeDiffuse ? "diffuse " : "", f & kLobeGlossy ? "glossy " : "",
               f & kLobeSpecular ? "specular" : "");
-  if (const char* w = closures::param_warning(pc.params.id(), pc.params.data()))
-    std::printf("note      %s\n", w);
+  if (!pc.note.empty()) std::printf("note      %s\n", pc.note.c_str());
   std::printf("\nalbedo (%llu samples; quadrature of eval(); albedo() of the library)\n",
               static_cast<unsigned long long>(o.samples));
   std::printf("  theta   MC r     MC g     MC b     +-       quad g   albedo() g\n");
@@ -208,7 +280,7 @@ void report(const Options& o, const ParsedClosure& pc, const LobeView& lobe, Tra
 }
 
 // Writes the data files and the gnuplot script, and runs gnuplot. Returns false on failure.
-bool plot(const Options& o, const ParsedClosure& pc, const LobeView& lobe, Transport mode) {
+bool plot(const Options& o, const Subject& pc, const LobeView& lobe, Transport mode) {
   std::string polar = o.plot + "_polar.dat", alb = o.plot + "_albedo.dat";
   const double views[] = {0, 30, 60, 80};
   {
@@ -240,12 +312,12 @@ bool plot(const Options& o, const ParsedClosure& pc, const LobeView& lobe, Trans
     std::ofstream g(gp);
     g << "set terminal pngcairo size 900,700 noenhanced\n"
       << "set output '" << o.plot << "_polar.png'\n"
-      << "set title \"" << pc.key << ": f*|cos| in the plane of incidence (view from +x)\"\n"
+      << "set title \"" << pc.name << ": f*|cos| in the plane of incidence (view from +x)\"\n"
       << "set size ratio -1\nset grid\nset xzeroaxis\nset key outside right\n"
       << "plot for [i=0:3] '" << polar << "' index i with lines lw 2 title sprintf('view %d deg', "
       << "word('0 30 60 80', i+1) + 0)\n"
       << "set output '" << o.plot << "_albedo.png'\n"
-      << "set title \"" << pc.key << ": directional albedo\"\n"
+      << "set title \"" << pc.name << ": directional albedo\"\n"
       << "set size noratio\nset xlabel 'view angle theta (deg)'\nset ylabel 'albedo'\n"
       << "set yrange [0:*]\n"
       << "plot '" << alb << "' using 1:2 with lines lc rgb 'red' title 'MC r', "
@@ -262,13 +334,42 @@ bool plot(const Options& o, const ParsedClosure& pc, const LobeView& lobe, Trans
   return true;
 }
 
+// Compiles --shader with its --param values; null with the diagnostics in `err`.
+std::unique_ptr<ShaderLobe> shader_lobe(const Options& o, std::string& err) {
+  ShadingSystem ss;
+  ss.options().include_dirs = o.include_dirs;
+  ss.options().include_dirs.push_back(LOBE_BRDF_STDLIB_DIR);
+  ShaderGroup g;
+  ShaderGroup::Layer layer{o.shader, "material", {}};
+  for (size_t i = 0; i + 1 < o.params.size(); i += 2)
+    layer.values.push_back({"", o.params[i], o.params[i + 1]});
+  g.layers.push_back(layer);
+  DiagnosticList diags;
+  std::shared_ptr<const Material> m = ss.compile(g, diags);
+  for (const Diagnostic& d : diags) err += d.text + "\n";
+  if (!m) {
+    if (err.empty()) err = "lobe brdf: cannot compile shader '" + o.shader + "'\n";
+    return nullptr;
+  }
+  if (!err.empty()) std::fprintf(stderr, "%s", err.c_str());
+  err.clear();
+  return std::make_unique<ShaderLobe>(std::move(m));
+}
+
 int run_brdf(int argc, char** argv) {
   Options o;
   CLI::App app{"Inspect a closure: report, plots, and eval/sample/albedo queries", "lobe brdf"};
-  app.add_option("expr", o.expr,
-                 "closure call, e.g. 'conductor_bsdf(N, U, 0.2, 0.2, "
-                 "color(0.2,0.9,1.1), color(3.9,2.4,2.2), \"ggx\")'")
-      ->required();
+  auto* expr = app.add_option("expr", o.expr,
+                              "closure call, e.g. 'conductor_bsdf(N, U, 0.2, 0.2, "
+                              "color(0.2,0.9,1.1), color(3.9,2.4,2.2), \"ggx\")'");
+  auto* shader = app.add_option("--shader", o.shader,
+                                "a material shader instead (name on the search path, incl. "
+                                "stdlib_shaders/, or a file)");
+  expr->excludes(shader);
+  app.add_option("--param", o.params, "instance value for --shader: NAME VALUE (repeatable)")
+      ->expected(2)
+      ->allow_extra_args(false);
+  app.add_option("-I", o.include_dirs, "search and #include directory for --shader");
   app.add_option("--samples", o.samples, "samples for Monte Carlo and chi-square");
   app.add_option("--plot", o.plot, "write PREFIX_polar.png and PREFIX_albedo.png (gnuplot)");
   app.add_option("--eval", o.evals, "query: wo_x,wo_y,wo_z,wi_x,wi_y,wi_z (repeatable)");
@@ -285,17 +386,41 @@ int run_brdf(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
-  ExprResult r = parse_closure_expr(o.expr);
-  if (!r.closure) {
-    print_expr_error(o.expr, r.error);
-    return 1;
+  if (o.expr.empty() == o.shader.empty()) {
+    std::fprintf(stderr, "lobe brdf: give a closure call or --shader NAME\n%s", app.help().c_str());
+    return 2;
   }
-  if (!closures::has_implementation(r.closure->params.id())) {
-    std::fprintf(stderr, "lobe brdf: error: '%s' has no implementation in the closure library\n",
-                 r.closure->key.c_str());
-    return 1;
+  std::unique_ptr<LobeView> owned;
+  Subject subject;
+  if (!o.shader.empty()) {
+    std::string err;
+    std::unique_ptr<ShaderLobe> sl = shader_lobe(o, err);
+    if (!sl) {
+      std::fprintf(stderr, "%s", err.c_str());
+      return 1;
+    }
+    subject.name = sl->describe();
+    if (subject.name.empty()) subject.name = "(no closure)";
+    subject.name = o.shader + ": " + subject.name;
+    owned = std::move(sl);
+  } else {
+    ExprResult r = parse_closure_expr(o.expr);
+    if (!r.closure) {
+      print_expr_error(o.expr, r.error);
+      return 1;
+    }
+    if (!closures::has_implementation(r.closure->params.id())) {
+      std::fprintf(stderr, "lobe brdf: error: '%s' has no implementation in the closure library\n",
+                   r.closure->key.c_str());
+      return 1;
+    }
+    subject.name = r.closure->key;
+    if (const char* w = closures::param_warning(r.closure->params.id(), r.closure->params.data()))
+      subject.note = w;
+    subject.eta_below = r.closure->eta_below;
+    owned = std::make_unique<ClosureLobe>(r.closure->params);
   }
-  ClosureLobe lobe(r.closure->params);
+  const LobeView& lobe = *owned;
   Transport mode = o.mode == "importance" ? Transport::Importance : Transport::Radiance;
   Vec3 wo = direction_at(o.theta * M_PI / 180.0);
   if (!o.wo_text.empty()) {
@@ -308,8 +433,8 @@ int run_brdf(int argc, char** argv) {
   }
   if (!o.evals.empty() || !o.samples_u.empty() || !o.albedo_angles.empty())
     return run_query(o, lobe, wo, mode);
-  report(o, *r.closure, lobe, mode);
-  if (!o.plot.empty() && !plot(o, *r.closure, lobe, mode)) return 1;
+  report(o, subject, lobe, mode);
+  if (!o.plot.empty() && !plot(o, subject, lobe, mode)) return 1;
   return 0;
 }
 

@@ -56,6 +56,21 @@ TEST(Chi2Harness, WrongSamplerFails) {
   EXPECT_LT(r.p_value, 1e-6);
 }
 
+// A pdf() 1% too large everywhere: the samples still follow its shape, so only the
+// normalisation check can catch it (its slack at 2e5 samples is 1e-3 + 3 * 0.1 / sqrt(2e5)).
+TEST(Chi2Harness, OverNormalisedPdfFails) {
+  class Scaled : public Lambert {
+  public:
+    Scaled() : Lambert({0.5f, 0.5f, 0.5f}) {}
+    float pdf(const Vec3& wo, const Vec3& wi) const override {
+      return 1.01f * Lambert::pdf(wo, wi);
+    }
+  } bad;
+  Chi2Result r = chi2_test(bad, direction_at(0.3), fast_chi2(6));
+  EXPECT_FALSE(r.passed);
+  EXPECT_NE(r.message.find("integrates to 1.01"), std::string::npos) << r.message;
+}
+
 TEST(Chi2Harness, PhongSampledWithWrongExponentFails) {
   // Samples from exponent 20 judged against the pdf of exponent 24: a 20% error in the width.
   class Mismatch : public Phong {
