@@ -174,11 +174,19 @@ int run_render(int argc, char** argv) {
   }
   if (!a.quiet) {
     uint64_t rays = stats.counters.rays + stats.counters.shadow_rays;
+    // Interrupted: how many samples per pixel finished (pixels of the last, partial pass have
+    // one more), e.g. "8.4 of 32 spp".
+    char spp[64];
+    if (stats.cancelled)
+      std::snprintf(spp, sizeof spp, "%.1f of %d spp",
+                    double(stats.samples) / (double(st.width) * st.height), st.spp);
+    else
+      std::snprintf(spp, sizeof spp, "%d spp", st.spp);
     std::fprintf(stderr,
-                 "%s%s: %dx%d, %d spp, %s materials (%d compiled in %.2fs, %d with closure "
+                 "%s%s: %dx%d, %s, %s materials (%d compiled in %.2fs, %d with closure "
                  "kernels, setup %.2fs), render %.2fs, %.2f Mrays/s\n",
                  stats.cancelled ? "interrupted: wrote the finished samples to " : "wrote ",
-                 out.c_str(), st.width, st.height, st.spp, backend.name().c_str(),
+                 out.c_str(), st.width, st.height, spp, backend.name().c_str(),
                  scene.stats().materials_compiled, scene.stats().compile_seconds,
                  scene.stats().closure_kernels, setup_s,
                  stats.seconds, stats.seconds > 0 ? double(rays) / stats.seconds / 1e6 : 0.0);

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -239,4 +240,22 @@ TEST(RenderCli, ShaderRunTimeErrorsAreReportedOnceAfterTheRender) {
   EXPECT_EQ(r.status, 0);
   EXPECT_EQ(r.out, "");
   EXPECT_NEAR(mean_channel(d / "o.exr", "albedo.R"), 0.5, 1e-6);
+}
+
+// Ctrl-C: the finished samples are written and the summary says how many finished.
+TEST(RenderCli, InterruptedSummarySaysHowManySamplesFinished) {
+  fs::path d = temp_dir("interrupt");
+  write_file(d / "s.json", furnace_json(R"({"shader": "matte"})"));
+  CmdResult r = run_cmd("timeout --preserve-status -s INT 2 " + std::string(LOBE_EXE) + " render --spp 1000000 " +
+                        (d / "s.json").string() + " -o " + (d / "o.exr").string());
+  EXPECT_EQ(r.status, 130) << r.out;
+  std::string head = "interrupted: wrote the finished samples to " + (d / "o.exr").string() +
+                     ": 8x8, ";
+  size_t at = r.out.find(head);
+  ASSERT_NE(at, std::string::npos) << r.out;
+  double done = std::atof(r.out.c_str() + at + head.size());
+  EXPECT_GT(done, 0);
+  EXPECT_LT(done, 1000000);
+  EXPECT_EQ(r.out.compare(r.out.find(" ", at + head.size()), 20, " of 1000000 spp, jit"), 0)
+      << r.out;
 }
