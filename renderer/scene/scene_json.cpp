@@ -82,8 +82,12 @@ private:
     if (j.contains("spp")) s.spp = r_.integer(j.at("spp"), p + "/spp", 1, 1 << 20);
     if (j.contains("max_depth"))
       s.max_depth = r_.integer(j.at("max_depth"), p + "/max_depth", 1, 1024);
-    if (j.contains("seed"))
-      s.seed = static_cast<uint64_t>(r_.integer(j.at("seed"), p + "/seed", 0, 1 << 30));
+    if (j.contains("seed")) { // the range of `lobe render --seed`: [0, 2^40]
+      const json& v = j.at("seed");
+      if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() > (1LL << 40))
+        r_.fail(p + "/seed", "expected an integer in [0, 1099511627776]");
+      s.seed = static_cast<uint64_t>(v.get<long long>());
+    }
     r_.opt(j, p, "exposure", s.exposure, &JsonReader::number);
     r_.opt(j, p, "output", s.output, &JsonReader::string);
     return s;

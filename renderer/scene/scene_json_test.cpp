@@ -114,6 +114,18 @@ TEST(SceneJson, SyntaxErrorsGiveLineAndColumn) {
                  "'}'; expected string literal");
 }
 
+TEST(SceneJson, SeedTakesTheCommandLineRange) {
+  std::string err;
+  auto s = parse_json_scene(R"({"settings": {"seed": 1099511627776}})", "t.json", err);
+  ASSERT_TRUE(s) << err;
+  EXPECT_EQ(s->settings.seed, uint64_t(1) << 40);
+  EXPECT_EQ(error_of(R"({"settings": {"seed": 1099511627777}})"),
+            "t.json: /settings/seed: expected an integer in [0, 1099511627776]");
+  auto x = parse_xml_scene(R"(<World><Settings seed="1099511627775"/></World>)", "t.xml", err);
+  ASSERT_TRUE(x) << err;
+  EXPECT_EQ(x->settings.seed, (uint64_t(1) << 40) - 1);
+}
+
 TEST(SceneJson, GroupTextErrorsAreLocated) {
   std::string err = error_of(R"({"materials": {"m": {"group": "shader ; param"}}})");
   EXPECT_NE(err.find("/materials/m/group"), std::string::npos) << err;

@@ -20,6 +20,7 @@
 #include <pugixml.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -187,6 +188,13 @@ private:
       return fail(n, "spp and max_depth expect >= 1, seed >= 0");
     st.width = int(res[0]), st.height = int(res[1]), st.spp = int(spp), st.max_depth = int(depth);
     st.seed = uint64_t(seed);
+    if (pugi::xml_attribute a = n.attribute("seed")) { // exactly (a float loses digits > 2^24)
+      char* end = nullptr;
+      long long v = std::strtoll(a.value(), &end, 10);
+      if (end == a.value() || *end || v < 0 || v > (1LL << 40))
+        return fail(n, "seed expects an integer in [0, 1099511627776]");
+      st.seed = uint64_t(v);
+    }
     return true;
   }
   bool point_light(const pugi::xml_node& n, SceneDesc& s) {
