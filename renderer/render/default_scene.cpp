@@ -20,7 +20,8 @@ const std::string& default_scene_json() {
                 "roughness_along": 0.15, "roughness_across": 0.6}}
   },
   "shapes": [
-    {"type": "quad", "corner": [-500, 0, 500], "edge_x": [1000, 0, 0], "edge_y": [0, 0, -1000],
+    {"type": "quad", "corner": [-100000, 0, 100000], "edge_x": [200000, 0, 0],
+     "edge_y": [0, 0, -200000],
      "material": "ground"},
     {"type": "sphere", "center": [-2.6, 0.6, 0], "radius": 0.6, "material": "matte"},
     {"type": "sphere", "center": [-1.3, 0.6, 0], "radius": 0.6, "material": "plastic"},
