@@ -3,6 +3,7 @@
 
 #include "shadeops.h"
 
+#include <llvm/ExecutionEngine/Orc/CompileUtils.h>
 #include <llvm/ExecutionEngine/Orc/Core.h>
 #include <llvm/ExecutionEngine/Orc/JITTargetMachineBuilder.h>
 #include <llvm/ExecutionEngine/Orc/LLJIT.h>
@@ -11,8 +12,8 @@
 #include <llvm/IR/LegacyPassManager.h>
 #include <llvm/IR/Module.h>
 #include <llvm/Passes/PassBuilder.h>
-#include <llvm/Support/raw_ostream.h>
 #include <llvm/Support/TargetSelect.h>
+#include <llvm/Support/raw_ostream.h>
 #include <llvm/Target/TargetMachine.h>
 #include <llvm/TargetParser/Host.h>
 #include <llvm/Transforms/InstCombine/InstCombine.h>
@@ -32,11 +33,12 @@ namespace lobe::jit {
 
 struct Jit::State {
   std::unique_ptr<llvm::orc::LLJIT> lljit;
-  std::unique_ptr<llvm::TargetMachine> tm; // for the optimiser's cost model
-  llvm::orc::JITDylib* runtime = nullptr;  // shadeops and libm, as absolute symbols
+  std::unique_ptr<llvm::TargetMachine> tm; // for emit_assembly (shared: under opt_mutex)
+  std::unique_ptr<llvm::orc::JITTargetMachineBuilder> jtmb; // a TargetMachine per optimiser run
+  llvm::orc::JITDylib* runtime = nullptr;                   // shadeops and libm, absolute symbols
   std::atomic<uint64_t> counter{0};
-  mutable std::mutex opt_mutex; // the TargetMachine is shared by optimiser runs
-  std::mutex compile_mutex;     // LLJIT's compiler (one TargetMachine) is not re-entrant
+  mutable std::mutex opt_mutex; // guards `tm`
+  std::mutex dylib_mutex;       // JITDylib creation and removal
 };
 
 namespace {
@@ -78,7 +80,17 @@ std::unique_ptr<Jit> Jit::create(std::string& error) {
     error = llvm::toString(tm.takeError());
     return nullptr;
   }
-  auto lljit = llvm::orc::LLJITBuilder().setJITTargetMachineBuilder(*jtmb).create();
+  // ConcurrentIRCompiler makes a TargetMachine per module, so groups compiled on several
+  // threads at once (materials at scene load) compile to machine code in parallel.
+  auto lljit =
+      llvm::orc::LLJITBuilder()
+          .setJITTargetMachineBuilder(*jtmb)
+          .setCompileFunctionCreator(
+              [](llvm::orc::JITTargetMachineBuilder j)
+                  -> llvm::Expected<std::unique_ptr<llvm::orc::IRCompileLayer::IRCompiler>> {
+                return std::make_unique<llvm::orc::ConcurrentIRCompiler>(std::move(j));
+              })
+          .create();
   if (!lljit) {
     error = llvm::toString(lljit.takeError());
     return nullptr;
@@ -87,6 +99,7 @@ std::unique_ptr<Jit> Jit::create(std::string& error) {
   jit->s_ = std::make_unique<State>();
   jit->s_->lljit = std::move(*lljit);
   jit->s_->tm = std::move(*tm);
+  jit->s_->jtmb = std::make_unique<llvm::orc::JITTargetMachineBuilder>(*jtmb);
   auto& es = jit->s_->lljit->getExecutionSession();
   llvm::orc::JITDylib& rt = es.createBareJITDylib("lobe_runtime");
   llvm::orc::SymbolMap symbols;
@@ -112,12 +125,20 @@ void Jit::configure(llvm::Module& module) const {
 // into shadeops): SROA makes SSA, then CSE, combining, CFG clean-up, GVN and dead code.
 // -O2: LLVM's full per-module O2 pipeline (adds inlining, loop passes, vectorisation).
 void Jit::optimize(llvm::Module& module, int opt_level) const {
-  std::lock_guard<std::mutex> lock(s_->opt_mutex);
+  // A TargetMachine of its own (the cost model is not thread-safe), so runs go in parallel.
+  auto own = s_->jtmb->createTargetMachine();
+  std::unique_lock<std::mutex> lock(s_->opt_mutex, std::defer_lock);
+  llvm::TargetMachine* tm = own ? own->get() : nullptr;
+  if (!own) {
+    llvm::consumeError(own.takeError());
+    lock.lock();
+    tm = s_->tm.get();
+  }
   llvm::LoopAnalysisManager lam;
   llvm::FunctionAnalysisManager fam;
   llvm::CGSCCAnalysisManager cgam;
   llvm::ModuleAnalysisManager mam;
-  llvm::PassBuilder pb(s_->tm.get());
+  llvm::PassBuilder pb(tm);
   pb.registerModuleAnalyses(mam);
   pb.registerCGSCCAnalyses(cgam);
   pb.registerFunctionAnalyses(fam);
@@ -157,17 +178,17 @@ bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::
 }
 
 bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::Module> module,
-              int opt_level, const std::vector<std::string>& entries,
-              std::vector<void*>& addresses, CompiledGroup& out, JitTimes& times,
-              std::string& error) {
+              int opt_level, const std::vector<std::string>& entries, std::vector<void*>& addresses,
+              CompiledGroup& out, JitTimes& times, std::string& error) {
   auto t0 = std::chrono::steady_clock::now();
   optimize(*module, opt_level);
   times.optimize_ms = ms_since(t0);
   auto t1 = std::chrono::steady_clock::now();
   auto& lljit = *s_->lljit;
-  std::lock_guard<std::mutex> lock(s_->compile_mutex);
   std::string name = "lobe_group_" + std::to_string(s_->counter++);
+  std::unique_lock<std::mutex> dylib_lock(s_->dylib_mutex);
   auto jd = lljit.createJITDylib(name);
+  dylib_lock.unlock();
   if (!jd) {
     error = llvm::toString(jd.takeError());
     return false;
@@ -211,7 +232,7 @@ bool Jit::emit_assembly(llvm::Module& module, std::string& out, std::string& err
 
 void Jit::remove(CompiledGroup& group) {
   if (!group.dylib) return;
-  std::lock_guard<std::mutex> lock(s_->compile_mutex);
+  std::lock_guard<std::mutex> lock(s_->dylib_mutex);
   llvm::consumeError(s_->lljit->getExecutionSession().removeJITDylib(*group.dylib));
   group = {};
 }

@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <memory>
+#include <thread>
 
 using namespace lobe;
 using namespace lobe::verify;
@@ -196,6 +197,45 @@ end
   }
   // Lambert (1/pi) plus Phong at wo: eval at the mirror direction is positive and finite.
   EXPECT_GT(native.eval(wo, Vec3{-wo.x, -wo.y, wo.z}).value.x, 1.0f / float(M_PI) * wo.z);
+}
+
+// Materials compiled, and their kernels compiled, from several threads at once (as the
+// renderer does at scene load): every thread's kernels give the native value.
+TEST(MaterialKernels, CompileConcurrently) {
+  ShadingSystem ss;
+  std::vector<std::shared_ptr<const Material>> mats(4);
+  std::vector<std::thread> threads;
+  const char* shaders[4] = {"matte", "plastic", "metal", "glass"};
+  ss.options().include_dirs.push_back(LOBE_TEST_STDLIB_DIR);
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&, t] {
+      DiagnosticList d;
+      ShaderGroup g;
+      g.layers.push_back({shaders[t], "m", {}});
+      mats[size_t(t)] = ss.compile(g, d);
+      if (mats[size_t(t)]) mats[size_t(t)]->closure_kernels();
+    });
+  for (auto& th : threads) th.join();
+  for (int t = 0; t < 4; ++t) {
+    ASSERT_TRUE(mats[size_t(t)]) << shaders[t];
+    const ClosureKernels* k = mats[size_t(t)]->closure_kernels();
+    ASSERT_NE(k, nullptr) << shaders[t] << ": " << mats[size_t(t)]->closure_kernels_error();
+    ShadingContext ctx;
+    ShaderGlobals sg{};
+    sg.context = &ctx;
+    sg.N = sg.Ng = {0, 0, 1};
+    sg.dPdu = {1, 0, 0};
+    sg.dPdv = {0, 1, 0};
+    sg.I = {0, 0, -1};
+    mats[size_t(t)]->shade(sg);
+    Vec3 wo = normalize(Vec3{0.2f, 0.1f, 0.95f}), wi = normalize(Vec3{-0.3f, 0.2f, 0.9f});
+    Bsdf a, b;
+    a.build(sg.Ci, wo, sg.Ng);
+    b.build(sg.Ci, wo, sg.Ng, k);
+    BsdfEval ea = a.eval(wo, wi), eb = b.eval(wo, wi);
+    EXPECT_EQ(ea.value, eb.value) << shaders[t];
+    EXPECT_EQ(ea.pdf, eb.pdf) << shaders[t];
+  }
 }
 
 } // namespace
