@@ -1,7 +1,11 @@
 // render_convergence: run time against error for the path tracer, and where the time goes.
 //
 //   ./build/bench/render/render_convergence [scene.json] [--out DIR] [--ref-spp N]
-//       [--max-spp N] [--res W H] [--threads N]
+//       [--max-spp N] [--res W H] [--threads N] [--materials jit|native] [--closures jit|native]
+//
+// Materials are compiled as `lobe render` compiles them (MaterialBackend; default the JIT, with
+// closures through the JIT closure kernels); `--materials native` / `--closures native` measure
+// the native twins / the native closure library instead.
 //
 // 1. Renders a reference with MIS at --ref-spp (default 1024), cached in DIR/reference.exr.
 // 2. For each strategy (mis, bsdf, light) renders at 1, 2, 4, ... --max-spp samples (another
@@ -17,6 +21,7 @@
 // different sizes, where the strategies differ most).
 #include "default_scene.h"
 #include "image.h"
+#include "material_backend.h"
 #include "renderer.h"
 #include "sampling.h"
 #include "scene.h"
@@ -41,6 +46,7 @@ namespace {
 
 struct Options {
   std::string scene = "scenes/veach_mis.json", out = "bench_out/render";
+  std::string materials = "jit", closures = "jit"; // as `lobe render` uses them by default
   int ref_spp = 1024, max_spp = 64, width = 240, height = 135, threads = 0;
 };
 
@@ -50,6 +56,13 @@ bool parse(int argc, char** argv, Options& o) {
     auto next = [&](int& v) { return i + 1 < argc && (v = std::atoi(argv[++i])) > 0; };
     if (a == "--out" && i + 1 < argc)
       o.out = argv[++i];
+    else if (a == "--materials" && i + 1 < argc) {
+      o.materials = argv[++i];
+      if (o.materials != "jit" && o.materials != "native") return false;
+    } else if (a == "--closures" && i + 1 < argc) {
+      o.closures = argv[++i];
+      if (o.closures != "jit" && o.closures != "native") return false;
+    }
     else if (a == "--ref-spp") {
       if (!next(o.ref_spp)) return false;
     } else if (a == "--max-spp") {
@@ -148,7 +161,8 @@ int main(int argc, char** argv) {
   Options o;
   if (!parse(argc, argv, o)) {
     std::fprintf(stderr, "usage: render_convergence [scene.json] [--out DIR] [--ref-spp N] "
-                         "[--max-spp N] [--res W H] [--threads N]\n");
+                         "[--max-spp N] [--res W H] [--threads N] [--materials jit|native] "
+                         "[--closures jit|native]\n");
     return 2;
   }
   std::string err;
@@ -157,11 +171,19 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", err.c_str());
     return 1;
   }
+  // The materials as the renderer compiles them (MaterialBackend: the JIT by default, shaders
+  // next to the scene first), and their closures through JIT kernels or the native library.
+  MaterialBackend backend(o.materials,
+                          {std::filesystem::absolute(o.scene).parent_path().string()});
   RenderScene s;
-  if (std::string e = s.setup(*desc, native_compiler(), o.width, o.height); !e.empty()) {
+  s.use_closure_kernels(o.closures == "jit");
+  if (std::string e = s.setup(*desc, backend.compiler(), o.width, o.height); !e.empty()) {
     std::fprintf(stderr, "%s\n", e.c_str());
     return 1;
   }
+  std::printf("materials: %s (%d compiled, %d with closure kernels), closures: %s\n",
+              backend.name().c_str(), s.stats().materials_compiled, s.stats().closure_kernels,
+              o.closures.c_str());
   std::filesystem::create_directories(o.out);
   RenderOptions opt;
   opt.max_depth = desc->settings.max_depth;
