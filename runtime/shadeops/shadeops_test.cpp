@@ -165,27 +165,23 @@ TEST(Noise, LatticeRangeDerivativeCellPeriod) {
   EXPECT_EQ(v, 0.0f); // signed gradient noise vanishes on the lattice
   lobe_noise(kUPerlin, x, 3, nullptr, &v, 1, nullptr);
   EXPECT_EQ(v, 0.5f);
-  float lo = 1, hi = -1;
-  for (int i = 0; i < 2000; ++i) {
-    float p[2] = {i * 0.137f, i * 0.0713f};
-    lobe_noise(kUPerlin, p, 2, nullptr, &v, 1, nullptr);
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
+  for (int n = 1; n <= 4; ++n) { // every dimension, scalar and vector, on the lattice
+    float l[4] = {-5, 2, 11, -1}, o[3];
+    lobe_noise(kPerlin, l, n, nullptr, o, 3, nullptr);
+    for (float c : o) EXPECT_EQ(c, 0.0f) << n;
   }
-  EXPECT_GE(lo, 0.0f);
-  EXPECT_LE(hi, 1.0f);
-  EXPECT_LT(lo, 0.35f); // it actually varies
-  EXPECT_GT(hi, 0.65f);
-  // Analytic derivative against a central difference.
-  float p[3] = {0.3f, 1.7f, -0.4f}, grad[3];
-  lobe_noise(kPerlin, p, 3, nullptr, &v, 1, grad);
-  for (int k = 0; k < 3; ++k) {
-    float a[3] = {p[0], p[1], p[2]}, b[3] = {p[0], p[1], p[2]}, va, vb;
-    a[k] += 1e-3f;
-    b[k] -= 1e-3f;
-    lobe_noise(kPerlin, a, 3, nullptr, &va, 1, nullptr);
-    lobe_noise(kPerlin, b, 3, nullptr, &vb, 1, nullptr);
-    EXPECT_NEAR(grad[k], (va - vb) / 2e-3f, 2e-2);
+  for (int n = 1; n <= 4; ++n) {
+    float lo = 1, hi = -1;
+    for (int i = 0; i < 4000; ++i) {
+      float p[4] = {i * 0.137f - 50, i * 0.0713f, i * -0.0291f, i * 0.0517f + 3};
+      lobe_noise(kUPerlin, p, n, nullptr, &v, 1, nullptr);
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+    EXPECT_GE(lo, 0.0f) << n;
+    EXPECT_LE(hi, 1.0f) << n;
+    EXPECT_LT(lo, 0.3f) << n; // it actually varies
+    EXPECT_GT(hi, 0.7f) << n;
   }
   float c1[2] = {2.1f, 5.9f}, c2[2] = {2.8f, 5.2f}, v1, v2;
   lobe_noise(kCell, c1, 2, nullptr, &v1, 1, nullptr);
@@ -195,6 +191,84 @@ TEST(Noise, LatticeRangeDerivativeCellPeriod) {
   lobe_noise(kPerlin, q1, 1, per, &v1, 1, nullptr);
   lobe_noise(kPerlin, q2, 1, per, &v2, 1, nullptr);
   EXPECT_NEAR(v1, v2, 1e-5);
+}
+
+// Analytic derivatives (carried through OSL's formulas) against central differences, for 1-4
+// input dimensions, scalar and vector results, plain and periodic.
+TEST(Noise, DerivativesMatchFiniteDifferences) {
+  const float p[4] = {0.3f, 1.7f, -0.4f, 2.6f}, period[4] = {3, 2, 5, 4};
+  for (int kind : {kPerlin, kUPerlin})
+    for (int n = 1; n <= 4; ++n)
+      for (int nout : {1, 3})
+        for (const float* per : {(const float*)nullptr, period}) {
+          float out[3], grad[12];
+          lobe_noise(kind, p, n, per, out, nout, grad);
+          for (int k = 0; k < n; ++k) {
+            float a[4] = {p[0], p[1], p[2], p[3]}, b[4] = {p[0], p[1], p[2], p[3]}, va[3], vb[3];
+            a[k] += 1e-3f;
+            b[k] -= 1e-3f;
+            lobe_noise(kind, a, n, per, va, nout, nullptr);
+            lobe_noise(kind, b, n, per, vb, nout, nullptr);
+            for (int j = 0; j < nout; ++j)
+              EXPECT_NEAR(grad[j * n + k], (va[j] - vb[j]) / 2e-3f, 1e-2)
+                  << kind << " n=" << n << " nout=" << nout << " k=" << k << " j=" << j;
+          }
+        }
+  float x[1] = {0.5f}, out[3], grad[3] = {1, 1, 1};
+  lobe_noise(kCell, x, 1, nullptr, out, 3, grad); // cell/hash: piecewise constant
+  for (float g : grad) EXPECT_EQ(g, 0.0f);
+}
+
+// Exact values, as OSL computes them (oslnoise.h: lookup3 inthash, bits_to_01, perlin with
+// OSL's grad/fade/lerp and scale constants). Derived by hand and with the independent Python
+// transcription runtime/shadeops/noise_reference.py (binary32 rounding after every operation;
+// `python3 runtime/shadeops/noise_reference.py` prints these), not by this C++.
+TEST(Noise, OslValues) {
+  // lookup3 with one key: a = b = c = 0xdeadbeef + (1 << 2) + 13, a += 0, bjfinal -> c =
+  // 0x9519dc65 = inthash(0); inthash(1) = 0x4ad7c6a0. cellnoise(0.5) = inthash(0) * 2^-32
+  // (float(UINT_MAX) rounds to 2^32), rounded to float.
+  float x[4] = {0.5f}, v, o3[3], per[4] = {4, 4, 4, 4};
+  lobe_noise(kCell, x, 1, nullptr, &v, 1, nullptr);
+  EXPECT_EQ(v, float(double(0x9519dc65u) * 0x1p-32));
+  EXPECT_EQ(v, 0.582425833f);
+  // noise(0.5): h0 = inthash(0) & 15 = 5 -> grad 6 * 0.5 = 3; h1 = inthash(1) & 15 = 0 ->
+  // grad 1 * -0.5; fade(0.5) = 0.5 -> lerp 1.25; * scale1 0.25 = 0.3125; 0.5 * (1 + 0.3125).
+  lobe_noise(kUPerlin, x, 1, nullptr, &v, 1, nullptr);
+  EXPECT_EQ(v, 0.65625f);
+  lobe_noise(kPerlin, x, 1, nullptr, &v, 1, nullptr);
+  EXPECT_EQ(v, 0.3125f);
+  // cellnoise(vector) appends the channel as a last key: inthash(0, j) for j = 0, 1, 2.
+  lobe_noise(kCell, x, 1, nullptr, o3, 3, nullptr);
+  EXPECT_EQ(o3[0], 0.86031276f);
+  EXPECT_EQ(o3[1], 0.842521071f);
+  EXPECT_EQ(o3[2], 0.97482121f);
+  float c[3] = {2.1f, 5.9f, 0.5f};
+  lobe_noise(kCell, c, 2, nullptr, &v, 1, nullptr);
+  EXPECT_EQ(v, 0.611083984f);
+  lobe_noise(kCell, c, 3, nullptr, &v, 1, nullptr);
+  EXPECT_EQ(v, 0.976975441f);
+  float h[1] = {1.5f}; // hashnoise: inthash of the float bits 0x3fc00000
+  lobe_noise(kHash, h, 1, nullptr, &v, 1, nullptr);
+  EXPECT_EQ(v, 0.914302945f);
+  const float p[4] = {0.3f, 1.7f, -0.4f, 2.6f};
+  const float snoise[4] = {0.348075002f, -0.646099925f, 0.0186578035f, 0.380862921f};
+  for (int n = 1; n <= 4; ++n) {
+    lobe_noise(kPerlin, p, n, nullptr, &v, 1, nullptr);
+    EXPECT_EQ(v, snoise[n - 1]) << n;
+  }
+  lobe_noise(kUPerlin, p, 3, nullptr, &v, 1, nullptr);
+  EXPECT_EQ(v, 0.509328902f);
+  // Vector perlin: one inthash per corner, channels from h, h >> 8, h >> 16 (OSL's HashVector).
+  lobe_noise(kPerlin, p, 3, nullptr, o3, 3, nullptr);
+  EXPECT_EQ(o3[0], 0.0186578035f);
+  EXPECT_EQ(o3[1], 0.0256962031f);
+  EXPECT_EQ(o3[2], -0.489490956f);
+  // Periodic: corners wrapped by imod(., floor(period)).
+  float q[1] = {1.3f}, qm[1] = {-2.7f};
+  lobe_noise(kPerlin, q, 1, per, &v, 1, nullptr);
+  EXPECT_EQ(v, 0.291080922f);
+  lobe_noise(kPerlin, qm, 1, per, &v, 1, nullptr);
+  EXPECT_EQ(v, 0.291080922f);
 }
 
 // noise(name, ...) with a run-time name dispatches to the same kind as the constant case; an
