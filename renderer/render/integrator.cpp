@@ -112,7 +112,11 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
           bool delta = ls.kind == LightSample::Kind::Point;
           if (ls.kind == LightSample::Kind::Area) {
             Bsdf eb;
-            shade_into(scene_, ls.surface, ls.wi, kRayShadow, ctx, eb, c, time_);
+            // A context of its own: shading the light resets its arena, which holds the
+            // closure (and lobe parameters) of the vertex being lit, still needed for the
+            // BSDF sample that continues the path.
+            thread_local ShadingContext light_ctx;
+            shade_into(scene_, ls.surface, ls.wi, kRayShadow, light_ctx, eb, c, time_);
             Le = eb.emission;
           }
           Vec3 org = offset_ray_origin(v.hit.P, v.hit.Ng, ls.wi);
