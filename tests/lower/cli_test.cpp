@@ -30,9 +30,12 @@ std::string slurp(const fs::path& p) {
   return ss.str();
 }
 
-// Runs `lobe <args>` in `dir`, capturing stdout and stderr through files.
+// Runs `lobe <args>` in `dir`, capturing stdout and stderr through files named after this
+// process (ctest runs the tests of this binary as concurrent processes).
 CliRun lobe(const std::string& args, const fs::path& dir = fs::temp_directory_path()) {
-  fs::path out = dir / "lobe_cli_test.out", err = dir / "lobe_cli_test.err";
+  std::string tag = std::to_string(::getpid());
+  fs::path out = dir / ("lobe_cli_test_" + tag + ".out"),
+           err = dir / ("lobe_cli_test_" + tag + ".err");
   std::string cmd = "cd '" + dir.string() + "' && '" + std::string(LOBE_EXE) + "' " + args + " >'" +
                     out.string() + "' 2>'" + err.string() + "'";
   CliRun r;

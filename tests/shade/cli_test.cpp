@@ -2,6 +2,8 @@
 // first), lazy upstream layers, group files and image output, with specialisation off and on.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -63,7 +65,8 @@ TEST(ShadeCli, UnsizedArrayParameterTakesTheInstanceLength) {
 }
 
 TEST(ShadeCli, WritesOutputImage) {
-  auto file = std::filesystem::temp_directory_path() / "lobe_shade_cli_test.exr";
+  auto file = std::filesystem::temp_directory_path() /
+              ("lobe_shade_cli_test_" + std::to_string(::getpid()) + ".exr");
   std::filesystem::remove(file);
   std::string out = run("-g 4 2 -o Cout " + file.string() + " downstream_print");
   EXPECT_NE(out.find("Cin 0 0 0"), std::string::npos) << out;
@@ -78,7 +81,8 @@ std::string run_in(const std::filesystem::path& dir, const std::string& args) {
 }
 
 std::filesystem::path scratch_dir(const std::string& name, const std::string& text) {
-  auto dir = std::filesystem::temp_directory_path() / "lobe_shade_cli_scratch";
+  auto dir = std::filesystem::temp_directory_path() /
+             ("lobe_shade_cli_scratch_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   FILE* f = std::fopen((dir / name).string().c_str(), "wb");
   std::fputs(text.c_str(), f);
