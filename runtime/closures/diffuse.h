@@ -12,7 +12,12 @@
 //                 albedo is exactly 1 at every angle.
 //   burley        f = rho/pi k F(cos_i) F(cos_o), F(c) = 1 + (F90 - 1)(1 - c)^5,
 //                 F90 = b + 2 r cos^2 theta_d, with Frostbite's renormalisation b = r/2,
-//                 k = 1 - r (1 - 1/1.51) (Lagarde & de Rousiers 2014) so the albedo stays <= 1.
+//                 k = 1 - r (1 - 1/1.51) (Lagarde & de Rousiers 2014). That alone leaves the
+//                 albedo above 1 at grazing views for r > 0.945 (1.0315 at r = 1, wo on the
+//                 horizon, by double-precision quadrature), so k is also divided by
+//                 max(1, A0(r)), A0(r) = 1.03149 + 0.59093 (r-1) - 0.48028 (r-1)^2 + 1e-4, the
+//                 fitted horizon albedo (fit error < 1e-5 on [0.93, 1]); the albedo's maximum
+//                 over wo is at the horizon there, so it stays <= 1 and f stays reciprocal.
 //
 // Directional albedos: Lambert rho; Oren-Nayar and FON/EON in closed form (hemispherical
 // integral of s/t, derived in docs/closures.md); Burley: rho (an upper-bound estimate).
@@ -143,13 +148,18 @@ struct FujiiOrenNayar {
 struct Burley {
   Vec3 rho;
   float r = 0;
+  // max(1, albedo with wo on the horizon) of the Frostbite-normalised lobe (header comment).
+  static float horizon_albedo(float r) {
+    float d = r - 1.0f;
+    return maxf(1.0f, 1.03149f + 0.59093f * d - 0.48028f * d * d + 1e-4f);
+  }
   uint32_t flags() const { return kFlagDiffuse | kFlagReflect; }
   LobeEval eval(const Vec3& wo, const Vec3& wi) const {
     if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return {};
     Vec3 h = normalize(wo + wi);
     float cd = dot(wi, h);
     float f90 = 0.5f * r + 2.0f * r * cd * cd;
-    float k = 1.0f - r * (1.0f - 1.0f / 1.51f);
+    float k = (1.0f - r * (1.0f - 1.0f / 1.51f)) / horizon_albedo(r);
     auto F = [f90](float c) {
       float m = 1.0f - c;
       return 1.0f + (f90 - 1.0f) * (m * m * m * m * m);
