@@ -10,6 +10,8 @@
 // form inside the pixel over sqrt(spp)); the sphere-light case also checks the image total.
 #include "render_test_util.h"
 
+#include <algorithm>
+
 #include "camera.h"
 
 using namespace lobe;
@@ -76,6 +78,50 @@ TEST(Analytic, LambertPlaneUnderPointLight) {
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.img.pixel(x, y)[c], expected, tol) << x << "," << y;
     }
   EXPECT_GT(checked, kW * kH / 2);
+}
+
+// A spot light pointing straight down at a Lambertian plane: inside the cone the closed form
+// of the point light, times the smoothstep edge between cone_angle - falloff_angle and
+// cone_angle (measured from the spot axis at the light); outside the cone, black.
+TEST(Analytic, LambertPlaneUnderSpotLight) {
+  const double rho = 0.6, I = 20, cone = 30, falloff = 10;
+  const Vec3 light{0.0f, 2.0f, 0.0f};
+  const std::string json = R"({
+    "camera": {"eye": [0, 3, 4], "look_at": [0, 0, 0], "fov": 50},
+    "materials": {"m": {"shader": "matte", "params": {"Cs": 0.6}}},
+    "shapes": [{"type": "quad", "corner": [-50, 0, 50], "edge_x": [100, 0, 0],
+                "edge_y": [0, 0, -100], "material": "m"}],
+    "lights": [{"type": "spot", "position": [0, 2, 0], "look_at": [0, 0, 0], "intensity": 20,
+                "cone_angle": 30, "falloff_angle": 10}]
+  })";
+  auto s = test::setup_scene(json, kW, kH);
+  ASSERT_TRUE(s);
+  RenderOptions opt;
+  opt.spp = 64;
+  opt.max_depth = 1;
+  auto r = test::render(*s, kW, kH, opt);
+  int inside = 0, outside = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      double expected, sd;
+      auto f = [&](const Vec3& p) {
+        Vec3 d = light - p;
+        double r2 = dot(d, d), cos_t = d.y / std::sqrt(r2);
+        double a = std::acos(std::min(1.0, cos_t)) * 180 / M_PI; // angle from the axis
+        double t =
+            std::clamp((std::cos(a * M_PI / 180) - std::cos(cone * M_PI / 180)) /
+                           (std::cos((cone - falloff) * M_PI / 180) - std::cos(cone * M_PI / 180)),
+                       0.0, 1.0);
+        return rho / M_PI * I * cos_t / r2 * t * t * (3 - 2 * t);
+      };
+      if (!pixel_expectation(s->camera(), x, y, f, expected, {}, 0, &sd)) continue;
+      (expected > 0 ? inside : outside)++;
+      // (1e-4: a pixel straddling the cone edge whose 6x6 grid of points all fall outside.)
+      double tol = 0.005 * expected + 4 * sd / std::sqrt(double(opt.spp)) + 1e-4;
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.img.pixel(x, y)[c], expected, tol) << x << "," << y;
+    }
+  EXPECT_GT(inside, 20);
+  EXPECT_GT(outside, 20);
 }
 
 class SphereLight : public ::testing::TestWithParam<Strategy> {};
