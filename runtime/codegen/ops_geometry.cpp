@@ -3,6 +3,7 @@
 // calculatenormal).
 #include "duals.h"
 #include "op_tables.h"
+#include "shadeops.h"
 
 #include "lobe/shading.h"
 
@@ -124,27 +125,35 @@ void op_transform(LayerEmitter& e, const ir::Op& op) {
   e.store(op.args[0], r);
 }
 
-// Length units, in metres; only constant unit names are supported.
-double unit_scale(const std::string& u) {
-  if (u == "m" || u == "meter" || u == "meters") return 1;
-  if (u == "cm") return 0.01;
-  if (u == "mm") return 0.001;
-  if (u == "km") return 1000;
-  if (u == "in" || u == "inch") return 0.0254;
-  if (u == "ft" || u == "foot" || u == "feet") return 0.3048;
-  if (u == "mi" || u == "mile") return 1609.344;
-  return 0;
-}
+// transformu(["from",] "to", x): x times the ratio of the two length units (names in
+// shadeops::unit_scale; the one-name form converts from "common" units, metres in Lobe).
+// Constant known names fold to one multiplication; otherwise (names known only at run time,
+// or an unknown name, so that -O0 and -O2 agree when specialisation makes a name constant)
+// lobe_transformu_scale looks them up per point and reports an unknown name as a run-time
+// error (scale 1).
 void op_transformu(LayerEmitter& e, const ir::Op& op) {
-  const ir::Symbol& from = e.arg(op, 1);
-  const ir::Symbol& to = e.arg(op, 2);
-  if (from.kind != ir::SymKind::Const || to.kind != ir::SymKind::Const || op.args.size() != 4)
-    return e.fail(op, "transformu needs constant unit names");
-  double a = unit_scale(from.init[0].s), b = unit_scale(to.init[0].s);
-  if (a == 0 || b == 0) return e.fail(op, "unknown unit");
+  bool two = op.args.size() == 4;
+  size_t xi = two ? 3 : 2;
+  const ir::Symbol* from = two ? &e.arg(op, 1) : nullptr;
+  const ir::Symbol& to = e.arg(op, two ? 2 : 1);
+  auto known = [](const ir::Symbol* s) {
+    return !s || (s->kind == ir::SymKind::Const && shadeops::unit_scale(s->init[0].s) > 0);
+  };
   DualOps d(e);
-  Val x = e.load_as(op, 3, BaseType::Float);
-  e.store(op.args[0], Val{d.mul(x[0], d.constant(float(a / b)))});
+  Val x = e.load_as(op, int(xi), BaseType::Float);
+  if (known(from) && known(&to)) {
+    double a = from ? shadeops::unit_scale(from->init[0].s) : 1.0;
+    double b = shadeops::unit_scale(to.init[0].s);
+    e.store(op.args[0], Val{d.mul(x[0], d.constant(float(a / b)))});
+    return;
+  }
+  llvm::Value* f = two ? e.load(op.args[1])[0].v : e.string_const("common");
+  llvm::Value* t = e.load(op.args[two ? 2 : 1])[0].v;
+  llvm::Value* k =
+      e.call("lobe_transformu_scale",
+             {e.sg(), f, t, e.string_const(op.loc.file.empty() ? e.shader().name : op.loc.file),
+              e.iconst(op.loc.line)});
+  e.store(op.args[0], Val{d.mul(x[0], Dual{k})});
 }
 
 void op_transformc(LayerEmitter& e, const ir::Op& op) {

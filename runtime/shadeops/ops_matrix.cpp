@@ -3,6 +3,8 @@
 // and shader2common (null: identity); "common" and "world" are the identity; "camera",
 // "screen", "raster" and "NDC" are identity too (the runtime has no camera; documented in
 // docs/runtime.md). An unknown space name is an error and gives the identity.
+#include "shadeops.h"
+
 #include "lobe/context.h"
 #include "lobe/shading.h"
 
@@ -157,4 +159,32 @@ void lobe_transform(float* dst, const float* m, const float* p, int kind) {
   std::memcpy(dst, r, sizeof r);
 }
 
+// transformu's scale from unit `from` to unit `to` (shadeops.h, unit_scale), for names known
+// only at run time; an unknown name is a run-time error and leaves the value (scale 1).
+float lobe_transformu_scale(ShaderGlobals* sg, const char* from, const char* to,
+                            const char* file, int line) {
+  double a = lobe::shadeops::unit_scale(from ? from : "");
+  double b = lobe::shadeops::unit_scale(to ? to : "");
+  if (a > 0 && b > 0) return float(a / b);
+  if (sg && sg->context) {
+    sg->context->errors++;
+    sg->context->message(std::string("ERROR: Unknown unit \"") + (a > 0 ? to : from) + "\": " +
+                         file + ":" + std::to_string(line) + "\n");
+  }
+  return 1.0f;
+}
+
 } // extern "C"
+
+namespace lobe::shadeops {
+double unit_scale(std::string_view u) {
+  if (u == "m" || u == "meter" || u == "meters" || u == "common") return 1;
+  if (u == "cm") return 0.01;
+  if (u == "mm") return 0.001;
+  if (u == "km") return 1000;
+  if (u == "in" || u == "inch") return 0.0254;
+  if (u == "ft" || u == "foot" || u == "feet") return 0.3048;
+  if (u == "mi" || u == "mile") return 1609.344;
+  return 0;
+}
+} // namespace lobe::shadeops

@@ -41,4 +41,8 @@ struct TextureArgs {
 enum NoiseKind : int { kPerlin = 0, kUPerlin = 1, kCell = 2, kHash = 3 };
 int noise_kind_from_name(std::string_view name); // -1: unknown
 
+// Length units for transformu, in metres ("m"/"meter"/"meters", "cm", "mm", "km", "in"/"inch",
+// "ft"/"foot"/"feet", "mi"/"mile", and "common", Lobe's renderer units: metres); 0: unknown.
+double unit_scale(std::string_view name);
+
 } // namespace lobe::shadeops

@@ -37,6 +37,7 @@ void lobe_get_matrix();
 void lobe_space_matrix();
 void lobe_transform();
 void lobe_transformc();
+void lobe_transformu_scale();
 void lobe_wavelength_color();
 void lobe_blackbody();
 void lobe_luminance();
@@ -86,6 +87,7 @@ const ShadeOpSymbol kTable[] = {
     {"lobe_space_matrix", addr(lobe_space_matrix), "vppp"},
     {"lobe_transform", addr(lobe_transform), "vpppi"},
     {"lobe_transformc", addr(lobe_transformc), "vppppp"},
+    {"lobe_transformu_scale", addr(lobe_transformu_scale), "fppppi"},
     {"lobe_wavelength_color", addr(lobe_wavelength_color), "vpf"},
     {"lobe_blackbody", addr(lobe_blackbody), "vpf"},
     {"lobe_luminance", addr(lobe_luminance), "fp"},
