@@ -46,8 +46,11 @@ LayerEmitter::LayerEmitter(const GroupPlan& group, int layer, llvm::Module& modu
 
 void LayerEmitter::fail(const ir::Op& op, const std::string& msg) {
   if (!error_.empty()) return;
+  // `file:line:col: error: ...`, as the front end's diagnostics (the column when the op has one).
   std::string where = op.loc.file.empty() ? shader().name : op.loc.file;
-  error_ = where + ":" + std::to_string(op.loc.line) + ": " + op.opcode + ": " + msg;
+  if (op.loc.line > 0) where += ":" + std::to_string(op.loc.line);
+  if (op.loc.line > 0 && op.loc.column > 0) where += ":" + std::to_string(op.loc.column);
+  error_ = where + ": error: " + op.opcode + ": " + msg;
 }
 
 llvm::Value* LayerEmitter::env_ptr() {

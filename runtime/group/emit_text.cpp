@@ -39,7 +39,11 @@ bool emit_shader_text(const std::string& path, const CompileOptions& options, Em
   llvm::Module mod(b.layer_names.empty() ? "group" : b.layer_names.back(), ctx);
   jit->configure(mod);
   err = codegen::emit_group(b.plan, mod);
-  if (!err.empty()) return error(err);
+  if (!err.empty()) {
+    if (err.find(": error: ") == std::string::npos) return error(err);
+    diags.push_back({Diagnostic::Severity::Error, err}); // located: `file:line:col: error: ...`
+    return false;
+  }
   jit->optimize(mod, options.opt_level);
   if (form == EmitForm::Assembly) {
     if (!jit->emit_assembly(mod, out, err)) return error("JIT: " + err);

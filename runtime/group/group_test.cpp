@@ -374,3 +374,36 @@ end
 }
 
 } // namespace
+
+namespace {
+
+// An error found while generating code names its place as the front end does,
+// `file:line:col: error: ...` (from the op's @loc), or the shader when the op has none.
+TEST(GroupErrors, CodegenErrorsNameTheirPlace) {
+  const char* body = R"(lobe-ir 1
+surface bad
+symbols
+  global normal N
+  global closure Ci
+  const string $c0 = "nosuch"
+main
+  closure Ci $c0 N%s
+end
+)";
+  for (bool located : {true, false}) {
+    ShadingSystem ss;
+    DiagnosticList d;
+    char text[512];
+    std::snprintf(text, sizeof text, body, located ? " @bad.osl:3:8" : "");
+    ASSERT_TRUE(ss.add_shader_ir("bad", text, d));
+    auto g = ss.parse_group("shader bad layer ;", "t", d);
+    ASSERT_TRUE(g);
+    DiagnosticList diags;
+    EXPECT_EQ(ss.compile(*g, diags), nullptr);
+    ASSERT_EQ(diags.size(), 1u);
+    EXPECT_EQ(diags[0].text, located ? "bad.osl:3:8: error: closure: unknown closure 'nosuch'"
+                                     : "bad: error: closure: unknown closure 'nosuch'");
+  }
+}
+
+} // namespace

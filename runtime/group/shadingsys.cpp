@@ -118,7 +118,9 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   jit->configure(*mod);
   std::string err = codegen::emit_group(b.plan, *mod);
   if (!err.empty()) {
-    diags.push_back({Diagnostic::Severity::Error, "error: " + err});
+    // Codegen errors name their place already (`file:line:col: error: ...`).
+    bool located = err.find(": error: ") != std::string::npos;
+    diags.push_back({Diagnostic::Severity::Error, located ? err : "error: " + err});
     return nullptr;
   }
   stats.llvm_ir_ms = ms_since(t1);
