@@ -48,7 +48,7 @@ static void shade_into(const RenderScene& scene, const SurfaceHit& hit, const Ve
 }
 
 PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingContext& ctx,
-                             TraceCounters& c) const {
+                             ShadingContext& light_ctx, TraceCounters& c) const {
   const LightSet& lights = scene_.lights();
   const Geometry& geo = scene_.geometry();
   PathResult out;
@@ -112,10 +112,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
           bool delta = ls.kind == LightSample::Kind::Point;
           if (ls.kind == LightSample::Kind::Area) {
             Bsdf eb;
-            // A context of its own: shading the light resets its arena, which holds the
-            // closure (and lobe parameters) of the vertex being lit, still needed for the
-            // BSDF sample that continues the path.
-            thread_local ShadingContext light_ctx;
+            // Not `ctx`: shading resets the arena, which holds the closure (and lobe
+            // parameters) of the vertex being lit, still needed for the BSDF sample below.
             shade_into(scene_, ls.surface, ls.wi, kRayShadow, light_ctx, eb, c, time_);
             Le = eb.emission;
           }

@@ -4,8 +4,9 @@
 // (power heuristic); one light is sampled (point, spot, area, environment) and weighted
 // against BSDF sampling; delta lobes and delta lights are exact (weight 1). Russian roulette
 // after three bounces. transparent() closures are followed straight through, chosen against
-// scattering in proportion to transparency and albedo. Strategy::BsdfOnly and Strategy::LightOnly switch one technique off
-// (for the benchmark's comparison): BsdfOnly cannot see point and spot lights.
+// scattering in proportion to transparency and albedo. Strategy::BsdfOnly and Strategy::LightOnly
+// switch one technique off (for the benchmark's comparison): BsdfOnly cannot see point and spot
+// lights.
 #pragma once
 
 #include "sampling.h"
@@ -38,8 +39,11 @@ public:
   PathTracer(const RenderScene& scene, int max_depth, Strategy strategy, bool time_shading)
       : scene_(scene), max_depth_(max_depth), strategy_(strategy), time_(time_shading) {}
 
+  // `ctx` holds the closures of the path's vertices; `light_ctx` is where emitters are shaded
+  // for next-event estimation, so that shading a light never resets the arena holding the
+  // closure of the point it lights. One pair per thread.
   PathResult trace(const Ray& camera_ray, Sampler& sampler, ShadingContext& ctx,
-                   TraceCounters& counters) const;
+                   ShadingContext& light_ctx, TraceCounters& counters) const;
 
 private:
   const RenderScene& scene_;

@@ -25,6 +25,7 @@ struct Accum {
 
 struct ThreadState {
   ShadingContext ctx;
+  ShadingContext light_ctx; // emitters shaded for next-event estimation (PathTracer::trace)
   TraceCounters counters;
 };
 
@@ -43,7 +44,7 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
         Sampler sampler(pixel, uint64_t(s), opt.seed);
         float jx = sampler.next(), jy = sampler.next(), l1 = sampler.next(), l2 = sampler.next();
         Ray ray = scene.camera().generate(x + jx, y + jy, l1, l2);
-        PathResult r = pt.trace(ray, sampler, ts.ctx, ts.counters);
+        PathResult r = pt.trace(ray, sampler, ts.ctx, ts.light_ctx, ts.counters);
         // A rare invalid sample must not poison the pixel (counted, then dropped).
         if (!is_finite(r.L)) r.L = {};
         a.L += r.L;
