@@ -28,11 +28,11 @@ const ClosureKernels* MaterialImpl::closure_kernels() const {
   std::call_once(kernels_once_, [this] {
     if (closure_ids_.empty()) return;
     jit::JitTimes times;
-    kernels_ok_ = jit::compile_closure_kernels(*jit_, closure_ids_, kernels_, kernels_code_,
-                                               times, kernels_error_) &&
-                  kernels_.eval != nullptr;
+    // On failure, or with no closure the bitcode provides, kernels_ stays empty (eval null).
+    jit::compile_closure_kernels(*jit_, closure_ids_, kernels_, kernels_code_, times,
+                                 kernels_error_);
   });
-  return kernels_ok_ ? &kernels_ : nullptr;
+  return kernels_.eval ? &kernels_ : nullptr;
 }
 
 std::string MaterialImpl::closure_kernels_error() const {

@@ -60,7 +60,6 @@ private:
   mutable std::once_flag kernels_once_;
   mutable ClosureKernels kernels_;
   mutable jit::CompiledGroup kernels_code_;
-  mutable bool kernels_ok_ = false;
   mutable std::string kernels_error_;
 };
 
