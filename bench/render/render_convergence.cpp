@@ -62,8 +62,7 @@ bool parse(int argc, char** argv, Options& o) {
     } else if (a == "--closures" && i + 1 < argc) {
       o.closures = argv[++i];
       if (o.closures != "jit" && o.closures != "native") return false;
-    }
-    else if (a == "--ref-spp") {
+    } else if (a == "--ref-spp") {
       if (!next(o.ref_spp)) return false;
     } else if (a == "--max-spp") {
       if (!next(o.max_spp)) return false;
@@ -173,8 +172,7 @@ int main(int argc, char** argv) {
   }
   // The materials as the renderer compiles them (MaterialBackend: the JIT by default, shaders
   // next to the scene first), and their closures through JIT kernels or the native library.
-  MaterialBackend backend(o.materials,
-                          {std::filesystem::absolute(o.scene).parent_path().string()});
+  MaterialBackend backend(o.materials, {std::filesystem::absolute(o.scene).parent_path().string()});
   RenderScene s;
   s.use_closure_kernels(o.closures == "jit");
   if (std::string e = s.setup(*desc, backend.compiler(), o.width, o.height); !e.empty()) {

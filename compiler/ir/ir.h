@@ -88,7 +88,8 @@ struct Symbol {
   // the instance value's length, else this (see docs/ir.md).
   int default_len = 0;
   std::vector<Metadata> metadata;
-  std::string struct_name; // the flattened struct's type name for a struct-field param ("" otherwise)
+  std::string
+      struct_name; // the flattened struct's type name for a struct-field param ("" otherwise)
   SourceLoc loc;
 };
 
@@ -99,9 +100,9 @@ struct Symbol {
 // function (sin, noise, printf, ...) resolved by codegen from the argument types.
 struct Op {
   std::string opcode;
-  std::vector<int> args;       // symbol indices; by convention written args come first
-  uint32_t written_mask = 0;   // bit i set: args[i] is written by this op
-  std::vector<int> jumps;      // op indices (br: {target}; cbr: {if_true, if_false})
+  std::vector<int> args;     // symbol indices; by convention written args come first
+  uint32_t written_mask = 0; // bit i set: args[i] is written by this op
+  std::vector<int> jumps;    // op indices (br: {target}; cbr: {if_true, if_false})
   SourceLoc loc;
 
   bool writes(int argi) const { return (written_mask >> argi) & 1u; }

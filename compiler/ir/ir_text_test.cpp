@@ -21,9 +21,21 @@ Symbol sym(std::string name, BaseType b, SymKind k, int arraylen = 0) {
   return s;
 }
 
-ConstValue f(float v) { ConstValue c; c.f = v; return c; }
-ConstValue i(int v) { ConstValue c; c.i = v; return c; }
-ConstValue s(std::string v) { ConstValue c; c.s = std::move(v); return c; }
+ConstValue f(float v) {
+  ConstValue c;
+  c.f = v;
+  return c;
+}
+ConstValue i(int v) {
+  ConstValue c;
+  c.i = v;
+  return c;
+}
+ConstValue s(std::string v) {
+  ConstValue c;
+  c.s = std::move(v);
+  return c;
+}
 
 Op op(std::string code, std::vector<int> args, uint32_t mask, std::vector<int> jumps = {}) {
   Op o;
@@ -138,8 +150,8 @@ TEST(IrText, ParsesBackTheSameData) {
 }
 
 TEST(IrText, FloatsRoundTripExactly) {
-  const float values[] = {0.1f, 1.0f / 3.0f, 1e-38f, 3.4028235e38f, -0.0f, 1.17549435e-38f,
-                          16777217.0f, 2.5e-45f};
+  const float values[] = {0.1f,  1.0f / 3.0f,     1e-38f,      3.4028235e38f,
+                          -0.0f, 1.17549435e-38f, 16777217.0f, 2.5e-45f};
   for (float v : values) {
     std::string t = format_float(v);
     std::string text = "lobe-ir 1\nshader x\nsymbols\n  const float $c = " + t + "\nmain\nend\n";
@@ -153,10 +165,11 @@ TEST(IrText, FloatsRoundTripExactly) {
 }
 
 TEST(IrText, StringEscapesRoundTrip) {
-  std::string nasty = "a\"b\\c\nd\te\x01" "f g";
+  std::string nasty = "a\"b\\c\nd\te\x01"
+                      "f g";
   EXPECT_EQ(quote(nasty), "\"a\\\"b\\\\c\\nd\\te\\x01f g\"");
-  std::string text = "lobe-ir 1\nshader x\nsymbols\n  const string $c = " + quote(nasty) +
-                     "\nmain\nend\n";
+  std::string text =
+      "lobe-ir 1\nshader x\nsymbols\n  const string $c = " + quote(nasty) + "\nmain\nend\n";
   ParseResult r = parse(text);
   ASSERT_TRUE(r.shader) << r.error.to_string();
   EXPECT_EQ(r.shader->symbols[0].init[0].s, nasty);

@@ -42,26 +42,42 @@ bool tokenize(std::string_view line, std::vector<Token>& out, Fail& fail) {
     } else if (c == '"' || (c == '@' && i + 1 < line.size() && line[i + 1] == '"')) {
       // "string", or @"file with spaces":line:col (the location keeps its @ and tail).
       Token t{"", true, int(i) + 1};
-      if (c == '@') { t.text = "@"; t.quoted = false; ++i; }
+      if (c == '@') {
+        t.text = "@";
+        t.quoted = false;
+        ++i;
+      }
       std::string s;
       ++i;
       bool closed = false;
       while (i < line.size()) {
         char d = line[i++];
-        if (d == '"') { closed = true; break; }
-        if (d != '\\') { s.push_back(d); continue; }
+        if (d == '"') {
+          closed = true;
+          break;
+        }
+        if (d != '\\') {
+          s.push_back(d);
+          continue;
+        }
         if (i >= line.size()) break;
         char e = line[i++];
-        if (e == 'n') s.push_back('\n');
-        else if (e == 't') s.push_back('\t');
+        if (e == 'n')
+          s.push_back('\n');
+        else if (e == 't')
+          s.push_back('\t');
         else if (e == 'x' && i + 2 <= line.size()) {
           int v = 0;
           std::from_chars(line.data() + i, line.data() + i + 2, v, 16);
           s.push_back(char(v));
           i += 2;
-        } else s.push_back(e);
+        } else
+          s.push_back(e);
       }
-      if (!closed) { fail = {t.col, "unterminated string"}; return false; }
+      if (!closed) {
+        fail = {t.col, "unterminated string"};
+        return false;
+      }
       if (t.text == "@") {
         size_t e = i;
         while (e < line.size() && line[e] != ' ' && line[e] != '\t') ++e;
@@ -218,7 +234,10 @@ void Parser::shader_line(std::vector<Token>& toks) {
                                           ShaderType::Volume, ShaderType::Shader};
   bool found = false;
   for (ShaderType t : kTypes)
-    if (toks[0].text == to_string(t)) { sh_.type = t; found = true; }
+    if (toks[0].text == to_string(t)) {
+      sh_.type = t;
+      found = true;
+    }
   if (!found) throw Fail{toks[0].col, "expected a shader type, found '" + toks[0].text + "'"};
   sh_.name = at(toks, 1, "shader name").text;
   size_t i = 2;
@@ -233,17 +252,22 @@ void Parser::symbol_line(std::vector<Token>& toks) {
   Symbol s;
   bool found = false;
   for (SymKind k : kKinds)
-    if (toks[0].text == to_string(k) && !toks[0].quoted) { s.kind = k; found = true; }
+    if (toks[0].text == to_string(k) && !toks[0].quoted) {
+      s.kind = k;
+      found = true;
+    }
   if (!found) throw Fail{toks[0].col, "expected a symbol kind, found '" + toks[0].text + "'"};
   s.type = type(at(toks, 1, "symbol type"));
   const Token& name = at(toks, 2, "symbol name");
   s.name = name.text;
   if (syms_.count(s.name)) throw Fail{name.col, "duplicate symbol '" + s.name + "'"};
   size_t i = 3;
-  if (i < toks.size() && toks[i].text == "=" && !toks[i].quoted) i = values(toks, i + 1, s.type, s.init);
+  if (i < toks.size() && toks[i].text == "=" && !toks[i].quoted)
+    i = values(toks, i + 1, s.type, s.init);
   for (; i < toks.size(); ++i) {
     const Token& t = toks[i];
-    if (t.text == "derivs") s.derivs = true;
+    if (t.text == "derivs")
+      s.derivs = true;
     else if (t.text.rfind("init=", 0) == 0) {
       size_t colon = t.text.find(':');
       if (colon == std::string::npos) throw Fail{t.col, "expected init=BEGIN:END"};
@@ -285,8 +309,8 @@ void Parser::op_line(std::vector<Token>& toks) {
     for (++i; i < toks.size() && !toks[i].quoted && toks[i].text[0] != '@' &&
               toks[i].text.rfind("wmask=", 0) != 0;
          ++i) {
-      pending_.push_back({int(sh_.ops.size()), int(op.jumps.size()), line_no_, toks[i].col,
-                          toks[i].text});
+      pending_.push_back(
+          {int(sh_.ops.size()), int(op.jumps.size()), line_no_, toks[i].col, toks[i].text});
       op.jumps.push_back(-1);
     }
   }
@@ -310,14 +334,23 @@ void Parser::line(std::vector<Token>& toks) {
   }
   if (section_ == Section::End) throw Fail{first.col, "text after 'end'"};
   if (!first.quoted && toks.size() == 1) {
-    if (w == "symbols" && section_ == Section::Shader) { section_ = Section::Symbols; return; }
-    if (w == "init" && section_ == Section::Symbols) { section_ = Section::Init; return; }
+    if (w == "symbols" && section_ == Section::Shader) {
+      section_ = Section::Symbols;
+      return;
+    }
+    if (w == "init" && section_ == Section::Symbols) {
+      section_ = Section::Init;
+      return;
+    }
     if (w == "main" && (section_ == Section::Symbols || section_ == Section::Init)) {
       section_ = Section::Main;
       sh_.main_begin = int(sh_.ops.size());
       return;
     }
-    if (w == "end" && section_ == Section::Main) { section_ = Section::End; return; }
+    if (w == "end" && section_ == Section::Main) {
+      section_ = Section::End;
+      return;
+    }
     if (w.size() > 1 && w.back() == ':' && section_ >= Section::Init) {
       std::string label = w.substr(0, w.size() - 1);
       if (!labels_.emplace(label, int(sh_.ops.size())).second)

@@ -28,10 +28,18 @@ std::string quote(const std::string& s) {
   std::string out = "\"";
   for (unsigned char c : s) {
     switch (c) {
-    case '"': out += "\\\""; break;
-    case '\\': out += "\\\\"; break;
-    case '\n': out += "\\n"; break;
-    case '\t': out += "\\t"; break;
+    case '"':
+      out += "\\\"";
+      break;
+    case '\\':
+      out += "\\\\";
+      break;
+    case '\n':
+      out += "\\n";
+      break;
+    case '\t':
+      out += "\\t";
+      break;
     default:
       if (c < 0x20 || c == 0x7f) {
         char buf[8];
@@ -62,9 +70,12 @@ std::string format_values(const Type& t, const std::vector<ConstValue>& v) {
   std::string out;
   for (size_t i = 0; i < v.size(); ++i) {
     if (i) out.push_back(' ');
-    if (t.base == BaseType::Int) out += std::to_string(v[i].i);
-    else if (t.base == BaseType::String) out += quote(v[i].s);
-    else out += format_float(v[i].f);
+    if (t.base == BaseType::Int)
+      out += std::to_string(v[i].i);
+    else if (t.base == BaseType::String)
+      out += quote(v[i].s);
+    else
+      out += format_float(v[i].f);
   }
   return out;
 }
@@ -96,8 +107,8 @@ static void append(std::string& line, const std::string& piece) {
 }
 
 static std::string print_symbol(const Symbol& s) {
-  std::string line = std::string("  ") + to_string(s.kind) + " " + to_string(s.type) + " " +
-                     format_name(s.name);
+  std::string line =
+      std::string("  ") + to_string(s.kind) + " " + to_string(s.type) + " " + format_name(s.name);
   if (!s.init.empty()) line += " = " + format_values(s.type, s.init);
   if (s.derivs) line += " derivs";
   if (s.init_begin >= 0)
@@ -122,7 +133,8 @@ static std::string print_op(const Shader& sh, const Op& op) {
     for (int j : op.jumps) line += " L" + std::to_string(j);
   }
   const OpcodeInfo* info = find_opcode(op.opcode);
-  if (!info || info->written != op.written_mask) line += " wmask=" + std::to_string(op.written_mask);
+  if (!info || info->written != op.written_mask)
+    line += " wmask=" + std::to_string(op.written_mask);
   append(line, format_loc(op.loc));
   return line;
 }

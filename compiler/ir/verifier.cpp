@@ -48,7 +48,7 @@ bool promotes(const Type& src, const Type& dst) {
 bool assignable(const Type& src, const Type& dst) {
   if (promotes(src, dst)) return true;
   if (src.is_array() || dst.is_array()) return false;
-  if (dst.base == BaseType::Int) return src.base == BaseType::Float; // (int) cast
+  if (dst.base == BaseType::Int) return src.base == BaseType::Float;   // (int) cast
   if (dst.base == BaseType::Closure) return src.base == BaseType::Int; // the null closure
   return false;
 }
@@ -62,8 +62,8 @@ void Verifier::symbols() {
     if (!names.insert(s.name).second) error("duplicate name");
     size_t n = size_t(s.type.components()) * size_t(s.type.arraylen > 0 ? s.type.arraylen : 1);
     if (s.kind == SymKind::Const && s.init.size() != n && s.type.arraylen >= 0)
-      error("constant has " + std::to_string(s.init.size()) + " values, type " +
-            to_string(s.type) + " needs " + std::to_string(n));
+      error("constant has " + std::to_string(s.init.size()) + " values, type " + to_string(s.type) +
+            " needs " + std::to_string(n));
     bool is_param = s.kind == SymKind::Param || s.kind == SymKind::OutputParam;
     if (is_param && !s.init.empty() && s.type.arraylen >= 0 && s.init.size() != n)
       error("default has " + std::to_string(s.init.size()) + " values, needs " + std::to_string(n));
@@ -84,8 +84,7 @@ void Verifier::jumps(int index, const OpcodeInfo& info) {
   if (o.opcode == "br") want = 1;
   if (o.opcode == "cbr") want = 2;
   if (o.jumps.size() != want)
-    error("has " + std::to_string(o.jumps.size()) + " jump targets, needs " +
-          std::to_string(want));
+    error("has " + std::to_string(o.jumps.size()) + " jump targets, needs " + std::to_string(want));
   bool in_init = index < sh_.main_begin;
   int lo = in_init ? 0 : sh_.main_begin;
   int hi = in_init ? sh_.main_begin : int(sh_.ops.size());
@@ -104,14 +103,14 @@ void Verifier::op(int index) {
   if (!info) return error("unknown opcode");
   int n = int(o.args.size());
   if (n < info->min_args || (info->max_args != kVariadic && n > info->max_args))
-    return error("has " + std::to_string(n) + " operands, needs " +
-                 std::to_string(info->min_args) +
+    return error("has " + std::to_string(n) + " operands, needs " + std::to_string(info->min_args) +
                  (info->max_args == info->min_args ? std::string()
-                  : info->max_args == kVariadic   ? "+"
-                                                  : ".." + std::to_string(info->max_args)));
+                  : info->max_args == kVariadic    ? "+"
+                                                   : ".." + std::to_string(info->max_args)));
   for (int i = 0; i < n; ++i) {
     int a = o.args[i];
-    if (a < 0 || a >= int(sh_.symbols.size())) return error("operand " + std::to_string(i) + " is not a symbol");
+    if (a < 0 || a >= int(sh_.symbols.size()))
+      return error("operand " + std::to_string(i) + " is not a symbol");
     if (o.writes(i) && sh_.symbols[a].kind == SymKind::Const)
       error("writes the constant '" + sh_.symbols[a].name + "'");
   }
@@ -124,7 +123,9 @@ void Verifier::op(int index) {
 void Verifier::types(const Op& o) {
   const std::string& c = o.opcode;
   auto t = [&](int i) -> const Type& { return ty(o, i); };
-  auto name = [&](int i) { return "'" + sh_.symbols[o.args[i]].name + "' (" + to_string(t(i)) + ")"; };
+  auto name = [&](int i) {
+    return "'" + sh_.symbols[o.args[i]].name + "' (" + to_string(t(i)) + ")";
+  };
   auto is_const_string = [&](int i) {
     const Symbol& s = sh_.symbols[o.args[i]];
     return s.kind == SymKind::Const && scalar(s.type, BaseType::String);
@@ -138,12 +139,18 @@ void Verifier::types(const Op& o) {
       for (int i = 1; i < n; ++i) {
         bool cl = scalar(t(i), BaseType::Closure);
         closures += cl;
-        if (!cl) expect(numeric(t(i)) || scalar(t(i), BaseType::Color), "closure weight " + name(i) + " must be float or color");
+        if (!cl)
+          expect(numeric(t(i)) || scalar(t(i), BaseType::Color),
+                 "closure weight " + name(i) + " must be float or color");
       }
-      if (c == "add") expect(closures == 2, "closure add needs two closures");
-      else if (c == "mul") expect(closures == 1, "closure mul needs one closure and one weight");
-      else if (c == "neg") expect(closures == 1, "closure neg needs a closure");
-      else error("closures support only add, mul, neg");
+      if (c == "add")
+        expect(closures == 2, "closure add needs two closures");
+      else if (c == "mul")
+        expect(closures == 1, "closure mul needs one closure and one weight");
+      else if (c == "neg")
+        expect(closures == 1, "closure neg needs a closure");
+      else
+        error("closures support only add, mul, neg");
       return;
     }
     for (int i = 1; i < n; ++i)
@@ -152,36 +159,51 @@ void Verifier::types(const Op& o) {
     expect(scalar(t(0), BaseType::Int), "result " + name(0) + " must be int");
     bool ordered = c != "eq" && c != "neq";
     for (int i = 1; i < 3; ++i) {
-      if (ordered) expect(numeric(t(i)), "ordered comparison of " + name(i));
-      else expect(!t(i).is_array() && t(i).base != BaseType::Closure, "cannot compare " + name(i));
+      if (ordered)
+        expect(numeric(t(i)), "ordered comparison of " + name(i));
+      else
+        expect(!t(i).is_array() && t(i).base != BaseType::Closure, "cannot compare " + name(i));
     }
-    expect(promotes(t(1), t(2)) || promotes(t(2), t(1)), "incomparable " + name(1) + " and " + name(2));
+    expect(promotes(t(1), t(2)) || promotes(t(2), t(1)),
+           "incomparable " + name(1) + " and " + name(2));
   } else if (c == "not") {
     expect(scalar(t(0), BaseType::Int), "result must be int");
     expect(numeric(t(1)) || scalar(t(1), BaseType::Closure), "operand " + name(1));
-  } else if (c == "compl" || c == "bitand" || c == "bitor" || c == "xor" || c == "shl" || c == "shr") {
-    for (size_t i = 0; i < o.args.size(); ++i) expect(scalar(t(int(i)), BaseType::Int), "operand " + name(int(i)) + " must be int");
+  } else if (c == "compl" || c == "bitand" || c == "bitor" || c == "xor" || c == "shl" ||
+             c == "shr") {
+    for (size_t i = 0; i < o.args.size(); ++i)
+      expect(scalar(t(int(i)), BaseType::Int), "operand " + name(int(i)) + " must be int");
   } else if (c == "compref") {
-    expect(scalar(t(0), BaseType::Float) && t(1).is_triple() && !t(1).is_array() && scalar(t(2), BaseType::Int), "needs float = triple[int]");
+    expect(scalar(t(0), BaseType::Float) && t(1).is_triple() && !t(1).is_array() &&
+               scalar(t(2), BaseType::Int),
+           "needs float = triple[int]");
   } else if (c == "compassign") {
-    expect(t(0).is_triple() && !t(0).is_array() && scalar(t(1), BaseType::Int) && numeric(t(2)), "needs triple[int] = float");
+    expect(t(0).is_triple() && !t(0).is_array() && scalar(t(1), BaseType::Int) && numeric(t(2)),
+           "needs triple[int] = float");
   } else if (c == "mxcompref") {
-    expect(scalar(t(0), BaseType::Float) && scalar(t(1), BaseType::Matrix) && scalar(t(2), BaseType::Int) && scalar(t(3), BaseType::Int), "needs float = matrix[int][int]");
+    expect(scalar(t(0), BaseType::Float) && scalar(t(1), BaseType::Matrix) &&
+               scalar(t(2), BaseType::Int) && scalar(t(3), BaseType::Int),
+           "needs float = matrix[int][int]");
   } else if (c == "mxcompassign") {
-    expect(scalar(t(0), BaseType::Matrix) && scalar(t(1), BaseType::Int) && scalar(t(2), BaseType::Int) && numeric(t(3)), "needs matrix[int][int] = float");
+    expect(scalar(t(0), BaseType::Matrix) && scalar(t(1), BaseType::Int) &&
+               scalar(t(2), BaseType::Int) && numeric(t(3)),
+           "needs matrix[int][int] = float");
   } else if (c == "aref" || c == "aassign") {
     int arr = c == "aref" ? 1 : 0, elem = c == "aref" ? 0 : 2, idx = c == "aref" ? 2 : 1;
     expect(t(arr).is_array(), name(arr) + " is not an array");
     expect(scalar(t(idx), BaseType::Int), "index " + name(idx) + " must be int");
     Type e = t(arr);
     e.arraylen = 0;
-    expect(c == "aref" ? t(elem) == e : promotes(t(elem), e), "element " + name(elem) + " does not match " + name(arr));
+    expect(c == "aref" ? t(elem) == e : promotes(t(elem), e),
+           "element " + name(elem) + " does not match " + name(arr));
   } else if (c == "arraycopy") {
-    expect(t(0).is_array() && t(1).is_array() && t(0).base == t(1).base, "needs two arrays of one element type");
+    expect(t(0).is_array() && t(1).is_array() && t(0).base == t(1).base,
+           "needs two arrays of one element type");
   } else if (c == "arraylength") {
     expect(scalar(t(0), BaseType::Int) && t(1).is_array(), "needs int = arraylength(array)");
   } else if (c == "construct") {
-    expect(t(0).is_triple() || scalar(t(0), BaseType::Matrix), "constructs only triples and matrices");
+    expect(t(0).is_triple() || scalar(t(0), BaseType::Matrix),
+           "constructs only triples and matrices");
   } else if (c == "closure") {
     expect(scalar(t(0), BaseType::Closure), "result must be a closure");
     expect(is_const_string(1), "second operand must be the registry key (a string constant)");
@@ -190,7 +212,8 @@ void Verifier::types(const Op& o) {
   } else if (c == "useparam") {
     for (size_t i = 0; i < o.args.size(); ++i) {
       SymKind k = sh_.symbols[o.args[i]].kind;
-      expect(k == SymKind::Param || k == SymKind::OutputParam, name(int(i)) + " is not a parameter");
+      expect(k == SymKind::Param || k == SymKind::OutputParam,
+             name(int(i)) + " is not a parameter");
     }
   } else if (c == "Dx" || c == "Dy" || c == "Dz" || c == "filterwidth") {
     expect(float_based(t(0)) && float_based(t(1)), "needs float or triple operands");

@@ -243,8 +243,9 @@ std::vector<int> Lowerer::struct_parts(const ast::Expr* e, const ast::Type& t) {
         ir::Type lt = irtype(leaf.type, parts[i]);
         int tmp = temp(lt);
         if (int(l->elems.size()) < ft.arraylen && lt.base != ir::BaseType::Closure)
-          store(LRef{tmp}, ir::intern_const(sh_, lt, std::vector<ir::ConstValue>(
-                                                       size_t(lt.arraylen * lt.components()))),
+          store(LRef{tmp},
+                ir::intern_const(
+                    sh_, lt, std::vector<ir::ConstValue>(size_t(lt.arraylen * lt.components()))),
                 parts[i]);
         dst.push_back(LRef{tmp});
         out.push_back(tmp);

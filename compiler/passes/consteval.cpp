@@ -19,14 +19,24 @@ bool is_num(const Type& t) {
   return !t.is_array() && (t.base == BaseType::Int || t.base == BaseType::Float);
 }
 
-ConstValue fv(float f) { ConstValue c; c.f = f; return c; }
-ConstValue iv(int32_t i) { ConstValue c; c.i = i; return c; }
+ConstValue fv(float f) {
+  ConstValue c;
+  c.f = f;
+  return c;
+}
+ConstValue iv(int32_t i) {
+  ConstValue c;
+  c.i = i;
+  return c;
+}
 
 // The wider of two comparable types (int < float < triple), or nullopt.
 std::optional<Type> wider(const Type& a, const Type& b) {
   if (a.is_array() || b.is_array()) return std::nullopt;
   if (a == b) return a;
-  auto rank = [](const Type& t) { return t.base == BaseType::Int ? 0 : t.base == BaseType::Float ? 1 : t.is_triple() ? 2 : -1; };
+  auto rank = [](const Type& t) {
+    return t.base == BaseType::Int ? 0 : t.base == BaseType::Float ? 1 : t.is_triple() ? 2 : -1;
+  };
   int ra = rank(a), rb = rank(b);
   if (ra < 0 || rb < 0) return std::nullopt;
   if (ra == 2 && rb == 2) return a; // two different triples: compare as floats
@@ -70,7 +80,8 @@ std::function<float(float, float)> float_binop(const std::string& op) {
   if (op == "sub") return [](float a, float b) { return a - b; };
   if (op == "mul") return [](float a, float b) { return a * b; };
   if (op == "div") return [](float a, float b) { return b == 0 ? 0.0f : a / b; };
-  if (op == "mod" || op == "fmod") return [](float a, float b) { return b == 0 ? 0.0f : std::fmod(a, b); };
+  if (op == "mod" || op == "fmod")
+    return [](float a, float b) { return b == 0 ? 0.0f : std::fmod(a, b); };
   if (op == "min") return [](float a, float b) { return std::fmin(a, b); };
   if (op == "max") return [](float a, float b) { return std::fmax(a, b); };
   if (op == "pow") // OSL's safe_pow, as runtime/codegen/ops_math.cpp computes it
@@ -109,7 +120,8 @@ std::optional<Values> compare(const std::string& op, const std::vector<ConstArg>
 }
 
 // Arithmetic in the destination type, sources converted to it.
-std::optional<Values> arith(const std::string& op, const Type& dst, const std::vector<ConstArg>& s) {
+std::optional<Values> arith(const std::string& op, const Type& dst,
+                            const std::vector<ConstArg>& s) {
   if (!(is_num(dst) || (dst.is_triple() && !dst.is_array()))) return std::nullopt;
   std::vector<Values> args;
   for (const ConstArg& a : s) {
@@ -121,11 +133,16 @@ std::optional<Values> arith(const std::string& op, const Type& dst, const std::v
   bool ok = true;
   for (size_t c = 0; c < out.size(); ++c) {
     if (dst.base == BaseType::Int) {
-      if (args.size() == 1 && op == "neg") out[c] = iv(int32_t(0u - uint32_t(args[0][c].i)));
-      else if (args.size() == 1 && op == "abs") out[c] = iv(args[0][c].i < 0 ? int32_t(0u - uint32_t(args[0][c].i)) : args[0][c].i);
-      else if (args.size() == 1 && op == "compl") out[c] = iv(~args[0][c].i);
-      else if (args.size() == 2) out[c] = iv(int_binop(op, args[0][c].i, args[1][c].i, ok));
-      else return std::nullopt;
+      if (args.size() == 1 && op == "neg")
+        out[c] = iv(int32_t(0u - uint32_t(args[0][c].i)));
+      else if (args.size() == 1 && op == "abs")
+        out[c] = iv(args[0][c].i < 0 ? int32_t(0u - uint32_t(args[0][c].i)) : args[0][c].i);
+      else if (args.size() == 1 && op == "compl")
+        out[c] = iv(~args[0][c].i);
+      else if (args.size() == 2)
+        out[c] = iv(int_binop(op, args[0][c].i, args[1][c].i, ok));
+      else
+        return std::nullopt;
     } else if (args.size() == 1) {
       auto f = float_unop(op);
       if (!f) return std::nullopt;
@@ -166,7 +183,8 @@ std::optional<Values> convert_const(const Type& from, const Values& v, const Typ
   return std::nullopt;
 }
 
-std::optional<Values> evaluate(const std::string& op, const Type& dst, const std::vector<ConstArg>& s) {
+std::optional<Values> evaluate(const std::string& op, const Type& dst,
+                               const std::vector<ConstArg>& s) {
   if (op == "assign" && s.size() == 1) return convert_const(s[0].type, *s[0].value, dst);
   if ((op == "eq" || op == "neq" || op == "lt" || op == "le" || op == "gt" || op == "ge") &&
       s.size() == 2)
@@ -199,10 +217,10 @@ std::optional<Values> evaluate(const std::string& op, const Type& dst, const std
     }
     return Values{c};
   }
-  static const char* kArith[] = {"add", "sub", "mul", "div", "mod", "neg", "compl", "bitand",
-                                 "bitor", "xor", "shl", "shr", "sin", "cos", "tan", "sqrt",
-                                 "abs", "fabs", "floor", "ceil", "exp", "fmod", "min", "max",
-                                 "pow", "clamp", "mix", "radians"};
+  static const char* kArith[] = {"add",    "sub",   "mul", "div",  "mod",   "neg",  "compl",
+                                 "bitand", "bitor", "xor", "shl",  "shr",   "sin",  "cos",
+                                 "tan",    "sqrt",  "abs", "fabs", "floor", "ceil", "exp",
+                                 "fmod",   "min",   "max", "pow",  "clamp", "mix",  "radians"};
   for (const char* a : kArith)
     if (op == a) return arith(op, dst, s);
   return std::nullopt;

@@ -7,9 +7,7 @@ using lobe::passes::testing::run_pass;
 
 namespace {
 
-std::string main_of(const std::string& printed) {
-  return printed.substr(printed.find("main\n"));
-}
+std::string main_of(const std::string& printed) { return printed.substr(printed.find("main\n")); }
 
 TEST(ConstFold, ArithmeticComparisonsAndPropagation) {
   const char* in = R"(lobe-ir 1
@@ -168,8 +166,7 @@ end
   EXPECT_TRUE(changed);
   EXPECT_EQ(main_of(out), "main\n  assign t $c2\n  assign t $c2\n  assign Cout $c3\nend\n");
   // Kd counts as a constant when naming: the first new one is $c2; sqrt(1) = 1 reuses it.
-  EXPECT_NE(out.find("const float $c2 = 1\n  const color $c3 = 1 1 1\n"),
-            std::string::npos) << out;
+  EXPECT_NE(out.find("const float $c2 = 1\n  const color $c3 = 1 1 1\n"), std::string::npos) << out;
   run_pass(out, fold_constants, &changed);
   EXPECT_FALSE(changed);
 }

@@ -91,7 +91,9 @@ L3:
   br -> L1
 L6:
 end
-)"), std::string::npos) << out;
+)"),
+            std::string::npos)
+      << out;
   EXPECT_EQ(out.find("dead"), std::string::npos);
 }
 

@@ -293,9 +293,9 @@ bool Sema::check_writable(ast::Expr* target, SourceRange where) {
       if (st == ast::ShaderType::Volume) ok = v->name == "Ci";
     }
     if (!ok) {
-      std::string kind = shader_ ? "a shader of type '" +
-                                       std::string(ast::to_string(shader_->shader_type)) + "'"
-                                 : "a shader";
+      std::string kind =
+          shader_ ? "a shader of type '" + std::string(ast::to_string(shader_->shader_type)) + "'"
+                  : "a shader";
       error(DiagId::err_write_readonly_global, where, {v->name, kind});
       return false;
     }

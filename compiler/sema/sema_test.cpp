@@ -324,10 +324,11 @@ TEST(Sema, OperatorOverloading) {
 
 TEST(Sema, CompoundAssignmentUsesOperatorOverloads) {
   // OSL rewrites `a op= b` as `a = a op b`, so the struct overloads apply.
-  const std::string decls = "struct V2 { float x, y; };\n"
-                            "V2 __operator__add__(V2 a, V2 b) { return V2(a.x + b.x, a.y + b.y); }\n"
-                            "V2 __operator__mul__(V2 a, float s) { return V2(a.x * s, a.y * s); }\n"
-                            "float __operator__sub__(V2 a, V2 b) { return a.x - b.x; }\n";
+  const std::string decls =
+      "struct V2 { float x, y; };\n"
+      "V2 __operator__add__(V2 a, V2 b) { return V2(a.x + b.x, a.y + b.y); }\n"
+      "V2 __operator__mul__(V2 a, float s) { return V2(a.x * s, a.y * s); }\n"
+      "float __operator__sub__(V2 a, V2 b) { return a.x - b.x; }\n";
   Checked c(decls + "shader s() { V2 p = V2(1, 2), q = V2(3, 4); p += q; p *= 2; }");
   ASSERT_TRUE(c.ok()) << c.text();
   EXPECT_NE(c.body().find("(+=:V2 p:V2 q:V2)"), std::string::npos) << c.body();

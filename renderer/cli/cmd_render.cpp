@@ -188,8 +188,8 @@ int run_render(int argc, char** argv) {
                  stats.cancelled ? "interrupted: wrote the finished samples to " : "wrote ",
                  out.c_str(), st.width, st.height, spp, backend.name().c_str(),
                  scene.stats().materials_compiled, scene.stats().compile_seconds,
-                 scene.stats().closure_kernels, setup_s,
-                 stats.seconds, stats.seconds > 0 ? double(rays) / stats.seconds / 1e6 : 0.0);
+                 scene.stats().closure_kernels, setup_s, stats.seconds,
+                 stats.seconds > 0 ? double(rays) / stats.seconds / 1e6 : 0.0);
   }
   return stats.cancelled ? 130 : 0;
 }

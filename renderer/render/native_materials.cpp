@@ -35,16 +35,26 @@ const std::vector<ParamSpec>* params_of(const std::string& shader) {
   static const std::map<std::string, std::vector<ParamSpec>> kParams = {
       {"matte", {{"Cs", P::Color}, {"Kd", P::Float}, {"roughness", P::Float}}},
       {"plastic",
-       {{"Cs", P::Color}, {"Kd", P::Float}, {"Ks", P::Float}, {"roughness", P::Float},
+       {{"Cs", P::Color},
+        {"Kd", P::Float},
+        {"Ks", P::Float},
+        {"roughness", P::Float},
         {"ior", P::Float}}},
       {"metal",
-       {{"preset", P::String}, {"ior", P::Color}, {"extinction", P::Color},
-        {"roughness", P::Float}, {"tint", P::Color}}},
+       {{"preset", P::String},
+        {"ior", P::Color},
+        {"extinction", P::Color},
+        {"roughness", P::Float},
+        {"tint", P::Color}}},
       {"brushed_metal",
-       {{"preset", P::String}, {"roughness_along", P::Float}, {"roughness_across", P::Float},
+       {{"preset", P::String},
+        {"roughness_along", P::Float},
+        {"roughness_across", P::Float},
         {"tint", P::Color}}},
       {"glass",
-       {{"transmission_color", P::Color}, {"reflection_color", P::Color}, {"ior", P::Float},
+       {{"transmission_color", P::Color},
+        {"reflection_color", P::Color},
+        {"ior", P::Float},
         {"roughness", P::Float}}},
       {"emitter", {{"Cs", P::Color}, {"power", P::Float}}},
       {"mirror", {{"Cs", P::Color}}},
@@ -67,7 +77,8 @@ public:
         if (iv.name == ps.name) spec = &ps;
       if (!spec) { // as the renderer reports the JIT's warning for it
         std::string names;
-        for (const ParamSpec& ps : specs) names += (names.empty() ? "" : ", ") + std::string(ps.name);
+        for (const ParamSpec& ps : specs)
+          names += (names.empty() ? "" : ", ") + std::string(ps.name);
         error = "layer '" + layer.name + "': shader '" + layer.shader + "' has no parameter '" +
                 iv.name + "' (its parameters: " + names + ")";
         return false;
@@ -169,7 +180,10 @@ ShadeFn make_shader(const std::string& name, const ParamValues& p) {
     return [=](ShaderGlobals& sg, ShadingContext& ctx) -> const ClosureNode* {
       if (rough > 0) {
         closures::Params q("oren_nayar_diffuse_bsdf");
-        q.set("N", sg.N).set("albedo", albedo).set("roughness", rough).set("energy_compensation", 1);
+        q.set("N", sg.N)
+            .set("albedo", albedo)
+            .set("roughness", rough)
+            .set("energy_compensation", 1);
         return component(ctx, q, {1, 1, 1});
       }
       closures::Params q("diffuse");

@@ -147,8 +147,10 @@ std::string RenderScene::compile_materials(const MaterialCompiler& compile) {
     const scene::MaterialDesc& m = desc_.materials[todo[i]];
     std::string err;
     materials_[todo[i]] = compile(m, err);
-    if (!materials_[todo[i]]) errors[i] = m.where + ": material '" + m.name + "': " + err;
-    else if (use_kernels_) materials_[todo[i]]->closure_kernels(); // compiled here, in parallel
+    if (!materials_[todo[i]])
+      errors[i] = m.where + ": material '" + m.name + "': " + err;
+    else if (use_kernels_)
+      materials_[todo[i]]->closure_kernels(); // compiled here, in parallel
   });
   for (int mi : todo) {
     if (!materials_[mi] || !use_kernels_) continue;

@@ -37,7 +37,7 @@ struct SetupStats {
   double compile_seconds = 0; // wall time of the parallel compile of all used materials
   int materials_compiled = 0;
   int emitters = 0;
-  int closure_kernels = 0;         // materials whose closures run as JIT-compiled kernels
+  int closure_kernels = 0;           // materials whose closures run as JIT-compiled kernels
   std::vector<std::string> warnings; // e.g. closure kernels that failed to compile
   ShaderMessages messages;           // from shading at setup (emitter probes, background table)
 };

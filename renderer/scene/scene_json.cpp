@@ -364,8 +364,8 @@ std::optional<SceneDesc> parse_json_scene(const std::string& text, const std::st
       size_t colon = what.find(": ", at);
       if (colon != std::string::npos) what = what.substr(colon + 2);
     }
-    error = path + ":" + std::to_string(line) + ":" + std::to_string(col) +
-            ": invalid JSON: " + what;
+    error =
+        path + ":" + std::to_string(line) + ":" + std::to_string(col) + ": invalid JSON: " + what;
     return std::nullopt;
   }
   try {

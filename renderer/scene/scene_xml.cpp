@@ -122,8 +122,8 @@ private:
     // Errors carry the file line of the mistake: the group text starts on the line of its
     // first text node (right after <ShaderGroup>).
     pugi::xml_node text = n.first_child();
-    int first = line_of(text && text.type() == pugi::node_pcdata ? text.offset_debug()
-                                                                 : n.offset_debug());
+    int first =
+        line_of(text && text.type() == pugi::node_pcdata ? text.offset_debug() : n.offset_debug());
     auto g = parse_group_text(n.child_value(), path_, true, err, first);
     if (!g) {
       error = err;

@@ -408,10 +408,9 @@ end
     sg.object2common = o2c;
   };
   // p = (1,1,1) * g = (2+1, 2+2, 2+3).
-  EXPECT_EQ(run(ir, 0.5f, 0.5f, setup),
-            "2 0 0 0 0 2 0 0 0 0 2 0 1 2 3 1\n"
-            "0.5 0 0 0 0 0.5 0 0 0 0 0.5 0 -0.5 -1 -1.5 1\n"
-            "3 4 5\n");
+  EXPECT_EQ(run(ir, 0.5f, 0.5f, setup), "2 0 0 0 0 2 0 0 0 0 2 0 1 2 3 1\n"
+                                        "0.5 0 0 0 0 0.5 0 0 0 0 0.5 0 -0.5 -1 -1.5 1\n"
+                                        "3 4 5\n");
   // Without an object transform (lobe shade's grid), every named space is the identity.
   EXPECT_EQ(run(ir), "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n"
                      "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n"

@@ -118,8 +118,8 @@ void op_string(LayerEmitter& e, const ir::Op& op) {
   } else if ((o == "regex_search" || o == "regex_match") && op.args.size() == 4) {
     // regex_x result results[] subject pattern: the shadeop fills a buffer, copied to results.
     int n = std::max(0, e.arg(op, 1).type.arraylen);
-    llvm::Value* buf = e.spill(std::vector<llvm::Value*>(size_t(std::max(n, 1)), e.iconst(0)),
-                               e.i32());
+    llvm::Value* buf =
+        e.spill(std::vector<llvm::Value*>(size_t(std::max(n, 1)), e.iconst(0)), e.i32());
     r = e.call("lobe_regex_results", {str(e, op, 2), str(e, op, 3),
                                       e.iconst(o == "regex_match" ? 1 : 0), buf, e.iconst(n)});
     std::vector<llvm::Value*> got = e.reload(buf, n, e.i32());

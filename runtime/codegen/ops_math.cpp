@@ -107,8 +107,8 @@ Dual unary(LayerEmitter& e, DualOps& d, const std::string& name, const Dual& x) 
     llvm::Value* a = name == "logb" ? intr(e, llvm::Intrinsic::fabs, v) : v;
     llvm::Value* below = B.CreateFCmpOLT(a, e.fconst(FLT_MIN));
     llvm::Value* above = B.CreateFCmpOGT(a, e.fconst(FLT_MAX));
-    llvm::Value* c = B.CreateSelect(below, e.fconst(FLT_MIN),
-                                    B.CreateSelect(above, e.fconst(FLT_MAX), a));
+    llvm::Value* c =
+        B.CreateSelect(below, e.fconst(FLT_MIN), B.CreateSelect(above, e.fconst(FLT_MAX), a));
     if (name == "logb") return Dual{libm(e, "logbf", c)};
     I id = name == "log"    ? llvm::Intrinsic::log
            : name == "log2" ? llvm::Intrinsic::log2

@@ -2,10 +2,10 @@
 // look-up -> specialise -> LLVM IR -> optimise -> JIT) and the material cache.
 #include "lobe/shadingsys.h"
 
+#include "closure_registry.h"
 #include "codegen.h"
 #include "group_build.h"
 #include "group_text.h"
-#include "closure_registry.h"
 #include "ir/printer.h"
 #include "jit.h"
 #include "lobe/bsdf.h"

@@ -24,22 +24,41 @@ namespace {
 inline uint32_t rot(uint32_t x, int k) { return (x << k) | (x >> (32 - k)); }
 
 inline void bjmix(uint32_t& a, uint32_t& b, uint32_t& c) {
-  a -= c; a ^= rot(c, 4);  c += b;
-  b -= a; b ^= rot(a, 6);  a += c;
-  c -= b; c ^= rot(b, 8);  b += a;
-  a -= c; a ^= rot(c, 16); c += b;
-  b -= a; b ^= rot(a, 19); a += c;
-  c -= b; c ^= rot(b, 4);  b += a;
+  a -= c;
+  a ^= rot(c, 4);
+  c += b;
+  b -= a;
+  b ^= rot(a, 6);
+  a += c;
+  c -= b;
+  c ^= rot(b, 8);
+  b += a;
+  a -= c;
+  a ^= rot(c, 16);
+  c += b;
+  b -= a;
+  b ^= rot(a, 19);
+  a += c;
+  c -= b;
+  c ^= rot(b, 4);
+  b += a;
 }
 
 inline uint32_t bjfinal(uint32_t a, uint32_t b, uint32_t c) {
-  c ^= b; c -= rot(b, 14);
-  a ^= c; a -= rot(c, 11);
-  b ^= a; b -= rot(a, 25);
-  c ^= b; c -= rot(b, 16);
-  a ^= c; a -= rot(c, 4);
-  b ^= a; b -= rot(a, 14);
-  c ^= b; c -= rot(b, 24);
+  c ^= b;
+  c -= rot(b, 14);
+  a ^= c;
+  a -= rot(c, 11);
+  b ^= a;
+  b -= rot(a, 25);
+  c ^= b;
+  c -= rot(b, 16);
+  a ^= c;
+  a -= rot(c, 4);
+  b ^= a;
+  b -= rot(a, 14);
+  c ^= b;
+  c -= rot(b, 24);
   return c;
 }
 
@@ -156,7 +175,7 @@ inline D trilerp(const D* v, const D& s, const D& t, const D& r) {
 inline D grad(uint32_t hash, const D& x) {
   int h = int(hash & 15);
   float g = float(1 + (h & 7)); // 1, 2, .., 8
-  if (h & 8) g = -g;           // random sign
+  if (h & 8) g = -g;            // random sign
   return g * x;
 }
 inline D grad(uint32_t hash, const D& x, const D& y) {
@@ -212,10 +231,14 @@ D perlin(const float* xin, int n, const CornerHash& hash) {
     }
     uint32_t h = hash(c);
     switch (n) {
-    case 1: return grad(h, r[0]);
-    case 2: return grad(h, r[0], r[1]);
-    case 3: return grad(h, r[0], r[1], r[2]);
-    default: return grad(h, r[0], r[1], r[2], r[3]);
+    case 1:
+      return grad(h, r[0]);
+    case 2:
+      return grad(h, r[0], r[1]);
+    case 3:
+      return grad(h, r[0], r[1], r[2]);
+    default:
+      return grad(h, r[0], r[1], r[2], r[3]);
     }
   };
   if (n == 1) return 0.2500f * lerp(corner(0), corner(1), u[0]);

@@ -161,15 +161,15 @@ void lobe_transform(float* dst, const float* m, const float* p, int kind) {
 
 // transformu's scale from unit `from` to unit `to` (shadeops.h, unit_scale), for names known
 // only at run time; an unknown name is a run-time error and leaves the value (scale 1).
-float lobe_transformu_scale(ShaderGlobals* sg, const char* from, const char* to,
-                            const char* file, int line) {
+float lobe_transformu_scale(ShaderGlobals* sg, const char* from, const char* to, const char* file,
+                            int line) {
   double a = lobe::shadeops::unit_scale(from ? from : "");
   double b = lobe::shadeops::unit_scale(to ? to : "");
   if (a > 0 && b > 0) return float(a / b);
   if (sg && sg->context) {
     sg->context->errors++;
-    sg->context->message(std::string("ERROR: Unknown unit \"") + (a > 0 ? to : from) + "\": " +
-                         file + ":" + std::to_string(line) + "\n");
+    sg->context->message(std::string("ERROR: Unknown unit \"") + (a > 0 ? to : from) +
+                         "\": " + file + ":" + std::to_string(line) + "\n");
   }
   return 1.0f;
 }

@@ -127,12 +127,16 @@ TEST(Color, SpacesAndSpectra) {
 TEST(Color, WavelengthColorAndBlackbodyAsOSL) {
   struct W {
     float nm, r, g, b;
-  } const lines[] = {
-      {550, 0, 0.574172f, 0},           {552.5f, 0, 0.560873f, 0},
-      {450, 0.0585643f, 0, 0.747803f},  {500, 0, 0.243058f, 0.0880705f},
-      {600, 0.980824f, 0.061207f, 0},   {700, 0.0121583f, 0, 0},
-      {380, 0.000514358f, 0, 0.00275788f}, {779, 2.57179e-05f, 0, 4.41614e-07f},
-      {780, 0, 0, 0},                   {300, 0, 0, 0}};
+  } const lines[] = {{550, 0, 0.574172f, 0},
+                     {552.5f, 0, 0.560873f, 0},
+                     {450, 0.0585643f, 0, 0.747803f},
+                     {500, 0, 0.243058f, 0.0880705f},
+                     {600, 0.980824f, 0.061207f, 0},
+                     {700, 0.0121583f, 0, 0},
+                     {380, 0.000514358f, 0, 0.00275788f},
+                     {779, 2.57179e-05f, 0, 4.41614e-07f},
+                     {780, 0, 0, 0},
+                     {300, 0, 0, 0}};
   float out[3];
   for (const W& w : lines) {
     lobe_wavelength_color(out, w.nm);
@@ -275,12 +279,13 @@ TEST(Noise, OslValues) {
 // unknown name gives 0 (and a zero gradient) and reports a run-time error with the location.
 TEST(Noise, NamedDispatchAndUnknownName) {
   const std::pair<const char*, int> names[] = {
-      {"perlin", kPerlin}, {"snoise", kPerlin},   {"simplex", kPerlin}, {"uperlin", kUPerlin},
-      {"noise", kUPerlin}, {"usimplex", kUPerlin}, {"gabor", kUPerlin}, {"cell", kCell},
-      {"cellnoise", kCell}, {"hash", kHash},       {"hashnoise", kHash}};
+      {"perlin", kPerlin},  {"snoise", kPerlin},    {"simplex", kPerlin}, {"uperlin", kUPerlin},
+      {"noise", kUPerlin},  {"usimplex", kUPerlin}, {"gabor", kUPerlin},  {"cell", kCell},
+      {"cellnoise", kCell}, {"hash", kHash},        {"hashnoise", kHash}};
   float p[3] = {0.3f, 1.7f, -0.4f}, per[3] = {2, 3, 4};
   for (auto& [name, kind] : names)
-    for (const float* period : {static_cast<const float*>(nullptr), static_cast<const float*>(per)}) {
+    for (const float* period :
+         {static_cast<const float*>(nullptr), static_cast<const float*>(per)}) {
       float a[3], b[3], ga[9], gb[9];
       lobe_noise(kind, p, 3, period, a, 3, ga);
       lobe_noise_named(nullptr, name, p, 3, period, b, 3, gb, "t.osl", 1);

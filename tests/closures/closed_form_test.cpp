@@ -7,8 +7,8 @@
 #include "closure_lobe.h"
 #include "configs.h"
 #include "microfacet_dist.h"
-#include "stats.h"
 #include "rng.h"
+#include "stats.h"
 #include "suite.h"
 
 #include <gtest/gtest.h>

@@ -38,8 +38,8 @@ CmdResult run_cmd(const std::string& cmd) {
 
 // A fresh folder for one test's files.
 fs::path temp_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() /
-               ("lobe_render_cli_" + name + "_" + std::to_string(getpid()));
+  fs::path d =
+      fs::temp_directory_path() / ("lobe_render_cli_" + name + "_" + std::to_string(getpid()));
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
@@ -85,7 +85,8 @@ TEST(RenderCli, ShadersNextToTheSceneFileAreFoundFromAnyFolder) {
   fs::path d = temp_dir("shader_dir");
   write_file(d / "tinted.osl", kTinted);
   write_file(d / "s.json", furnace_json(R"({"shader": "tinted"})"));
-  CmdResult r = render("--materials jit " + (d / "s.json").string() + " -o " + (d / "o.exr").string());
+  CmdResult r =
+      render("--materials jit " + (d / "s.json").string() + " -o " + (d / "o.exr").string());
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_EQ(r.out, "");
   // The albedo AOV is the shader's colour exactly (the beauty is its noisy MIS estimate).
@@ -120,13 +121,14 @@ TEST(RenderCli, BadInstanceValuesAreErrorsInEveryBackend) {
   };
   for (const Case& c : cases) {
     fs::path scene = d / "s.json";
-    write_file(scene, furnace_json(std::string(R"({"shader": "matte", "params": )") + c.params + "}"));
+    write_file(scene,
+               furnace_json(std::string(R"({"shader": "matte", "params": )") + c.params + "}"));
     for (const char* mode : {"auto", "jit", "native"}) {
       CmdResult r = render(std::string("--materials ") + mode + " " + scene.string() + " -o " +
                            (d / "o.png").string());
       EXPECT_EQ(r.status, 1) << mode << " " << c.params;
-      EXPECT_EQ(r.out, "lobe render: " + scene.string() + ": /materials/m: material 'm': layer 'm': " +
-                           c.message + "\n")
+      EXPECT_EQ(r.out, "lobe render: " + scene.string() +
+                           ": /materials/m: material 'm': layer 'm': " + c.message + "\n")
           << mode;
     }
   }
@@ -136,7 +138,9 @@ TEST(RenderCli, BadInstanceValuesAreErrorsInEveryBackend) {
 TEST(RenderCli, JitErrorsAreReportedAsTheyAre) {
   fs::path d = temp_dir("jit_error");
   fs::path scene = d / "s.json";
-  write_file(scene, furnace_json(R"({"group": "param float ior 1.45 ; shader glass g ; connect g.x h.y ;"})"));
+  write_file(
+      scene,
+      furnace_json(R"({"group": "param float ior 1.45 ; shader glass g ; connect g.x h.y ;"})"));
   CmdResult r = render(scene.string() + " -o " + (d / "o.png").string());
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.out, "lobe render: " + scene.string() +
@@ -184,7 +188,8 @@ TEST(RenderCli, OutputIsCheckedBeforeRendering) {
     std::string out, message;
   } cases[] = {
       {(d / "x.pfm").string(),
-       (d / "x.pfm").string() + ": cannot write .pfm images (expected .exr, .png, .jpg, .tif or .hdr)"},
+       (d / "x.pfm").string() +
+           ": cannot write .pfm images (expected .exr, .png, .jpg, .tif or .hdr)"},
       {(d / "x").string(),
        (d / "x").string() + ": no image extension (expected .exr, .png, .jpg, .tif or .hdr)"},
       {(d / "nope" / "x.png").string(),
@@ -216,15 +221,16 @@ TEST(RenderCli, ShaderRunTimeErrorsAreReportedOnceAfterTheRender) {
     Ci = c * diffuse(N);
 })");
   std::string missing = (d / "missing.exr").string();
-  write_file(d / "s.json",
-             furnace_json(R"({"shader": "textured", "params": {"file": ")" + missing +
-                              R"(", "branch": 1}})",
-                          R"(, "unused": {"shader": "textured", "params": {"file": "also_missing.exr", "branch": 1}},
+  write_file(
+      d / "s.json",
+      furnace_json(
+          R"({"shader": "textured", "params": {"file": ")" + missing + R"(", "branch": 1}})",
+          R"(, "unused": {"shader": "textured", "params": {"file": "also_missing.exr", "branch": 1}},
                            "unused_broken": {"shader": "doesnotexist"})"));
   CmdResult r = render((d / "s.json").string() + " -o " + (d / "o.exr").string(), d);
   ASSERT_EQ(r.status, 0) << r.out;
-  std::string prefix = "warning: " + (d / "s.json").string() + ": /materials/m: material 'm': texture \"" +
-                       missing + "\": ";
+  std::string prefix = "warning: " + (d / "s.json").string() +
+                       ": /materials/m: material 'm': texture \"" + missing + "\": ";
   EXPECT_EQ(r.out.rfind(prefix, 0), 0u) << r.out;
   EXPECT_NE(r.out.find(" times)\n"), std::string::npos) << r.out;
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out; // one line in all
@@ -246,11 +252,12 @@ TEST(RenderCli, ShaderRunTimeErrorsAreReportedOnceAfterTheRender) {
 TEST(RenderCli, InterruptedSummarySaysHowManySamplesFinished) {
   fs::path d = temp_dir("interrupt");
   write_file(d / "s.json", furnace_json(R"({"shader": "matte"})"));
-  CmdResult r = run_cmd("timeout --preserve-status -s INT 2 " + std::string(LOBE_EXE) + " render --spp 1000000 " +
-                        (d / "s.json").string() + " -o " + (d / "o.exr").string());
+  CmdResult r =
+      run_cmd("timeout --preserve-status -s INT 2 " + std::string(LOBE_EXE) +
+              " render --spp 1000000 " + (d / "s.json").string() + " -o " + (d / "o.exr").string());
   EXPECT_EQ(r.status, 130) << r.out;
-  std::string head = "interrupted: wrote the finished samples to " + (d / "o.exr").string() +
-                     ": 8x8, ";
+  std::string head =
+      "interrupted: wrote the finished samples to " + (d / "o.exr").string() + ": 8x8, ";
   size_t at = r.out.find(head);
   ASSERT_NE(at, std::string::npos) << r.out;
   double done = std::atof(r.out.c_str() + at + head.size());

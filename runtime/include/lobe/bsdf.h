@@ -34,7 +34,7 @@ enum LobeFlags : uint32_t {
 };
 
 struct BsdfEval {
-  Color3 value; // f * |cos theta_i|, weighted
+  Color3 value;  // f * |cos theta_i|, weighted
   float pdf = 0; // solid-angle pdf of sample() producing wi
 };
 
@@ -107,7 +107,7 @@ public:
   Color3 emission;     // radiance emitted towards wo
   Color3 transparency; // pass-through weight (transparent closures)
   Color3 holdout;
-  Color3 background;   // background() closure weight (environment shaders)
+  Color3 background; // background() closure weight (environment shaders)
   const char* debug_tag = nullptr;
   Color3 debug_weight;
 
