@@ -114,6 +114,17 @@ std::string closure_bitcode_path() {
 
 bool compile_closure_kernels(Jit& jit, const std::vector<int>& ids, ClosureKernels& out,
                              CompiledGroup& code, JitTimes& times, std::string& error) {
+  // Only BSDF entries have bitcode: a material with none (an emitter, a background) needs
+  // no module, and the bitcode is not even read for it.
+  auto all = registry::closures();
+  bool any_bsdf = false;
+  for (int id : ids)
+    any_bsdf |= id >= 0 && id < int(all.size()) &&
+                (all[size_t(id)].flags & (registry::kReflect | registry::kTransmit)) != 0;
+  if (!any_bsdf) {
+    out = ClosureKernels{};
+    return true;
+  }
   const std::string* bytes = bitcode_bytes(error);
   if (!bytes) return false;
   auto ctx = std::make_unique<llvm::LLVMContext>();
@@ -131,14 +142,12 @@ bool compile_closure_kernels(Jit& jit, const std::vector<int>& ids, ClosureKerne
   std::vector<Case> cases;
   llvm::FunctionType* types[3] = {nullptr, nullptr, nullptr};
   ClosureKernels k;
-  auto entries = registry::closures();
   for (int id : ids) {
-    if (id < 0 || id >= int(entries.size()) || id >= ClosureKernels::kMaxIds || k.covers(id))
-      continue;
+    if (id < 0 || id >= int(all.size()) || id >= ClosureKernels::kMaxIds || k.covers(id)) continue;
     Case c{id, {}};
     bool complete = true;
     for (int w = 0; w < 3; ++w) {
-      std::string name = std::string("lobe_closure_") + entries[size_t(id)].key + kSuffix[w];
+      std::string name = std::string("lobe_closure_") + all[size_t(id)].key + kSuffix[w];
       llvm::Function* lf = library->getFunction(name);
       if (!lf) {
         complete = false;
