@@ -129,7 +129,7 @@ template <class Fn> bool with_lobe(int id, const unsigned char* p, Fn&& fn) {
     const auto& q = as<AlbedoRoughnessParams>(p);
     if (!make_frame(q.N, f)) return false;
     float r = q.roughness == q.roughness ? clampf(q.roughness, 0.01f, 1.0f) : 1.0f;
-    fn(Sheen{vmax0(sanitize(q.albedo)), r}, f);
+    fn(Sheen::make(vmax0(sanitize(q.albedo)), r), f);
     return true;
   }
   case kToonId: {
