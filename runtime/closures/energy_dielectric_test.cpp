@@ -1,16 +1,21 @@
 // Kulla-Conty compensation of rough dielectrics: the committed E(mu, alpha, eta) tables are
 // re-derived by an independent double-precision quadrature over microfacet normals written
 // here (own GGX/Beckmann, Smith Lambda, exact Fresnel, refraction), and the compensated lobes
-// pass a white furnace (lossless: albedo in [0.99, 1.01] from outside and inside), stay
-// generalised-reciprocal, and split exactly into reflection-only + refraction-only parts.
+// pass a white furnace (lossless: albedo in [0.985, 1.01] from outside and inside, the upper slack
+// being this estimate's noise), stay generalised-reciprocal, and split exactly into reflection-only
+// + refraction-only parts.
 #include "closures.h"
 #include "energy_dielectric.h"
 #include "test_util.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
+#include <tuple>
+#include <utility>
 
 namespace lobe::closures {
 namespace {
@@ -71,6 +76,72 @@ double albedo_ref(double mu, double alpha, double eta, bool beckmann, int nv = 5
   return sum;
 }
 
+// The same for an anisotropic distribution and wo at azimuth phi from the ax axis, in
+// stretched slope space: slopes (ax r cos p, ay r sin p), P22 dslope = du dp / (2 pi) with
+// u = r^2 / (1 + r^2) (GGX) or 1 - exp(-r^2) (Beckmann); u = 1 - (1 - v)^2 as above.
+double lambda_aniso_ref(V w, double ax, double ay, bool beckmann) {
+  double r2 = w.x * w.x + w.y * w.y;
+  if (r2 == 0.0) return 0.0;
+  double ap = std::sqrt((ax * ax * w.x * w.x + ay * ay * w.y * w.y) / r2);
+  return lambda_ref(w, ap, beckmann);
+}
+double albedo_aniso_ref(double mu, double phi, double ax, double ay, double eta, bool beckmann,
+                        int nv = 384, int np = 384) {
+  double s = std::sqrt(1.0 - mu * mu);
+  V wo{s * std::cos(phi), s * std::sin(phi), mu};
+  double lo = lambda_aniso_ref(wo, ax, ay, beckmann), sum = 0.0;
+  for (int i = 0; i < nv; ++i) {
+    double v = (i + 0.5) / nv, u = 1.0 - (1.0 - v) * (1.0 - v), du = 2.0 * (1.0 - v) / nv;
+    double r = beckmann ? std::sqrt(-std::log(1.0 - u)) : std::sqrt(u / (1.0 - u));
+    for (int j = 0; j < np; ++j) {
+      double p = (j + 0.5) * 2.0 * kPiD / np;
+      double sx = ax * r * std::cos(p), sy = ay * r * std::sin(p);
+      double len = std::sqrt(1.0 + sx * sx + sy * sy);
+      V m{-sx / len, -sy / len, 1.0 / len};
+      double c = dotd(wo, m);
+      if (c <= 0.0) continue;
+      double F = fresnel_ref(c, eta), w = 0.0;
+      V wr = m * (2.0 * c) + wo * -1.0;
+      if (wr.z > 0.0) w += F / (1.0 + lo + lambda_aniso_ref(wr, ax, ay, beckmann));
+      double k = 1.0 - (1.0 - c * c) / (eta * eta);
+      if (F < 1.0 && k > 0.0) {
+        V wt = wo * (-1.0 / eta) + m * (c / eta - std::sqrt(k));
+        if (wt.z < 0.0) w += (1.0 - F) / (1.0 + lo + lambda_aniso_ref(wt, ax, ay, beckmann));
+      }
+      // (wo.m)+ / (wo.z cos theta_m) D cos theta_m dm = (wo.m) len / wo.z P22 dslope.
+      sum += w * c * len / mu * du / np;
+    }
+  }
+  return sum;
+}
+
+TEST(DielectricEnergyTables, AnisotropicLookupIsConservativeAndClose) {
+  // Off the nodes: the look-up never falls below the reference albedo (up to the
+  // reference's own quadrature error) and stays within the interpolation margin of it.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  double worst_over = 0.0;
+  for (int n = 0; n < 40; ++n) {
+    bool beck = n % 2;
+    double ax = std::pow(0.02 + 0.9 * uni(rng), 2.0) + 0.01,
+           ay = std::pow(0.05 + 0.9 * uni(rng), 2.0);
+    double eta = 1.05 + 1.9 * uni(rng), e = n % 4 < 2 ? eta : 1.0 / eta;
+    double mu = std::pow(0.03 + 0.97 * uni(rng), 2.0), phi = uni(rng) * 2.0 * kPiD;
+    double want = albedo_aniso_ref(mu, phi, ax, ay, e, beck);
+    AnisoCoord a = aniso_coord(float(ax), float(ay), float(e));
+    double c = std::cos(phi) * std::cos(phi);
+    double got = dielectric_E_aniso(float(mu), float(c), a, float(e), beck);
+    EXPECT_GE(got, want - 5e-4) << n << ": ax " << ax << " ay " << ay << " e " << e << " mu " << mu
+                                << " phi " << phi;
+    EXPECT_LE(got, want + 0.06) << n;
+    worst_over = std::max(worst_over, got - want);
+  }
+  // The reference itself: isotropic when ax = ay, matching the isotropic one.
+  EXPECT_NEAR(albedo_aniso_ref(0.4, 1.0, 0.3, 0.3, 1.5, false), albedo_ref(0.4, 0.3, 1.5, false),
+              2e-4);
+  RecordProperty("worst_over", std::to_string(worst_over));
+}
+
 TEST(DielectricEnergyTables, RederiveEntries) {
   struct Entry {
     int dist, side, k, j, i;
@@ -86,8 +157,13 @@ TEST(DielectricEnergyTables, RederiveEntries) {
     double eta = 1.0 + 2.0 * std::pow(e.k / 15.0, 2), alpha = std::pow(e.j / 15.0, 2);
     double mu = std::max(std::pow(e.i / 31.0, 2), 1e-4);
     double want = albedo_ref(mu, alpha, e.side ? 1.0 / eta : eta, e.dist == 1);
-    EXPECT_NEAR(kDielE[e.dist][e.side][e.k][e.j][e.i], want, 3e-3)
-        << e.dist << " side " << e.side << " eta " << eta << " alpha " << alpha << " mu " << mu;
+    // Nodes are raised by the interpolation margin of their cells (conservative), never
+    // lowered: at least the reference, and above it by no more than the margins measured.
+    double got = kDielE[e.dist][e.side][e.k][e.j][e.i];
+    EXPECT_GE(got, want - 1e-3) << e.dist << " side " << e.side << " eta " << eta << " alpha "
+                                << alpha << " mu " << mu;
+    EXPECT_LE(got, want + 0.03) << e.dist << " side " << e.side << " eta " << eta << " alpha "
+                                << alpha << " mu " << mu;
   }
 }
 
@@ -151,10 +227,34 @@ TEST(DielectricCompensation, LosslessFurnaceFromBothSides) {
           for (double side : {1.0, -1.0}) {
             Vec3 wo = test::dir_cos(mu * side, 0.3);
             double a = split_albedo(p, off, wo);
-            EXPECT_GE(a, 0.99) << dist << " ior " << ior << " a " << alpha << " mu " << mu * side;
+            EXPECT_GE(a, 0.985) << dist << " ior " << ior << " a " << alpha << " mu " << mu * side;
             EXPECT_LE(a, 1.01) << dist << " ior " << ior << " a " << alpha << " mu " << mu * side;
           }
       }
+}
+
+TEST(DielectricCompensation, AnisotropicNeverCreatesEnergy) {
+  // The case the isotropic tables got wrong (albedo 1.020): (0.2, 0.05), grazing and 85 deg,
+  // along either axis and between, from both sides; and a strongly anisotropic lobe.
+  for (const char* dist : {"ggx", "beckmann"})
+    for (auto [ax, ay] : {std::pair{0.2f, 0.05f}, {0.5f, 0.1f}})
+      for (double mu : {0.087, 0.0014, 0.5})
+        for (double phi : {0.0, 0.785, 1.571})
+          for (double side : {1.0, -1.0}) {
+            Params p("dielectric_bsdf");
+            p.set("roughness_x", ax).set("roughness_y", ay).set("ior", 1.5f);
+            p.set("distribution", dist);
+            Params off = p;
+            off.set("energy_compensation", 0);
+            Vec3 wo = test::dir_cos(mu * side, phi);
+            double a = split_albedo(p, off, wo), a_off = mc_albedo(off, wo, 64);
+            std::string where = std::string(dist) + " " + std::to_string(ax) + "," +
+                                std::to_string(ay) + " mu " + std::to_string(mu * side) + " phi " +
+                                std::to_string(phi);
+            EXPECT_LE(a, 1.0 + 2e-3) << where;
+            EXPECT_GE(a, a_off - 1e-3) << where; // compensation only adds
+            EXPECT_GE(a, 0.9) << where;
+          }
 }
 
 TEST(DielectricCompensation, OffLosesEnergyAndKeywordSwitches) {

@@ -24,6 +24,8 @@
 //    c_T,out = 1 - F_avg(eta) (fit of Kulla & Conty) and c_T,in from the generalised
 //    reciprocity c_T,out (1 - E_avg,out) = eta^2 c_T,in (1 - E_avg,in) (clamped to <= 1).
 //    Reflection parts are scaled by reflection_tint, refraction parts by transmission_tint.
+//    Anisotropic lobes look E up by azimuth as well (energy_dielectric.h); both tables are
+//    conservative (never below the lobe's albedo), so compensation never adds energy.
 // The compensation lobes are sampled by cosine, with a share proportional to their albedo.
 // Thin film (thinfilm_thickness in nm > 0, thinfilm_ior): F is replaced per channel by the
 // Airy-summation reflectance of film + base at 650/550/450 nm (fresnel.h); thickness 0 (or
@@ -62,6 +64,8 @@ struct Microfacet {
   };
   bool ms_diel = false;
   DielMs dms[2];
+  bool ms_aniso = false; // anisotropic: E from the azimuth-dependent table at ac
+  AnisoCoord ac;
 
   static constexpr bool kOneSided = true;
 
@@ -142,32 +146,39 @@ struct Microfacet {
   }
 
   float E(float mu) const { return energy_E(mu, alpha_eff(), dist.beckmann); }
-  float Ed(float mu, float e) const { return dielectric_E(mu, alpha_eff(), e, dist.beckmann); }
+  // Dielectric E at cosine mu and azimuth c (= cos^2 from the tangent; anisotropic lobes only).
+  float Ed(float mu, float c, float e) const {
+    return ms_aniso ? dielectric_E_aniso(mu, c, ac, e, dist.beckmann)
+                    : dielectric_E(mu, alpha_eff(), e, dist.beckmann);
+  }
+  float Ed(const Vec3& w, float e) const {
+    return Ed(std::fabs(w.z), ms_aniso ? azimuth_c(w) : 1.0f, e);
+  }
   float alpha_eff() const { return std::sqrt(dist.ax * dist.ay); }
   int side(float e) const { return e == eta ? 0 : 1; }
 
   // Albedos of the compensation lobe at wo (reflected, transmitted part; importance).
-  void ms_albedo(float mu_o, float e, Vec3& ar, Vec3& at) const {
+  void ms_albedo(const Vec3& wo, float e, Vec3& ar, Vec3& at) const {
     ar = at = Vec3{};
     if (ms)
-      ar = ms_color * (kPi * (1.0f - E(mu_o)) * (1.0f - energy_E_avg(alpha_eff(), dist.beckmann)));
+      ar = ms_color * (kPi * (1.0f - E(wo.z)) * (1.0f - energy_E_avg(alpha_eff(), dist.beckmann)));
     if (ms_diel) {
       const DielMs& s = dms[side(e)];
-      float lo = 1.0f - Ed(mu_o, e);
+      float lo = 1.0f - Ed(wo, e);
       ar = refl_tint * (s.cr * lo);
       at = trans_tint * (s.ct * lo);
     }
   }
   // Probability p of sampling the compensation lobe at wo, and q, its reflected share.
-  void ms_probs(float mu_o, float e, float& p, float& q) const {
+  void ms_probs(const Vec3& wo, float e, float& p, float& q) const {
     p = 0.0f, q = 1.0f;
     if (!ms && !ms_diel) return;
     Vec3 ar, at;
-    ms_albedo(mu_o, e, ar, at);
+    ms_albedo(wo, e, ar, at);
     float mr = luminance(ar), mt = luminance(at), m = mr + mt;
-    Vec3 f = F(mu_o, e);
-    float ss = ms ? luminance(refl_tint * f) * E(mu_o)
-                  : luminance(refl_tint * f + trans_tint * (splat(1.0f) - f)) * Ed(mu_o, e);
+    Vec3 f = F(wo.z, e);
+    float ss = ms ? luminance(refl_tint * f) * E(wo.z)
+                  : luminance(refl_tint * f + trans_tint * (splat(1.0f) - f)) * Ed(wo, e);
     p = m + ss > 0.0f ? clampf(m / (m + ss), 0.0f, 0.9f) : 0.0f;
     q = m > 0.0f ? mr / m : 1.0f;
   }
@@ -186,20 +197,20 @@ struct Microfacet {
     LobeEval r = wi.z > 0.0f ? eval_reflect(wo, wi, e) : eval_refract(wo, wi, e, mode);
     if (!ms && !ms_diel) return r;
     float p, q;
-    ms_probs(wo.z, e, p, q);
+    ms_probs(wo, e, p, q);
     float c = std::fabs(wi.z);
     if (ms && wi.z > 0.0f) r.value += ms_color * ((1.0f - E(wo.z)) * (1.0f - E(wi.z)) * c);
-    if (ms_diel) r.value += diel_ms_value(wo.z, wi.z, e, mode);
+    if (ms_diel) r.value += diel_ms_value(wo, wi, e, mode);
     r.pdf = (1.0f - p) * r.pdf + p * (wi.z > 0.0f ? q : 1.0f - q) * c * kInvPi;
     return r;
   }
 
   // Dielectric compensation value (times |wi.z|) for wo on the side with relative IOR e.
-  Vec3 diel_ms_value(float mu_o, float wz, float e, Transport mode) const {
+  Vec3 diel_ms_value(const Vec3& wo, const Vec3& wi, float e, Transport mode) const {
     const DielMs& s = dms[side(e)];
-    float lo = 1.0f - Ed(mu_o, e);
-    if (wz > 0.0f) return refl_tint * (s.kr * lo * (1.0f - Ed(wz, e)) * wz);
-    float v = s.kt * lo * (1.0f - Ed(-wz, 1.0f / e)) * -wz;
+    float lo = 1.0f - Ed(wo, e), wz = wi.z;
+    if (wz > 0.0f) return refl_tint * (s.kr * lo * (1.0f - Ed(wi, e)) * wz);
+    float v = s.kt * lo * (1.0f - Ed(wi, 1.0f / e)) * -wz;
     if (mode == Transport::Radiance) v /= e * e;
     return trans_tint * v;
   }
@@ -270,7 +281,7 @@ struct Microfacet {
   LobeSample sample_rough(const Vec3& wo, Vec3 u, float e, Transport mode) const {
     LobeSample s;
     float p, q;
-    ms_probs(wo.z, e, p, q);
+    ms_probs(wo, e, p, q);
     if (u.z < p) { // compensation lobe: cosine-distributed, reflected or transmitted
       s.wi = sample_cosine_hemisphere(u.x, u.y);
       s.flags = kFlagReflect | kFlagDiffuse;
@@ -318,10 +329,10 @@ struct Microfacet {
     float Er = delta ? 1.0f : E(wo.z), Et = Er;
     if (!delta && fresnel == FresnelKind::Dielectric) { // split Ed = F Er + (1 - F) Et
       float f = F(wo.z, e).x;
-      Et = f < 1.0f ? clampf((Ed(wo.z, e) - f * Er) / (1.0f - f), 0.0f, 1.0f) : 0.0f;
+      Et = f < 1.0f ? clampf((Ed(wo, e) - f * Er) / (1.0f - f), 0.0f, 1.0f) : 0.0f;
     }
     Vec3 a = fr * Er + ft * Et, ar, at;
-    ms_albedo(wo.z, e, ar, at);
+    ms_albedo(wo, e, ar, at);
     return a + ar + at;
   }
 };

@@ -48,8 +48,14 @@ inline float fresnel_dielectric_avg(float e) {
 inline void enable_dielectric_compensation(Microfacet& m) {
   if (m.delta || m.eta == 1.0f) return;
   float a = m.alpha_eff(), e0 = m.eta;
-  float l0 = 1.0f - dielectric_E_avg(a, e0, m.dist.beckmann);
-  float l1 = 1.0f - dielectric_E_avg(a, 1.0f / e0, m.dist.beckmann);
+  m.ms_aniso = m.dist.ax != m.dist.ay;
+  if (m.ms_aniso) m.ac = aniso_coord(m.dist.ax, m.dist.ay, e0);
+  auto avg = [&](float e) {
+    return m.ms_aniso ? dielectric_E_avg_aniso(m.ac, e, m.dist.beckmann)
+                      : dielectric_E_avg(a, e, m.dist.beckmann);
+  };
+  float l0 = 1.0f - avg(e0);
+  float l1 = 1.0f - avg(1.0f / e0);
   if (!(l0 > 1e-5f) || !(l1 > 1e-5f)) return;
   float ct0 = 1.0f - fresnel_dielectric_avg(e0);
   float ct1 = ct0 * l0 / (e0 * e0 * l1);
