@@ -54,7 +54,11 @@ void format_args(LayerEmitter& e, const ir::Op& op, size_t first, std::string& c
     }
     codes += c;
     int n = std::max(1, s.type.arraylen);
-    if (s.type.is_array()) codes += "{" + std::to_string(n) + "}";
+    if (s.type.is_array()) { // appended piecewise: "{" + to_string(n) trips GCC 12's -Wrestrict
+      codes += '{';
+      codes += std::to_string(n);
+      codes += '}';
+    }
     llvm::Type* t = c == 'i' ? e.i32() : (c == 's' || c == 'c') ? e.ptr() : e.f32();
     std::vector<llvm::Value*> comps;
     for (int k = 0; k < n; ++k)
@@ -135,7 +139,7 @@ void op_string(LayerEmitter& e, const ir::Op& op) {
                                 e.arg(op, 0).type.base));
 }
 
-// hash(string) is FNV-1a (shadeop); hash of numbers mixes their bits.
+// hash(string) is OIIO's ustring hash, as in OSL (shadeop); hash of numbers mixes their bits.
 void op_hash(LayerEmitter& e, const ir::Op& op) {
   auto& B = e.b();
   if (e.arg(op, 1).type.base == BaseType::String) {

@@ -4,6 +4,8 @@
 #include "format.h"
 #include "lobe/context.h"
 
+#include <OpenImageIO/strutil.h>
+
 #include <cstdlib>
 #include <cstring>
 #include <regex>
@@ -83,11 +85,11 @@ int lobe_getchar(const char* s, int i) {
   return (i >= 0 && i < n) ? int((unsigned char)s[i]) : 0;
 }
 
-// hash(string): 32-bit FNV-1a, stable across runs and platforms.
+// hash(string): OSL returns int(ustring(s).hash()), and OIIO's ustring hash is
+// Strutil::strhash (an inlined farmhash; "" hashes to 0). The header-only function is used, so
+// this needs OIIO's headers but not its libraries.
 int lobe_strhash(const char* s) {
-  uint32_t h = 2166136261u;
-  for (; *s; ++s) h = (h ^ (unsigned char)*s) * 16777619u;
-  return int(h);
+  return static_cast<int>(static_cast<uint32_t>(OIIO::Strutil::strhash(std::string_view(s))));
 }
 
 // regex_search / regex_match (ECMAScript syntax); an invalid pattern matches nothing.
