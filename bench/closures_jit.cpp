@@ -4,7 +4,8 @@
 // (the same C++ compiled by clang-19 to bitcode, linked into a JIT module with a dispatcher
 // over the ids and inlined; runtime/jit/closure_kernels.h). Then a two-lobe material's Bsdf
 // (diffuse + GGX dielectric) evaluated and sampled both ways. Inputs: 1024 direction pairs
-// above the surface and 1024 random triples, the first quick configuration of each closure.
+// above the surface and 1024 random triples, the first quick configuration of each closure
+// (plus dielectric_bsdf_aniso: roughness (0.3, 0.05), whose compensation reads the 5-D table).
 //
 //   build/bench/closures_jit [benchmark flags]      e.g. --benchmark_repetitions=3
 #include "closure_kernels.h"
@@ -47,8 +48,7 @@ const Inputs& inputs() {
   return in;
 }
 
-void BM_EvalNative(benchmark::State& state, int id) {
-  closures::Params p = configs_for(id, Level::Quick).front().params;
+void BM_EvalNative(benchmark::State& state, int id, closures::Params p) {
   const Inputs& in = inputs();
   size_t k = 0;
   for (auto _ : state) {
@@ -57,8 +57,7 @@ void BM_EvalNative(benchmark::State& state, int id) {
     ++k;
   }
 }
-void BM_EvalJit(benchmark::State& state, int id) {
-  closures::Params p = configs_for(id, Level::Quick).front().params;
+void BM_EvalJit(benchmark::State& state, int id, closures::Params p) {
   const Inputs& in = inputs();
   size_t k = 0;
   for (auto _ : state) {
@@ -68,8 +67,7 @@ void BM_EvalJit(benchmark::State& state, int id) {
     ++k;
   }
 }
-void BM_SampleNative(benchmark::State& state, int id) {
-  closures::Params p = configs_for(id, Level::Quick).front().params;
+void BM_SampleNative(benchmark::State& state, int id, closures::Params p) {
   const Inputs& in = inputs();
   size_t k = 0;
   for (auto _ : state) {
@@ -78,8 +76,7 @@ void BM_SampleNative(benchmark::State& state, int id) {
     ++k;
   }
 }
-void BM_SampleJit(benchmark::State& state, int id) {
-  closures::Params p = configs_for(id, Level::Quick).front().params;
+void BM_SampleJit(benchmark::State& state, int id, closures::Params p) {
   const Inputs& in = inputs();
   size_t k = 0;
   for (auto _ : state) {
@@ -155,12 +152,20 @@ int main(int argc, char** argv) {
   }
   std::printf("kernels for %zu closures: optimise %.1f ms, machine code %.1f ms\n", ids.size(),
               times.optimize_ms, times.codegen_ms);
+  auto add = [](const std::string& key, int id, const closures::Params& p) {
+    benchmark::RegisterBenchmark(("eval/native/" + key).c_str(), BM_EvalNative, id, p);
+    benchmark::RegisterBenchmark(("eval/jit/" + key).c_str(), BM_EvalJit, id, p);
+    benchmark::RegisterBenchmark(("sample/native/" + key).c_str(), BM_SampleNative, id, p);
+    benchmark::RegisterBenchmark(("sample/jit/" + key).c_str(), BM_SampleJit, id, p);
+  };
   for (int id : ids) {
     std::string key = all[size_t(id)].key;
-    benchmark::RegisterBenchmark(("eval/native/" + key).c_str(), BM_EvalNative, id);
-    benchmark::RegisterBenchmark(("eval/jit/" + key).c_str(), BM_EvalJit, id);
-    benchmark::RegisterBenchmark(("sample/native/" + key).c_str(), BM_SampleNative, id);
-    benchmark::RegisterBenchmark(("sample/jit/" + key).c_str(), BM_SampleJit, id);
+    closures::Params p = configs_for(id, Level::Quick).front().params;
+    add(key, id, p);
+    if (key == "dielectric_bsdf") { // anisotropic: the 5-D compensation table
+      p.set("roughness_x", 0.3f).set("roughness_y", 0.05f);
+      add(key + "_aniso", id, p);
+    }
   }
   benchmark::RegisterBenchmark("material_eval/native", BM_Material, false, false);
   benchmark::RegisterBenchmark("material_eval/jit", BM_Material, true, false);
