@@ -7,7 +7,7 @@
 // The tables (energy_tables_dielectric_*.inc) are produced by energy_gen.cpp from the lobe's
 // own distributions and Fresnel (stratified visible normals, both Fresnel branches summed per
 // normal, double accumulation) and re-derived by independent quadrature in
-// energy_dielectric_test.cpp. Grid: mu = (i/31)^2 (32), alpha = (j/15)^2 (16),
+// energy_dielectric_test.cpp. Grid: mu = (i/63)^2 (64), alpha = (j/15)^2 (16),
 // eta = 1 + 2 (k/15)^2 (16, so eta in [1, 3]); trilinear in sqrt(mu), sqrt(alpha),
 // sqrt(eta - 1): the square-root axes put the nodes where E changes fastest (grazing angles,
 // small roughness, eta near 1). alpha > 1 uses 1, eta > 3 uses 3.
@@ -17,7 +17,7 @@
 
 namespace lobe::closures {
 
-inline constexpr int kDielMu = 32, kDielAlpha = 16, kDielEta = 16;
+inline constexpr int kDielMu = 64, kDielAlpha = 16, kDielEta = 16;
 inline constexpr float kDielEtaMax = 3.0f;
 // [distribution: 0 GGX, 1 Beckmann][side: 0 outside (eta), 1 inside (1/eta)][eta][alpha][mu]
 inline constexpr float kDielE[2][2][kDielEta][kDielAlpha][kDielMu] = {

@@ -1,7 +1,7 @@
 // Kulla-Conty compensation of rough dielectrics: the committed E(mu, alpha, eta) tables are
 // re-derived by an independent double-precision quadrature over microfacet normals written
 // here (own GGX/Beckmann, Smith Lambda, exact Fresnel, refraction), and the compensated lobes
-// pass a white furnace (lossless: albedo in [0.985, 1.01] from outside and inside, the upper slack
+// pass a white furnace (lossless: albedo in [0.99, 1.01] from outside and inside, the upper slack
 // being this estimate's noise), stay generalised-reciprocal, and split exactly into reflection-only
 // + refraction-only parts.
 #include "closures.h"
@@ -146,16 +146,16 @@ TEST(DielectricEnergyTables, RederiveEntries) {
   struct Entry {
     int dist, side, k, j, i;
   };
-  for (Entry e : {Entry{0, 0, 4, 5, 16},
-                  {0, 0, 15, 15, 3},
-                  {0, 1, 4, 5, 16},
-                  {0, 1, 7, 10, 1},
-                  {0, 1, 15, 3, 31},
-                  {1, 0, 4, 8, 8},
-                  {1, 1, 4, 8, 8},
-                  {1, 1, 11, 15, 20}}) {
+  for (Entry e : {Entry{0, 0, 4, 5, 32},
+                  {0, 0, 15, 15, 6},
+                  {0, 1, 4, 5, 32},
+                  {0, 1, 7, 10, 2},
+                  {0, 1, 15, 3, 63},
+                  {1, 0, 4, 8, 16},
+                  {1, 1, 4, 8, 16},
+                  {1, 1, 11, 15, 40}}) {
     double eta = 1.0 + 2.0 * std::pow(e.k / 15.0, 2), alpha = std::pow(e.j / 15.0, 2);
-    double mu = std::max(std::pow(e.i / 31.0, 2), 1e-4);
+    double mu = std::max(std::pow(e.i / 63.0, 2), 1e-4);
     double want = albedo_ref(mu, alpha, e.side ? 1.0 / eta : eta, e.dist == 1);
     // Nodes are raised by the interpolation margin of their cells (conservative), never
     // lowered: at least the reference, and above it by no more than the margins measured.
@@ -227,7 +227,7 @@ TEST(DielectricCompensation, LosslessFurnaceFromBothSides) {
           for (double side : {1.0, -1.0}) {
             Vec3 wo = test::dir_cos(mu * side, 0.3);
             double a = split_albedo(p, off, wo);
-            EXPECT_GE(a, 0.985) << dist << " ior " << ior << " a " << alpha << " mu " << mu * side;
+            EXPECT_GE(a, 0.99) << dist << " ior " << ior << " a " << alpha << " mu " << mu * side;
             EXPECT_LE(a, 1.01) << dist << " ior " << ior << " a " << alpha << " mu " << mu * side;
           }
       }
