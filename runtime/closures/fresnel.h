@@ -130,15 +130,17 @@ inline float fresnel_thin_film(float c1, float n1, float n2, Cpx n3, float d, fl
 // Wavelengths (nm) at which the RGB channels evaluate thin films.
 inline constexpr float kFilmLambda[3] = {650.0f, 550.0f, 450.0f};
 
-// Hemispherical average 2 int_0^1 F(mu) mu dmu of any Fresnel, by 8-point Gauss-Legendre
-// quadrature on mu (exact enough for the smooth Fresnel curves; used by energy compensation).
+// Hemispherical average 2 int_0^1 F(mu) mu dmu of any Fresnel, by Gauss-Legendre quadrature on
+// mu (exact enough for the smooth Fresnel curves; used by energy compensation).
 template <class F> Vec3 fresnel_average(F&& fresnel) {
-  constexpr float x[8] = {-0.9602898565f, -0.7966664774f, -0.5255324099f, -0.1834346425f,
-                          0.1834346425f,  0.5255324099f,  0.7966664774f,  0.9602898565f};
-  constexpr float w[8] = {0.1012285363f, 0.2223810345f, 0.3137066459f, 0.3626837834f,
-                          0.3626837834f, 0.3137066459f, 0.2223810345f, 0.1012285363f};
+  // 5 nodes: for measured metals (gold, silver, copper, aluminium, chrome, iron, titanium) the
+  // error is <= 1.8e-4 against a 2e5-point midpoint rule (8 nodes: <= 8e-6, at 8/5 the cost;
+  // this average is most of conductor_bsdf's set-up time).
+  constexpr float x[5] = {-0.9061798459f, -0.5384693101f, 0.0f, 0.5384693101f, 0.9061798459f};
+  constexpr float w[5] = {0.2369268851f, 0.4786286705f, 0.5688888889f, 0.4786286705f,
+                          0.2369268851f};
   Vec3 sum;
-  for (int i = 0; i < 8; ++i) {
+  for (int i = 0; i < 5; ++i) {
     float mu = 0.5f * (x[i] + 1.0f);
     sum += fresnel(mu) * (w[i] * 0.5f * 2.0f * mu);
   }
