@@ -20,9 +20,16 @@ namespace lobe::closures {
 inline constexpr int kDielMu = 64, kDielAlpha = 16, kDielEta = 16;
 inline constexpr float kDielEtaMax = 3.0f;
 // [distribution: 0 GGX, 1 Beckmann][side: 0 outside (eta), 1 inside (1/eta)][eta][alpha][mu]
+#ifdef LOBE_BITCODE
+// In the bitcode the two large tables (256 KB and 246 KB) are declarations: the JIT resolves
+// them to the host's copies (runtime/jit/jit.cpp) instead of compiling them into every
+// material's module.
+extern const float kDielE[2][2][kDielEta][kDielAlpha][kDielMu];
+#else
 inline constexpr float kDielE[2][2][kDielEta][kDielAlpha][kDielMu] = {
 #include "energy_tables_dielectric_e.inc"
 };
+#endif
 // [distribution][side][eta][alpha]
 inline constexpr float kDielEavg[2][2][kDielEta][kDielAlpha] = {
 #include "energy_tables_dielectric_eavg.inc"
@@ -91,9 +98,13 @@ inline float dielectric_E_avg(float alpha, float e, bool beckmann) {
 // raised interpolant, which keeps the compensation lobe normalised).
 inline constexpr int kAnMu = 12, kAnC = 5, kAnA = 8, kAnEta = 8;
 // [distribution][side][eta][ax][ay][c][mu]
+#ifdef LOBE_BITCODE
+extern const uint16_t kDielEAniso[2][2][kAnEta][kAnA][kAnA][kAnC][kAnMu]; // see kDielE
+#else
 inline constexpr uint16_t kDielEAniso[2][2][kAnEta][kAnA][kAnA][kAnC][kAnMu] = {
 #include "energy_tables_dielectric_aniso_e.inc"
 };
+#endif
 // [distribution][side][eta][ax][ay]
 inline constexpr float kDielEavgAniso[2][2][kAnEta][kAnA][kAnA] = {
 #include "energy_tables_dielectric_aniso_eavg.inc"

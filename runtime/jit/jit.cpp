@@ -1,6 +1,7 @@
 // Jit: LLJIT set-up, the absolute-symbol runtime library, the pass pipeline (see jit.h).
 #include "jit.h"
 
+#include "energy_dielectric.h"
 #include "shadeops.h"
 
 #include <llvm/ExecutionEngine/Orc/CompileUtils.h>
@@ -28,6 +29,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <utility>
 
 namespace lobe::jit {
 
@@ -107,6 +109,14 @@ std::unique_ptr<Jit> Jit::create(std::string& error) {
     symbols[jit->s_->lljit->mangleAndIntern(s.name)] = llvm::orc::ExecutorSymbolDef(
         llvm::orc::ExecutorAddr::fromPtr(s.address),
         llvm::JITSymbolFlags::Exported | llvm::JITSymbolFlags::Callable);
+  // Data the closure bitcode declares instead of defining (energy_dielectric.h): the host's
+  // copies, by their Itanium-mangled names.
+  const std::pair<const char*, const void*> tables[] = {
+      {"_ZN4lobe8closures6kDielEE", &closures::kDielE},
+      {"_ZN4lobe8closures11kDielEAnisoE", &closures::kDielEAniso}};
+  for (const auto& [name, address] : tables)
+    symbols[jit->s_->lljit->mangleAndIntern(name)] = llvm::orc::ExecutorSymbolDef(
+        llvm::orc::ExecutorAddr::fromPtr(address), llvm::JITSymbolFlags::Exported);
   if (auto err = rt.define(llvm::orc::absoluteSymbols(std::move(symbols)))) {
     error = llvm::toString(std::move(err));
     return nullptr;
