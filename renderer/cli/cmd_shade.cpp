@@ -197,7 +197,7 @@ int run_shade(int argc, char** argv) {
   if (!mat) return 1;
 
   std::vector<lobe::image::Image> images;
-  for (const Output& out : o.outputs)
+  for (size_t i = 0; i < o.outputs.size(); ++i)
     images.emplace_back(o.w, o.h, std::vector<std::string>{"R", "G", "B"});
   lobe::ShadingContext ctx;
   ctx.print = [](const std::string& s) { std::fputs(s.c_str(), stdout); };

@@ -59,7 +59,10 @@ std::string fmt_value(ArgType t, const unsigned char* p) {
   case ArgType::Closure: {
     const ClosureNode* c;
     std::memcpy(&c, p, sizeof c);
-    return "(" + closure_to_string(c) + ")";
+    std::string r = "("; // not "(" + ...: GCC 12 warns falsely (-Wrestrict) on that form
+    r += closure_to_string(c);
+    r += ')';
+    return r;
   }
   }
   return "";

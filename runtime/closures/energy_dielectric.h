@@ -88,8 +88,9 @@ inline float dielectric_E_avg(float alpha, float e, bool beckmann) {
 
 // Anisotropic lobes (ax != ay): E depends on the azimuth of the direction as well, and no
 // isotropic alpha reproduces it (measured: sqrt(ax ay) or the projected roughness of wo miss
-// by up to 0.18). A 5-D table E(mu, c, ax, ay, eta) per distribution and side, c = cos^2 of the
-// direction's azimuth from the tangent (the ax axis; E is symmetric under x -> -x, y -> -y).
+// by up to 0.12, the largest isotropic E over [ay, ax] by 0.18). A 5-D table
+// E(mu, c, ax, ay, eta) per distribution and side, c = cos^2 of the direction's azimuth from
+// the tangent (the ax axis; E is symmetric under x -> -x, y -> -y).
 // Grid: mu = (i/11)^2, c = l/4, alpha = (j/7)^2 per axis, eta = 1 + 2 (k/7)^2; multilinear in
 // sqrt(mu), c, sqrt(ax), sqrt(ay), sqrt(eta - 1). Stored as E * 65535 rounded up. Both the
 // isotropic and this table are conservative: energy_gen raises every node by the largest

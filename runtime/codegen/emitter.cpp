@@ -48,8 +48,9 @@ void LayerEmitter::fail(const ir::Op& op, const std::string& msg) {
   if (!error_.empty()) return;
   // `file:line:col: error: ...`, as the front end's diagnostics (the column when the op has one).
   std::string where = op.loc.file.empty() ? shader().name : op.loc.file;
-  if (op.loc.line > 0) where += ":" + std::to_string(op.loc.line);
-  if (op.loc.line > 0 && op.loc.column > 0) where += ":" + std::to_string(op.loc.column);
+  // Appended piecewise: ":" + to_string(...) trips GCC 12's false -Wrestrict.
+  if (op.loc.line > 0) where.append(":").append(std::to_string(op.loc.line));
+  if (op.loc.line > 0 && op.loc.column > 0) where.append(":").append(std::to_string(op.loc.column));
   error_ = where + ": error: " + op.opcode + ": " + msg;
 }
 

@@ -89,8 +89,9 @@ std::optional<ir::Shader> ShadingSystem::Impl::load(const std::string& name, Dia
 // The printed IR of every layer, the layer names and values, the connections and the options.
 std::string ShadingSystem::Impl::cache_key(const ShaderGroup& g,
                                            const std::vector<const ir::Shader*>& layers) const {
-  std::string key =
-      "O" + std::to_string(options.opt_level) + (options.specialize ? "s" : "n") + "\n";
+  std::string key = "O"; // appended piecewise: "O" + to_string(...) trips GCC 12's -Wrestrict
+  key += std::to_string(options.opt_level);
+  key += options.specialize ? "s\n" : "n\n";
   for (size_t i = 0; i < layers.size(); ++i) {
     key += "layer " + g.layers[i].name + "\n" + ir::print(*layers[i]);
     for (const InstanceValue& v : g.layers[i].values)
