@@ -83,7 +83,9 @@ std::string compile_checked(const std::string& path) {
     std::string text = lobe::ir::print(*r.shader);
     lobe::ir::ParseResult back = lobe::ir::parse(text);
     EXPECT_TRUE(back.shader.has_value()) << back.error.line << ": " << back.error.message;
-    if (back.shader) EXPECT_EQ(lobe::ir::print(*back.shader), text) << path;
+    if (back.shader) {
+      EXPECT_EQ(lobe::ir::print(*back.shader), text) << path;
+    }
     if (!opt) o0 = text;
   }
   return o0;

@@ -74,7 +74,7 @@ TEST(JitMaterials, ManyMaterialsCompileConcurrently) {
   const int n = 8;
   std::vector<scene::MaterialDesc> descs(n);
   for (int i = 0; i < n; ++i) {
-    descs[size_t(i)].name = "m" + std::to_string(i);
+    descs[size_t(i)].name = std::string("m").append(std::to_string(i)); // GCC 12 -Wrestrict
     descs[size_t(i)].where = "test";
     descs[size_t(i)].group.layers.push_back(
         {i % 2 ? "matte" : "plastic", "l", {{"float", "Cs", std::to_string(0.1 * (i + 1))}}});
