@@ -157,28 +157,29 @@ struct Microfacet {
   float alpha_eff() const { return std::sqrt(dist.ax * dist.ay); }
   int side(float e) const { return e == eta ? 0 : 1; }
 
-  // Albedos of the compensation lobe at wo (reflected, transmitted part; importance).
-  void ms_albedo(const Vec3& wo, float e, Vec3& ar, Vec3& at) const {
+  // Albedos of the compensation lobe at wo (reflected, transmitted part; importance). edo is
+  // Ed(wo, e), looked up once by the caller (used when ms_diel).
+  void ms_albedo(const Vec3& wo, float e, float edo, Vec3& ar, Vec3& at) const {
     ar = at = Vec3{};
     if (ms)
       ar = ms_color * (kPi * (1.0f - E(wo.z)) * (1.0f - energy_E_avg(alpha_eff(), dist.beckmann)));
     if (ms_diel) {
       const DielMs& s = dms[side(e)];
-      float lo = 1.0f - Ed(wo, e);
+      float lo = 1.0f - edo;
       ar = refl_tint * (s.cr * lo);
       at = trans_tint * (s.ct * lo);
     }
   }
   // Probability p of sampling the compensation lobe at wo, and q, its reflected share.
-  void ms_probs(const Vec3& wo, float e, float& p, float& q) const {
+  void ms_probs(const Vec3& wo, float e, float edo, float& p, float& q) const {
     p = 0.0f, q = 1.0f;
     if (!ms && !ms_diel) return;
     Vec3 ar, at;
-    ms_albedo(wo, e, ar, at);
+    ms_albedo(wo, e, edo, ar, at);
     float mr = luminance(ar), mt = luminance(at), m = mr + mt;
     Vec3 f = F(wo.z, e);
     float ss = ms ? luminance(refl_tint * f) * E(wo.z)
-                  : luminance(refl_tint * f + trans_tint * (splat(1.0f) - f)) * Ed(wo, e);
+                  : luminance(refl_tint * f + trans_tint * (splat(1.0f) - f)) * edo;
     p = m + ss > 0.0f ? clampf(m / (m + ss), 0.0f, 0.9f) : 0.0f;
     q = m > 0.0f ? mr / m : 1.0f;
   }
@@ -192,23 +193,30 @@ struct Microfacet {
     return eval_above(wo, wi, e, mode);
   }
 
+  // Ed(wo, e) when the dielectric compensation needs it (else 0): one look-up per wo.
+  float Ed_wo(const Vec3& wo, float e) const { return ms_diel ? Ed(wo, e) : 0.0f; }
+
   // eval with wo.z > 0 and e the relative IOR below the surface.
   LobeEval eval_above(const Vec3& wo, const Vec3& wi, float e, Transport mode) const {
+    return eval_above(wo, wi, e, Ed_wo(wo, e), mode);
+  }
+  LobeEval eval_above(const Vec3& wo, const Vec3& wi, float e, float edo, Transport mode) const {
     LobeEval r = wi.z > 0.0f ? eval_reflect(wo, wi, e) : eval_refract(wo, wi, e, mode);
     if (!ms && !ms_diel) return r;
     float p, q;
-    ms_probs(wo, e, p, q);
+    ms_probs(wo, e, edo, p, q);
     float c = std::fabs(wi.z);
     if (ms && wi.z > 0.0f) r.value += ms_color * ((1.0f - E(wo.z)) * (1.0f - E(wi.z)) * c);
-    if (ms_diel) r.value += diel_ms_value(wo, wi, e, mode);
+    if (ms_diel) r.value += diel_ms_value(edo, wi, e, mode);
     r.pdf = (1.0f - p) * r.pdf + p * (wi.z > 0.0f ? q : 1.0f - q) * c * kInvPi;
     return r;
   }
 
-  // Dielectric compensation value (times |wi.z|) for wo on the side with relative IOR e.
-  Vec3 diel_ms_value(const Vec3& wo, const Vec3& wi, float e, Transport mode) const {
+  // Dielectric compensation value (times |wi.z|) for wo (edo = Ed(wo, e)) on the side with
+  // relative IOR e.
+  Vec3 diel_ms_value(float edo, const Vec3& wi, float e, Transport mode) const {
     const DielMs& s = dms[side(e)];
-    float lo = 1.0f - Ed(wo, e), wz = wi.z;
+    float lo = 1.0f - edo, wz = wi.z;
     if (wz > 0.0f) return refl_tint * (s.kr * lo * (1.0f - Ed(wi, e)) * wz);
     float v = s.kt * lo * (1.0f - Ed(wi, 1.0f / e)) * -wz;
     if (mode == Transport::Radiance) v /= e * e;
@@ -280,8 +288,8 @@ struct Microfacet {
 
   LobeSample sample_rough(const Vec3& wo, Vec3 u, float e, Transport mode) const {
     LobeSample s;
-    float p, q;
-    ms_probs(wo, e, p, q);
+    float p, q, edo = Ed_wo(wo, e);
+    ms_probs(wo, e, edo, p, q);
     if (u.z < p) { // compensation lobe: cosine-distributed, reflected or transmitted
       s.wi = sample_cosine_hemisphere(u.x, u.y);
       s.flags = kFlagReflect | kFlagDiffuse;
@@ -309,7 +317,7 @@ struct Microfacet {
     }
     s.wi = normalize(s.wi); // evaluated at the direction returned (see dispatch.h)
     if (s.wi.z == 0.0f || ((s.flags & kFlagReflect) && s.wi.z < 0.0f)) return s;
-    LobeEval ev = eval_above(wo, s.wi, e, mode);
+    LobeEval ev = eval_above(wo, s.wi, e, edo, mode);
     if (!(ev.pdf > 0.0f)) return s;
     s.pdf = ev.pdf;
     s.weight = ev.value / ev.pdf;
@@ -327,12 +335,14 @@ struct Microfacet {
     Vec3 fr, ft;
     split(wo.z, e, fr, ft);
     float Er = delta ? 1.0f : E(wo.z), Et = Er;
-    if (!delta && fresnel == FresnelKind::Dielectric) { // split Ed = F Er + (1 - F) Et
+    bool split_e = !delta && fresnel == FresnelKind::Dielectric;
+    float edo = split_e || ms_diel ? Ed(wo, e) : 0.0f;
+    if (split_e) { // split Ed = F Er + (1 - F) Et
       float f = F(wo.z, e).x;
-      Et = f < 1.0f ? clampf((Ed(wo, e) - f * Er) / (1.0f - f), 0.0f, 1.0f) : 0.0f;
+      Et = f < 1.0f ? clampf((edo - f * Er) / (1.0f - f), 0.0f, 1.0f) : 0.0f;
     }
     Vec3 a = fr * Er + ft * Et, ar, at;
-    ms_albedo(wo, e, ar, at);
+    ms_albedo(wo, e, edo, ar, at);
     return a + ar + at;
   }
 };
