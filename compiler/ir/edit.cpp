@@ -27,21 +27,15 @@ int intern_const(Shader& sh, const Type& t, const std::vector<ConstValue>& v) {
 }
 
 int intern_int(Shader& sh, int value) {
-  ConstValue c;
-  c.i = value;
-  return intern_const(sh, Type{BaseType::Int}, {c});
+  return intern_const(sh, Type{BaseType::Int}, {ConstValue::of_int(value)});
 }
 
 int intern_float(Shader& sh, float value) {
-  ConstValue c;
-  c.f = value;
-  return intern_const(sh, Type{BaseType::Float}, {c});
+  return intern_const(sh, Type{BaseType::Float}, {ConstValue::of_float(value)});
 }
 
 int intern_string(Shader& sh, const std::string& value) {
-  ConstValue c;
-  c.s = value;
-  return intern_const(sh, Type{BaseType::String}, {c});
+  return intern_const(sh, Type{BaseType::String}, {ConstValue::of_string(value)});
 }
 
 void remove_ops(Shader& sh, const std::vector<bool>& keep) {
@@ -95,8 +89,8 @@ bool remove_unused_symbols(Shader& sh) {
 
 bool op_reads(const Op& op, int argi) {
   if (!op.writes(argi)) return true;
-  return argi == 0 && (op.opcode == "compassign" || op.opcode == "mxcompassign" ||
-                       op.opcode == "aassign");
+  return argi == 0 &&
+         (op.opcode == "compassign" || op.opcode == "mxcompassign" || op.opcode == "aassign");
 }
 
 } // namespace lobe::ir

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lobe::ir {
@@ -55,6 +56,21 @@ struct ConstValue {
   int32_t i = 0;
   float f = 0.0f;
   std::string s;
+  static ConstValue of_int(int32_t v) {
+    ConstValue c;
+    c.i = v;
+    return c;
+  }
+  static ConstValue of_float(float v) {
+    ConstValue c;
+    c.f = v;
+    return c;
+  }
+  static ConstValue of_string(std::string v) {
+    ConstValue c;
+    c.s = std::move(v);
+    return c;
+  }
   friend bool operator==(const ConstValue&, const ConstValue&) = default;
 };
 

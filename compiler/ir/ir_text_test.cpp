@@ -21,21 +21,9 @@ Symbol sym(std::string name, BaseType b, SymKind k, int arraylen = 0) {
   return s;
 }
 
-ConstValue f(float v) {
-  ConstValue c;
-  c.f = v;
-  return c;
-}
-ConstValue i(int v) {
-  ConstValue c;
-  c.i = v;
-  return c;
-}
-ConstValue s(std::string v) {
-  ConstValue c;
-  c.s = std::move(v);
-  return c;
-}
+ConstValue f(float v) { return ConstValue::of_float(v); }
+ConstValue i(int v) { return ConstValue::of_int(v); }
+ConstValue s(std::string v) { return ConstValue::of_string(std::move(v)); }
 
 Op op(std::string code, std::vector<int> args, uint32_t mask, std::vector<int> jumps = {}) {
   Op o;

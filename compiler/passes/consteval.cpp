@@ -19,17 +19,6 @@ bool is_num(const Type& t) {
   return !t.is_array() && (t.base == BaseType::Int || t.base == BaseType::Float);
 }
 
-ConstValue fv(float f) {
-  ConstValue c;
-  c.f = f;
-  return c;
-}
-ConstValue iv(int32_t i) {
-  ConstValue c;
-  c.i = i;
-  return c;
-}
-
 // The wider of two comparable types (int < float < triple), or nullopt.
 std::optional<Type> wider(const Type& a, const Type& b) {
   if (a.is_array() || b.is_array()) return std::nullopt;
@@ -99,7 +88,7 @@ std::optional<Values> compare(const std::string& op, const std::vector<ConstArg>
   if (strings) { // compared by content: strings have no numeric value to widen
     if (op != "eq" && op != "neq") return std::nullopt;
     bool same = (*s[0].value)[0].s == (*s[1].value)[0].s;
-    return Values{iv(op == "eq" ? same : !same)};
+    return Values{ConstValue::of_int(op == "eq" ? same : !same)};
   }
   auto t = wider(s[0].type, s[1].type);
   if (!t) return std::nullopt;
@@ -111,12 +100,12 @@ std::optional<Values> compare(const std::string& op, const std::vector<ConstArg>
   if (op == "eq" || op == "neq") {
     bool same = true;
     for (size_t i = 0; i < a->size(); ++i) same &= num((*a)[i]) == num((*b)[i]);
-    return Values{iv(op == "eq" ? same : !same)};
+    return Values{ConstValue::of_int(op == "eq" ? same : !same)};
   }
   if (t->is_triple()) return std::nullopt;
   double x = num((*a)[0]), y = num((*b)[0]);
   bool r = op == "lt" ? x < y : op == "le" ? x <= y : op == "gt" ? x > y : x >= y;
-  return Values{iv(r)};
+  return Values{ConstValue::of_int(r)};
 }
 
 // Arithmetic in the destination type, sources converted to it.
@@ -134,28 +123,29 @@ std::optional<Values> arith(const std::string& op, const Type& dst,
   for (size_t c = 0; c < out.size(); ++c) {
     if (dst.base == BaseType::Int) {
       if (args.size() == 1 && op == "neg")
-        out[c] = iv(int32_t(0u - uint32_t(args[0][c].i)));
+        out[c] = ConstValue::of_int(int32_t(0u - uint32_t(args[0][c].i)));
       else if (args.size() == 1 && op == "abs")
-        out[c] = iv(args[0][c].i < 0 ? int32_t(0u - uint32_t(args[0][c].i)) : args[0][c].i);
+        out[c] = ConstValue::of_int(args[0][c].i < 0 ? int32_t(0u - uint32_t(args[0][c].i))
+                                                     : args[0][c].i);
       else if (args.size() == 1 && op == "compl")
-        out[c] = iv(~args[0][c].i);
+        out[c] = ConstValue::of_int(~args[0][c].i);
       else if (args.size() == 2)
-        out[c] = iv(int_binop(op, args[0][c].i, args[1][c].i, ok));
+        out[c] = ConstValue::of_int(int_binop(op, args[0][c].i, args[1][c].i, ok));
       else
         return std::nullopt;
     } else if (args.size() == 1) {
       auto f = float_unop(op);
       if (!f) return std::nullopt;
-      out[c] = fv(f(args[0][c].f));
+      out[c] = ConstValue::of_float(f(args[0][c].f));
     } else if (args.size() == 2) {
       auto f = float_binop(op);
       if (!f) return std::nullopt;
-      out[c] = fv(f(args[0][c].f, args[1][c].f));
+      out[c] = ConstValue::of_float(f(args[0][c].f, args[1][c].f));
     } else if (args.size() == 3 && op == "clamp") {
-      out[c] = fv(std::fmin(std::fmax(args[0][c].f, args[1][c].f), args[2][c].f));
+      out[c] = ConstValue::of_float(std::fmin(std::fmax(args[0][c].f, args[1][c].f), args[2][c].f));
     } else if (args.size() == 3 && op == "mix") {
       float t = args[2][c].f;
-      out[c] = fv(args[0][c].f * (1 - t) + args[1][c].f * t);
+      out[c] = ConstValue::of_float(args[0][c].f * (1 - t) + args[1][c].f * t);
     } else {
       return std::nullopt;
     }
@@ -169,16 +159,17 @@ std::optional<Values> arith(const std::string& op, const Type& dst,
 std::optional<Values> convert_const(const Type& from, const Values& v, const Type& to) {
   if (from == to) return v;
   if (from.is_array() || to.is_array()) return std::nullopt;
-  if (from.base == BaseType::Int && to.base == BaseType::Float) return Values{fv(float(v[0].i))};
+  if (from.base == BaseType::Int && to.base == BaseType::Float)
+    return Values{ConstValue::of_float(float(v[0].i))};
   if (from.base == BaseType::Float && to.base == BaseType::Int) {
     float f = v[0].f;
     if (!(std::fabs(f) < 2147483648.0f)) return std::nullopt; // undefined in C++: leave it
-    return Values{iv(int32_t(f))};
+    return Values{ConstValue::of_int(int32_t(f))};
   }
   if (to.is_triple()) {
     if (from.is_triple()) return v;
-    if (from.base == BaseType::Int) return Values(3, fv(float(v[0].i)));
-    if (from.base == BaseType::Float) return Values(3, fv(v[0].f));
+    if (from.base == BaseType::Int) return Values(3, ConstValue::of_float(float(v[0].i)));
+    if (from.base == BaseType::Float) return Values(3, ConstValue::of_float(v[0].f));
   }
   return std::nullopt;
 }
@@ -191,7 +182,7 @@ std::optional<Values> evaluate(const std::string& op, const Type& dst,
     return compare(op, s);
   if (op == "not" && s.size() == 1 && is_num(s[0].type)) {
     const ConstValue& c = (*s[0].value)[0];
-    return Values{iv(s[0].type.base == BaseType::Int ? c.i == 0 : c.f == 0)};
+    return Values{ConstValue::of_int(s[0].type.base == BaseType::Int ? c.i == 0 : c.f == 0)};
   }
   if (op == "compref" && s.size() == 2 && s[0].type.is_triple() && !s[0].type.is_array()) {
     int i = (*s[1].value)[0].i;
@@ -208,7 +199,7 @@ std::optional<Values> evaluate(const std::string& op, const Type& dst,
     return out;
   }
   if (op == "strlen" && s.size() == 1 && s[0].type == Type{BaseType::String})
-    return Values{iv(int32_t((*s[0].value)[0].s.size()))};
+    return Values{ConstValue::of_int(int32_t((*s[0].value)[0].s.size()))};
   if (op == "concat" && dst == Type{BaseType::String}) {
     ConstValue c;
     for (const ConstArg& a : s) {
