@@ -1,12 +1,14 @@
-// The noise family, following OSL's algorithms (src/include/OSL/oslnoise.h): gradient
+// The noise family, following OSL's algorithms: from src/include/OSL/oslnoise.h gradient
 // ("perlin", signed; "uperlin"/noise() = 0.5 * (perlin + 1)), "cell" (constant per integer
-// cell), "hash" (per exact input) and the periodic variants, for 1 to 4 input dimensions and 1
-// or 3 output channels. The lattice hash is Bob Jenkins' lookup3 (bjmix/bjfinal) as OSL's
-// inthash; the gradients, quintic fade, lerp/bilerp/trilerp order and scale constants are
-// OSL's, evaluated in float in the same operation order. Gradient noise also returns its
-// analytic derivative (carried through the same formulas as OSL's Dual2 evaluation) so that
-// Dx(noise(P)) follows the chain rule. runtime/shadeops/noise_reference.py is an independent
-// Python transcription used to derive the expected values in the tests.
+// cell), "hash" (per exact input) and their periodic variants, and from
+// src/liboslnoise/simplexnoise.cpp "simplex" (signed; "usimplex" = 0.5 * (simplex + 1)); 1 to 4
+// input dimensions and 1 or 3 output channels. The lattice hash is Bob Jenkins' lookup3
+// (bjmix/bjfinal) as OSL's inthash and scramble; gradients, fade, interpolation order, corner
+// order and scale constants are OSL's, evaluated in float in the same operation order. Gradient
+// and simplex noise also return their analytic derivative (for perlin, carried through the same
+// formulas as OSL's Dual2 evaluation) so that Dx(noise(P)) follows the chain rule.
+// runtime/shadeops/noise_reference.py is an independent Python transcription used to derive the
+// expected values in the tests.
 #include "shadeops.h"
 
 #include "lobe/context.h"
@@ -249,6 +251,122 @@ D perlin(const float* xin, int n, const CornerHash& hash) {
   return 0.8344f * lerp(trilerp(v, u[0], u[1], u[2]), trilerp(v + 8, u[0], u[1], u[2]), u[3]);
 }
 
+// ---- Simplex noise: OSL's simplexnoise.cpp (Stefan Gustavson's sdnoise1234) ----
+//
+// Each corner c of the simplex containing x contributes t^4 (g_c . d) with d = x - c (in
+// unskewed space), t = r^2 - |d|^2 (0 when negative) and g_c a hashed gradient; the sum times
+// an empirical scale covers about [-1, 1]. r^2 is 1 in 1-D and 0.5 above (OSL's radius: with
+// Gustavson's 0.6 the 3-D and 4-D noise jumps where a corner's support is cut at the simplex
+// boundary). `seed` selects an independent noise: channel j of a vector result uses seed j.
+// The derivative is the sum of d/dx [t^4 (g . d)] = t^4 g - 8 t^3 (g . d) d, times the scale.
+
+// OSL's scramble: one lookup3 final mix in place of Gustavson's permutation table.
+inline uint32_t scramble(uint32_t v0, uint32_t v1 = 0, uint32_t v2 = 0) {
+  return bjfinal(v0, v1, v2 ^ 0xdeadbeefu);
+}
+
+// Corner gradients, one row per hash value: 2-D, 8 directions; 3-D, the 12 cube edges, then 4
+// of them again to fill 16 rows; 4-D, the 32 tesseract edges (a 0 in each position in turn, the
+// other three signs counting down from +++ with the last fastest).
+constexpr float kGrad2[8][2] = {{-1, -1}, {1, 0},  {-1, 0}, {1, 1},
+                                {-1, 1},  {0, -1}, {0, 1},  {1, -1}};
+constexpr float kGrad3[16][3] = {{1, 0, 1},  {0, 1, 1},  {-1, 0, 1},  {0, -1, 1},
+                                 {1, 0, -1}, {0, 1, -1}, {-1, 0, -1}, {0, -1, -1},
+                                 {1, -1, 0}, {1, 1, 0},  {-1, 1, 0},  {-1, -1, 0},
+                                 {1, 0, 1},  {-1, 0, 1}, {0, 1, -1},  {0, -1, -1}};
+constexpr float kGrad4[32][4] = {{0, 1, 1, 1},  {0, 1, 1, -1},  {0, 1, -1, 1},  {0, 1, -1, -1},
+                                 {0, -1, 1, 1}, {0, -1, 1, -1}, {0, -1, -1, 1}, {0, -1, -1, -1},
+                                 {1, 0, 1, 1},  {1, 0, 1, -1},  {1, 0, -1, 1},  {1, 0, -1, -1},
+                                 {-1, 0, 1, 1}, {-1, 0, 1, -1}, {-1, 0, -1, 1}, {-1, 0, -1, -1},
+                                 {1, 1, 0, 1},  {1, 1, 0, -1},  {1, -1, 0, 1},  {1, -1, 0, -1},
+                                 {-1, 1, 0, 1}, {-1, 1, 0, -1}, {-1, -1, 0, 1}, {-1, -1, 0, -1},
+                                 {1, 1, 1, 0},  {1, 1, -1, 0},  {1, -1, 1, 0},  {1, -1, -1, 0},
+                                 {-1, 1, 1, 0}, {-1, 1, -1, 0}, {-1, -1, 1, 0}, {-1, -1, -1, 0}};
+
+// OSL's grad2/grad3/grad4: the gradient at lattice corner c (n = 2..4 coordinates).
+const float* simplex_grad(const int* c, int n, uint32_t seed) {
+  auto u = [&](int k) { return uint32_t(c[k]); };
+  if (n == 2) return kGrad2[scramble(u(0), u(1), seed) & 7];
+  if (n == 3) return kGrad3[scramble(u(0), u(1), scramble(u(2), seed)) & 15];
+  return kGrad4[scramble(u(0), u(1), scramble(u(2), u(3), seed)) & 31];
+}
+
+// OSL's simplexnoise1: corners floor(x) and floor(x) + 1, gradients +-1..8 (grad1), scale 0.36.
+D simplex1(float x, uint32_t seed) {
+  int i0 = ifloor(x);
+  float x0 = x - float(i0), n[2], dn[2];
+  for (int c = 0; c < 2; ++c) {
+    float xc = c ? x0 - 1.0f : x0;
+    uint32_t h = scramble(uint32_t(i0 + c), seed) & 15;
+    float g = float(1 + (h & 7));
+    if (h & 8) g = -g;
+    float t = 1.0f - xc * xc, t2 = t * t, t4 = t2 * t2; // |xc| <= 1, so t >= 0
+    n[c] = t4 * g * xc;
+    dn[c] = t4 * g - 8.0f * t2 * t * g * xc * xc;
+  }
+  D r = dconst(0.36f * (n[0] + n[1]));
+  r.d[0] = 0.36f * (dn[0] + dn[1]);
+  return r;
+}
+
+// Skew factor F = (sqrt(n + 1) - 1) / n, unskew factor G = (1 - 1 / sqrt(n + 1)) / n and output
+// scale of OSL's 2-, 3- and 4-D simplex noise (row n - 2), as OSL writes them.
+struct SimplexDim {
+  float F, G, scale;
+};
+constexpr SimplexDim kSimplexDim[3] = {{0.366025403f, 0.211324865f, 64.0f},
+                                       {0.333333333f, 0.166666667f, 68.0f},
+                                       {0.309016994f, 0.138196601f, 54.0f}};
+
+// OSL's simplexnoise2/3/4 in its float operation order: skew x onto the integer lattice to find
+// the cell, rank the offsets from the cell origin, and step from the origin along the largest
+// offset first, one coordinate per corner, to the opposite cell corner.
+D simplex(const float* x, int n, uint32_t seed) {
+  if (n == 1) return simplex1(x[0], seed);
+  const SimplexDim& k = kSimplexDim[n - 2];
+  float s = x[0];
+  for (int a = 1; a < n; ++a) s += x[a];
+  s *= k.F;
+  int cell[4], sum = 0;
+  for (int a = 0; a < n; ++a) {
+    cell[a] = ifloor(x[a] + s);
+    sum += cell[a];
+  }
+  float t = float(sum) * k.G, d0[4];
+  for (int a = 0; a < n; ++a) d0[a] = x[a] - (float(cell[a]) - t);
+  // rank[a]: how many offsets d0[a] exceeds. Ties go as in OSL (3-D: to the earlier coordinate,
+  // 2-D and 4-D: to the later), so the same one of the simplices sharing the point is used.
+  int rank[4] = {0, 0, 0, 0};
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b) ++rank[(n == 3 ? d0[a] >= d0[b] : d0[a] > d0[b]) ? a : b];
+  float nc[5] = {0, 0, 0, 0, 0}, dd[4] = {0, 0, 0, 0}, gt[4] = {0, 0, 0, 0};
+  for (int c = 0; c <= n; ++c) {
+    int corner[4];
+    float d[4], tc = 0.5f;
+    for (int a = 0; a < n; ++a) {
+      int step = rank[a] >= n - c ? 1 : 0; // corner c has stepped along the c largest offsets
+      corner[a] = cell[a] + step;
+      d[a] = c == 0 ? d0[a] : d0[a] - float(step) + float(c) * k.G;
+      tc -= d[a] * d[a];
+    }
+    if (tc < 0.0f) continue; // outside this corner's support
+    const float* g = simplex_grad(corner, n, seed);
+    float dot = g[0] * d[0];
+    for (int a = 1; a < n; ++a) dot += g[a] * d[a];
+    float t2 = tc * tc, t4 = t2 * t2, t3dot = t2 * tc * dot;
+    nc[c] = t4 * dot;
+    for (int a = 0; a < n; ++a) {
+      dd[a] += t3dot * d[a];
+      gt[a] += t4 * g[a];
+    }
+  }
+  float total = nc[0];
+  for (int c = 1; c <= n; ++c) total += nc[c];
+  D r = dconst(k.scale * total);
+  for (int a = 0; a < n; ++a) r.d[a] = k.scale * (gt[a] - 8.0f * dd[a]);
+  return r;
+}
+
 } // namespace
 
 extern "C" {
@@ -257,14 +375,19 @@ extern "C" {
 // d out[j] / d x[k] at grad[j * nin + k].
 void lobe_noise(int kind, const float* x, int nin, const float* period, float* out, int nout,
                 float* grad) {
-  if (kind == lobe::shadeops::kPerlin || kind == lobe::shadeops::kUPerlin) {
+  using namespace lobe::shadeops;
+  bool simplex_kind = kind == kSimplex || kind == kUSimplex;
+  if (simplex_kind || kind == kPerlin || kind == kUPerlin) {
+    // Simplex noise has no periodic form (OSL has none; the name dispatch rejects
+    // pnoise("simplex")), so `period` only applies to gradient noise.
     int per[4];
     if (period)
       for (int k = 0; k < nin; ++k) per[k] = period_of(period[k]);
     for (int j = 0; j < nout; ++j) {
-      CornerHash h{nin, period ? per : nullptr, nout == 1 ? 0 : 8 * j};
-      D r = perlin(x, nin, h);
-      if (kind == lobe::shadeops::kUPerlin) r = 0.5f * (r + 1.0f);
+      D r = simplex_kind
+                ? simplex(x, nin, uint32_t(j))
+                : perlin(x, nin, CornerHash{nin, period ? per : nullptr, nout == 1 ? 0 : 8 * j});
+      if (kind == kUPerlin || kind == kUSimplex) r = 0.5f * (r + 1.0f);
       out[j] = r.v;
       if (grad)
         for (int k = 0; k < nin; ++k) grad[j * nin + k] = r.d[k];
@@ -276,7 +399,7 @@ void lobe_noise(int kind, const float* x, int nin, const float* period, float* o
   uint32_t k[5];
   for (int i = 0; i < nin; ++i) {
     float xi = period ? wrapf(x[i], period[i]) : x[i];
-    if (kind == lobe::shadeops::kCell) {
+    if (kind == kCell) {
       k[i] = uint32_t(ifloor(xi));
     } else {
       std::memcpy(&k[i], &xi, 4);
@@ -294,14 +417,16 @@ void lobe_noise(int kind, const float* x, int nin, const float* period, float* o
   }
 }
 
-// noise(name, ...) with a name known only at run time (OSL's genericnoise): dispatches on the
-// name like the constant case in codegen ("gabor" is the gradient noise). An unknown name is a
-// run-time error naming the source location; the result (and its gradient) is 0.
+// noise(name, ...) with a name known only at run time (OSL's genericnoise / genericpnoise):
+// dispatches on the name like the constant case in codegen ("gabor" is the gradient noise). An
+// unknown name, or "simplex"/"usimplex" with a period, is a run-time error naming the source
+// location; the result (and its gradient) is 0.
 void lobe_noise_named(lobe::ShaderGlobals* sg, const char* name, const float* x, int nin,
                       const float* period, float* out, int nout, float* grad, const char* file,
                       int line) {
   std::string_view n = name ? name : "";
-  int kind = n == "gabor" ? lobe::shadeops::kUPerlin : lobe::shadeops::noise_kind_from_name(n);
+  int kind = n == "gabor" ? lobe::shadeops::kUPerlin
+                          : lobe::shadeops::noise_kind_from_name(n, period != nullptr);
   if (kind >= 0) return lobe_noise(kind, x, nin, period, out, nout, grad);
   for (int j = 0; j < nout; ++j) out[j] = 0;
   if (grad)
@@ -316,9 +441,11 @@ void lobe_noise_named(lobe::ShaderGlobals* sg, const char* name, const float* x,
 } // extern "C"
 
 namespace lobe::shadeops {
-int noise_kind_from_name(std::string_view name) {
-  if (name == "perlin" || name == "snoise" || name == "simplex") return kPerlin;
-  if (name == "uperlin" || name == "noise" || name == "usimplex") return kUPerlin;
+int noise_kind_from_name(std::string_view name, bool periodic) {
+  if (name == "perlin" || name == "snoise") return kPerlin;
+  if (name == "uperlin" || name == "noise") return kUPerlin;
+  if (name == "simplex") return periodic ? -1 : kSimplex;
+  if (name == "usimplex") return periodic ? -1 : kUSimplex;
   if (name == "cell" || name == "cellnoise") return kCell;
   if (name == "hash" || name == "hashnoise") return kHash;
   return -1;

@@ -1,12 +1,16 @@
 #!/usr/bin/env python3
 """Independent reference for Lobe's noise (runtime/shadeops/noise.cpp), transcribed from OSL's
 src/include/OSL/oslnoise.h (Bob Jenkins lookup3 inthash, bits_to_01, CellNoise/HashNoise,
-perlin() with OSL's grad/fade/lerp/bilerp/trilerp and scale constants). Every float operation
-is rounded to binary32 (f32) in the same order as OSL's float code, so the values are the bit
-patterns OSL prints. Values only (no derivatives: the tests check those by finite differences).
+perlin() with OSL's grad/fade/lerp/bilerp/trilerp and scale constants), and of OSL's
+src/liboslnoise/simplexnoise.cpp (Gustavson's sdnoise1234 with a scramble() hash; transcribed
+from memory of OSL's source, so its constants are unverified against a real OSL). Every float
+operation is rounded to binary32 (f32) in the same order as OSL's float code, so the values are
+the bit patterns OSL prints. Values only (no derivatives: the tests check those by finite
+differences).
 
   python3 runtime/shadeops/noise_reference.py          # prints the values used in the tests
 """
+import itertools
 import math
 import struct
 
@@ -142,6 +146,137 @@ def unoise(*x, **kw):
     return f32(0.5 * f32(perlin(*x, **kw) + 1.0))
 
 
+# ---- Simplex noise (OSL's simplexnoise.cpp) ----
+
+def scramble(v0, v1=0, v2=0):
+    return bjfinal(v0 & M, v1 & M, (v2 & M) ^ 0xdeadbeef)
+
+
+GRAD2 = [(-1, -1), (1, 0), (-1, 0), (1, 1), (-1, 1), (0, -1), (0, 1), (1, -1)]
+GRAD3 = [(1, 0, 1), (0, 1, 1), (-1, 0, 1), (0, -1, 1), (1, 0, -1), (0, 1, -1), (-1, 0, -1),
+         (0, -1, -1), (1, -1, 0), (1, 1, 0), (-1, 1, 0), (-1, -1, 0),
+         (1, 0, 1), (-1, 0, 1), (0, 1, -1), (0, -1, -1)]
+# The 32 tesseract edges: the zero in position 0, 1, 2, 3 in turn; the other three coordinates'
+# signs with the last varying fastest, + before -.
+GRAD4 = [tuple(signs[:zero] + (0,) + signs[zero:])
+         for zero in range(4) for signs in itertools.product((1, -1), repeat=3)]
+
+# Gustavson's 4-D traversal table, indexed by the six pairwise comparisons of the offsets
+# (x>y: 32, x>z: 16, y>z: 8, x>w: 4, y>w: 2, z>w: 1); entry k is the rank of coordinate k.
+SIMPLEX4 = [
+    (0, 1, 2, 3), (0, 1, 3, 2), (0, 0, 0, 0), (0, 2, 3, 1),
+    (0, 0, 0, 0), (0, 0, 0, 0), (0, 0, 0, 0), (1, 2, 3, 0),
+    (0, 2, 1, 3), (0, 0, 0, 0), (0, 3, 1, 2), (0, 3, 2, 1),
+    (0, 0, 0, 0), (0, 0, 0, 0), (0, 0, 0, 0), (1, 3, 2, 0),
+    (0, 0, 0, 0), (0, 0, 0, 0), (0, 0, 0, 0), (0, 0, 0, 0),
+    (0, 0, 0, 0), (0, 0, 0, 0), (0, 0, 0, 0), (0, 0, 0, 0),
+    (1, 2, 0, 3), (0, 0, 0, 0), (1, 3, 0, 2), (0, 0, 0, 0),
+    (0, 0, 0, 0), (0, 0, 0, 0), (2, 3, 0, 1), (2, 3, 1, 0),
+    (1, 0, 2, 3), (1, 0, 3, 2), (0, 0, 0, 0), (0, 0, 0, 0),
+    (0, 0, 0, 0), (2, 0, 3, 1), (0, 0, 0, 0), (2, 1, 3, 0),
+    (0, 0, 0, 0), (0, 0, 0, 0), (0, 0, 0, 0), (0, 0, 0, 0),
+    (0, 0, 0, 0), (0, 0, 0, 0), (0, 0, 0, 0), (0, 0, 0, 0),
+    (2, 0, 1, 3), (0, 0, 0, 0), (0, 0, 0, 0), (0, 0, 0, 0),
+    (3, 0, 1, 2), (3, 0, 2, 1), (0, 0, 0, 0), (3, 1, 2, 0),
+    (2, 1, 0, 3), (0, 0, 0, 0), (0, 0, 0, 0), (0, 0, 0, 0),
+    (3, 1, 0, 2), (0, 0, 0, 0), (3, 2, 0, 1), (3, 2, 1, 0)]
+
+
+def grad1(i, seed):
+    h = scramble(i, seed) & 15
+    g = float(1 + (h & 7))
+    return -g if h & 8 else g
+
+
+def simplex1(x, seed=0):
+    i0 = math.floor(x)
+    x0 = f32(x - f32(i0))
+    x1 = f32(x0 - 1.0)
+    n = []
+    for i, xc in ((i0, x0), (i0 + 1, x1)):
+        t = f32(1.0 - f32(xc * xc))
+        t2 = f32(t * t)
+        t4 = f32(t2 * t2)
+        n.append(f32(f32(t4 * grad1(i, seed)) * xc))
+    return f32(f32(0.36) * f32(n[0] + n[1]))
+
+
+def simplex_corner(c, d, seed):
+    """t^4 (g . d) of one corner (0 outside the radius)."""
+    n = len(d)
+    t = 0.5
+    for v in d:
+        t = f32(t - f32(v * v))
+    if t < 0.0:
+        return 0.0
+    if n == 2:
+        g = GRAD2[scramble(c[0], c[1], seed) & 7]
+    elif n == 3:
+        g = GRAD3[scramble(c[0], c[1], scramble(c[2], seed)) & 15]
+    else:
+        g = GRAD4[scramble(c[0], c[1], scramble(c[2], c[3], seed)) & 31]
+    dot = f32(g[0] * d[0])
+    for k in range(1, n):
+        dot = f32(dot + f32(g[k] * d[k]))
+    t2 = f32(t * t)
+    return f32(f32(t2 * t2) * dot)
+
+
+def offsets_order(d0):
+    """Offsets (0/1 per coordinate) of the middle corners, as OSL picks them."""
+    n = len(d0)
+    if n == 2:
+        return [(1, 0) if d0[0] > d0[1] else (0, 1)]
+    if n == 3:
+        x0, y0, z0 = d0
+        if x0 >= y0:
+            if y0 >= z0: return [(1, 0, 0), (1, 1, 0)]
+            if x0 >= z0: return [(1, 0, 0), (1, 0, 1)]
+            return [(0, 0, 1), (1, 0, 1)]
+        if y0 < z0: return [(0, 0, 1), (0, 1, 1)]
+        if x0 < z0: return [(0, 1, 0), (0, 1, 1)]
+        return [(0, 1, 0), (1, 1, 0)]
+    x0, y0, z0, w0 = d0
+    c = ((32 if x0 > y0 else 0) | (16 if x0 > z0 else 0) | (8 if y0 > z0 else 0) |
+         (4 if x0 > w0 else 0) | (2 if y0 > w0 else 0) | (1 if z0 > w0 else 0))
+    rank = SIMPLEX4[c]
+    return [tuple(1 if r >= lim else 0 for r in rank) for lim in (3, 2, 1)]
+
+
+SKEW = {2: (0.366025403, 0.211324865, 64.0), 3: (0.333333333, 0.166666667, 68.0),
+        4: (0.309016994, 0.138196601, 54.0)}
+
+
+def simplex(*x, seed=0):
+    """OSL's simplexnoise1..4 (signed); `seed` is the channel of a vector noise."""
+    n = len(x)
+    if n == 1:
+        return simplex1(x[0], seed)
+    F, G, scale = (f32(v) for v in SKEW[n])
+    s = x[0]
+    for v in x[1:]:
+        s = f32(s + v)
+    s = f32(s * F)
+    i = [math.floor(f32(v + s)) for v in x]
+    t = f32(f32(float(sum(i))) * G)
+    d0 = [f32(x[k] - f32(f32(i[k]) - t)) for k in range(n)]
+    corners = [((0,) * n, d0)]
+    for m, off in enumerate(offsets_order(d0), 1):
+        mg = f32(m * G)
+        corners.append((off, [f32(f32(d0[k] - off[k]) + mg) for k in range(n)]))
+    lg = f32(n * G)
+    corners.append(((1,) * n, [f32(f32(v - 1.0) + lg) for v in d0]))
+    total = None
+    for off, d in corners:
+        v = simplex_corner([i[k] + off[k] for k in range(n)], d, seed)
+        total = v if total is None else f32(total + v)
+    return f32(scale * total)
+
+
+def usimplex(*x, **kw):
+    return f32(0.5 * f32(simplex(*x, **kw) + 1.0))
+
+
 if __name__ == '__main__':
     print('inthash(0) = %#010x' % inthash(0))
     print('inthash(1) = %#010x' % inthash(1))
@@ -159,3 +294,10 @@ if __name__ == '__main__':
     print('vsnoise(0.3,1.7,-0.4) = %.9g %.9g %.9g' %
           tuple(perlin(f32(0.3), f32(1.7), f32(-0.4), channel=j) for j in range(3)))
     print('psnoise(0.3, 4) = %.9g' % perlin(f32(0.3), period=[4.0]))
+    # Simplex: channel j of a vector noise is seed j (channel 0 is the float noise).
+    for name, pt in (('p', (0.3, 1.7, -0.4, 2.6)), ('q', (-3.71, 12.25, 0.83, -5.4))):
+        pt = [f32(v) for v in pt]
+        for n in range(1, 5):
+            print('simplex %s %dD = %s | usimplex %s' % (
+                name, n, ' '.join('%.9g' % simplex(*pt[:n], seed=j) for j in range(3)),
+                ' '.join('%.9g' % usimplex(*pt[:n], seed=j) for j in range(3))))

@@ -38,8 +38,17 @@ struct TextureArgs {
 };
 
 // Noise kinds for lobe_noise (noise("name", ...) and the named functions).
-enum NoiseKind : int { kPerlin = 0, kUPerlin = 1, kCell = 2, kHash = 3 };
-int noise_kind_from_name(std::string_view name); // -1: unknown
+enum NoiseKind : int {
+  kPerlin = 0,
+  kUPerlin = 1,
+  kCell = 2,
+  kHash = 3,
+  kSimplex = 4,
+  kUSimplex = 5
+};
+// -1: unknown, or "simplex"/"usimplex" when `periodic` (OSL has no periodic simplex noise, so
+// pnoise("simplex", ...) is an unknown noise type).
+int noise_kind_from_name(std::string_view name, bool periodic);
 
 // Length units for transformu, in metres ("m"/"meter"/"meters", "cm", "mm", "km", "in"/"inch",
 // "ft"/"foot"/"feet", "mi"/"mile", and "common", Lobe's renderer units: metres); 0: unknown.

@@ -7,7 +7,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <random>
 #include <string>
 
 using namespace lobe;
@@ -275,17 +279,203 @@ TEST(Noise, OslValues) {
   EXPECT_EQ(v, 0.291080922f);
 }
 
+// Simplex noise values as OSL's simplexnoise.cpp computes them, from the independent Python
+// transcription runtime/shadeops/noise_reference.py (binary32 rounding after every operation),
+// not from this C++: channel j of a vector result is the noise with seed j.
+TEST(Noise, SimplexValues) {
+  const float p[4] = {0.3f, 1.7f, -0.4f, 2.6f}, q[4] = {-3.71f, 12.25f, 0.83f, -5.4f};
+  const float vp[4][3] = {{-0.245098889f, -0.153989658f, 0.0399643481f},
+                          {-0.0409611762f, -0.118609093f, 0.532899082f},
+                          {-0.000524203584f, -0.195786819f, 0.003108826f},
+                          {-0.274919122f, 0.160436407f, -0.298546612f}};
+  const float vq[4][3] = {{-0.150754213f, 0.0192775037f, 0.564461768f},
+                          {-0.285048127f, -0.152325839f, 0.515406013f},
+                          {0.305916905f, 0.0888545439f, -0.429894656f},
+                          {0.0298274849f, 0.0269907266f, 0.062671721f}};
+  const float up[4] = {0.377450556f, 0.479519427f, 0.499737889f, 0.362540424f};
+  const float uq[4] = {0.424622893f, 0.357475936f, 0.652958453f, 0.514913738f};
+  for (int n = 1; n <= 4; ++n) {
+    float v, o[3];
+    lobe_noise(kSimplex, p, n, nullptr, &v, 1, nullptr);
+    EXPECT_EQ(v, vp[n - 1][0]) << n;
+    lobe_noise(kSimplex, p, n, nullptr, o, 3, nullptr);
+    for (int j = 0; j < 3; ++j) EXPECT_EQ(o[j], vp[n - 1][j]) << n << " " << j;
+    lobe_noise(kSimplex, q, n, nullptr, o, 3, nullptr);
+    for (int j = 0; j < 3; ++j) EXPECT_EQ(o[j], vq[n - 1][j]) << n << " " << j;
+    lobe_noise(kUSimplex, p, n, nullptr, &v, 1, nullptr);
+    EXPECT_EQ(v, up[n - 1]) << n;
+    lobe_noise(kUSimplex, q, n, nullptr, &v, 1, nullptr);
+    EXPECT_EQ(v, uq[n - 1]) << n;
+  }
+}
+
+namespace {
+
+// Uniform points in [-r, r]^4 from a fixed seed (the same points on every run).
+struct Points {
+  explicit Points(float r = 100) : u(-r, r) {}
+  std::mt19937 rng{12345};
+  std::uniform_real_distribution<float> u;
+  std::array<float, 4> next() { return {u(rng), u(rng), u(rng), u(rng)}; }
+};
+
+float simplex_at(const float* x, int n) {
+  float v;
+  lobe_noise(kSimplex, x, n, nullptr, &v, 1, nullptr);
+  return v;
+}
+
+} // namespace
+
+// Continuity: a step of 1e-4 along any axis changes the noise by at most 1.5e-3 (measured
+// worst 2.9e-4 / 5.9e-4 / 6.0e-4 / 4.6e-4 in 1-4-D). Gustavson's 0.6 radius in 3-D and 4-D (a
+// corner's support cut at the simplex boundary) makes jumps these steps find (worst 5.9e-3 and
+// 2.6e-3), stepping to the corners along the smallest offsets first jumps by ~0.6.
+TEST(Noise, SimplexIsContinuous) {
+  Points pts;
+  for (int n = 1; n <= 4; ++n) {
+    float worst = 0;
+    for (int i = 0; i < 100000; ++i) {
+      std::array<float, 4> p = pts.next();
+      float v = simplex_at(p.data(), n);
+      for (int k = 0; k < n; ++k) {
+        std::array<float, 4> s = p;
+        s[k] += 1e-4f;
+        worst = std::max(worst, std::abs(simplex_at(s.data(), n) - v));
+      }
+    }
+    EXPECT_LT(worst, 1.5e-3f) << n;
+    std::printf("simplex %d-D worst change over a 1e-4 step %.2e\n", n, worst);
+  }
+}
+
+// At a vertex of the simplex lattice only that vertex is within the support radius (every
+// other corner is at distance^2 >= 0.67 > 0.5), and its offset is 0: the noise is 0 and its
+// gradient is scale * t^4 * g with t = 0.5 (1 in 1-D), so |gradient| = 0.36 |g| (|g| in 1..8)
+// in 1-D, 64/16 (1 or sqrt(2)) in 2-D, 68/16 sqrt(2) in 3-D and 54/16 sqrt(3) in 4-D. Integer
+// points whose coordinates sum to 0 are vertices exactly (the unskew moves a lattice point by G *
+// sum).
+TEST(Noise, SimplexZeroAtLatticeVertices) {
+  const float norm[4] = {0, 5.65685425f, 6.01040764f, 5.84567148f}; // and 4 in 2-D
+  const int vertices[][4] = {{0, 0, 0, 0}, {3, -3, 5, -5}, {-7, 2, 4, 1}, {12, -20, 8, 0}};
+  for (int n = 1; n <= 4; ++n)
+    for (const int* iv : vertices) {
+      float x[4], v[3], g[12];
+      int sum = 0;
+      for (int k = 0; k < n - 1; ++k) sum += iv[k];
+      for (int k = 0; k < n; ++k) x[k] = float(k == n - 1 && n > 1 ? -sum : iv[k]);
+      lobe_noise(kSimplex, x, n, nullptr, v, 3, g);
+      for (int j = 0; j < 3; ++j) {
+        EXPECT_EQ(v[j], 0.0f) << n << " " << x[0];
+        float len = 0;
+        for (int k = 0; k < n; ++k) len += g[j * n + k] * g[j * n + k];
+        len = std::sqrt(len);
+        if (n == 1) {
+          float m = len / 0.36f; // t = 1 at the vertex in 1-D
+          EXPECT_NEAR(m, std::round(m), 1e-5) << x[0];
+          EXPECT_GE(std::round(m), 1.0f);
+          EXPECT_LE(std::round(m), 8.0f);
+        } else {
+          float want = n == 2 && len < 5 ? 4.0f : norm[n - 1];
+          EXPECT_NEAR(len, want, 1e-5) << n << " " << x[0];
+        }
+      }
+    }
+}
+
+// |n| <= 1 over 1e5 random points per dimension, and the range is actually used. Measured
+// extremes (these points): 1-D [-0.9112, 0.9113] (the bound is 0.36 * 2 * 8 * 0.5 * 0.75^4 =
+// 0.911), 2-D [-0.9120, 0.9123], 3-D [-0.8844, 0.8833], 4-D [-0.8410, 0.8579].
+TEST(Noise, SimplexRange) {
+  Points pts;
+  for (int n = 1; n <= 4; ++n) {
+    float lo = 0, hi = 0;
+    for (int i = 0; i < 100000; ++i) {
+      std::array<float, 4> p = pts.next();
+      float v = simplex_at(p.data(), n);
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+    EXPECT_GE(lo, -1.0f) << n;
+    EXPECT_LE(hi, 1.0f) << n;
+    EXPECT_LT(lo, -0.5f) << n; // both signs reach past 0.5
+    EXPECT_GT(hi, 0.5f) << n;
+    std::printf("simplex %d-D range [%.4f, %.4f]\n", n, lo, hi);
+  }
+}
+
+// Analytic gradient against central differences (h = 1e-3) at 2000 random points in
+// [-10, 10]^n per dimension and channel, simplex and usimplex. The difference's error is h^2/6
+// times the third derivative plus the float rounding of the noise over 2h, which grows with |x|
+// (at |x| ~ 100 one ulp, 7.6e-6, of the offset from the lattice alone gives ~1e-2), hence the
+// smaller domain. Measured worst 1.8e-4 / 8.9e-4 / 1.3e-3 / 1.6e-3 in 1-4-D against the bound
+// 1e-2; a gradient 5% off, or without its -8 t^3 (g . d) d term, fails.
+TEST(Noise, SimplexDerivativesMatchFiniteDifferences) {
+  Points pts(10);
+  for (int kind : {kSimplex, kUSimplex})
+    for (int n = 1; n <= 4; ++n) {
+      float worst = 0;
+      for (int i = 0; i < 2000; ++i) {
+        std::array<float, 4> p = pts.next();
+        float out[3], grad[12];
+        lobe_noise(kind, p.data(), n, nullptr, out, 3, grad);
+        for (int k = 0; k < n; ++k) {
+          std::array<float, 4> a = p, b = p;
+          a[k] += 1e-3f;
+          b[k] -= 1e-3f;
+          float va[3], vb[3];
+          lobe_noise(kind, a.data(), n, nullptr, va, 3, nullptr);
+          lobe_noise(kind, b.data(), n, nullptr, vb, 3, nullptr);
+          for (int j = 0; j < 3; ++j) {
+            float fd = (va[j] - vb[j]) / (a[k] - b[k]), g = grad[j * n + k];
+            worst = std::max(worst, std::abs(g - fd));
+            EXPECT_NEAR(g, fd, 1e-2f)
+                << kind << " n=" << n << " k=" << k << " j=" << j << " at " << p[0];
+          }
+        }
+      }
+      std::printf("simplex kind %d %d-D worst |grad - fd| %.2e\n", kind, n, worst);
+    }
+}
+
+// The vector form's channels are independent noises (seeds 0, 1, 2; channel 0 is the float
+// noise), and usimplex = 0.5 * (simplex + 1) with the gradient halved, exactly in float.
+TEST(Noise, SimplexChannelsAndUnsigned) {
+  Points pts;
+  for (int n = 1; n <= 4; ++n) {
+    int differ01 = 0, differ12 = 0, differ02 = 0;
+    for (int i = 0; i < 1000; ++i) {
+      std::array<float, 4> p = pts.next();
+      float v[3], s, us, g[4], ug[4];
+      lobe_noise(kSimplex, p.data(), n, nullptr, v, 3, nullptr);
+      lobe_noise(kSimplex, p.data(), n, nullptr, &s, 1, g);
+      lobe_noise(kUSimplex, p.data(), n, nullptr, &us, 1, ug);
+      EXPECT_EQ(v[0], s);
+      EXPECT_EQ(us, 0.5f * (s + 1.0f));
+      for (int k = 0; k < n; ++k) EXPECT_EQ(ug[k], 0.5f * g[k]);
+      differ01 += std::abs(v[0] - v[1]) > 1e-3f;
+      differ12 += std::abs(v[1] - v[2]) > 1e-3f;
+      differ02 += std::abs(v[0] - v[2]) > 1e-3f;
+    }
+    EXPECT_GT(differ01, 950) << n;
+    EXPECT_GT(differ12, 950) << n;
+    EXPECT_GT(differ02, 950) << n;
+  }
+}
+
 // noise(name, ...) with a run-time name dispatches to the same kind as the constant case; an
 // unknown name gives 0 (and a zero gradient) and reports a run-time error with the location.
+// Simplex noise has no periodic form (as in OSL), so pnoise("simplex") is an unknown name.
 TEST(Noise, NamedDispatchAndUnknownName) {
   const std::pair<const char*, int> names[] = {
-      {"perlin", kPerlin},  {"snoise", kPerlin},    {"simplex", kPerlin}, {"uperlin", kUPerlin},
-      {"noise", kUPerlin},  {"usimplex", kUPerlin}, {"gabor", kUPerlin},  {"cell", kCell},
-      {"cellnoise", kCell}, {"hash", kHash},        {"hashnoise", kHash}};
+      {"perlin", kPerlin},  {"snoise", kPerlin},     {"simplex", kSimplex}, {"uperlin", kUPerlin},
+      {"noise", kUPerlin},  {"usimplex", kUSimplex}, {"gabor", kUPerlin},   {"cell", kCell},
+      {"cellnoise", kCell}, {"hash", kHash},         {"hashnoise", kHash}};
   float p[3] = {0.3f, 1.7f, -0.4f}, per[3] = {2, 3, 4};
   for (auto& [name, kind] : names)
     for (const float* period :
          {static_cast<const float*>(nullptr), static_cast<const float*>(per)}) {
+      if (period && (kind == kSimplex || kind == kUSimplex)) continue; // an error: below
       float a[3], b[3], ga[9], gb[9];
       lobe_noise(kind, p, 3, period, a, 3, ga);
       lobe_noise_named(nullptr, name, p, 3, period, b, 3, gb, "t.osl", 1);
@@ -302,6 +492,20 @@ TEST(Noise, NamedDispatchAndUnknownName) {
   for (float g : grad) EXPECT_EQ(g, 0.0f);
   EXPECT_EQ(ctx.errors, 1);
   EXPECT_EQ(ctx.output, "ERROR: Unknown noise type \"perln\": t.osl:12\n");
+  for (const char* name : {"simplex", "usimplex"}) {
+    EXPECT_EQ(noise_kind_from_name(name, true), -1) << name;
+    std::fill(out, out + 3, 7.0f);
+    std::fill(grad, grad + 9, 7.0f);
+    lobe_noise_named(&sg, name, p, 3, per, out, 3, grad, "t.osl", 13);
+    for (float v : out) EXPECT_EQ(v, 0.0f) << name;
+    for (float g : grad) EXPECT_EQ(g, 0.0f) << name;
+  }
+  EXPECT_EQ(ctx.errors, 3);
+  EXPECT_EQ(ctx.output, "ERROR: Unknown noise type \"perln\": t.osl:12\n"
+                        "ERROR: Unknown noise type \"simplex\": t.osl:13\n"
+                        "ERROR: Unknown noise type \"usimplex\": t.osl:13\n");
+  EXPECT_EQ(noise_kind_from_name("perlin", true), kPerlin); // the other kinds have periods
+  EXPECT_EQ(noise_kind_from_name("cell", true), kCell);
 }
 
 TEST(Errors, RangeErrorReportsLocation) {
