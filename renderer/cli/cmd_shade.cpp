@@ -2,7 +2,11 @@
 //
 //   lobe shade [options] shadername [more layers]
 //     -g W H                  grid size (default 1 1)
-//     -param[:type=T] N V     instance value for the next layer (also --param)
+//     -param[:type=T][:lockgeom=0] N V
+//                             instance value for the next layer (also --param); lockgeom=0
+//                             lets user data override it
+//     --userdata[:type=T] N V user data N (constant over the grid); "s" and "t" are always
+//                             there: u and v with their derivatives, as in testshade
 //     -layer NAME shader      add a layer with a name (also --layer)
 //     -connect A out B in     connect layer A's `out` to layer B's `in` (also --connect)
 //     -group file|text        read the group from a file (or take the text itself)
@@ -20,6 +24,7 @@
 
 #include "grid.h"
 #include "image.h"
+#include "lobe/renderer_services.h"
 #include "lobe/shadingsys.h"
 #include "shader_source.h"
 
@@ -28,6 +33,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace {
@@ -36,9 +42,106 @@ struct Output {
   std::string var, file;
 };
 
+struct UserDatum {
+  std::string name;
+  lobe::DataType type;
+  std::vector<std::string> words; // the value's words; one broadcasts to every component
+};
+
+// "float", "color", "int[2]", "string", ...; nullopt for anything else.
+std::optional<lobe::DataType> data_type(const std::string& text) {
+  using B = lobe::DataType::Base;
+  static const std::pair<const char*, B> kBases[] = {
+      {"int", B::Int},       {"float", B::Float},   {"color", B::Color},   {"point", B::Point},
+      {"vector", B::Vector}, {"normal", B::Normal}, {"matrix", B::Matrix}, {"string", B::String}};
+  size_t br = text.find('[');
+  std::string base = text.substr(0, br);
+  lobe::DataType t;
+  bool known = false;
+  for (auto& [n, b] : kBases)
+    if (base == n) {
+      t.base = b;
+      known = true;
+    }
+  if (!known) return std::nullopt;
+  if (br != std::string::npos) {
+    if (text.back() != ']') return std::nullopt;
+    t.arraylen = std::atoi(text.c_str() + br + 1);
+    if (t.arraylen < 1) return std::nullopt;
+  }
+  return t;
+}
+
+// lobe shade's renderer: testshade's "s" and "t" user data (u and v with their derivatives),
+// the --userdata values, and "camera:resolution" (the grid size). As in testshade, a
+// getattribute of a name it does not know, for the shaded object and without an index, is
+// answered from the user data.
+class ShadeServices final : public lobe::RendererServices {
+public:
+  ShadeServices(std::vector<UserDatum> data, int w, int h) : data_(std::move(data)), w_(w), h_(h) {}
+
+  bool get_userdata(const lobe::ShaderGlobals& sg, std::string_view name, lobe::DataType type,
+                    bool derivatives, void* val) const override {
+    auto* f = static_cast<float*>(val);
+    if ((name == "s" || name == "t") && type == lobe::DataType{}) {
+      bool s = name == "s";
+      f[0] = s ? sg.u : sg.v;
+      if (derivatives) {
+        f[1] = s ? sg.dudx : sg.dvdx;
+        f[2] = s ? sg.dudy : sg.dvdy;
+      }
+      return true;
+    }
+    for (const UserDatum& d : data_)
+      if (d.name == name) return write(d, type, val);
+    return false;
+  }
+
+  bool get_attribute(const lobe::ShaderGlobals& sg, std::string_view object, std::string_view name,
+                     int index, lobe::DataType type, bool derivatives, void* val) const override {
+    if (object.empty() && name == "camera:resolution") {
+      int32_t res[2] = {w_, h_};
+      if (index < 0 && type == lobe::DataType{lobe::DataType::Base::Int, 2}) {
+        std::memcpy(val, res, sizeof(res));
+        return true;
+      }
+      if (index >= 0 && index < 2 && type == lobe::DataType{lobe::DataType::Base::Int, 0}) {
+        std::memcpy(val, &res[index], sizeof(int32_t));
+        return true;
+      }
+      return false;
+    }
+    if (object.empty() && index < 0) return get_userdata(sg, name, type, derivatives, val);
+    return false;
+  }
+
+private:
+  // A value of the declared type, asked for as the same type (any triple kind for a triple).
+  static bool write(const UserDatum& d, lobe::DataType want, void* val) {
+    bool same = d.type.arraylen == want.arraylen &&
+                (d.type.base == want.base || (d.type.is_triple() && want.is_triple()));
+    if (!same) return false;
+    int n = want.elements() * want.components();
+    for (int k = 0; k < n; ++k) {
+      const std::string& w = d.words[d.words.size() == 1 ? 0 : size_t(k)];
+      if (want.base == lobe::DataType::Base::Int)
+        static_cast<int32_t*>(val)[k] = int32_t(std::strtol(w.c_str(), nullptr, 10));
+      else if (want.base == lobe::DataType::Base::String)
+        static_cast<const char**>(val)[k] = w.c_str();
+      else
+        static_cast<float*>(val)[k] = std::strtof(w.c_str(), nullptr);
+    }
+    return true;
+  }
+
+  std::vector<UserDatum> data_;
+  int w_, h_;
+};
+
 struct Options {
   lobe::ShaderGroup group;
   std::vector<lobe::InstanceValue> pending;
+  std::vector<UserDatum> userdata;
   std::string group_source;
   int w = 1, h = 1;
   bool center = false, stats = false;
@@ -48,10 +151,12 @@ struct Options {
 };
 
 void usage(FILE* f) {
-  std::fprintf(f, "usage: lobe shade [options] shadername [more layers]\n"
-                  "  -g W H  -param[:type=T] name value  -layer NAME shader  -connect A out B in\n"
-                  "  -group file  --center  --raytype name  -o var file.exr|png  -O0|-O1|-O2\n"
-                  "  --stats  -I dir  -D NAME[=val]  -U NAME\n");
+  std::fprintf(f,
+               "usage: lobe shade [options] shadername [more layers]\n"
+               "  -g W H  -param[:type=T][:lockgeom=0] name value  --userdata[:type=T] name value\n"
+               "  -layer NAME shader  -connect A out B in\n"
+               "  -group file  --center  --raytype name  -o var file.exr|png  -O0|-O1|-O2\n"
+               "  --stats  -I dir  -D NAME[=val]  -U NAME\n");
 }
 
 std::string layer_name_for(const std::string& shader) {
@@ -81,10 +186,43 @@ int parse_args(int argc, char** argv, Options& o) {
       o.h = std::atoi(argv[i + 2]);
       i += 2;
     } else if ((a.rfind("-param", 0) == 0 || a.rfind("--param", 0) == 0) && need(2)) {
+      lobe::InstanceValue v{"float", argv[i + 1], argv[i + 2]};
+      size_t colon = a.find(':');
+      std::string mods = colon == std::string::npos ? "" : a.substr(colon); // ":type=T:..."
+      for (size_t p = 0; p < mods.size();) {
+        size_t q = mods.find(':', p + 1);
+        std::string m = mods.substr(p, q == std::string::npos ? std::string::npos : q - p);
+        p = q == std::string::npos ? mods.size() : q;
+        if (m.rfind(":type=", 0) == 0)
+          v.type = m.substr(6);
+        else if (m == ":lockgeom=0" || m == ":lockgeom=1")
+          v.lockgeom = m.back() - '0';
+        else {
+          std::fprintf(stderr, "lobe shade: unknown modifier '%s' in '%s'\n", m.c_str(), a.c_str());
+          return 2;
+        }
+      }
+      o.pending.push_back(v);
+      i += 2;
+    } else if ((a.rfind("-userdata", 0) == 0 || a.rfind("--userdata", 0) == 0) && need(2)) {
       std::string type = "float";
       size_t c = a.find(":type=");
       if (c != std::string::npos) type = a.substr(c + 6);
-      o.pending.push_back({type, argv[i + 1], argv[i + 2]});
+      std::optional<lobe::DataType> t = data_type(type);
+      UserDatum d{argv[i + 1], t.value_or(lobe::DataType{}), {}};
+      bool one_string = t && t->base == lobe::DataType::Base::String && t->arraylen == 0;
+      std::istringstream words(argv[i + 2]);
+      for (std::string w; words >> w;) d.words.push_back(w);
+      if (one_string) d.words = {argv[i + 2]}; // a string keeps its spaces
+      size_t n = t ? size_t(t->elements() * t->components()) : 0;
+      bool fits = t && (d.words.size() == n ||
+                        (d.words.size() == 1 && t->base != lobe::DataType::Base::String));
+      if (!fits) {
+        std::fprintf(stderr, "lobe shade: %s: '%s' is not a value of type %s\n", a.c_str(),
+                     argv[i + 2], type.c_str());
+        return 2;
+      }
+      o.userdata.push_back(std::move(d));
       i += 2;
     } else if (is_opt(a, "layer") && need(2)) {
       add_layer(o, argv[i + 2], argv[i + 1]);
@@ -201,6 +339,8 @@ int run_shade(int argc, char** argv) {
     images.emplace_back(o.w, o.h, std::vector<std::string>{"R", "G", "B"});
   lobe::ShadingContext ctx;
   ctx.print = [](const std::string& s) { std::fputs(s.c_str(), stdout); };
+  ShadeServices services(o.userdata, o.w, o.h);
+  ctx.renderer = &services;
   auto t0 = std::chrono::steady_clock::now();
   std::vector<float> v;
   for (int y = 0; y < o.h; ++y)

@@ -215,6 +215,7 @@ std::string RenderScene::build_environment() {
     // Tabulate the background shader (one context: tabulation runs on this thread).
     const Material& m = *materials_[e.material];
     ShadingContext ctx;
+    ctx.renderer = &services_;
     env_ = EnvironmentLight::from_function(
         [&](const Vec3& d) {
           SurfaceHit h;
@@ -240,6 +241,7 @@ std::string RenderScene::build_environment() {
 void RenderScene::find_emitters(std::vector<LightSet::Emitter>& out,
                                 ShaderMessages& messages) const {
   ShadingContext ctx;
+  ctx.renderer = &services_;
   for (size_t i = 0; i < desc_.shapes.size(); ++i) {
     const scene::Shape& s = desc_.shapes[i];
     SurfaceHit h;
@@ -257,6 +259,7 @@ void RenderScene::find_emitters(std::vector<LightSet::Emitter>& out,
     }
     ShaderGlobals sg;
     fill_globals(sg, h, -h.Ng, kRayShadow, ctx, globals_read(int(i)));
+    sg.renderstate = renderstate(int(i));
     ctx.reset();
     material(int(i)).shade(sg);
     if (!ctx.output.empty()) collect_messages(ctx, material_index(int(i)), messages);
@@ -271,6 +274,7 @@ std::string RenderScene::setup(const scene::SceneDesc& desc, const MaterialCompi
                                int width, int height) {
   desc_ = desc;
   camera_ = Camera(desc_.camera, width, height);
+  services_ = SceneServices(desc_.camera, width, height);
   if (std::string e = geo_.build(desc_.shapes); !e.empty()) return desc_.path + ": " + e;
   if (std::string e = compile_materials(compile); !e.empty()) return e;
   if (std::string e = build_environment(); !e.empty()) return e;

@@ -8,6 +8,7 @@
 #include "geometry.h"
 #include "lights.h"
 #include "scene.h"
+#include "services.h"
 
 #include "lobe/shadingsys.h"
 
@@ -66,6 +67,13 @@ public:
   const SetupStats& stats() const { return stats_; }
   // Scene material of a shape (-1: the default grey matte).
   int material_index(int shape) const { return desc_.shapes[size_t(shape)].material; }
+  // What shaders ask the scene for (user data, camera attributes); set it as every
+  // ShadingContext's `renderer`, and renderstate(shape) as ShaderGlobals::renderstate.
+  const RendererServices& services() const { return services_; }
+  // (ShaderGlobals::renderstate is a void*; SceneServices only reads through it.)
+  void* renderstate(int shape) const {
+    return const_cast<scene::Shape*>(&desc_.shapes[size_t(shape)]);
+  }
   // One line per message: "<material's place>: material 'name': <text>[ (N times)]", the
   // shader's "ERROR: "/"WARNING: " prefix dropped.
   std::vector<std::string> describe(const ShaderMessages& messages) const;
@@ -76,6 +84,7 @@ private:
   void find_emitters(std::vector<LightSet::Emitter>& out, ShaderMessages& messages) const;
 
   scene::SceneDesc desc_;
+  SceneServices services_;
   Geometry geo_;
   Camera camera_;
   EnvironmentLight env_;

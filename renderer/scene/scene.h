@@ -40,6 +40,17 @@ struct Mesh {
   std::vector<uint32_t> indices; // 3 per triangle
 };
 
+// A value a shape gives the shaders that shade it: user data of a `lockgeom = 0` parameter of
+// the same name (and getattribute of that name). Numbers answer int (when whole), float,
+// triple (3, or 1 for grey), matrix (16) or array parameters of their count; text answers
+// string.
+struct UserValue {
+  std::string name;
+  std::vector<float> numbers;
+  std::string text;
+  bool is_text = false;
+};
+
 struct Shape {
   enum class Kind { Mesh, Sphere, Quad } kind = Kind::Sphere;
   Mesh mesh;   // Kind::Mesh
@@ -47,6 +58,7 @@ struct Shape {
   float radius = 1;
   Vec3 corner, edge_x, edge_y; // Kind::Quad: corner + s*edge_x + t*edge_y, s,t in [0,1]
   int material = -1;           // index into SceneDesc::materials; -1 = default grey matte
+  std::vector<UserValue> userdata;
   std::string where;
 };
 

@@ -209,6 +209,30 @@ private:
     return it->second;
   }
 
+  // {"name": number | [numbers] | "text", ...}
+  std::vector<UserValue> userdata(const json& j, const std::string& p) {
+    r_.object(j, p);
+    std::vector<UserValue> out;
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      std::string q = p + "/" + it.key();
+      UserValue u;
+      u.name = it.key();
+      if (it.value().is_string()) {
+        u.text = r_.string(it.value(), q);
+        u.is_text = true;
+      } else if (it.value().is_number()) {
+        u.numbers = {r_.number(it.value(), q)};
+      } else if (it.value().is_array() && !it.value().empty()) {
+        for (size_t k = 0; k < it.value().size(); ++k)
+          u.numbers.push_back(r_.number(it.value()[k], q + "/" + std::to_string(k)));
+      } else {
+        r_.fail(q, "expected a number, an array of numbers or a string");
+      }
+      out.push_back(std::move(u));
+    }
+    return out;
+  }
+
   Shape shape(const json& j, const std::string& p) {
     r_.object(j, p);
     if (!j.contains("type")) r_.fail(p, "expected \"type\": \"sphere\", \"quad\" or \"mesh\"");
@@ -218,8 +242,9 @@ private:
     Mat4 xf;
     if (j.contains("transform")) xf = r_.transform(j.at("transform"), p + "/transform");
     if (j.contains("material")) s.material = material_ref(j.at("material"), p + "/material");
+    if (j.contains("userdata")) s.userdata = userdata(j.at("userdata"), p + "/userdata");
     if (type == "sphere") {
-      r_.check_keys(j, p, {"type", "center", "radius", "material", "transform"});
+      r_.check_keys(j, p, {"type", "center", "radius", "material", "transform", "userdata"});
       s.kind = Shape::Kind::Sphere;
       r_.opt(j, p, "center", s.center, &JsonReader::vec3);
       r_.opt(j, p, "radius", s.radius, &JsonReader::number);
@@ -231,7 +256,8 @@ private:
       s.center = xf.point(s.center);
       s.radius *= sx;
     } else if (type == "quad") {
-      r_.check_keys(j, p, {"type", "corner", "edge_x", "edge_y", "material", "transform"});
+      r_.check_keys(j, p,
+                    {"type", "corner", "edge_x", "edge_y", "material", "transform", "userdata"});
       s.kind = Shape::Kind::Quad;
       for (const char* k : {"corner", "edge_x", "edge_y"})
         if (!j.contains(k)) r_.fail(p, std::string("expected \"") + k + "\"");
@@ -240,7 +266,7 @@ private:
       s.edge_y = xf.vector(r_.vec3(j.at("edge_y"), p + "/edge_y"));
       if (is_zero(cross(s.edge_x, s.edge_y))) r_.fail(p, "quad edges are parallel or zero");
     } else if (type == "mesh") {
-      r_.check_keys(j, p, {"type", "file", "material", "transform"});
+      r_.check_keys(j, p, {"type", "file", "material", "transform", "userdata"});
       s.kind = Shape::Kind::Mesh;
       if (!j.contains("file")) r_.fail(p, "expected \"file\": an .obj or .ply path");
       std::filesystem::path f = r_.string(j.at("file"), p + "/file");

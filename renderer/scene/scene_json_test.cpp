@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 using namespace lobe;
 using namespace lobe::scene;
 
@@ -129,4 +131,28 @@ TEST(SceneJson, SeedTakesTheCommandLineRange) {
 TEST(SceneJson, GroupTextErrorsAreLocated) {
   std::string err = error_of(R"({"materials": {"m": {"group": "shader ; param"}}})");
   EXPECT_NE(err.find("/materials/m/group"), std::string::npos) << err;
+}
+
+TEST(SceneJson, ShapeUserData) {
+  SceneDesc s = ok(R"({"shapes": [
+    {"type": "sphere", "userdata": {"tint": [1, 0.5, 0.25], "Kd": 0.75, "label": "left"}},
+    {"type": "quad", "corner": [0, 0, 0], "edge_x": [1, 0, 0], "edge_y": [0, 1, 0],
+     "userdata": {}}]})");
+  ASSERT_EQ(s.shapes.size(), 2u);
+  const auto& u = s.shapes[0].userdata;
+  ASSERT_EQ(u.size(), 3u);
+  std::map<std::string, const UserValue*> by;
+  for (const UserValue& v : u) by[v.name] = &v;
+  ASSERT_TRUE(by.count("tint") && by.count("Kd") && by.count("label"));
+  EXPECT_EQ(by["tint"]->numbers, (std::vector<float>{1, 0.5f, 0.25f}));
+  EXPECT_EQ(by["Kd"]->numbers, (std::vector<float>{0.75f}));
+  EXPECT_TRUE(by["label"]->is_text);
+  EXPECT_EQ(by["label"]->text, "left");
+  EXPECT_TRUE(s.shapes[1].userdata.empty());
+  EXPECT_EQ(error_of(R"({"shapes": [{"type": "sphere", "userdata": {"x": true}}]})"),
+            "t.json: /shapes/0/userdata/x: expected a number, an array of numbers or a string");
+  EXPECT_EQ(error_of(R"({"shapes": [{"type": "sphere", "userdata": {"x": [1, "a"]}}]})"),
+            "t.json: /shapes/0/userdata/x/1: expected a number, found string");
+  EXPECT_EQ(error_of(R"({"shapes": [{"type": "sphere", "userdata": [1]}]})"),
+            "t.json: /shapes/0/userdata: expected an object, found array");
 }

@@ -46,12 +46,15 @@ struct LayerPlan {
   int ran_offset = 0;             // byte offset of the layer's "ran" flag in group data
   std::vector<int> symbol_offset; // per symbol: group-data byte offset, or -1 (not stored)
   std::vector<bool> run_default;  // per symbol: the param's default ops must run
+  std::vector<bool> userdata;     // per symbol: a lockgeom=0 param asks the renderer first
+  std::string layer_name;         // for getattribute("shader:layername")
   std::vector<ConnectionPlan> connections;
 };
 
 struct GroupPlan {
   std::vector<LayerPlan> layers;
   std::string entry_name = "group_entry";
+  std::string group_name;              // for getattribute("shader:groupname")
   shadeops::RuntimeEnv* env = nullptr; // baked into the code as a constant pointer
 };
 

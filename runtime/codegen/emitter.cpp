@@ -244,6 +244,13 @@ Val LayerEmitter::load_as(const ir::Op& op, int i, BaseType to, bool derivs) {
   return convert(load(s, nullptr, derivs), sym(s).type.base, to);
 }
 
+llvm::Value* LayerEmitter::storage_address(int symbol) {
+  if (storage_[size_t(symbol)]) return address(symbol, 0, nullptr, 0);
+  std::vector<llvm::Value*> comps;
+  for (const Dual& d : load(symbol, nullptr, false)) comps.push_back(d.v);
+  return spill(comps, scalar_type(sym(symbol)));
+}
+
 llvm::Value* LayerEmitter::spill(const std::vector<llvm::Value*>& comps, llvm::Type* ty) {
   if (!ty) ty = f32();
   auto* a =

@@ -11,6 +11,7 @@
 #include <llvm/IR/IRBuilder.h>
 #include <llvm/IR/Module.h>
 
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <string>
@@ -71,6 +72,11 @@ public:
   // Spills float components into a temporary array; returns its address.
   llvm::Value* spill(const std::vector<llvm::Value*>& comps, llvm::Type* ty = nullptr);
   std::vector<llvm::Value*> reload(llvm::Value* p, int n, llvm::Type* ty = nullptr);
+  // Address of a symbol's whole storage (all planes), for shadeops that read or write a value
+  // of any type in place; a scalar constant, which has no storage, is spilled first.
+  llvm::Value* storage_address(int symbol);
+  // A type as one int for shadeops: base | arraylen << 8 (runtime/shadeops/ops_query.cpp).
+  static int type_code(const ir::Type& t) { return int(t.base) | (std::max(0, t.arraylen) << 8); }
   llvm::AllocaInst* entry_alloca(llvm::Type* ty, unsigned count, const char* name = "");
   // An in-range index: constant indices are checked at compile time, others clamped at run
   // time with a range error reported through the ShadingContext.

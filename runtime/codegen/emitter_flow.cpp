@@ -81,8 +81,9 @@ void LayerEmitter::init_symbols() {
   }
 }
 
-// Params: the value in group data (instance value or constant default), then computed
-// defaults; connections are fetched eagerly when the layer has no `useparam` ops.
+// Params: the value in group data (instance value or constant default), then the renderer's
+// user data for `lockgeom = 0` params, then computed defaults (unless user data came);
+// connections are fetched eagerly when the layer has no `useparam` ops.
 void LayerEmitter::init_params() {
   const auto& syms = shader().symbols;
   for (size_t i = 0; i < syms.size(); ++i) {
@@ -97,10 +98,24 @@ void LayerEmitter::init_params() {
   }
   for (const ConnectionPlan& c : plan().connections)
     b_.CreateStore(b_.getFalse(), fetched_flag_[size_t(c.dst_symbol)]);
+  // In declaration order, so that a computed default sees the user data of earlier params.
   for (size_t i = 0; i < syms.size(); ++i) {
     const ir::Symbol& s = syms[i];
+    llvm::Value* found = nullptr; // i1: the renderer had user data for it
+    if (i < plan().userdata.size() && plan().userdata[i]) {
+      bool d = s.derivs && is_float_based(s.type.base);
+      llvm::Value* r = call("lobe_get_userdata",
+                            {sg_, env_ptr(), string_const(s.name), iconst(type_code(s.type)),
+                             iconst(d ? 1 : 0), storage_address(int(i))});
+      found = b_.CreateICmpNE(r, iconst(0));
+    }
     if (i < plan().run_default.size() && plan().run_default[i] && s.init_begin >= 0) {
       auto* after = llvm::BasicBlock::Create(ctx(), "default_done", fn_);
+      if (found) {
+        auto* compute = llvm::BasicBlock::Create(ctx(), "default", fn_);
+        b_.CreateCondBr(found, after, compute);
+        b_.SetInsertPoint(compute);
+      }
       emit_region(s.init_begin, s.init_end, after);
       b_.SetInsertPoint(after);
     }

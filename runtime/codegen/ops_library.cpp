@@ -258,17 +258,17 @@ void op_noise(LayerEmitter& e, const ir::Op& op) {
   // noise("name", ...): a constant known name selects the kind here; a name known only at run
   // time (or an unknown constant, so that -O0 and -O2 agree when specialisation makes a name
   // constant) dispatches in lobe_noise_named, which reports an unknown name as a run-time error.
+  bool periodic = o == "pnoise" || o == "psnoise";
   bool named = false;
   if (e.arg(op, 1).type.base == BaseType::String) {
     first = 2;
     named = true;
     if (is_const_string(e.arg(op, 1))) {
       std::string name = const_string(e.arg(op, 1));
-      kind = name == "gabor" ? shadeops::kUPerlin : shadeops::noise_kind_from_name(name);
+      kind = name == "gabor" ? shadeops::kUPerlin : shadeops::noise_kind_from_name(name, periodic);
       named = kind < 0;
     }
   }
-  bool periodic = o == "pnoise" || o == "psnoise";
   size_t nargs = op.args.size() - first, ncoord = periodic ? nargs / 2 : nargs;
   bool derivs = e.wants_derivs(op.args[0]);
   std::vector<Dual> x;
@@ -420,13 +420,78 @@ void op_query(LayerEmitter& e, const ir::Op& op) {
     // A constant of the shader as written; specialisation resolves isconstant before it turns
     // params into constants (runtime/group/group_build.cpp), so the answer is the same.
     r = Val{Dual{e.iconst(e.arg(op, 1).kind == ir::SymKind::Const ? 1 : 0)}};
-  } else { // getattribute, getmessage, trace, gettextureinfo: nothing known; outputs untouched
+  } else { // trace: no rays from shaders; outputs untouched
     r = Val{Dual{e.iconst(0)}};
   }
   e.store(op.args[0], e.convert(r, BaseType::Int, e.arg(op, 0).type.base));
 }
 
-void op_setmessage(LayerEmitter&, const ir::Op&) {} // no message passing between shaders yet
+llvm::Value* null_ptr(LayerEmitter& e) { return llvm::ConstantPointerNull::get(e.b().getPtrTy()); }
+
+llvm::Value* op_file(LayerEmitter& e, const ir::Op& op) {
+  return e.string_const(op.loc.file.empty() ? e.shader().name : op.loc.file);
+}
+
+// Whether the destination (or source) symbol's derivative planes travel with the value.
+bool carries_derivs(LayerEmitter& e, int symbol) {
+  const ir::Symbol& s = e.sym(symbol);
+  return s.derivs && LayerEmitter::is_float_based(s.type.base);
+}
+
+// getattribute r dest ["object"] "name" [index]: the operand types tell the form.
+void op_getattribute(LayerEmitter& e, const ir::Op& op) {
+  int dest = op.args[1];
+  size_t n = op.args.size();
+  bool indexed = e.arg(op, int(n) - 1).type.base == BaseType::Int;
+  size_t strings = n - 2 - (indexed ? 1 : 0); // 1: name; 2: object and name
+  llvm::Value* object = strings == 2 ? e.load(op.args[2])[0].v : null_ptr(e);
+  llvm::Value* name = e.load(op.args[strings == 2 ? 3 : 2])[0].v;
+  llvm::Value* index = indexed ? e.load(op.args[n - 1])[0].v : e.iconst(-1);
+  const std::string& group = e.group().group_name;
+  const codegen::LayerPlan& lp = e.group().layers[size_t(e.layer())];
+  llvm::Value* r =
+      e.call("lobe_getattribute", {e.sg(), e.env_ptr(), object, name, index,
+                                   e.iconst(LayerEmitter::type_code(e.sym(dest).type)),
+                                   e.iconst(carries_derivs(e, dest) ? 1 : 0),
+                                   e.storage_address(dest), e.string_const(e.shader().name),
+                                   e.string_const(lp.layer_name), e.string_const(group)});
+  e.store(op.args[0], e.convert(Val{Dual{r}}, BaseType::Int, e.arg(op, 0).type.base));
+}
+
+// getmessage r dest ["source"] "name"
+void op_getmessage(LayerEmitter& e, const ir::Op& op) {
+  int dest = op.args[1];
+  bool sourced = op.args.size() == 4;
+  llvm::Value* source = sourced ? e.load(op.args[2])[0].v : null_ptr(e);
+  llvm::Value* name = e.load(op.args[sourced ? 3 : 2])[0].v;
+  llvm::Value* r = e.call(
+      "lobe_getmessage", {e.sg(), source, name, e.iconst(LayerEmitter::type_code(e.sym(dest).type)),
+                          e.iconst(carries_derivs(e, dest) ? 1 : 0), e.storage_address(dest),
+                          op_file(e, op), e.iconst(op.loc.line)});
+  e.store(op.args[0], e.convert(Val{Dual{r}}, BaseType::Int, e.arg(op, 0).type.base));
+}
+
+// gettextureinfo r dest "file" "query"
+void op_gettextureinfo(LayerEmitter& e, const ir::Op& op) {
+  int dest = op.args[1];
+  llvm::Value* r =
+      e.call("lobe_gettextureinfo",
+             {e.sg(), e.env_ptr(), e.load(op.args[2])[0].v, e.load(op.args[3])[0].v,
+              e.iconst(LayerEmitter::type_code(e.sym(dest).type)), e.storage_address(dest)});
+  if (carries_derivs(e, dest)) // texture information is constant over the surface
+    for (int k = 0; k < std::max(1, e.sym(dest).type.arraylen); ++k)
+      e.store(dest, e.load(dest, e.iconst(k), false), e.iconst(k));
+  e.store(op.args[0], e.convert(Val{Dual{r}}, BaseType::Int, e.arg(op, 0).type.base));
+}
+
+// setmessage "name" value
+void op_setmessage(LayerEmitter& e, const ir::Op& op) {
+  int src = op.args[1];
+  e.call("lobe_setmessage",
+         {e.sg(), e.load(op.args[0])[0].v, e.iconst(LayerEmitter::type_code(e.sym(src).type)),
+          e.iconst(carries_derivs(e, src) ? 1 : 0), e.storage_address(src), op_file(e, op),
+          e.iconst(op.loc.line)});
+}
 
 // ---- textures -------------------------------------------------------------------------------
 
@@ -535,19 +600,44 @@ void op_texture3d(LayerEmitter& e, const ir::Op& op) {
 }
 
 const OpEntry kLibraryOps[] = {
-    {"printf", op_printf},       {"format", op_printf},         {"error", op_printf},
-    {"warning", op_printf},      {"fprintf", op_printf},        {"concat", op_string},
-    {"strlen", op_string},       {"startswith", op_string},     {"endswith", op_string},
-    {"stoi", op_string},         {"stof", op_string},           {"substr", op_string},
-    {"getchar", op_string},      {"regex_search", op_string},   {"regex_match", op_string},
-    {"hash", op_hash},           {"closure", op_closure},       {"noise", op_noise},
-    {"snoise", op_noise},        {"pnoise", op_noise},          {"psnoise", op_noise},
-    {"cellnoise", op_noise},     {"hashnoise", op_noise},       {"raytype", op_query},
-    {"backfacing", op_query},    {"surfacearea", op_query},     {"isconnected", op_query},
-    {"isconstant", op_query},    {"getattribute", op_query},    {"getmessage", op_query},
-    {"trace", op_query},         {"gettextureinfo", op_query},  {"setmessage", op_setmessage},
-    {"spline", op_spline},       {"splineinverse", op_spline},  {"texture", op_texture},
-    {"texture3d", op_texture3d}, {"environment", op_texture3d},
+    {"printf", op_printf},
+    {"format", op_printf},
+    {"error", op_printf},
+    {"warning", op_printf},
+    {"fprintf", op_printf},
+    {"concat", op_string},
+    {"strlen", op_string},
+    {"startswith", op_string},
+    {"endswith", op_string},
+    {"stoi", op_string},
+    {"stof", op_string},
+    {"substr", op_string},
+    {"getchar", op_string},
+    {"regex_search", op_string},
+    {"regex_match", op_string},
+    {"hash", op_hash},
+    {"closure", op_closure},
+    {"noise", op_noise},
+    {"snoise", op_noise},
+    {"pnoise", op_noise},
+    {"psnoise", op_noise},
+    {"cellnoise", op_noise},
+    {"hashnoise", op_noise},
+    {"raytype", op_query},
+    {"backfacing", op_query},
+    {"surfacearea", op_query},
+    {"isconnected", op_query},
+    {"isconstant", op_query},
+    {"getattribute", op_getattribute},
+    {"getmessage", op_getmessage},
+    {"trace", op_query},
+    {"gettextureinfo", op_gettextureinfo},
+    {"setmessage", op_setmessage},
+    {"spline", op_spline},
+    {"splineinverse", op_spline},
+    {"texture", op_texture},
+    {"texture3d", op_texture3d},
+    {"environment", op_texture3d},
 };
 
 } // namespace

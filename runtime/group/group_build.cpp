@@ -68,6 +68,17 @@ bool is_param(const ir::Symbol& s) {
   return s.kind == SymKind::Param || s.kind == SymKind::OutputParam;
 }
 
+// A param the renderer may bind to user data: `[[ int lockgeom = 0 ]]` in the shader, unless
+// the instance value says otherwise (`lockgeom` of InstanceValue, -1: as the shader says).
+bool interpolated(const ir::Symbol& s, int instance_lockgeom) {
+  if (s.kind != SymKind::Param || s.type.base == ir::BaseType::Closure) return false;
+  if (instance_lockgeom >= 0) return instance_lockgeom == 0;
+  for (const ir::Metadata& m : s.metadata)
+    if (m.name == "lockgeom" && m.type == ir::Type{ir::BaseType::Int, 0} && !m.value.empty())
+      return m.value[0].i == 0;
+  return false;
+}
+
 std::set<int> written_symbols(const ir::Shader& sh) {
   std::set<int> w;
   for (size_t i = size_t(sh.main_begin); i < sh.ops.size(); ++i)
@@ -254,8 +265,10 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
   // Instance values, parsed against each parameter's declared type.
   std::vector<std::map<std::string, std::vector<ir::ConstValue>>> values(n);
   std::vector<std::map<std::string, int>> lengths(n);
+  std::vector<std::map<std::string, int>> lockgeom(n); // instance overrides of lockgeom
   for (size_t i = 0; i < n; ++i)
     for (const InstanceValue& v : group.layers[i].values) {
+      if (v.lockgeom >= 0) lockgeom[i][v.name] = v.lockgeom;
       int s = sources[i]->find_symbol(v.name);
       if (s < 0 || !is_param(sources[i]->symbols[size_t(s)])) {
         std::string names; // the shader's parameters, as a hint
@@ -333,7 +346,14 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     std::set<std::string> connected;
     for (const Link& l : links)
       if (l.dst_layer == int(i)) connected.insert(l.dst.symbol);
-    if (specialize) specialize_layer(*sh, values[i], connected);
+    // User data arrives at run time: those params stay params, as connected ones do.
+    std::set<std::string> runtime_valued = connected;
+    for (const ir::Symbol& sym : sh->symbols) {
+      auto lg = lockgeom[i].find(sym.name);
+      if (interpolated(sym, lg == lockgeom[i].end() ? -1 : lg->second))
+        runtime_valued.insert(sym.name);
+    }
+    if (specialize) specialize_layer(*sh, values[i], runtime_valued);
     new_index[i] = int(out.shaders.size());
     out.shaders.push_back(std::move(sh));
     out.layer_names.push_back(group.layers[i].name);
@@ -367,14 +387,17 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     lp.function_name = "layer_" + std::to_string(li) + "_" + sh.name;
     lp.ran_offset = int(off);
     off += 8;
+    lp.layer_name = out.layer_names[li];
     for (const ir::Symbol& s : sh.symbols) {
       lp.symbol_offset.push_back(is_param(s) ? int(off) : -1);
       lp.run_default.push_back(false);
+      lp.userdata.push_back(false);
       if (is_param(s)) off = align8(off + codegen::storage_bytes(s));
     }
     out.plan.layers.push_back(lp);
   }
   out.groupdata.assign(off, 0);
+  out.plan.group_name = group.name;
   for (size_t i = 0; i < n; ++i) {
     if (!needed[i]) continue;
     size_t li = size_t(new_index[i]);
@@ -405,6 +428,9 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       else
         write_value(out.groupdata.data() + lp.symbol_offset[s], sym, sym.init, out.plan.env);
       lp.run_default[s] = !has_value && !connected.count(sym.name) && sym.init_begin >= 0;
+      auto lg = lockgeom[i].find(sym.name);
+      lp.userdata[s] = !connected.count(sym.name) &&
+                       interpolated(sym, lg == lockgeom[i].end() ? -1 : lg->second);
     }
     out.globals_read |= globals_mask(sh);
   }

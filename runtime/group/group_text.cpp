@@ -3,6 +3,7 @@
 #include "group_text.h"
 
 #include <cctype>
+#include <regex>
 #include <vector>
 
 namespace lobe::group {
@@ -89,11 +90,17 @@ std::unique_ptr<ShaderGroup> parse_group_text(const std::string& text, const std
         continue;
       }
       InstanceValue v{st[1].text, st[2].text, ""};
-      for (size_t k = 3; k < st.size(); ++k) {
-        if (st[k].text.rfind("[[", 0) == 0) break; // metadata on instance values is ignored
+      size_t k = 3;
+      for (; k < st.size() && !(!st[k].quoted && st[k].text.rfind("[[", 0) == 0); ++k) {
         if (!v.value.empty()) v.value += ' ';
         v.value += st[k].text;
       }
+      // Metadata after the value: `[[ int lockgeom = 0 ]]` is kept; other items are ignored.
+      std::string meta;
+      for (; k < st.size(); ++k) meta += st[k].text + " ";
+      static const std::regex kLockgeom(R"(\bint\s+lockgeom\s*=\s*([01])\b)");
+      std::smatch m;
+      if (std::regex_search(meta, m, kLockgeom)) v.lockgeom = m[1].str() == "0" ? 0 : 1;
       pending.push_back(v);
     } else if (kw == "shader") {
       if (st.size() != 3) {

@@ -2,6 +2,8 @@
 // thread's ShadingContext (so shade() is re-entrant across threads), and reads outputs back.
 #include "material.h"
 
+#include "lobe/detail/messages.h"
+
 #include "closure_kernels.h"
 
 #include "lobe/context.h"
@@ -51,6 +53,7 @@ void MaterialImpl::shade(ShaderGlobals& sg) const {
   if (ctx->groupdata.size() < groupdata_.size()) ctx->groupdata.resize(groupdata_.size());
   std::memcpy(ctx->groupdata.data(), groupdata_.data(), groupdata_.size());
   ctx->groupdata_owner = this;
+  ctx->messages().clear(); // messages live for one shade
   last_context_.store(ctx, std::memory_order_relaxed);
   entry_(&sg, ctx->groupdata.data());
 }

@@ -92,10 +92,16 @@ std::string ShadingSystem::Impl::cache_key(const ShaderGroup& g,
   std::string key = "O"; // appended piecewise: "O" + to_string(...) trips GCC 12's -Wrestrict
   key += std::to_string(options.opt_level);
   key += options.specialize ? "s\n" : "n\n";
+  key += "group "; // getattribute("shader:groupname") reads it
+  key += g.name;
+  key += "\n";
   for (size_t i = 0; i < layers.size(); ++i) {
     key += "layer " + g.layers[i].name + "\n" + ir::print(*layers[i]);
-    for (const InstanceValue& v : g.layers[i].values)
-      key += "value " + v.type + " " + v.name + " " + v.value + "\n";
+    for (const InstanceValue& v : g.layers[i].values) {
+      key += "value " + v.type + " " + v.name + " " + v.value + " ";
+      key += std::to_string(v.lockgeom);
+      key += "\n";
+    }
   }
   for (const Connection& c : g.connections)
     key +=

@@ -45,6 +45,11 @@ void lobe_noise();
 void lobe_noise_named();
 void lobe_spline();
 void lobe_texture();
+void lobe_getattribute();
+void lobe_get_userdata();
+void lobe_setmessage();
+void lobe_getmessage();
+void lobe_gettextureinfo();
 void lobe_texture3d();
 void lobe_environment();
 void lobe_splineinverse();
@@ -95,6 +100,11 @@ const ShadeOpSymbol kTable[] = {
     {"lobe_noise_named", addr(lobe_noise_named), "vpppippippi"},
     {"lobe_spline", addr(lobe_spline), "vpfpiipp"},
     {"lobe_texture", addr(lobe_texture), "vpppffffffipppp"},
+    {"lobe_getattribute", addr(lobe_getattribute), "ippppiiipppp"},
+    {"lobe_get_userdata", addr(lobe_get_userdata), "ipppiip"},
+    {"lobe_setmessage", addr(lobe_setmessage), "vppiippi"},
+    {"lobe_getmessage", addr(lobe_getmessage), "ipppiippi"},
+    {"lobe_gettextureinfo", addr(lobe_gettextureinfo), "ippppip"},
     {"lobe_texture3d", addr(lobe_texture3d), "vppppppipp"},
     {"lobe_environment", addr(lobe_environment), "vppppppipp"},
     {"lobe_splineinverse", addr(lobe_splineinverse), "fpfpi"},

@@ -1,5 +1,6 @@
 // Texture shadeops through OpenImageIO's TextureSystem (mip-mapped, filtered, cached):
-// texture(file, s, t) with screen-space derivatives, texture3d(file, P), environment(file, R).
+// texture(file, s, t) with screen-space derivatives, texture3d(file, P), environment(file, R),
+// gettextureinfo(file, query, dest).
 // One TextureSystem per RuntimeEnv (so per ShadingSystem), created on first use. A missing
 // file gives "missingcolor" when the shader supplies one, else 0 and a run-time error.
 #include "env.h"
@@ -10,6 +11,9 @@
 #include <OpenImageIO/texture.h>
 
 #include <algorithm>
+#include <cstring>
+#include <string>
+#include <vector>
 
 using lobe::ShaderGlobals;
 using lobe::shadeops::RuntimeEnv;
@@ -97,6 +101,73 @@ void lobe_environment(ShaderGlobals* sg, RuntimeEnv* env, const char* file, cons
   Imath::V3f R(r[0], r[1], r[2]), dx(drdx[0], drdx[1], drdx[2]), dy(drdy[0], drdy[1], drdy[2]);
   if (!ts->environment(OIIO::ustring(file), opt, R, dx, dy, n, out))
     missing(sg, ts, a, file, n, out);
+}
+
+} // extern "C"
+
+extern "C" {
+
+// gettextureinfo(file, query, dest): OIIO's get_texture_info ("exists", "resolution",
+// "channels", "type", "textureformat", "datawindow", "averagecolor", any image metadata...)
+// into `dest` of type `code` (base | arraylen << 8, as ops_query.cpp). 1 when answered; a
+// failure other than an unreadable "exists" query reports OIIO's error, as OSL does.
+int lobe_gettextureinfo(ShaderGlobals* sg, RuntimeEnv* env, const char* file, const char* query,
+                        int code, void* dest) {
+  int base = code & 0xff, arraylen = code >> 8;
+  OIIO::TypeDesc t;
+  switch (base) {
+  case 0:
+    t = OIIO::TypeDesc::INT;
+    break;
+  case 1:
+    t = OIIO::TypeDesc::FLOAT;
+    break;
+  case 2:
+    t = OIIO::TypeColor;
+    break;
+  case 3:
+    t = OIIO::TypePoint;
+    break;
+  case 4:
+    t = OIIO::TypeVector;
+    break;
+  case 5:
+    t = OIIO::TypeNormal;
+    break;
+  case 6:
+    t = OIIO::TypeMatrix;
+    break;
+  case 7:
+    t = OIIO::TypeDesc::STRING;
+    break;
+  default:
+    return 0; // closures are no texture information
+  }
+  if (arraylen > 0) t.arraylen = arraylen;
+  OIIO::TextureSystem* ts = texsys(env);
+  size_t bytes = t.size();
+  std::vector<unsigned char> scratch(bytes, 0); // dest stays as it was on failure
+  if (!ts->get_texture_info(OIIO::ustring(file ? file : ""), 0, OIIO::ustring(query ? query : ""),
+                            t, scratch.data())) {
+    std::string err = ts->geterror();
+    if (!err.empty() && sg && sg->context) {
+      sg->context->errors++;
+      std::string msg = "ERROR: [RendererServices::get_texture_info] ";
+      msg += err;
+      msg += "\n";
+      sg->context->message(msg);
+    }
+    return 0;
+  }
+  if (base == 7) // OIIO hands out ustring characters; Lobe's strings are its own interned ones
+    for (size_t k = 0; k < bytes / sizeof(const char*); ++k) {
+      const char* s;
+      std::memcpy(&s, scratch.data() + k * sizeof(s), sizeof(s));
+      s = env->strings.intern(s ? s : "");
+      std::memcpy(scratch.data() + k * sizeof(s), &s, sizeof(s));
+    }
+  std::memcpy(dest, scratch.data(), bytes);
+  return 1;
 }
 
 } // extern "C"

@@ -9,6 +9,11 @@
 
 #include <tbb/parallel_for.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
 using namespace lobe;
 using namespace lobe::render;
 
@@ -156,4 +161,69 @@ TEST(JitMaterials, AreaLightShadingLeavesTheLitClosureIntact) {
   EXPECT_LT(std::fabs(d_native), 1e-3 * mean) << "JIT vs native";
   std::printf("mean %.5f; MIS - light %.5f +- %.5f, MIS - BSDF %.5f +- %.5f, JIT - native %.2g\n",
               mean, d_light, e1, d_bsdf, e2, d_native);
+}
+
+// A shape's "userdata" reaches `lockgeom = 0` parameters of its material, and getattribute
+// sees the camera: in the white furnace a Lambert sphere renders to its albedo, so the image
+// mean tells which value the shader got.
+TEST(JitMaterials, ShapeUserDataAndCameraAttributes) {
+  if (!MaterialBackend::jit_available()) GTEST_SKIP() << "this build has no JIT";
+  std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("lobe_ud_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::string shader = (dir / "ud_matte.osl").string();
+  std::ofstream(shader) << R"(
+surface ud_matte(color Cs = 0.75 [[ int lockgeom = 0 ]], float locked = 1) {
+  float fov = 0;
+  int res[2] = {0, 0};
+  string proj = "";
+  int ok = getattribute("camera:fov", fov) && getattribute("camera:resolution", res) &&
+           getattribute("camera:projection", proj);
+  float k = (ok && fov == 8 && res[0] == 16 && res[1] == 8 && proj == "perspective") ? 1 : 0.5;
+  Ci = k * locked * Cs * diffuse(N);
+}
+)";
+  MaterialBackend jit("jit");
+  auto mean_of = [&](const std::string& params, const std::string& userdata, double& err) {
+    std::string json = R"({
+      "camera": {"eye": [0, 0, 4], "look_at": [0, 0, 0], "fov": 8},
+      "materials": {"m": {"shader": ")" +
+                       shader + R"(", "params": {)" + params + R"(}}},
+      "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m",
+                  "userdata": {)" +
+                       userdata + R"(}}],
+      "environment": {"type": "constant", "color": 1}
+    })";
+    std::string e;
+    auto desc = scene::parse_json_scene(json, "ud.json", e);
+    EXPECT_TRUE(desc) << e;
+    RenderScene s;
+    e = s.setup(*desc, jit.compiler(), 16, 8);
+    EXPECT_EQ(e, "");
+    RenderOptions opt;
+    opt.spp = 16;
+    opt.max_depth = 8;
+    auto r = test::render(s, 16, 8, opt);
+    double mean;
+    test::mean_and_error(r.img, 1, mean, err);
+    return mean;
+  };
+  double e, m;
+  m = mean_of("", "", e); // the default, and the camera matched (else half of it)
+  EXPECT_NEAR(m, 0.75, 4 * e + 1e-6);
+  m = mean_of(R"("Cs": 0.5)", "", e);
+  EXPECT_NEAR(m, 0.5, 4 * e + 1e-6);
+  // User data beats the instance value; a grey number is a colour; the same samples give the
+  // same image as the instance value 0.25 would.
+  double ud = mean_of(R"("Cs": 0.5)", R"("Cs": [0.25, 0.25, 0.25])", e);
+  EXPECT_NEAR(ud, 0.25, 4 * e + 1e-6);
+  EXPECT_DOUBLE_EQ(mean_of(R"("Cs": 0.25)", "", e), ud);
+  EXPECT_DOUBLE_EQ(mean_of("", R"("Cs": 0.25)", e), ud);
+  // A parameter without lockgeom = 0 never takes user data; a value of the wrong shape is
+  // not used.
+  m = mean_of("", R"("locked": 0.1)", e);
+  EXPECT_NEAR(m, 0.75, 4 * e + 1e-6);
+  m = mean_of("", R"("Cs": [0.1, 0.2])", e);
+  EXPECT_NEAR(m, 0.75, 4 * e + 1e-6);
+  std::filesystem::remove_all(dir);
 }

@@ -56,6 +56,30 @@ TEST(ShadeCli, GroupTextAndGrid) {
             "upstream ran\nCin 0.5 1 1.5 g 0 h 0 pr 0 0\n");
 }
 
+// testshade's renderer: "s"/"t" user data are u/v with derivatives; --userdata adds more;
+// -param:lockgeom=0 unlocks a parameter the shader locked, lockgeom=1 locks one it unlocked.
+TEST(ShadeCli, UserDataAndAttributes) {
+  EXPECT_EQ(both("-g 2 3 -param:lockgeom=1 t 0.25 userdata_print"),
+            "s 0 ds 1 0 t 0.25 dt 0 0 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 0\n"
+            "s 1 ds 1 0 t 0.25 dt 0 0 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 0\n"
+            "s 0 ds 1 0 t 0.25 dt 0 0 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 0.5\n"
+            "s 1 ds 1 0 t 0.25 dt 0 0 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 0.5\n"
+            "s 0 ds 1 0 t 0.25 dt 0 0 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 1\n"
+            "s 1 ds 1 0 t 0.25 dt 0 0 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 1\n");
+  EXPECT_EQ(both("--userdata:type=color tint \"0.5 0.25 2\" --userdata:type=string label "
+                 "\"two words\" --userdata fixed 9 -param:type=float:lockgeom=0 fixed 4 "
+                 "userdata_print"),
+            "s 0.5 ds 1 0 t 0.5 dt 0 1 tint 0.5 0.25 2 label two words fixed 9 res 1 1 1 "
+            "t-attr 1 0.5\n");
+  EXPECT_EQ(both("--userdata fixed 9 -param fixed 4 userdata_print"),
+            "s 0.5 ds 1 0 t 0.5 dt 0 1 tint 1 1 1 label none fixed 4 res 1 1 1 t-attr 1 0.5\n");
+  EXPECT_NE(run("--userdata:type=color tint \"1 2\" userdata_print")
+                .find("'1 2' is not a value of type color"),
+            std::string::npos);
+  EXPECT_NE(run("-param:lockgeom=2 s 1 userdata_print").find("unknown modifier ':lockgeom=2'"),
+            std::string::npos);
+}
+
 // `float a[] = {1, 2}` stays unsized: an instance value of another length sets arraylength.
 TEST(ShadeCli, UnsizedArrayParameterTakesTheInstanceLength) {
   EXPECT_EQ(both("unsized_array"), "arraylength 2 sum 3 last 2\n");

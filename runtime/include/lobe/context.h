@@ -14,9 +14,17 @@
 
 namespace lobe {
 
+class RendererServices;
+namespace detail {
+struct MessageStore;
+}
+
 class ShadingContext {
 public:
   explicit ShadingContext(size_t arena_bytes = 64 * 1024);
+  ~ShadingContext();
+  ShadingContext(ShadingContext&&) noexcept;
+  ShadingContext& operator=(ShadingContext&&) noexcept;
 
   // Frees every closure allocated since the last reset (O(1): rewinds the arena).
   void reset() { used_ = 0; }
@@ -40,7 +48,14 @@ public:
   int warnings = 0;
   uint64_t closures_dropped = 0;
 
+  // The renderer's answers to user data and getattribute (renderer_services.h); null: none.
+  const RendererServices* renderer = nullptr;
+
+  // setmessage/getmessage storage of the current shade() (Material::shade clears it).
+  detail::MessageStore& messages();
+
 private:
+  std::unique_ptr<detail::MessageStore> messages_;
   std::unique_ptr<unsigned char[]> arena_;
   size_t capacity_ = 0;
   size_t used_ = 0;

@@ -30,10 +30,14 @@ using DiagnosticList = std::vector<Diagnostic>;
 
 // A value given to a parameter: an instance value, as text in OSL's `param` syntax
 // (type and value: "float" "0.5", "color" "1 0 0", "string" "ggx", "float[3]" "1 2 3").
+// `lockgeom`: 0 lets the renderer's user data of the same name and type override the value
+// (OSL's interpolated parameters; renderer_services.h), 1 forbids it, -1 (the default) keeps
+// what the shader's `[[ int lockgeom = 0 ]]` metadata says.
 struct InstanceValue {
   std::string type;
   std::string name;
   std::string value;
+  int lockgeom = -1;
 };
 
 struct Connection {

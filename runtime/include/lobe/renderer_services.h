@@ -1,0 +1,70 @@
+// What a renderer tells shaders about the scene: user data (per-primitive values bound to
+// parameters declared `[[ int lockgeom = 0 ]]`) and attributes (`getattribute`).
+//
+// A renderer derives from RendererServices and sets ShadingContext::renderer on each thread's
+// context. Both calls happen during Material::shade, on the shading thread, so an
+// implementation must be safe to call from several threads at once (const, no shared state
+// written).
+//
+// Value layout, as in OSL: `val` points at `type.bytes()` bytes (elements × components
+// scalars; int32 for Int, float for Float, triples and matrices, const char* for String). When
+// `derivatives` is true (only for float-based types), two more planes of the same size follow
+// with d/dx and d/dy; Lobe zeroes them before the call, so a renderer that knows no
+// derivatives leaves them. Strings need only stay valid until the call returns (Lobe interns
+// them). Return false when the name or type is unknown: `val` is then ignored.
+#pragma once
+
+#include "lobe/shading.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace lobe {
+
+struct DataType {
+  enum class Base : uint8_t { Int, Float, Color, Point, Vector, Normal, Matrix, String };
+  Base base = Base::Float;
+  int arraylen = 0; // 0: not an array
+
+  bool is_triple() const {
+    return base == Base::Color || base == Base::Point || base == Base::Vector ||
+           base == Base::Normal;
+  }
+  bool is_float_based() const { return base != Base::Int && base != Base::String; }
+  int components() const { return is_triple() ? 3 : base == Base::Matrix ? 16 : 1; }
+  int elements() const { return arraylen > 0 ? arraylen : 1; }
+  size_t scalar_bytes() const { return base == Base::String ? sizeof(const char*) : 4; }
+  size_t bytes() const { return size_t(elements()) * size_t(components()) * scalar_bytes(); }
+  // "float", "color", "float[2]", "string", ...
+  std::string str() const;
+  bool operator==(const DataType&) const = default;
+};
+
+class RendererServices {
+public:
+  virtual ~RendererServices() = default;
+
+  // User data named `name` of type `type` at this point (OSL's get_userdata). Asked for each
+  // `lockgeom = 0` parameter that has no connection, when its layer starts; a `true` answer
+  // overrides the instance value and the default.
+  virtual bool get_userdata(const ShaderGlobals& sg, std::string_view name, DataType type,
+                            bool derivatives, void* val) const {
+    (void)sg, (void)name, (void)type, (void)derivatives, (void)val;
+    return false;
+  }
+
+  // getattribute([object,] name, [index,] dest). `object` is "" when the shader names none
+  // (the object being shaded); `index` is -1 unless the shader asked for one element of an
+  // array attribute, and `type` is then the element's type. Lobe answers "osl:version",
+  // "shader:shadername", "shader:layername" and "shader:groupname" itself, before asking.
+  virtual bool get_attribute(const ShaderGlobals& sg, std::string_view object,
+                             std::string_view name, int index, DataType type, bool derivatives,
+                             void* val) const {
+    (void)sg, (void)object, (void)name, (void)index, (void)type, (void)derivatives, (void)val;
+    return false;
+  }
+};
+
+} // namespace lobe

@@ -1,0 +1,226 @@
+// Shadeops that move typed values between a shader and the world around it: getattribute and
+// user data (answered by the renderer's RendererServices), and setmessage/getmessage between
+// the layers of one shade (the ShadingContext's MessageStore).
+//
+// Types travel as one int code, base | arraylen << 8, with base the IR's BaseType (Int, Float,
+// Color, Point, Vector, Normal, Matrix, String, Closure: DataType::Base for the first eight).
+// Values are the symbol's storage: the value plane, then the d/dx and d/dy planes when the
+// symbol carries derivatives (`derivs`).
+#include "env.h"
+#include "lobe/context.h"
+#include "lobe/detail/messages.h"
+#include "lobe/renderer_services.h"
+
+#include <algorithm>
+#include <cstring>
+#include <initializer_list>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace {
+
+constexpr int kClosureBase = 8;
+
+int base_of(int code) { return code & 0xff; }
+int arraylen_of(int code) { return code >> 8; }
+
+size_t plane_bytes(int code) {
+  int base = base_of(code);
+  if (base == kClosureBase) return size_t(std::max(1, arraylen_of(code))) * sizeof(void*);
+  lobe::DataType t{lobe::DataType::Base(base), arraylen_of(code)};
+  return t.bytes();
+}
+
+std::string type_name(int code) {
+  if (base_of(code) == kClosureBase) {
+    std::string s = "closure color";
+    if (arraylen_of(code) > 0) {
+      s += "[";
+      s += std::to_string(arraylen_of(code));
+      s += "]";
+    }
+    return s;
+  }
+  return lobe::DataType{lobe::DataType::Base(base_of(code)), arraylen_of(code)}.str();
+}
+
+std::string where(const char* file, int line) {
+  std::string s = file ? file : "";
+  s += ":";
+  s += std::to_string(line);
+  return s;
+}
+
+// A run-time error through the context: "ERROR: " and the pieces, joined.
+void report(lobe::ShaderGlobals* sg, std::initializer_list<std::string_view> pieces) {
+  if (!sg || !sg->context) return;
+  sg->context->errors++;
+  std::string text = "ERROR: ";
+  for (std::string_view p : pieces) text += p;
+  text += "\n";
+  sg->context->message(text);
+}
+
+// Asks `ask(scratch)` for a value of type `code` and copies it to `dest` only on success, so
+// a renderer that writes part of a value and then says no leaves the shader's variable as it
+// was. Derivative planes start zeroed; strings are interned (the renderer's pointers need
+// only live through the call).
+template <class Ask>
+int fetch(lobe::shadeops::RuntimeEnv* env, int code, int derivs, void* dest, Ask ask) {
+  size_t plane = plane_bytes(code);
+  size_t total = plane * (derivs ? 3 : 1);
+  unsigned char local[512];
+  std::vector<unsigned char> heap;
+  unsigned char* scratch = local;
+  if (total > sizeof(local)) {
+    heap.assign(total, 0);
+    scratch = heap.data();
+  } else {
+    std::memset(local, 0, total);
+  }
+  if (!ask(scratch)) return 0;
+  if (base_of(code) == int(lobe::DataType::Base::String)) {
+    size_t n = plane / sizeof(const char*);
+    for (size_t i = 0; i < n; ++i) {
+      const char* s;
+      std::memcpy(&s, scratch + i * sizeof(s), sizeof(s));
+      s = env->strings.intern(s ? s : "");
+      std::memcpy(scratch + i * sizeof(s), &s, sizeof(s));
+    }
+  }
+  std::memcpy(dest, scratch, total);
+  return 1;
+}
+
+bool builtin_attribute(std::string_view name, int code, void* dest, lobe::shadeops::RuntimeEnv* env,
+                       const char* shadername, const char* layername, const char* groupname,
+                       int& found) {
+  const char* text = nullptr;
+  if (name == "shader:shadername")
+    text = shadername;
+  else if (name == "shader:layername")
+    text = layername;
+  else if (name == "shader:groupname")
+    text = groupname;
+  else if (name != "osl:version")
+    return false;
+  found = 0;
+  if (text) {
+    if (code != int(lobe::DataType::Base::String)) return true;
+    const char* s = env->strings.intern(text);
+    std::memcpy(dest, &s, sizeof(s));
+  } else {
+    if (code != int(lobe::DataType::Base::Int)) return true;
+    int32_t v = 11300; // OSL_VERSION of the language Lobe accepts (1.13.0)
+    std::memcpy(dest, &v, sizeof(v));
+  }
+  found = 1;
+  return true;
+}
+
+} // namespace
+
+extern "C" {
+
+// getattribute([object,] name, [index,] dest): OSL's own attributes first, then the renderer.
+// `object` is null when the shader named none. Returns 1 when `dest` was written.
+int lobe_getattribute(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* object,
+                      const char* name, int index, int code, int derivs, void* dest,
+                      const char* shadername, const char* layername, const char* groupname) {
+  std::string_view obj = object ? object : "", nm = name ? name : "";
+  int found = 0;
+  if (obj.empty() &&
+      builtin_attribute(nm, code, dest, env, shadername, layername, groupname, found))
+    return found;
+  if (!sg || !sg->context || !sg->context->renderer || base_of(code) == kClosureBase) return 0;
+  const lobe::RendererServices* rs = sg->context->renderer;
+  lobe::DataType t{lobe::DataType::Base(base_of(code)), arraylen_of(code)};
+  return fetch(env, code, derivs, dest, [&](void* val) {
+    return rs->get_attribute(*sg, obj, nm, index, t, derivs != 0, val);
+  });
+}
+
+// The user data bound to a `lockgeom = 0` parameter, when its layer starts.
+int lobe_get_userdata(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* name,
+                      int code, int derivs, void* dest) {
+  if (!sg || !sg->context || !sg->context->renderer || base_of(code) == kClosureBase) return 0;
+  const lobe::RendererServices* rs = sg->context->renderer;
+  lobe::DataType t{lobe::DataType::Base(base_of(code)), arraylen_of(code)};
+  return fetch(env, code, derivs, dest, [&](void* val) {
+    return rs->get_userdata(*sg, name ? name : "", t, derivs != 0, val);
+  });
+}
+
+// setmessage(name, value). A name can be set once per shade; setting one that an earlier
+// getmessage already asked for is an error too (the answer would depend on the layer order).
+// Both errors keep what the store had and name both places, in OSL's words.
+void lobe_setmessage(lobe::ShaderGlobals* sg, const char* name, int code, int derivs,
+                     const void* src, const char* file, int line) {
+  if (!sg || !sg->context || !name) return;
+  lobe::detail::MessageStore& store = sg->context->messages();
+  if (lobe::detail::MessageStore::Entry* e = store.find(name)) {
+    if (e->set)
+      report(sg, {"message \"", name, "\" already exists (created here: ", where(e->file, e->line),
+                  ") cannot set again from ", where(file, line)});
+    else
+      report(sg, {"message \"", name,
+                  "\" was queried before being set (queried here: ", where(e->file, e->line),
+                  ") setting it now (", where(file, line), ") would lead to inconsistent results"});
+    return;
+  }
+  size_t bytes = plane_bytes(code) * (derivs ? 3 : 1);
+  lobe::detail::MessageStore::Entry e;
+  e.name = name;
+  e.type = code;
+  e.derivs = derivs != 0;
+  e.set = true;
+  e.offset = uint32_t(store.data.size());
+  e.bytes = uint32_t(bytes);
+  e.file = file;
+  e.line = line;
+  store.data.insert(store.data.end(), static_cast<const unsigned char*>(src),
+                    static_cast<const unsigned char*>(src) + bytes);
+  store.entries.push_back(e);
+}
+
+// getmessage([source,] name, dest): 1 and `dest` written when this shade set `name` with a
+// value of exactly the destination's type (a color is not a vector, as in OSL); another type
+// is an error. Source "trace" asks for the hit of
+// the last trace(), which Lobe's shaders cannot cast: always 0, as is any other source.
+int lobe_getmessage(lobe::ShaderGlobals* sg, const char* source, const char* name, int code,
+                    int derivs, void* dest, const char* file, int line) {
+  if (!sg || !sg->context || !name) return 0;
+  if (source && *source) return 0;
+  lobe::detail::MessageStore& store = sg->context->messages();
+  lobe::detail::MessageStore::Entry* e = store.find(name);
+  if (!e) { // remembered, so that setting it later in this shade is reported
+    lobe::detail::MessageStore::Entry q;
+    q.name = name;
+    q.type = code;
+    q.file = file;
+    q.line = line;
+    store.entries.push_back(q);
+    return 0;
+  }
+  if (e->type != code) {
+    report(sg, {"type mismatch for message \"", name, "\" (", e->set ? "created" : "queried",
+                " as ", type_name(e->type), " here: ", where(e->file, e->line),
+                ") cannot fetch as ", type_name(code), " from ", where(file, line)});
+    return 0;
+  }
+  if (!e->set) return 0;
+  size_t plane = plane_bytes(code);
+  const unsigned char* data = store.data.data() + e->offset;
+  std::memcpy(dest, data, plane);
+  if (derivs) {
+    auto* d = static_cast<unsigned char*>(dest);
+    if (e->derivs)
+      std::memcpy(d + plane, data + plane, 2 * plane);
+    else
+      std::memset(d + plane, 0, 2 * plane);
+  }
+  return 1;
+}
+
+} // extern "C"
