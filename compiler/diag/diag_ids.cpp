@@ -113,6 +113,10 @@ const Row kTable[] = {
     ROW(err_format_arg_type, Error, "format '%0' needs %1, but argument %2 of '%3' is '%4'"),
     ROW(err_format_struct_arg, Error,
         "argument %0 of '%1' is a struct ('%2'), which cannot be printed"),
+    ROW(warn_confusing_comma, Warning,
+        "comma operator is very confusing here; did you mean to use a constructor: %0 = %1(...)?"),
+    ROW(warn_param_hides_function, Warning,
+        "'%0' already declared in this scope (parameter '%0' hides the function)"),
 };
 #undef ROW
 static_assert(sizeof(kTable) / sizeof(kTable[0]) == size_t(DiagId::kCount),

@@ -2,6 +2,9 @@
 // whole-file checks (recursion).
 #include "sema/sema_impl.h"
 
+#include "closure_registry.h"
+
+#include <algorithm>
 #include <functional>
 #include <set>
 
@@ -169,11 +172,26 @@ void Sema::struct_decl(ast::StructDecl* s) {
   }
 }
 
+// OSL warns (and carries on) when a parameter takes the name of a function declared at file
+// scope, a builtin or a closure: calls by that name inside still reach the function.
+void Sema::check_param_name(const ast::VarDecl* p, bool from_stdlib) {
+  if (p->name.empty() || from_stdlib) return;
+  const ast::FunctionDecl* user = nullptr;
+  if (auto it = scopes_.front().funcs.find(p->name); it != scopes_.front().funcs.end())
+    if (!it->second.empty()) user = it->second.front();
+  bool is_closure = std::any_of(opts_.closures.begin(), opts_.closures.end(),
+                                [&](const registry::ClosureEntry& c) { return p->name == c.name; });
+  if (!user && builtins().lookup(p->name).empty() && !is_closure) return;
+  error(DiagId::warn_param_hides_function, p->name_range, {p->name});
+  if (user && !user->from_stdlib) error(DiagId::note_previous_decl, user->name_range);
+}
+
 void Sema::function_decl(ast::FunctionDecl* f) {
   for (auto& p : f->params) {
     p->writable = p->is_output;
     if (p->type.base == ast::BaseType::Void)
       error(DiagId::err_void_variable, p->name_range, {p->name});
+    check_param_name(p.get(), f->from_stdlib);
   }
   if (f->name.rfind("__operator__", 0) == 0) {
     bool has_struct = false;
@@ -205,6 +223,7 @@ void Sema::shader_decl(ast::ShaderDecl* s) {
   metadata(s->metadata);
   push_scope();
   for (auto& p : s->params) {
+    check_param_name(p.get(), s->from_stdlib);
     var_decl(p.get()); // a default may use globals and earlier parameters
     metadata(p->metadata);
   }
@@ -218,6 +237,10 @@ void Sema::var_decl(ast::VarDecl* v) {
     error(DiagId::err_void_variable, v->name_range, {v->name});
     v->type = t_error();
   }
+  // OSL's warning for `color c = (a, b, c)`: the comma operator gives (c, c, c).
+  if (v->init && v->init->kind == ast::ExprKind::Comma && v->type.arraylen == 0 &&
+      (v->type.is_triple() || v->type.base == ast::BaseType::Matrix))
+    error(DiagId::warn_confusing_comma, v->init->range, {v->name, ast::to_string(v->type)});
   if (v->init) {
     if (v->init->kind == ast::ExprKind::InitList) {
       init_list(v->init, v->type);

@@ -49,6 +49,7 @@ private:
   void push_scope() { scopes_.emplace_back(); }
   void pop_scope() { scopes_.pop_back(); }
   void declare_var(ast::VarDecl* v);
+  void check_param_name(const ast::VarDecl* p, bool from_stdlib);
   void declare_function(ast::FunctionDecl* f);
   ast::VarDecl* lookup_var(const std::string& name);
   std::vector<ast::FunctionDecl*> lookup_functions(const std::string& name);
