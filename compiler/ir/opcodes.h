@@ -165,7 +165,7 @@ inline constexpr OpcodeInfo kOpcodes[] = {
   {"getattribute", 3, 5, 3, 0, 0, "int a = renderer attribute into b: (\"obj\"?, \"name\", [index])"},
   {"setmessage", 2, 2, 0, 0, kEffect, "set message a to value b"},
   {"getmessage", 3, 4, 3, 0, 0, "int a = message (\"source\"?, \"name\") into b"},
-  {"trace", 3, kVariadic, 1, 0, kEffect, "int a = trace ray from b along c, \"kw\" v..."},
+  {"trace", 3, kVariadic, 1, 6, kEffect, "int a = trace ray from b along c, \"kw\" v..."},
   // ---- shading-state queries ------------------------------------------------------------------
   {"raytype", 2, 2, 1, 0, 0, "int a = 1 if the ray has type name b"},
   {"backfacing", 1, 1, 1, 0, 0, "int a = ShaderGlobals::backfacing"},

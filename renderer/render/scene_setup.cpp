@@ -274,7 +274,7 @@ std::string RenderScene::setup(const scene::SceneDesc& desc, const MaterialCompi
                                int width, int height) {
   desc_ = desc;
   camera_ = Camera(desc_.camera, width, height);
-  services_ = SceneServices(desc_.camera, width, height);
+  services_ = SceneServices(desc_.camera, width, height, &geo_);
   if (std::string e = geo_.build(desc_.shapes); !e.empty()) return desc_.path + ": " + e;
   if (std::string e = compile_materials(compile); !e.empty()) return e;
   if (std::string e = build_environment(); !e.empty()) return e;

@@ -1,6 +1,9 @@
 // SceneServices (services.h).
 #include "services.h"
 
+#include "camera.h"
+#include "geometry.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -66,6 +69,30 @@ bool SceneServices::get_attribute(const ShaderGlobals& sg, std::string_view obje
     return true;
   }
   return write(v, type, val);
+}
+
+bool SceneServices::trace(const ShaderGlobals& sg, const TraceOptions& opt, const Vec3& P,
+                          const Vec3& dPdx, const Vec3& dPdy, const Vec3& R, const Vec3& dRdx,
+                          const Vec3& dRdy, TraceHit& hit) const {
+  (void)dPdx, (void)dPdy, (void)dRdx, (void)dRdy;
+  float len = length(R);
+  if (!geometry_ || !(len > 0) || !std::isfinite(len) || !(opt.maxdist > opt.mindist)) return false;
+  Vec3 dir = R / len;
+  Vec3 start = P + dir * std::max(0.0f, opt.mindist);
+  Ray ray;
+  // Off the surface the ray leaves (a point away from any surface has Ng = 0: no offset).
+  ray.org = is_zero(sg.Ng) ? start : offset_ray_origin(start, normalize(sg.Ng), dir);
+  ray.dir = dir;
+  ray.tmax = opt.maxdist - std::max(0.0f, opt.mindist);
+  SurfaceHit h;
+  if (!geometry_->intersect(ray, h)) return false;
+  hit.hitdist = length(h.P - P);
+  hit.P = h.P;
+  hit.N = h.N;
+  hit.Ng = h.Ng;
+  hit.u = h.u;
+  hit.v = h.v;
+  return true;
 }
 
 } // namespace lobe::render

@@ -4,6 +4,7 @@
 #include "op_tables.h"
 
 #include "closure_registry.h"
+#include "lobe/renderer_services.h"
 #include "lobe/shading.h"
 #include "shadeops.h"
 
@@ -420,8 +421,6 @@ void op_query(LayerEmitter& e, const ir::Op& op) {
     // A constant of the shader as written; specialisation resolves isconstant before it turns
     // params into constants (runtime/group/group_build.cpp), so the answer is the same.
     r = Val{Dual{e.iconst(e.arg(op, 1).kind == ir::SymKind::Const ? 1 : 0)}};
-  } else { // trace: no rays from shaders; outputs untouched
-    r = Val{Dual{e.iconst(0)}};
   }
   e.store(op.args[0], e.convert(r, BaseType::Int, e.arg(op, 0).type.base));
 }
@@ -468,6 +467,46 @@ void op_getmessage(LayerEmitter& e, const ir::Op& op) {
       "lobe_getmessage", {e.sg(), source, name, e.iconst(LayerEmitter::type_code(e.sym(dest).type)),
                           e.iconst(carries_derivs(e, dest) ? 1 : 0), e.storage_address(dest),
                           op_file(e, op), e.iconst(op.loc.line)});
+  e.store(op.args[0], e.convert(Val{Dual{r}}, BaseType::Int, e.arg(op, 0).type.base));
+}
+
+// trace r P R "kw" v...: the ray's origin and direction with their derivatives, and a
+// TraceOptions block filled from the keywords.
+void op_trace(LayerEmitter& e, const ir::Op& op) {
+  auto& B = e.b();
+  auto triple = [&](int i, int part) {
+    std::vector<llvm::Value*> c;
+    for (const Dual& d : e.load_as(op, i, BaseType::Vector)) {
+      llvm::Value* v = part == 0 ? d.v : part == 1 ? d.dx : d.dy;
+      c.push_back(v ? v : e.fconst(0));
+    }
+    return e.spill(c);
+  };
+  auto* block =
+      e.entry_alloca(llvm::ArrayType::get(B.getInt8Ty(), sizeof(TraceOptions)), 1, "traceopts");
+  auto at = [&](size_t off) { return B.CreateConstInBoundsGEP1_64(B.getInt8Ty(), block, off); };
+  TraceOptions defaults;
+  B.CreateStore(e.fconst(defaults.mindist), at(offsetof(TraceOptions, mindist)));
+  B.CreateStore(e.fconst(defaults.maxdist), at(offsetof(TraceOptions, maxdist)));
+  B.CreateStore(B.getInt8(0), at(offsetof(TraceOptions, shade)));
+  B.CreateStore(null_ptr(e), at(offsetof(TraceOptions, traceset)));
+  for (size_t i = 3; i + 1 < op.args.size(); i += 2) {
+    std::string kw = const_string(e.arg(op, int(i)));
+    int v = int(i + 1);
+    if (kw == "mindist" || kw == "maxdist")
+      B.CreateStore(
+          e.load_as(op, v, BaseType::Float, false)[0].v,
+          at(kw == "mindist" ? offsetof(TraceOptions, mindist) : offsetof(TraceOptions, maxdist)));
+    else if (kw == "shade")
+      B.CreateStore(
+          B.CreateZExt(e.truthy(e.load(op.args[size_t(v)], nullptr, false), e.arg(op, v).type.base),
+                       B.getInt8Ty()),
+          at(offsetof(TraceOptions, shade)));
+    else if (kw == "traceset")
+      B.CreateStore(e.load(op.args[size_t(v)])[0].v, at(offsetof(TraceOptions, traceset)));
+  }
+  llvm::Value* r = e.call("lobe_trace", {e.sg(), triple(1, 0), triple(1, 1), triple(1, 2),
+                                         triple(2, 0), triple(2, 1), triple(2, 2), block});
   e.store(op.args[0], e.convert(Val{Dual{r}}, BaseType::Int, e.arg(op, 0).type.base));
 }
 
@@ -630,7 +669,7 @@ const OpEntry kLibraryOps[] = {
     {"isconstant", op_query},
     {"getattribute", op_getattribute},
     {"getmessage", op_getmessage},
-    {"trace", op_query},
+    {"trace", op_trace},
     {"gettextureinfo", op_gettextureinfo},
     {"setmessage", op_setmessage},
     {"spline", op_spline},

@@ -53,7 +53,8 @@ void MaterialImpl::shade(ShaderGlobals& sg) const {
   if (ctx->groupdata.size() < groupdata_.size()) ctx->groupdata.resize(groupdata_.size());
   std::memcpy(ctx->groupdata.data(), groupdata_.data(), groupdata_.size());
   ctx->groupdata_owner = this;
-  ctx->messages().clear(); // messages live for one shade
+  ctx->messages().clear(); // messages and trace results live for one shade
+  ctx->trace_hit = TraceHit{};
   last_context_.store(ctx, std::memory_order_relaxed);
   entry_(&sg, ctx->groupdata.data());
 }

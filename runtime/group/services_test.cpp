@@ -83,6 +83,22 @@ public:
     return false;
   }
 
+  bool trace(const lobe::ShaderGlobals& sg, const lobe::TraceOptions& opt, const lobe::Vec3& P,
+             const lobe::Vec3& dPdx, const lobe::Vec3& dPdy, const lobe::Vec3& R,
+             const lobe::Vec3& dRdx, const lobe::Vec3& dRdy, lobe::TraceHit& hit) const override {
+    (void)sg, (void)dPdy, (void)dRdy;
+    asked.push_back("trace " + std::to_string(opt.mindist) + " " + std::to_string(opt.maxdist) +
+                    " " + std::to_string(opt.shade) + " '" + opt.traceset + "' dPdx.x " +
+                    std::to_string(dPdx.x) + " dRdx.x " + std::to_string(dRdx.x));
+    if (R.z <= 0) return false; // a ceiling at z = P.z + 2
+    hit.hitdist = 2 * lobe::length(R) / R.z;
+    hit.P = P + R * (2 / R.z);
+    hit.N = hit.Ng = {0, 0, -1};
+    hit.u = 0.25f;
+    hit.v = 0.75f;
+    return true;
+  }
+
 private:
   mutable char buf_[32] = {};
 };
@@ -355,6 +371,35 @@ surface info(string file = "", string missing = "") {
   EXPECT_NE(out.find("ERROR: [RendererServices::get_texture_info] "), std::string::npos) << out;
   EXPECT_NE(out.find("no_such.exr"), std::string::npos) << out;
   EXPECT_EQ(out.substr(out.rfind('\n', out.size() - 2) + 1), "0 -5 -5\n") << out;
+}
+
+} // namespace
+
+namespace {
+
+TEST_P(Services, TraceAndItsMessages) {
+  std::string f = write("tr", R"(
+surface tr() {
+  float d = -1, u = -1; point p = 0; normal n = 0; int h = -1;
+  int before = getmessage("trace", "hit", h);
+  int up = trace(P, vector(0, 0, 1), "mindist", 0.5, "maxdist", 10, "traceset", "walls");
+  int a = getmessage("trace", "hit", h) + getmessage("trace", "hitdist", d) +
+          getmessage("trace", "P", p) + getmessage("trace", "N", n) + getmessage("trace", "u", u);
+  printf("%d | %d %d %d %g %g | %g %g\n", before, up, a, h, d, p, n, u);
+  int down = trace(P, vector(0, 0, -1), "shade", 1);
+  int b = getmessage("trace", "hit", h) + getmessage("trace", "hitdist", d);
+  printf("%d %d %d %g\n", down, b, h, d);
+}
+)");
+  TestServices rs;
+  // Grid point 0 of 1 x 1: P = (0.5, 0.5, 1), dPdx = (1, 0, 0).
+  EXPECT_EQ(shade(one(f), 1, &rs), "0 | 1 5 1 2 0.5 0.5 3 | 0 0 -1 0.25\n0 1 0 2\n");
+  ASSERT_EQ(rs.asked.size(), 2u);
+  EXPECT_EQ(rs.asked[0], "trace 0.500000 10.000000 0 'walls' dPdx.x 1.000000 dRdx.x 0.000000");
+  EXPECT_EQ(rs.asked[1], "trace 0.000000 1000000015047466219876688855040.000000 1 '' dPdx.x "
+                         "1.000000 dRdx.x 0.000000");
+  // Without a renderer nothing is hit, and "hit" says so.
+  EXPECT_EQ(shade(one(f), 1, nullptr), "0 | 0 1 0 -1 0 0 0 | 0 0 0 -1\n0 1 0 -1\n");
 }
 
 } // namespace

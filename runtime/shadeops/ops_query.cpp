@@ -1,6 +1,6 @@
-// Shadeops that move typed values between a shader and the world around it: getattribute and
-// user data (answered by the renderer's RendererServices), and setmessage/getmessage between
-// the layers of one shade (the ShadingContext's MessageStore).
+// Shadeops that move typed values between a shader and the world around it: getattribute,
+// user data and trace (answered by the renderer's RendererServices), and
+// setmessage/getmessage between the layers of one shade (the ShadingContext's MessageStore).
 //
 // Types travel as one int code, base | arraylen << 8, with base the IR's BaseType (Int, Float,
 // Color, Point, Vector, Normal, Matrix, String, Closure: DataType::Base for the first eight).
@@ -119,9 +119,58 @@ bool builtin_attribute(std::string_view name, int code, void* dest, lobe::shadeo
   return true;
 }
 
+// getmessage("trace", name, dest) after a trace(): "hit" (int, also when it missed), and when
+// it hit "hitdist", "u", "v" (float), "P", "N", "Ng" (any triple). Derivatives are zero.
+int trace_message(const lobe::TraceHit& h, std::string_view name, int code, int derivs,
+                  void* dest) {
+  if (!h.traced) return 0;
+  size_t plane = plane_bytes(code);
+  auto put = [&](const float* v, int n) {
+    std::memcpy(dest, v, size_t(n) * sizeof(float));
+    if (derivs) std::memset(static_cast<unsigned char*>(dest) + plane, 0, 2 * plane);
+    return 1;
+  };
+  bool is_float = code == int(lobe::DataType::Base::Float);
+  bool is_triple = arraylen_of(code) == 0 && base_of(code) >= 2 && base_of(code) <= 5;
+  if (name == "hit" && code == int(lobe::DataType::Base::Int)) {
+    int32_t v = h.hit ? 1 : 0;
+    std::memcpy(dest, &v, sizeof(v));
+    return 1;
+  }
+  if (!h.hit) return 0;
+  if (is_float && name == "hitdist") return put(&h.hitdist, 1);
+  if (is_float && name == "u") return put(&h.u, 1);
+  if (is_float && name == "v") return put(&h.v, 1);
+  if (is_triple && name == "P") return put(&h.P.x, 3);
+  if (is_triple && name == "N") return put(&h.N.x, 3);
+  if (is_triple && name == "Ng") return put(&h.Ng.x, 3);
+  return 0;
+}
+
 } // namespace
 
 extern "C" {
+
+// trace(P, R, "mindist", a, "maxdist", b, "shade", s, "traceset", t): the renderer's ray
+// (1 on a hit); its result stays in the context for getmessage("trace", ...). Without a
+// renderer nothing is hit, as in OSL's testshade.
+int lobe_trace(lobe::ShaderGlobals* sg, const float* p, const float* dpdx, const float* dpdy,
+               const float* r, const float* drdx, const float* drdy,
+               const lobe::TraceOptions* opt) {
+  if (!sg || !sg->context) return 0;
+  lobe::TraceHit& h = sg->context->trace_hit;
+  h = lobe::TraceHit{};
+  h.traced = true;
+  const lobe::RendererServices* rs = sg->context->renderer;
+  if (!rs) return 0;
+  auto v3 = [](const float* f) { return lobe::Vec3{f[0], f[1], f[2]}; };
+  lobe::TraceOptions o = *opt;
+  if (!o.traceset) o.traceset = "";
+  bool hit = rs->trace(*sg, o, v3(p), v3(dpdx), v3(dpdy), v3(r), v3(drdx), v3(drdy), h);
+  h.traced = true;
+  h.hit = hit;
+  return hit ? 1 : 0;
+}
 
 // getattribute([object,] name, [index,] dest): OSL's own attributes first, then the renderer.
 // `object` is null when the shader named none. Returns 1 when `dest` was written.
@@ -186,11 +235,12 @@ void lobe_setmessage(lobe::ShaderGlobals* sg, const char* name, int code, int de
 
 // getmessage([source,] name, dest): 1 and `dest` written when this shade set `name` with a
 // value of exactly the destination's type (a color is not a vector, as in OSL); another type
-// is an error. Source "trace" asks for the hit of
-// the last trace(), which Lobe's shaders cannot cast: always 0, as is any other source.
+// is an error. Source "trace" reads the last trace() (trace_message); other sources give 0.
 int lobe_getmessage(lobe::ShaderGlobals* sg, const char* source, const char* name, int code,
                     int derivs, void* dest, const char* file, int line) {
   if (!sg || !sg->context || !name) return 0;
+  if (source && std::string_view(source) == "trace")
+    return trace_message(sg->context->trace_hit, name, code, derivs, dest);
   if (source && *source) return 0;
   lobe::detail::MessageStore& store = sg->context->messages();
   lobe::detail::MessageStore::Entry* e = store.find(name);

@@ -50,6 +50,7 @@ void lobe_get_userdata();
 void lobe_setmessage();
 void lobe_getmessage();
 void lobe_gettextureinfo();
+void lobe_trace();
 void lobe_texture3d();
 void lobe_environment();
 void lobe_splineinverse();
@@ -105,6 +106,7 @@ const ShadeOpSymbol kTable[] = {
     {"lobe_setmessage", addr(lobe_setmessage), "vppiippi"},
     {"lobe_getmessage", addr(lobe_getmessage), "ipppiippi"},
     {"lobe_gettextureinfo", addr(lobe_gettextureinfo), "ippppip"},
+    {"lobe_trace", addr(lobe_trace), "ipppppppp"},
     {"lobe_texture3d", addr(lobe_texture3d), "vppppppipp"},
     {"lobe_environment", addr(lobe_environment), "vppppppipp"},
     {"lobe_splineinverse", addr(lobe_splineinverse), "fpfpi"},

@@ -221,3 +221,39 @@ TEST(Environment, MissingMapIsALocatedError) {
   EXPECT_NE(e.find("e.json: /environment"), std::string::npos) << e;
   EXPECT_NE(e.find("/nonexistent/sky.hdr"), std::string::npos) << e;
 }
+
+// trace() from a shader reaches the Embree scene (SceneServices::trace): a sphere of radius
+// 0.5 at height 2 over a floor, traced from the floor's centre. Distances are closed forms.
+TEST(Services, TraceHitsTheSceneGeometry) {
+  auto s = test::setup_scene(R"({
+    "shapes": [{"type": "quad", "corner": [-3, 0, 3], "edge_x": [6, 0, 0], "edge_y": [0, 0, -6]},
+               {"type": "sphere", "center": [0, 2, 0], "radius": 0.5}]
+  })",
+                             8, 8);
+  ASSERT_TRUE(s);
+  ShaderGlobals sg{};
+  sg.Ng = sg.N = {0, 1, 0};
+  const RendererServices& rs = s->services();
+  TraceHit h;
+  TraceOptions opt;
+  Vec3 o{0, 0, 0}, z{0, 0, 0};
+  ASSERT_TRUE(rs.trace(sg, opt, o, z, z, {0, 3, 0}, z, z, h)); // |R| = 3: still unit distances
+  EXPECT_NEAR(h.hitdist, 1.5f, 1e-4f);
+  EXPECT_NEAR(h.P.y, 1.5f, 1e-4f);
+  EXPECT_NEAR(h.N.y, -1.0f, 1e-4f);
+  EXPECT_NEAR(h.Ng.y, -1.0f, 1e-4f);
+  opt.maxdist = 1.4f; // ends short of the sphere
+  EXPECT_FALSE(rs.trace(sg, opt, o, z, z, {0, 1, 0}, z, z, h));
+  opt.maxdist = 10;
+  opt.mindist = 1.6f; // starts inside it: the far side, at height 2.5
+  ASSERT_TRUE(rs.trace(sg, opt, o, z, z, {0, 1, 0}, z, z, h));
+  EXPECT_NEAR(h.hitdist, 2.5f, 1e-4f);
+  opt.mindist = 0;
+  // Sideways, past the sphere's edge at x = 0.5 + a little: nothing; a ray down from above
+  // the floor lands on it (the floor does not hide rays that leave it upwards).
+  EXPECT_FALSE(rs.trace(sg, opt, {0.51f, 0, 0}, z, z, {0, 1, 0}, z, z, h));
+  ShaderGlobals above{};
+  ASSERT_TRUE(rs.trace(above, opt, {1, 1, 1}, z, z, {0, -2, 0}, z, z, h));
+  EXPECT_NEAR(h.hitdist, 1.0f, 1e-4f);
+  EXPECT_NEAR(h.P.y, 0.0f, 1e-4f);
+}

@@ -3,6 +3,7 @@
 // thread; reset() between shading points. Never shared between threads.
 #pragma once
 
+#include "lobe/renderer_services.h"
 #include "lobe/shading.h"
 
 #include <cstddef>
@@ -14,7 +15,6 @@
 
 namespace lobe {
 
-class RendererServices;
 namespace detail {
 struct MessageStore;
 }
@@ -48,8 +48,11 @@ public:
   int warnings = 0;
   uint64_t closures_dropped = 0;
 
-  // The renderer's answers to user data and getattribute (renderer_services.h); null: none.
+  // The renderer's answers to user data, getattribute and trace (renderer_services.h);
+  // null: none.
   const RendererServices* renderer = nullptr;
+  // The last trace() of the current shade (Material::shade clears it).
+  TraceHit trace_hit;
 
   // setmessage/getmessage storage of the current shade() (Material::shade clears it).
   detail::MessageStore& messages();

@@ -1,5 +1,6 @@
 // What a renderer tells shaders about the scene: user data (per-primitive values bound to
-// parameters declared `[[ int lockgeom = 0 ]]`) and attributes (`getattribute`).
+// parameters declared `[[ int lockgeom = 0 ]]`), attributes (`getattribute`) and rays
+// (`trace`).
 //
 // A renderer derives from RendererServices and sets ShadingContext::renderer on each thread's
 // context. Both calls happen during Material::shade, on the shading thread, so an
@@ -42,6 +43,23 @@ struct DataType {
   bool operator==(const DataType&) const = default;
 };
 
+// trace()'s keyword arguments.
+struct TraceOptions {
+  float mindist = 0;         // the ray starts this far from P
+  float maxdist = 1e30f;     // and ends this far
+  bool shade = false;        // "shade": OSL runs the hit's shader; Lobe's renderers do not
+  const char* traceset = ""; // "traceset": a renderer-defined subset of the scene
+};
+
+// What trace() found; getmessage("trace", name, dest) reads it (ShadingContext::trace_hit).
+struct TraceHit {
+  bool traced = false; // a trace() ran in this shade
+  bool hit = false;
+  float hitdist = 0;
+  Vec3 P, N, Ng; // hit position, shading and geometric normal (unit)
+  float u = 0, v = 0;
+};
+
 class RendererServices {
 public:
   virtual ~RendererServices() = default;
@@ -63,6 +81,16 @@ public:
                              std::string_view name, int index, DataType type, bool derivatives,
                              void* val) const {
     (void)sg, (void)object, (void)name, (void)index, (void)type, (void)derivatives, (void)val;
+    return false;
+  }
+
+  // trace(P, R, ...): casts a ray from P along R (not normalised) with its differentials; true
+  // when it hits something, with `hit` filled (hit.hit set, hitdist in units of |R| = 1).
+  virtual bool trace(const ShaderGlobals& sg, const TraceOptions& opt, const Vec3& P,
+                     const Vec3& dPdx, const Vec3& dPdy, const Vec3& R, const Vec3& dRdx,
+                     const Vec3& dRdy, TraceHit& hit) const {
+    (void)sg, (void)opt, (void)P, (void)dPdx, (void)dPdy, (void)R, (void)dRdx, (void)dRdy,
+        (void)hit;
     return false;
   }
 };
