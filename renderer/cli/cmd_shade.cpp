@@ -29,6 +29,7 @@
 #include "shader_source.h"
 
 #include <chrono>
+#include <climits>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -46,6 +47,8 @@ struct UserDatum {
   std::string name;
   lobe::DataType type;
   std::vector<std::string> words; // the value's words; one broadcasts to every component
+  std::vector<float> floats;      // the words as numbers, parsed once (not for strings)
+  std::vector<int32_t> ints;
 };
 
 // "float", "color", "int[2]", "string", ...; nullopt for anything else.
@@ -123,13 +126,13 @@ private:
     if (!same) return false;
     int n = want.elements() * want.components();
     for (int k = 0; k < n; ++k) {
-      const std::string& w = d.words[d.words.size() == 1 ? 0 : size_t(k)];
+      size_t at = d.words.size() == 1 ? 0 : size_t(k);
       if (want.base == lobe::DataType::Base::Int)
-        static_cast<int32_t*>(val)[k] = int32_t(std::strtol(w.c_str(), nullptr, 10));
+        static_cast<int32_t*>(val)[k] = d.ints[at];
       else if (want.base == lobe::DataType::Base::String)
-        static_cast<const char**>(val)[k] = w.c_str();
+        static_cast<const char**>(val)[k] = d.words[at].c_str();
       else
-        static_cast<float*>(val)[k] = std::strtof(w.c_str(), nullptr);
+        static_cast<float*>(val)[k] = d.floats[at];
     }
     return true;
   }
@@ -217,6 +220,18 @@ int parse_args(int argc, char** argv, Options& o) {
       size_t n = t ? size_t(t->elements() * t->components()) : 0;
       bool fits = t && (d.words.size() == n ||
                         (d.words.size() == 1 && t->base != lobe::DataType::Base::String));
+      for (const std::string& w : d.words) { // numbers must be numbers
+        if (!fits || t->base == lobe::DataType::Base::String) break;
+        char* end = nullptr;
+        if (t->base == lobe::DataType::Base::Int) {
+          long v = std::strtol(w.c_str(), &end, 10);
+          fits = *end == 0 && v >= INT32_MIN && v <= INT32_MAX;
+          d.ints.push_back(int32_t(v));
+        } else {
+          d.floats.push_back(std::strtof(w.c_str(), &end));
+          fits = *end == 0;
+        }
+      }
       if (!fits) {
         std::fprintf(stderr, "lobe shade: %s: '%s' is not a value of type %s\n", a.c_str(),
                      argv[i + 2], type.c_str());

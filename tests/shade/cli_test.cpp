@@ -78,6 +78,11 @@ TEST(ShadeCli, UserDataAndAttributes) {
             std::string::npos);
   EXPECT_NE(run("-param:lockgeom=2 s 1 userdata_print").find("unknown modifier ':lockgeom=2'"),
             std::string::npos);
+  EXPECT_NE(
+      run("--userdata:type=int fixed 1.5 userdata_print").find("'1.5' is not a value of type int"),
+      std::string::npos);
+  EXPECT_NE(run("--userdata fixed abc userdata_print").find("'abc' is not a value of type float"),
+            std::string::npos);
 }
 
 // `float a[] = {1, 2}` stays unsized: an instance value of another length sets arraylength.
