@@ -86,6 +86,22 @@ inline float bits_to_01(uint32_t bits) {
 
 inline int ifloor(float x) { return int(std::floor(x)); }
 
+// Inputs of gradient and simplex noise, made safe for ifloor: an infinite or NaN coordinate
+// becomes 0, one of magnitude 2^24 or more (where every float is an integer, so the noise has
+// no detail left to show) is wrapped modulo 2^24, exactly. Below 2^24 nothing changes.
+inline float lattice_safe(float x) {
+  if (!std::isfinite(x)) return 0.0f;
+  constexpr float kWrap = 16777216.0f;
+  return std::fabs(x) < kWrap ? x : std::fmod(x, kWrap);
+}
+
+// floor as a lattice key for cell noise: int64 first, so that any finite input is defined
+// (the key wraps modulo 2^32, like OSL's int conversion in range); non-finite inputs give 0.
+inline uint32_t cell_key(float x) {
+  if (!std::isfinite(x) || std::fabs(x) >= 9.2e18f) return 0;
+  return uint32_t(int64_t(std::floor(x)));
+}
+
 // OSL's wrap(): s modulo floor(period) (period at least 1), in float.
 inline float wrapf(float s, float period) {
   period = std::floor(period);
@@ -94,8 +110,9 @@ inline float wrapf(float s, float period) {
 }
 
 inline int period_of(float p) {
-  int q = ifloor(p);
-  return q < 1 ? 1 : q;
+  if (!(p >= 1.0f)) return 1;            // also NaN
+  if (p >= 16777216.0f) return 16777216; // inputs wrap at 2^24 anyway (lattice_safe)
+  return ifloor(p);
 }
 
 inline int imod(int a, int b) {
@@ -378,6 +395,9 @@ void lobe_noise(int kind, const float* x, int nin, const float* period, float* o
   using namespace lobe::shadeops;
   bool simplex_kind = kind == kSimplex || kind == kUSimplex;
   if (simplex_kind || kind == kPerlin || kind == kUPerlin) {
+    float safe[4];
+    for (int k = 0; k < nin && k < 4; ++k) safe[k] = lattice_safe(x[k]);
+    x = safe;
     // Simplex noise has no periodic form (OSL has none; the name dispatch rejects
     // pnoise("simplex")), so `period` only applies to gradient noise.
     int per[4];
@@ -400,7 +420,7 @@ void lobe_noise(int kind, const float* x, int nin, const float* period, float* o
   for (int i = 0; i < nin; ++i) {
     float xi = period ? wrapf(x[i], period[i]) : x[i];
     if (kind == kCell) {
-      k[i] = uint32_t(ifloor(xi));
+      k[i] = cell_key(xi);
     } else {
       std::memcpy(&k[i], &xi, 4);
     }

@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -466,6 +467,43 @@ TEST(Noise, SimplexChannelsAndUnsigned) {
 // noise(name, ...) with a run-time name dispatches to the same kind as the constant case; an
 // unknown name gives 0 (and a zero gradient) and reports a run-time error with the location.
 // Simplex noise has no periodic form (as in OSL), so pnoise("simplex") is an unknown name.
+// Huge, infinite and NaN coordinates (and periods) give finite noise in range, never NaN or
+// undefined behaviour: gradient and simplex noise wrap coordinates beyond 2^24, where every
+// float is an integer; cell noise keys on a 64-bit floor.
+TEST(Noise, HugeAndNonFiniteInputsStayFinite) {
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float bad[] = {3e9f, -3e9f, 1e20f, -1e38f, 16777216.0f, inf, -inf, nan};
+  for (int kind : {kPerlin, kUPerlin, kSimplex, kUSimplex, kCell, kHash})
+    for (int n = 1; n <= 4; ++n)
+      for (float b : bad) {
+        float x[4] = {0.3f, 1.7f, -2.2f, 0.9f};
+        x[n - 1] = b;
+        float per[4] = {b, 4, 4, 4};
+        float out[3], g[12];
+        lobe_noise(kind, x, n, nullptr, out, 3, g);
+        bool is_signed = kind == kPerlin || kind == kSimplex;
+        for (int j = 0; j < 3; ++j) {
+          EXPECT_TRUE(std::isfinite(out[j])) << kind << " " << n << " " << b;
+          EXPECT_GE(out[j], is_signed ? -1.0f : 0.0f) << kind << " " << n << " " << b;
+          EXPECT_LE(out[j], 1.0f) << kind << " " << n << " " << b;
+        }
+        for (float d : g) EXPECT_TRUE(std::isfinite(d)) << kind << " " << n << " " << b;
+        if (kind == kSimplex || kind == kUSimplex) continue; // no periodic form
+        lobe_noise(kind, x, n, per, out, 1, nullptr);
+        EXPECT_TRUE(std::isfinite(out[0])) << "periodic " << kind << " " << n << " " << b;
+      }
+  // Where every float is an integer, gradient noise is on the lattice: 0.
+  float x[3] = {3e9f, 5e9f, -7e9f}, v = 1;
+  lobe_noise(kPerlin, x, 3, nullptr, &v, 1, nullptr);
+  EXPECT_EQ(v, 0.0f);
+  // Cell noise still tells big cells apart.
+  float c1, c2, a = 3e9f, b = 3.0000003e9f;
+  lobe_noise(kCell, &a, 1, nullptr, &c1, 1, nullptr);
+  lobe_noise(kCell, &b, 1, nullptr, &c2, 1, nullptr);
+  EXPECT_NE(c1, c2);
+}
+
 TEST(Noise, NamedDispatchAndUnknownName) {
   const std::pair<const char*, int> names[] = {
       {"perlin", kPerlin},  {"snoise", kPerlin},     {"simplex", kSimplex}, {"uperlin", kUPerlin},
