@@ -241,6 +241,7 @@ void Sema::apply_candidate(ast::CallExpr* e, const Candidate& c) {
     e->num_positional = int(n);
     for (size_t i = n; i + 1 < e->args.size(); i += 2) {
       auto* name = static_cast<ast::StringLit*>(e->args[i].get());
+      check_builtin_keyword(e, name, e->args[i + 1]);
       auto it = std::find_if(e->keywords.begin(), e->keywords.end(),
                              [&](const ast::KeywordArg& k) { return k.name == name->value; });
       if (it != e->keywords.end())
@@ -249,6 +250,78 @@ void Sema::apply_candidate(ast::CallExpr* e, const Candidate& c) {
         e->keywords.push_back({name->value, -1, e->args[i + 1].get()});
     }
   }
+}
+
+namespace {
+// The optional arguments OSL's texture functions and trace() take, with their types. `Float`
+// takes an int too; `Output` ones are written (an lvalue of that type).
+struct BuiltinKeyword {
+  const char* function; // "texture" also covers texture3d and environment
+  const char* name;
+  ast::BaseType type;
+  bool output = false;
+  bool or_string = false; // subimage: an index or a name
+};
+const BuiltinKeyword kBuiltinKeywords[] = {
+    {"texture", "blur", ast::BaseType::Float},
+    {"texture", "sblur", ast::BaseType::Float},
+    {"texture", "tblur", ast::BaseType::Float},
+    {"texture", "rblur", ast::BaseType::Float},
+    {"texture", "width", ast::BaseType::Float},
+    {"texture", "swidth", ast::BaseType::Float},
+    {"texture", "twidth", ast::BaseType::Float},
+    {"texture", "rwidth", ast::BaseType::Float},
+    {"texture", "wrap", ast::BaseType::String},
+    {"texture", "swrap", ast::BaseType::String},
+    {"texture", "twrap", ast::BaseType::String},
+    {"texture", "rwrap", ast::BaseType::String},
+    {"texture", "fill", ast::BaseType::Float},
+    {"texture", "firstchannel", ast::BaseType::Int},
+    {"texture", "subimage", ast::BaseType::Int, false, true},
+    {"texture", "interp", ast::BaseType::String},
+    {"texture", "missingcolor", ast::BaseType::Color},
+    {"texture", "missingalpha", ast::BaseType::Float},
+    {"texture", "time", ast::BaseType::Float},
+    {"texture", "alpha", ast::BaseType::Float, true},
+    {"texture", "errormessage", ast::BaseType::String, true},
+    {"trace", "mindist", ast::BaseType::Float},
+    {"trace", "maxdist", ast::BaseType::Float},
+    {"trace", "shade", ast::BaseType::Int},
+    {"trace", "traceset", ast::BaseType::String},
+};
+} // namespace
+
+// A builtin's `"keyword", value` pair: a keyword it takes, with a value of the right type
+// (converted to it), as OSL requires; codegen then reads each value as its type.
+void Sema::check_builtin_keyword(ast::CallExpr* e, const ast::StringLit* name, ExprPtr& value) {
+  std::string fn = e->name == "trace" ? "trace" : "texture";
+  const BuiltinKeyword* k = nullptr;
+  for (const BuiltinKeyword& b : kBuiltinKeywords)
+    if (fn == b.function && name->value == b.name) k = &b;
+  if (!k) {
+    error(DiagId::err_unknown_keyword, name->range, {name->value, e->name});
+    return;
+  }
+  Type want{k->type, 0};
+  if (k->or_string && value->type == Type{ast::BaseType::String, 0}) return;
+  if (k->output) {
+    if (!(value->type == want)) {
+      error(DiagId::err_keyword_type, value->range,
+            {name->value, e->name, tname(want), tname(value->type)});
+      return;
+    }
+    if (!value->lvalue)
+      error(DiagId::err_not_assignable, value->range);
+    else
+      check_writable(value.get(), value->range);
+    return;
+  }
+  if (!assignable(want, value->type) || value->type.is_array()) {
+    error(DiagId::err_keyword_type, value->range,
+          {name->value, e->name, tname(want), tname(value->type)});
+    return;
+  }
+  coerce(value, want);
 }
 
 // printf, format, error, warning, fprintf with a literal format string: the arguments must

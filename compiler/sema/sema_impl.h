@@ -94,6 +94,7 @@ private:
   void cast(ast::CastExpr* e);
   void construct(ExprPtr& e);
   bool check_writable(ast::Expr* target, SourceRange where);
+  void check_builtin_keyword(ast::CallExpr* e, const ast::StringLit* name, ExprPtr& value);
   ast::VarDecl* root_var(ast::Expr* e) const;
 
   // --- calls (sema_call.cpp)
