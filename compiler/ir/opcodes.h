@@ -145,7 +145,7 @@ inline constexpr OpcodeInfo kOpcodes[] = {
   {"texture", 4, kVariadic, 1, 12, kPropagates, "a = texture(\"file\", s, t, [dsdx dtdx dsdy dtdy], \"kw\" v...)"},
   {"texture3d", 3, kVariadic, 1, 4, kPropagates, "a = texture3d(\"file\", P, \"kw\" v...)"},
   {"environment", 3, kVariadic, 1, 4, kPropagates, "a = environment(\"file\", R, \"kw\" v...)"},
-  {"gettextureinfo", 4, 4, 3, 0, 0, "int a = query c of texture b into d... (b written)"},
+  {"gettextureinfo", 4, 4, 3, 0, kEffect, "int a = query d of texture c into b (reports errors)"},
   // ---- strings and messages ------------------------------------------------------------------
   {"printf", 1, kVariadic, 0, 0, kEffect, "print format a with args (OSL format rules)"},
   {"format", 2, kVariadic, 1, 0, kPure, "string a = format b with args"},
@@ -162,9 +162,9 @@ inline constexpr OpcodeInfo kOpcodes[] = {
   {"hash", 2, 3, 1, 0, kPure, "int a = hash of b"},
   {"regex_search", 3, 4, 1, 0, 0, "int a = regex search (subject, [results,] pattern)"},
   {"regex_match", 3, 4, 1, 0, 0, "int a = regex match"},
-  {"getattribute", 3, 5, 3, 0, 0, "int a = renderer attribute into b: (\"obj\"?, \"name\", [index])"},
+  {"getattribute", 3, 5, 3, 0, kEffect, "int a = renderer attribute into b: (\"obj\"?, \"name\", [index])"},
   {"setmessage", 2, 2, 0, 0, kEffect, "set message a to value b"},
-  {"getmessage", 3, 4, 3, 0, 0, "int a = message (\"source\"?, \"name\") into b"},
+  {"getmessage", 3, 4, 3, 0, kEffect, "int a = message (\"source\"?, \"name\") into b (remembered)"},
   {"trace", 3, kVariadic, 1, 6, kEffect, "int a = trace ray from b along c, \"kw\" v..."},
   // ---- shading-state queries ------------------------------------------------------------------
   {"raytype", 2, 2, 1, 0, 0, "int a = 1 if the ray has type name b"},

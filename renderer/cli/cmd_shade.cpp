@@ -85,6 +85,8 @@ public:
 
   bool get_userdata(const lobe::ShaderGlobals& sg, std::string_view name, lobe::DataType type,
                     bool derivatives, void* val) const override {
+    for (const UserDatum& d : data_) // the user's values first, even for "s" and "t"
+      if (d.name == name) return write(d, type, val);
     auto* f = static_cast<float*>(val);
     if ((name == "s" || name == "t") && type == lobe::DataType{}) {
       bool s = name == "s";
@@ -95,8 +97,6 @@ public:
       }
       return true;
     }
-    for (const UserDatum& d : data_)
-      if (d.name == name) return write(d, type, val);
     return false;
   }
 

@@ -48,6 +48,7 @@ struct LayerPlan {
   std::vector<bool> run_default;  // per symbol: the param's default ops must run
   std::vector<bool> userdata;     // per symbol: a lockgeom=0 param asks the renderer first
   std::string layer_name;         // for getattribute("shader:layername")
+  int group_index = 0;            // position among the group's layers (compiled or not)
   std::vector<ConnectionPlan> connections;
 };
 

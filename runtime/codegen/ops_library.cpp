@@ -10,6 +10,7 @@
 
 #include <llvm/IR/Constants.h>
 
+#include <climits>
 #include <cstdlib>
 #include <sstream>
 
@@ -431,6 +432,9 @@ llvm::Value* op_file(LayerEmitter& e, const ir::Op& op) {
   return e.string_const(op.loc.file.empty() ? e.shader().name : op.loc.file);
 }
 
+// The layer's position in the group as written (messages may only flow downstream).
+int layer_index(LayerEmitter& e) { return e.group().layers[size_t(e.layer())].group_index; }
+
 // Whether the destination (or source) symbol's derivative planes travel with the value.
 bool carries_derivs(LayerEmitter& e, int symbol) {
   const ir::Symbol& s = e.sym(symbol);
@@ -445,7 +449,7 @@ void op_getattribute(LayerEmitter& e, const ir::Op& op) {
   size_t strings = n - 2 - (indexed ? 1 : 0); // 1: name; 2: object and name
   llvm::Value* object = strings == 2 ? e.load(op.args[2])[0].v : null_ptr(e);
   llvm::Value* name = e.load(op.args[strings == 2 ? 3 : 2])[0].v;
-  llvm::Value* index = indexed ? e.load(op.args[n - 1])[0].v : e.iconst(-1);
+  llvm::Value* index = indexed ? e.load(op.args[n - 1])[0].v : e.iconst(INT_MIN); // none
   const std::string& group = e.group().group_name;
   const codegen::LayerPlan& lp = e.group().layers[size_t(e.layer())];
   llvm::Value* r =
@@ -466,7 +470,7 @@ void op_getmessage(LayerEmitter& e, const ir::Op& op) {
   llvm::Value* r = e.call(
       "lobe_getmessage", {e.sg(), source, name, e.iconst(LayerEmitter::type_code(e.sym(dest).type)),
                           e.iconst(carries_derivs(e, dest) ? 1 : 0), e.storage_address(dest),
-                          op_file(e, op), e.iconst(op.loc.line)});
+                          op_file(e, op), e.iconst(op.loc.line), e.iconst(layer_index(e))});
   e.store(op.args[0], e.convert(Val{Dual{r}}, BaseType::Int, e.arg(op, 0).type.base));
 }
 
@@ -529,7 +533,7 @@ void op_setmessage(LayerEmitter& e, const ir::Op& op) {
   e.call("lobe_setmessage",
          {e.sg(), e.load(op.args[0])[0].v, e.iconst(LayerEmitter::type_code(e.sym(src).type)),
           e.iconst(carries_derivs(e, src) ? 1 : 0), e.storage_address(src), op_file(e, op),
-          e.iconst(op.loc.line)});
+          e.iconst(op.loc.line), e.iconst(layer_index(e))});
 }
 
 // ---- textures -------------------------------------------------------------------------------

@@ -403,6 +403,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     size_t li = size_t(new_index[i]);
     const ir::Shader& sh = *out.shaders[li];
     codegen::LayerPlan& lp = out.plan.layers[li];
+    lp.group_index = int(i);
     std::set<std::string> connected;
     for (const Link& l : links)
       if (l.dst_layer == int(i)) {

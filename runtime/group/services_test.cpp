@@ -403,3 +403,75 @@ surface tr() {
 }
 
 } // namespace
+
+namespace {
+
+// Queries whose results go unused still happen, at every -O level: getmessage is remembered
+// (so the later setmessage is an error) and gettextureinfo reports its error.
+TEST_P(Services, UnusedQueriesStillCount) {
+  std::string up = write("up", "shader up(output float out = 0) { setmessage(\"m\", 2.0); "
+                               "out = 1; }\n");
+  std::string down = write("down", R"(
+surface down(float in = 0) {
+  float m = -1;
+  getmessage("m", m);
+  int r[2];
+  gettextureinfo("/nonexistent/lobe_no_such.exr", "resolution", r);
+  float x = in;
+}
+)");
+  lobe::ShaderGroup g;
+  g.layers.push_back({up, "up", {}});
+  g.layers.push_back({down, "down", {}});
+  g.connections.push_back({"up", "out", "down", "in"});
+  std::string out = shade(g, 1, nullptr);
+  EXPECT_NE(out.find("ERROR: [RendererServices::get_texture_info] "), std::string::npos) << out;
+  EXPECT_NE(out.find("ERROR: message \"m\" was queried before being set (queried here: "
+                     "down.osl:4) setting it now (up.osl:1)"),
+            std::string::npos)
+      << out;
+}
+
+// A message set by a later layer (which ran first, lazily) is not handed to an earlier one.
+TEST_P(Services, MessagesOnlyFlowDownstream) {
+  std::string up = write("up", R"(
+shader up(output float out = 0) {
+  float m = -1;
+  int got = getmessage("m", m);
+  printf("upstream got %d %g\n", got, m);
+  out = 1;
+}
+)");
+  std::string down = write("down", R"(
+surface down(float in = 0) {
+  setmessage("m", 2.0);
+  float x = in;
+}
+)");
+  lobe::ShaderGroup g;
+  g.layers.push_back({up, "up", {}});
+  g.layers.push_back({down, "down", {}});
+  g.connections.push_back({"up", "out", "down", "in"});
+  EXPECT_EQ(shade(g, 1, nullptr),
+            "ERROR: message \"m\" was set by layer #1 (down.osl:3) but is being queried by layer "
+            "#0 (up.osl:4) - messages may only be transferred from nodes that appear earlier in "
+            "the shading network\nupstream got 0 -1\n");
+}
+
+// An index the shader gives is an element number: a negative one finds nothing (and is not
+// taken for "no index").
+TEST_P(Services, NegativeAttributeIndexFindsNothing) {
+  std::string f = write("neg", R"(
+surface neg(int i = -1) {
+  float far = -3;
+  int a = getattribute("camera:clip", i, far);
+  int b = getattribute("camera:clip", 1, far);
+  printf("%d %d %g\n", a, b, far);
+}
+)");
+  TestServices rs;
+  EXPECT_EQ(shade(one(f), 1, &rs), "0 1 1000\n");
+  for (const std::string& a : rs.asked) EXPECT_EQ(a.find("[-1]"), std::string::npos) << a;
+}
+
+} // namespace

@@ -12,6 +12,7 @@
 #include "lobe/renderer_services.h"
 
 #include <algorithm>
+#include <climits>
 #include <cstring>
 #include <initializer_list>
 #include <string>
@@ -173,11 +174,17 @@ int lobe_trace(lobe::ShaderGlobals* sg, const float* p, const float* dpdx, const
 }
 
 // getattribute([object,] name, [index,] dest): OSL's own attributes first, then the renderer.
-// `object` is null when the shader named none. Returns 1 when `dest` was written.
+// `object` is null when the shader named none; `index` is INT_MIN when it gave no index. Returns 1
+// when `dest` was written.
 int lobe_getattribute(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* object,
                       const char* name, int index, int code, int derivs, void* dest,
                       const char* shadername, const char* layername, const char* groupname) {
   std::string_view obj = object ? object : "", nm = name ? name : "";
+  // Codegen passes INT_MIN for "no index"; an index the shader gave is never negative.
+  if (index == INT_MIN)
+    index = -1;
+  else if (index < 0)
+    return 0;
   int found = 0;
   if (obj.empty() &&
       builtin_attribute(nm, code, dest, env, shadername, layername, groupname, found))
@@ -203,9 +210,10 @@ int lobe_get_userdata(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, 
 
 // setmessage(name, value). A name can be set once per shade; setting one that an earlier
 // getmessage already asked for is an error too (the answer would depend on the layer order).
-// Both errors keep what the store had and name both places, in OSL's words.
+// Both errors keep what the store had and name both places, in OSL's words. `layer` is the
+// layer's index in the group, for getmessage's check that messages only flow downstream.
 void lobe_setmessage(lobe::ShaderGlobals* sg, const char* name, int code, int derivs,
-                     const void* src, const char* file, int line) {
+                     const void* src, const char* file, int line, int layer) {
   if (!sg || !sg->context || !name) return;
   lobe::detail::MessageStore& store = sg->context->messages();
   if (lobe::detail::MessageStore::Entry* e = store.find(name)) {
@@ -218,16 +226,18 @@ void lobe_setmessage(lobe::ShaderGlobals* sg, const char* name, int code, int de
                   ") setting it now (", where(file, line), ") would lead to inconsistent results"});
     return;
   }
-  size_t bytes = plane_bytes(code) * (derivs ? 3 : 1);
+  (void)derivs; // as OSL: messages carry values only; getmessage gives zero derivatives
+  size_t bytes = plane_bytes(code);
   lobe::detail::MessageStore::Entry e;
   e.name = name;
   e.type = code;
-  e.derivs = derivs != 0;
+  e.derivs = false;
   e.set = true;
   e.offset = uint32_t(store.data.size());
   e.bytes = uint32_t(bytes);
   e.file = file;
   e.line = line;
+  e.layer = layer;
   store.data.insert(store.data.end(), static_cast<const unsigned char*>(src),
                     static_cast<const unsigned char*>(src) + bytes);
   store.entries.push_back(e);
@@ -237,7 +247,7 @@ void lobe_setmessage(lobe::ShaderGlobals* sg, const char* name, int code, int de
 // value of exactly the destination's type (a color is not a vector, as in OSL); another type
 // is an error. Source "trace" reads the last trace() (trace_message); other sources give 0.
 int lobe_getmessage(lobe::ShaderGlobals* sg, const char* source, const char* name, int code,
-                    int derivs, void* dest, const char* file, int line) {
+                    int derivs, void* dest, const char* file, int line, int layer) {
   if (!sg || !sg->context || !name) return 0;
   if (source && std::string_view(source) == "trace")
     return trace_message(sg->context->trace_hit, name, code, derivs, dest);
@@ -250,7 +260,16 @@ int lobe_getmessage(lobe::ShaderGlobals* sg, const char* source, const char* nam
     q.type = code;
     q.file = file;
     q.line = line;
+    q.layer = layer;
     store.entries.push_back(q);
+    return 0;
+  }
+  if (e->set && e->layer > layer) { // a later layer ran first (lazily) and set it
+    report(sg, {"message \"", name, "\" was set by layer #", std::to_string(e->layer), " (",
+                where(e->file, e->line), ") but is being queried by layer #", std::to_string(layer),
+                " (", where(file, line),
+                ") - messages may only be transferred from nodes that appear earlier in the "
+                "shading network"});
     return 0;
   }
   if (e->type != code) {

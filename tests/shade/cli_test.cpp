@@ -71,6 +71,8 @@ TEST(ShadeCli, UserDataAndAttributes) {
                  "userdata_print"),
             "s 0.5 ds 1 0 t 0.5 dt 0 1 tint 0.5 0.25 2 label two words fixed 9 res 1 1 1 "
             "t-attr 1 0.5\n");
+  EXPECT_EQ(both("--userdata s 0.125 userdata_print"), // the user's "s" replaces testshade's
+            "s 0.125 ds 0 0 t 0.5 dt 0 1 tint 1 1 1 label none fixed 3 res 1 1 1 t-attr 1 0.5\n");
   EXPECT_EQ(both("--userdata fixed 9 -param fixed 4 userdata_print"),
             "s 0.5 ds 1 0 t 0.5 dt 0 1 tint 1 1 1 label none fixed 4 res 1 1 1 t-attr 1 0.5\n");
   EXPECT_NE(run("--userdata:type=color tint \"1 2\" userdata_print")

@@ -3,7 +3,7 @@
 // (`trace`).
 //
 // A renderer derives from RendererServices and sets ShadingContext::renderer on each thread's
-// context. Both calls happen during Material::shade, on the shading thread, so an
+// context. All calls happen during Material::shade, on the shading thread, so an
 // implementation must be safe to call from several threads at once (const, no shared state
 // written).
 //
@@ -45,7 +45,7 @@ struct DataType {
 
 // trace()'s keyword arguments.
 struct TraceOptions {
-  float mindist = 0;         // the ray starts this far from P
+  float mindist = 0;         // the ray starts this far from P (world units, along R / |R|)
   float maxdist = 1e30f;     // and ends this far
   bool shade = false;        // "shade": OSL runs the hit's shader; Lobe's renderers do not
   const char* traceset = ""; // "traceset": a renderer-defined subset of the scene
@@ -55,8 +55,8 @@ struct TraceOptions {
 struct TraceHit {
   bool traced = false; // a trace() ran in this shade
   bool hit = false;
-  float hitdist = 0;
-  Vec3 P, N, Ng; // hit position, shading and geometric normal (unit)
+  float hitdist = 0; // world distance from P to the hit
+  Vec3 P, N, Ng;     // hit position, shading and geometric normal (unit)
   float u = 0, v = 0;
 };
 
@@ -84,8 +84,9 @@ public:
     return false;
   }
 
-  // trace(P, R, ...): casts a ray from P along R (not normalised) with its differentials; true
-  // when it hits something, with `hit` filled (hit.hit set, hitdist in units of |R| = 1).
+  // trace(P, R, ...): casts a ray from P along the direction of R (R need not be unit length)
+  // with the differentials of both; true when it hits something between opt.mindist and
+  // opt.maxdist, with `hit`'s hitdist, P, N, Ng, u, v filled (Lobe sets `traced` and `hit`).
   virtual bool trace(const ShaderGlobals& sg, const TraceOptions& opt, const Vec3& P,
                      const Vec3& dPdx, const Vec3& dPdy, const Vec3& R, const Vec3& dRdx,
                      const Vec3& dRdy, TraceHit& hit) const {
