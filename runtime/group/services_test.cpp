@@ -143,6 +143,15 @@ protected:
     return out;
   }
 
+  // Layers "up" then "down", with up.out connected to down.in.
+  static lobe::ShaderGroup chain(const std::string& up, const std::string& down) {
+    lobe::ShaderGroup g;
+    g.layers.push_back({up, "up", {}});
+    g.layers.push_back({down, "down", {}});
+    g.connections.push_back({"up", "out", "down", "in"});
+    return g;
+  }
+
   lobe::ShaderGroup one(const std::string& path, std::vector<lobe::InstanceValue> values = {}) {
     lobe::ShaderGroup g;
     g.layers.push_back({path, fs::path(path).stem().string(), std::move(values)});
@@ -294,10 +303,7 @@ surface down(float in = 0) {
   setmessage("tint", color(0));
 }
 )");
-  lobe::ShaderGroup g;
-  g.layers.push_back({up, "up", {}});
-  g.layers.push_back({down, "down", {}});
-  g.connections.push_back({"up", "out", "down", "in"});
+  lobe::ShaderGroup g = chain(up, down);
   // u = 0, then 1: "right" exists only at the second point, so messages do not leak from one
   // shade to the next.
   EXPECT_EQ(shade(g, 2, nullptr),
@@ -325,10 +331,7 @@ surface down(float in = 0) {
   printf("%d %d %g %g\n", early, late, m, x);
 }
 )");
-  lobe::ShaderGroup g;
-  g.layers.push_back({up, "up", {}});
-  g.layers.push_back({down, "down", {}});
-  g.connections.push_back({"up", "out", "down", "in"});
+  lobe::ShaderGroup g = chain(up, down);
   // The upstream layer runs lazily, when `in` is first read: after the first query.
   EXPECT_EQ(shade(g, 1, nullptr),
             "ERROR: message \"m\" was queried before being set (queried here: down.osl:4) "
@@ -420,10 +423,7 @@ surface down(float in = 0) {
   float x = in;
 }
 )");
-  lobe::ShaderGroup g;
-  g.layers.push_back({up, "up", {}});
-  g.layers.push_back({down, "down", {}});
-  g.connections.push_back({"up", "out", "down", "in"});
+  lobe::ShaderGroup g = chain(up, down);
   std::string out = shade(g, 1, nullptr);
   EXPECT_NE(out.find("ERROR: [RendererServices::get_texture_info] "), std::string::npos) << out;
   EXPECT_NE(out.find("ERROR: message \"m\" was queried before being set (queried here: "
@@ -448,10 +448,7 @@ surface down(float in = 0) {
   float x = in;
 }
 )");
-  lobe::ShaderGroup g;
-  g.layers.push_back({up, "up", {}});
-  g.layers.push_back({down, "down", {}});
-  g.connections.push_back({"up", "out", "down", "in"});
+  lobe::ShaderGroup g = chain(up, down);
   EXPECT_EQ(shade(g, 1, nullptr),
             "ERROR: message \"m\" was set by layer #1 (down.osl:3) but is being queried by layer "
             "#0 (up.osl:4) - messages may only be transferred from nodes that appear earlier in "

@@ -114,35 +114,12 @@ extern "C" {
 int lobe_gettextureinfo(ShaderGlobals* sg, RuntimeEnv* env, const char* file, const char* query,
                         int code, void* dest) {
   int base = code & 0xff, arraylen = code >> 8;
-  OIIO::TypeDesc t;
-  switch (base) {
-  case 0:
-    t = OIIO::TypeDesc::INT;
-    break;
-  case 1:
-    t = OIIO::TypeDesc::FLOAT;
-    break;
-  case 2:
-    t = OIIO::TypeColor;
-    break;
-  case 3:
-    t = OIIO::TypePoint;
-    break;
-  case 4:
-    t = OIIO::TypeVector;
-    break;
-  case 5:
-    t = OIIO::TypeNormal;
-    break;
-  case 6:
-    t = OIIO::TypeMatrix;
-    break;
-  case 7:
-    t = OIIO::TypeDesc::STRING;
-    break;
-  default:
-    return 0; // closures are no texture information
-  }
+  // Lobe's base types in order: int float color point vector normal matrix string.
+  static const OIIO::TypeDesc kTypes[] = {
+      OIIO::TypeDesc::INT, OIIO::TypeDesc::FLOAT, OIIO::TypeColor,  OIIO::TypePoint,
+      OIIO::TypeVector,    OIIO::TypeNormal,      OIIO::TypeMatrix, OIIO::TypeDesc::STRING};
+  if (base < 0 || base >= int(std::size(kTypes))) return 0; // closures are no texture info
+  OIIO::TypeDesc t = kTypes[base];
   if (arraylen > 0) t.arraylen = arraylen;
   OIIO::TextureSystem* ts = texsys(env);
   size_t bytes = t.size();

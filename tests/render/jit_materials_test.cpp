@@ -19,6 +19,26 @@ using namespace lobe::render;
 
 namespace {
 
+// Renders a JSON scene at w x h and returns the mean of the green channel (and its error).
+double render_mean(const std::string& json, const MaterialCompiler& compile, int w, int h, int spp,
+                   int depth, double& err) {
+  std::string e;
+  auto desc = scene::parse_json_scene(json, "jit.json", e);
+  EXPECT_TRUE(desc) << e;
+  if (!desc) return -1;
+  RenderScene s;
+  e = s.setup(*desc, compile, w, h);
+  EXPECT_EQ(e, "");
+  if (!e.empty()) return -1;
+  RenderOptions opt;
+  opt.spp = spp;
+  opt.max_depth = depth;
+  auto r = test::render(s, w, h, opt);
+  double mean;
+  test::mean_and_error(r.img, 1, mean, err);
+  return mean;
+}
+
 double furnace_mean(const std::string& material, const MaterialCompiler& compile, double& err) {
   std::string json = R"({
     "camera": {"eye": [0, 0, 4], "look_at": [0, 0, 0], "fov": 12},
@@ -27,20 +47,7 @@ double furnace_mean(const std::string& material, const MaterialCompiler& compile
     "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}],
     "environment": {"type": "constant", "color": 1}
   })";
-  std::string e;
-  auto desc = scene::parse_json_scene(json, "jit.json", e);
-  EXPECT_TRUE(desc) << e;
-  RenderScene s;
-  e = s.setup(*desc, compile, 16, 16);
-  EXPECT_EQ(e, "");
-  if (!e.empty()) return -1;
-  RenderOptions opt;
-  opt.spp = 32;
-  opt.max_depth = 32;
-  auto r = test::render(s, 16, 16, opt);
-  double mean;
-  test::mean_and_error(r.img, 1, mean, err);
-  return mean;
+  return render_mean(json, compile, 16, 16, 32, 32, err);
 }
 
 } // namespace
@@ -194,19 +201,7 @@ surface ud_matte(color Cs = 0.75 [[ int lockgeom = 0 ]], float locked = 1) {
                        userdata + R"(}}],
       "environment": {"type": "constant", "color": 1}
     })";
-    std::string e;
-    auto desc = scene::parse_json_scene(json, "ud.json", e);
-    EXPECT_TRUE(desc) << e;
-    RenderScene s;
-    e = s.setup(*desc, jit.compiler(), 16, 8);
-    EXPECT_EQ(e, "");
-    RenderOptions opt;
-    opt.spp = 16;
-    opt.max_depth = 8;
-    auto r = test::render(s, 16, 8, opt);
-    double mean;
-    test::mean_and_error(r.img, 1, mean, err);
-    return mean;
+    return render_mean(json, jit.compiler(), 16, 8, 16, 8, err);
   };
   double e, m;
   m = mean_of("", "", e); // the default, and the camera matched (else half of it)
