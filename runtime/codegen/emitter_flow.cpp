@@ -103,10 +103,9 @@ void LayerEmitter::init_params() {
     const ir::Symbol& s = syms[i];
     llvm::Value* found = nullptr; // i1: the renderer had user data for it
     if (i < plan().userdata.size() && plan().userdata[i]) {
-      bool d = s.derivs && is_float_based(s.type.base);
       llvm::Value* r = call("lobe_get_userdata",
                             {sg_, env_ptr(), string_const(s.name), iconst(type_code(s.type)),
-                             iconst(d ? 1 : 0), storage_address(int(i))});
+                             iconst(s.derivs ? 1 : 0), storage_address(int(i))});
       found = b_.CreateICmpNE(r, iconst(0));
     }
     if (i < plan().run_default.size() && plan().run_default[i] && s.init_begin >= 0) {

@@ -435,12 +435,6 @@ llvm::Value* op_file(LayerEmitter& e, const ir::Op& op) {
 // The layer's position in the group as written (messages may only flow downstream).
 int layer_index(LayerEmitter& e) { return e.group().layers[size_t(e.layer())].group_index; }
 
-// Whether the destination (or source) symbol's derivative planes travel with the value.
-bool carries_derivs(LayerEmitter& e, int symbol) {
-  const ir::Symbol& s = e.sym(symbol);
-  return s.derivs && LayerEmitter::is_float_based(s.type.base);
-}
-
 // getattribute r dest ["object"] "name" [index]: the operand types tell the form.
 void op_getattribute(LayerEmitter& e, const ir::Op& op) {
   int dest = op.args[1];
@@ -455,9 +449,9 @@ void op_getattribute(LayerEmitter& e, const ir::Op& op) {
   llvm::Value* r =
       e.call("lobe_getattribute", {e.sg(), e.env_ptr(), object, name, index,
                                    e.iconst(LayerEmitter::type_code(e.sym(dest).type)),
-                                   e.iconst(carries_derivs(e, dest) ? 1 : 0),
-                                   e.storage_address(dest), e.string_const(e.shader().name),
-                                   e.string_const(lp.layer_name), e.string_const(group)});
+                                   e.iconst(e.wants_derivs(dest) ? 1 : 0), e.storage_address(dest),
+                                   e.string_const(e.shader().name), e.string_const(lp.layer_name),
+                                   e.string_const(group)});
   e.store(op.args[0], e.convert(Val{Dual{r}}, BaseType::Int, e.arg(op, 0).type.base));
 }
 
@@ -469,7 +463,7 @@ void op_getmessage(LayerEmitter& e, const ir::Op& op) {
   llvm::Value* name = e.load(op.args[sourced ? 3 : 2])[0].v;
   llvm::Value* r = e.call(
       "lobe_getmessage", {e.sg(), source, name, e.iconst(LayerEmitter::type_code(e.sym(dest).type)),
-                          e.iconst(carries_derivs(e, dest) ? 1 : 0), e.storage_address(dest),
+                          e.iconst(e.wants_derivs(dest) ? 1 : 0), e.storage_address(dest),
                           op_file(e, op), e.iconst(op.loc.line), e.iconst(layer_index(e))});
   e.store(op.args[0], e.convert(Val{Dual{r}}, BaseType::Int, e.arg(op, 0).type.base));
 }
@@ -493,7 +487,7 @@ void op_trace(LayerEmitter& e, const ir::Op& op) {
   B.CreateStore(e.fconst(defaults.mindist), at(offsetof(TraceOptions, mindist)));
   B.CreateStore(e.fconst(defaults.maxdist), at(offsetof(TraceOptions, maxdist)));
   B.CreateStore(B.getInt8(0), at(offsetof(TraceOptions, shade)));
-  B.CreateStore(null_ptr(e), at(offsetof(TraceOptions, traceset)));
+  B.CreateStore(e.string_const(defaults.traceset), at(offsetof(TraceOptions, traceset)));
   for (size_t i = 3; i + 1 < op.args.size(); i += 2) {
     std::string kw = const_string(e.arg(op, int(i)));
     int v = int(i + 1);
@@ -521,19 +515,18 @@ void op_gettextureinfo(LayerEmitter& e, const ir::Op& op) {
       e.call("lobe_gettextureinfo",
              {e.sg(), e.env_ptr(), e.load(op.args[2])[0].v, e.load(op.args[3])[0].v,
               e.iconst(LayerEmitter::type_code(e.sym(dest).type)), e.storage_address(dest)});
-  if (carries_derivs(e, dest)) // texture information is constant over the surface
+  if (e.wants_derivs(dest)) // texture information is constant over the surface
     for (int k = 0; k < std::max(1, e.sym(dest).type.arraylen); ++k)
       e.store(dest, e.load(dest, e.iconst(k), false), e.iconst(k));
   e.store(op.args[0], e.convert(Val{Dual{r}}, BaseType::Int, e.arg(op, 0).type.base));
 }
 
-// setmessage "name" value
+// setmessage "name" value (the value plane only: messages carry no derivatives)
 void op_setmessage(LayerEmitter& e, const ir::Op& op) {
   int src = op.args[1];
   e.call("lobe_setmessage",
          {e.sg(), e.load(op.args[0])[0].v, e.iconst(LayerEmitter::type_code(e.sym(src).type)),
-          e.iconst(carries_derivs(e, src) ? 1 : 0), e.storage_address(src), op_file(e, op),
-          e.iconst(op.loc.line), e.iconst(layer_index(e))});
+          e.storage_address(src), op_file(e, op), e.iconst(op.loc.line), e.iconst(layer_index(e))});
 }
 
 // ---- textures -------------------------------------------------------------------------------

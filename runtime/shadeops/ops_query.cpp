@@ -1,15 +1,12 @@
 // Shadeops that move typed values between a shader and the world around it: getattribute,
 // user data and trace (answered by the renderer's RendererServices), and
 // setmessage/getmessage between the layers of one shade (the ShadingContext's MessageStore).
-//
-// Types travel as one int code, base | arraylen << 8, with base the IR's BaseType (Int, Float,
-// Color, Point, Vector, Normal, Matrix, String, Closure: DataType::Base for the first eight).
-// Values are the symbol's storage: the value plane, then the d/dx and d/dy planes when the
-// symbol carries derivatives (`derivs`).
+// Types and values as typed_value.h describes them.
 #include "env.h"
 #include "lobe/context.h"
 #include "lobe/detail/messages.h"
 #include "lobe/renderer_services.h"
+#include "typed_value.h"
 
 #include <algorithm>
 #include <climits>
@@ -21,29 +18,24 @@
 
 namespace {
 
-constexpr int kClosureBase = 8;
-
-int base_of(int code) { return code & 0xff; }
-int arraylen_of(int code) { return code >> 8; }
-
-size_t plane_bytes(int code) {
-  int base = base_of(code);
-  if (base == kClosureBase) return size_t(std::max(1, arraylen_of(code))) * sizeof(void*);
-  lobe::DataType t{lobe::DataType::Base(base), arraylen_of(code)};
-  return t.bytes();
-}
+using lobe::shadeops::code_arraylen;
+using lobe::shadeops::code_base;
+using lobe::shadeops::code_type;
+using lobe::shadeops::fetch_value;
+using lobe::shadeops::kClosureBase;
+using lobe::shadeops::plane_bytes;
 
 std::string type_name(int code) {
-  if (base_of(code) == kClosureBase) {
+  if (code_base(code) == kClosureBase) {
     std::string s = "closure color";
-    if (arraylen_of(code) > 0) {
+    if (code_arraylen(code) > 0) {
       s += "[";
-      s += std::to_string(arraylen_of(code));
+      s += std::to_string(code_arraylen(code));
       s += "]";
     }
     return s;
   }
-  return lobe::DataType{lobe::DataType::Base(base_of(code)), arraylen_of(code)}.str();
+  return code_type(code).str();
 }
 
 std::string where(const char* file, int line) {
@@ -61,37 +53,6 @@ void report(lobe::ShaderGlobals* sg, std::initializer_list<std::string_view> pie
   for (std::string_view p : pieces) text += p;
   text += "\n";
   sg->context->message(text);
-}
-
-// Asks `ask(scratch)` for a value of type `code` and copies it to `dest` only on success, so
-// a renderer that writes part of a value and then says no leaves the shader's variable as it
-// was. Derivative planes start zeroed; strings are interned (the renderer's pointers need
-// only live through the call).
-template <class Ask>
-int fetch(lobe::shadeops::RuntimeEnv* env, int code, int derivs, void* dest, Ask ask) {
-  size_t plane = plane_bytes(code);
-  size_t total = plane * (derivs ? 3 : 1);
-  unsigned char local[512];
-  std::vector<unsigned char> heap;
-  unsigned char* scratch = local;
-  if (total > sizeof(local)) {
-    heap.assign(total, 0);
-    scratch = heap.data();
-  } else {
-    std::memset(local, 0, total);
-  }
-  if (!ask(scratch)) return 0;
-  if (base_of(code) == int(lobe::DataType::Base::String)) {
-    size_t n = plane / sizeof(const char*);
-    for (size_t i = 0; i < n; ++i) {
-      const char* s;
-      std::memcpy(&s, scratch + i * sizeof(s), sizeof(s));
-      s = env->strings.intern(s ? s : "");
-      std::memcpy(scratch + i * sizeof(s), &s, sizeof(s));
-    }
-  }
-  std::memcpy(dest, scratch, total);
-  return 1;
 }
 
 bool builtin_attribute(std::string_view name, int code, void* dest, lobe::shadeops::RuntimeEnv* env,
@@ -132,7 +93,7 @@ int trace_message(const lobe::TraceHit& h, std::string_view name, int code, int 
     return 1;
   };
   bool is_float = code == int(lobe::DataType::Base::Float);
-  bool is_triple = arraylen_of(code) == 0 && base_of(code) >= 2 && base_of(code) <= 5;
+  bool is_triple = code_arraylen(code) == 0 && code_base(code) >= 2 && code_base(code) <= 5;
   if (name == "hit" && code == int(lobe::DataType::Base::Int)) {
     int32_t v = h.hit ? 1 : 0;
     std::memcpy(dest, &v, sizeof(v));
@@ -159,18 +120,13 @@ int lobe_trace(lobe::ShaderGlobals* sg, const float* p, const float* dpdx, const
                const float* r, const float* drdx, const float* drdy,
                const lobe::TraceOptions* opt) {
   if (!sg || !sg->context) return 0;
-  lobe::TraceHit& h = sg->context->trace_hit;
-  h = lobe::TraceHit{};
-  h.traced = true;
   const lobe::RendererServices* rs = sg->context->renderer;
-  if (!rs) return 0;
   auto v3 = [](const float* f) { return lobe::Vec3{f[0], f[1], f[2]}; };
-  lobe::TraceOptions o = *opt;
-  if (!o.traceset) o.traceset = "";
-  bool hit = rs->trace(*sg, o, v3(p), v3(dpdx), v3(dpdy), v3(r), v3(drdx), v3(drdy), h);
+  lobe::TraceHit h;
+  h.hit = rs && rs->trace(*sg, *opt, v3(p), v3(dpdx), v3(dpdy), v3(r), v3(drdx), v3(drdy), h);
   h.traced = true;
-  h.hit = hit;
-  return hit ? 1 : 0;
+  sg->context->trace_hit = h;
+  return h.hit ? 1 : 0;
 }
 
 // getattribute([object,] name, [index,] dest): OSL's own attributes first, then the renderer.
@@ -189,22 +145,20 @@ int lobe_getattribute(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, 
   if (obj.empty() &&
       builtin_attribute(nm, code, dest, env, shadername, layername, groupname, found))
     return found;
-  if (!sg || !sg->context || !sg->context->renderer || base_of(code) == kClosureBase) return 0;
+  if (!sg || !sg->context || !sg->context->renderer || code_base(code) == kClosureBase) return 0;
   const lobe::RendererServices* rs = sg->context->renderer;
-  lobe::DataType t{lobe::DataType::Base(base_of(code)), arraylen_of(code)};
-  return fetch(env, code, derivs, dest, [&](void* val) {
-    return rs->get_attribute(*sg, obj, nm, index, t, derivs != 0, val);
+  return fetch_value(env, code, derivs, dest, [&](void* val) {
+    return rs->get_attribute(*sg, obj, nm, index, code_type(code), derivs != 0, val);
   });
 }
 
 // The user data bound to a `lockgeom = 0` parameter, when its layer starts.
 int lobe_get_userdata(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* name,
                       int code, int derivs, void* dest) {
-  if (!sg || !sg->context || !sg->context->renderer || base_of(code) == kClosureBase) return 0;
+  if (!sg || !sg->context || !sg->context->renderer || code_base(code) == kClosureBase) return 0;
   const lobe::RendererServices* rs = sg->context->renderer;
-  lobe::DataType t{lobe::DataType::Base(base_of(code)), arraylen_of(code)};
-  return fetch(env, code, derivs, dest, [&](void* val) {
-    return rs->get_userdata(*sg, name ? name : "", t, derivs != 0, val);
+  return fetch_value(env, code, derivs, dest, [&](void* val) {
+    return rs->get_userdata(*sg, name ? name : "", code_type(code), derivs != 0, val);
   });
 }
 
@@ -212,8 +166,8 @@ int lobe_get_userdata(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, 
 // getmessage already asked for is an error too (the answer would depend on the layer order).
 // Both errors keep what the store had and name both places, in OSL's words. `layer` is the
 // layer's index in the group, for getmessage's check that messages only flow downstream.
-void lobe_setmessage(lobe::ShaderGlobals* sg, const char* name, int code, int derivs,
-                     const void* src, const char* file, int line, int layer) {
+void lobe_setmessage(lobe::ShaderGlobals* sg, const char* name, int code, const void* src,
+                     const char* file, int line, int layer) {
   if (!sg || !sg->context || !name) return;
   lobe::detail::MessageStore& store = sg->context->messages();
   if (lobe::detail::MessageStore::Entry* e = store.find(name)) {
@@ -226,15 +180,12 @@ void lobe_setmessage(lobe::ShaderGlobals* sg, const char* name, int code, int de
                   ") setting it now (", where(file, line), ") would lead to inconsistent results"});
     return;
   }
-  (void)derivs; // as OSL: messages carry values only; getmessage gives zero derivatives
-  size_t bytes = plane_bytes(code);
+  size_t bytes = plane_bytes(code); // as OSL: the value only, no derivatives
   lobe::detail::MessageStore::Entry e;
   e.name = name;
   e.type = code;
-  e.derivs = false;
   e.set = true;
   e.offset = uint32_t(store.data.size());
-  e.bytes = uint32_t(bytes);
   e.file = file;
   e.line = line;
   e.layer = layer;
@@ -282,13 +233,7 @@ int lobe_getmessage(lobe::ShaderGlobals* sg, const char* source, const char* nam
   size_t plane = plane_bytes(code);
   const unsigned char* data = store.data.data() + e->offset;
   std::memcpy(dest, data, plane);
-  if (derivs) {
-    auto* d = static_cast<unsigned char*>(dest);
-    if (e->derivs)
-      std::memcpy(d + plane, data + plane, 2 * plane);
-    else
-      std::memset(d + plane, 0, 2 * plane);
-  }
+  if (derivs) std::memset(static_cast<unsigned char*>(dest) + plane, 0, 2 * plane);
   return 1;
 }
 

@@ -103,7 +103,7 @@ const ShadeOpSymbol kTable[] = {
     {"lobe_texture", addr(lobe_texture), "vpppffffffipppp"},
     {"lobe_getattribute", addr(lobe_getattribute), "ippppiiipppp"},
     {"lobe_get_userdata", addr(lobe_get_userdata), "ipppiip"},
-    {"lobe_setmessage", addr(lobe_setmessage), "vppiippii"},
+    {"lobe_setmessage", addr(lobe_setmessage), "vppippii"},
     {"lobe_getmessage", addr(lobe_getmessage), "ipppiippii"},
     {"lobe_gettextureinfo", addr(lobe_gettextureinfo), "ippppip"},
     {"lobe_trace", addr(lobe_trace), "ipppppppp"},

@@ -6,6 +6,7 @@
 #include "env.h"
 #include "lobe/context.h"
 #include "shadeops.h"
+#include "typed_value.h"
 
 #include <Imath/ImathVec.h>
 #include <OpenImageIO/texture.h>
@@ -109,23 +110,24 @@ extern "C" {
 
 // gettextureinfo(file, query, dest): OIIO's get_texture_info ("exists", "resolution",
 // "channels", "type", "textureformat", "datawindow", "averagecolor", any image metadata...)
-// into `dest` of type `code` (base | arraylen << 8, as ops_query.cpp). 1 when answered; a
-// failure other than an unreadable "exists" query reports OIIO's error, as OSL does.
+// into `dest` of type `code` (typed_value.h). 1 when answered; a failure reports OIIO's
+// error, as OSL does.
 int lobe_gettextureinfo(ShaderGlobals* sg, RuntimeEnv* env, const char* file, const char* query,
                         int code, void* dest) {
-  int base = code & 0xff, arraylen = code >> 8;
+  using namespace lobe::shadeops;
   // Lobe's base types in order: int float color point vector normal matrix string.
   static const OIIO::TypeDesc kTypes[] = {
       OIIO::TypeDesc::INT, OIIO::TypeDesc::FLOAT, OIIO::TypeColor,  OIIO::TypePoint,
       OIIO::TypeVector,    OIIO::TypeNormal,      OIIO::TypeMatrix, OIIO::TypeDesc::STRING};
+  int base = code_base(code);
   if (base < 0 || base >= int(std::size(kTypes))) return 0; // closures are no texture info
   OIIO::TypeDesc t = kTypes[base];
-  if (arraylen > 0) t.arraylen = arraylen;
+  if (code_arraylen(code) > 0) t.arraylen = code_arraylen(code);
   OIIO::TextureSystem* ts = texsys(env);
-  size_t bytes = t.size();
-  std::vector<unsigned char> scratch(bytes, 0); // dest stays as it was on failure
-  if (!ts->get_texture_info(OIIO::ustring(file ? file : ""), 0, OIIO::ustring(query ? query : ""),
-                            t, scratch.data())) {
+  return fetch_value(env, code, 0, dest, [&](void* val) {
+    if (ts->get_texture_info(OIIO::ustring(file ? file : ""), 0, OIIO::ustring(query ? query : ""),
+                             t, val))
+      return true;
     std::string err = ts->geterror();
     if (!err.empty() && sg && sg->context) {
       sg->context->errors++;
@@ -134,17 +136,8 @@ int lobe_gettextureinfo(ShaderGlobals* sg, RuntimeEnv* env, const char* file, co
       msg += "\n";
       sg->context->message(msg);
     }
-    return 0;
-  }
-  if (base == 7) // OIIO hands out ustring characters; Lobe's strings are its own interned ones
-    for (size_t k = 0; k < bytes / sizeof(const char*); ++k) {
-      const char* s;
-      std::memcpy(&s, scratch.data() + k * sizeof(s), sizeof(s));
-      s = env->strings.intern(s ? s : "");
-      std::memcpy(scratch.data() + k * sizeof(s), &s, sizeof(s));
-    }
-  std::memcpy(dest, scratch.data(), bytes);
-  return 1;
+    return false;
+  });
 }
 
 } // extern "C"

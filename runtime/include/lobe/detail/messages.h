@@ -12,9 +12,8 @@ struct MessageStore {
   struct Entry {
     const char* name = nullptr; // interned: equal names are equal pointers
     int32_t type = 0;           // type code (base | arraylen << 8, as codegen passes it)
-    bool derivs = false;        // data holds d/dx and d/dy planes after the value
     bool set = false;           // false: queried before anything set it
-    uint32_t offset = 0, bytes = 0;
+    uint32_t offset = 0;        // of the value (no derivatives) in `data`
     const char* file = nullptr; // where it was set (or first queried)
     int32_t line = 0;
     int32_t layer = -1;
