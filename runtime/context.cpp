@@ -6,6 +6,10 @@
 #include "lobe/detail/messages.h"
 #include "lobe/renderer_services.h"
 
+#include <algorithm>
+#include <cstdlib>
+#include <iterator>
+
 namespace lobe {
 
 ShadingContext::ShadingContext(size_t arena_bytes)
@@ -19,10 +23,34 @@ detail::MessageStore& ShadingContext::messages() {
   return *messages_;
 }
 
+void ShadingContext::begin_shade() {
+  if (messages_) messages_->clear(); // a material without messages never makes a store
+  trace_hit = TraceHit{};
+}
+
+namespace {
+const char* const kTypeNames[] = {"int",    "float",  "color",  "point",
+                                  "vector", "normal", "matrix", "string"};
+}
+
+std::optional<DataType> DataType::parse(std::string_view text) {
+  size_t br = text.find('[');
+  std::string_view name = text.substr(0, br);
+  DataType t;
+  auto it = std::find(std::begin(kTypeNames), std::end(kTypeNames), name);
+  if (it == std::end(kTypeNames)) return std::nullopt;
+  t.base = Base(it - std::begin(kTypeNames));
+  if (br != std::string_view::npos) {
+    std::string n(text.substr(br + 1));
+    if (text.back() != ']') return std::nullopt;
+    t.arraylen = std::atoi(n.c_str());
+    if (t.arraylen < 1) return std::nullopt;
+  }
+  return t;
+}
+
 std::string DataType::str() const {
-  static const char* const kNames[] = {"int",    "float",  "color",  "point",
-                                       "vector", "normal", "matrix", "string"};
-  std::string s = kNames[size_t(base)];
+  std::string s = kTypeNames[size_t(base)];
   if (arraylen > 0) { // appended piecewise: "[" + to_string(n) trips GCC 12's -Wrestrict
     s += "[";
     s += std::to_string(arraylen);

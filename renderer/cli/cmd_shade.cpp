@@ -51,30 +51,6 @@ struct UserDatum {
   std::vector<int32_t> ints;
 };
 
-// "float", "color", "int[2]", "string", ...; nullopt for anything else.
-std::optional<lobe::DataType> data_type(const std::string& text) {
-  using B = lobe::DataType::Base;
-  static const std::pair<const char*, B> kBases[] = {
-      {"int", B::Int},       {"float", B::Float},   {"color", B::Color},   {"point", B::Point},
-      {"vector", B::Vector}, {"normal", B::Normal}, {"matrix", B::Matrix}, {"string", B::String}};
-  size_t br = text.find('[');
-  std::string base = text.substr(0, br);
-  lobe::DataType t;
-  bool known = false;
-  for (auto& [n, b] : kBases)
-    if (base == n) {
-      t.base = b;
-      known = true;
-    }
-  if (!known) return std::nullopt;
-  if (br != std::string::npos) {
-    if (text.back() != ']') return std::nullopt;
-    t.arraylen = std::atoi(text.c_str() + br + 1);
-    if (t.arraylen < 1) return std::nullopt;
-  }
-  return t;
-}
-
 // lobe shade's renderer: testshade's "s" and "t" user data (u and v with their derivatives),
 // the --userdata values, and "camera:resolution" (the grid size). As in testshade, a
 // getattribute of a name it does not know, for the shaded object and without an index, is
@@ -211,7 +187,7 @@ int parse_args(int argc, char** argv, Options& o) {
       std::string type = "float";
       size_t c = a.find(":type=");
       if (c != std::string::npos) type = a.substr(c + 6);
-      std::optional<lobe::DataType> t = data_type(type);
+      std::optional<lobe::DataType> t = lobe::DataType::parse(type);
       UserDatum d{argv[i + 1], t.value_or(lobe::DataType{}), {}};
       bool one_string = t && t->base == lobe::DataType::Base::String && t->arraylen == 0;
       std::istringstream words(argv[i + 2]);

@@ -2,8 +2,6 @@
 // thread's ShadingContext (so shade() is re-entrant across threads), and reads outputs back.
 #include "material.h"
 
-#include "lobe/detail/messages.h"
-
 #include "closure_kernels.h"
 
 #include "lobe/context.h"
@@ -53,8 +51,7 @@ void MaterialImpl::shade(ShaderGlobals& sg) const {
   if (ctx->groupdata.size() < groupdata_.size()) ctx->groupdata.resize(groupdata_.size());
   std::memcpy(ctx->groupdata.data(), groupdata_.data(), groupdata_.size());
   ctx->groupdata_owner = this;
-  ctx->messages().clear(); // messages and trace results live for one shade
-  ctx->trace_hit = TraceHit{};
+  ctx->begin_shade();
   last_context_.store(ctx, std::memory_order_relaxed);
   entry_(&sg, ctx->groupdata.data());
 }

@@ -472,3 +472,15 @@ surface neg(int i = -1) {
 }
 
 } // namespace
+
+TEST(DataType, ParseIsTheReverseOfStr) {
+  for (const char* s : {"int", "float", "color", "point", "vector", "normal", "matrix", "string",
+                        "float[2]", "color[10]", "string[3]"}) {
+    std::optional<DataType> t = DataType::parse(s);
+    ASSERT_TRUE(t) << s;
+    EXPECT_EQ(t->str(), s);
+  }
+  EXPECT_EQ(DataType::parse("int[2]"), (DataType{B::Int, 2}));
+  for (const char* s : {"", "closure color", "floats", "float[0]", "float[", "float[2", "S"})
+    EXPECT_FALSE(DataType::parse(s)) << s;
+}

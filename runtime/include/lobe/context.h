@@ -51,11 +51,13 @@ public:
   // The renderer's answers to user data, getattribute and trace (renderer_services.h);
   // null: none.
   const RendererServices* renderer = nullptr;
-  // The last trace() of the current shade (Material::shade clears it).
+  // The last trace() of the current shade.
   TraceHit trace_hit;
 
-  // setmessage/getmessage storage of the current shade() (Material::shade clears it).
+  // setmessage/getmessage storage of the current shade(), created on first use.
   detail::MessageStore& messages();
+  // Forgets the previous shade's messages and trace result (Material::shade calls it).
+  void begin_shade();
 
 private:
   std::unique_ptr<detail::MessageStore> messages_;

@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -40,6 +41,8 @@ struct DataType {
   size_t bytes() const { return size_t(elements()) * size_t(components()) * scalar_bytes(); }
   // "float", "color", "float[2]", "string", ...
   std::string str() const;
+  // The reverse of str(); nullopt for anything else (closures, structs, "float[0]").
+  static std::optional<DataType> parse(std::string_view text);
   bool operator==(const DataType&) const = default;
 };
 
