@@ -291,6 +291,14 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       lengths[i][v.name] = len;
     }
 
+  // Params that take user data (before connections, which override them), per layer.
+  std::vector<std::set<std::string>> interp(n);
+  for (size_t i = 0; i < n; ++i)
+    for (const ir::Symbol& sym : sources[i]->symbols) {
+      auto lg = lockgeom[i].find(sym.name);
+      if (interpolated(sym, lg == lockgeom[i].end() ? -1 : lg->second)) interp[i].insert(sym.name);
+    }
+
   // Connections, by names.
   std::vector<Link> links;
   for (const Connection& c : group.connections) {
@@ -348,11 +356,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       if (l.dst_layer == int(i)) connected.insert(l.dst.symbol);
     // User data arrives at run time: those params stay params, as connected ones do.
     std::set<std::string> runtime_valued = connected;
-    for (const ir::Symbol& sym : sh->symbols) {
-      auto lg = lockgeom[i].find(sym.name);
-      if (interpolated(sym, lg == lockgeom[i].end() ? -1 : lg->second))
-        runtime_valued.insert(sym.name);
-    }
+    runtime_valued.insert(interp[i].begin(), interp[i].end());
     if (specialize) specialize_layer(*sh, values[i], runtime_valued);
     new_index[i] = int(out.shaders.size());
     out.shaders.push_back(std::move(sh));
@@ -429,9 +433,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       else
         write_value(out.groupdata.data() + lp.symbol_offset[s], sym, sym.init, out.plan.env);
       lp.run_default[s] = !has_value && !connected.count(sym.name) && sym.init_begin >= 0;
-      auto lg = lockgeom[i].find(sym.name);
-      lp.userdata[s] = !connected.count(sym.name) &&
-                       interpolated(sym, lg == lockgeom[i].end() ? -1 : lg->second);
+      lp.userdata[s] = !connected.count(sym.name) && interp[i].count(sym.name);
     }
     out.globals_read |= globals_mask(sh);
   }
