@@ -7,30 +7,43 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <span>
 
 namespace lobe::render {
 
-bool SceneServices::write(const scene::UserValue& v, DataType type, void* val) {
-  if (v.is_text) {
-    if (type != DataType{DataType::Base::String, 0}) return false;
-    *static_cast<const char**>(val) = v.text.c_str();
-    return true;
-  }
+namespace {
+
+// A string answers a string request; `text` must outlive the call.
+bool write_text(const char* text, DataType type, void* val) {
+  if (type != DataType{DataType::Base::String, 0}) return false;
+  *static_cast<const char**>(val) = text;
+  return true;
+}
+
+// Numbers answer int (whole numbers only), float, triple, matrix or array requests of their
+// count; one number is also a grey triple.
+bool write_numbers(std::span<const float> v, DataType type, void* val) {
   if (type.base == DataType::Base::String) return false;
   size_t n = size_t(type.elements()) * size_t(type.components());
-  if (v.numbers.size() == 1 && type.is_triple() && type.arraylen == 0) { // grey, as in scenes
-    std::fill_n(static_cast<float*>(val), 3, v.numbers[0]);
+  if (v.size() == 1 && type.is_triple() && type.arraylen == 0) { // grey, as in scenes
+    std::fill_n(static_cast<float*>(val), 3, v[0]);
     return true;
   }
-  if (v.numbers.size() != n) return false;
+  if (v.size() != n) return false;
   if (type.base == DataType::Base::Int) {
-    for (float x : v.numbers)
+    for (float x : v)
       if (x != std::floor(x) || std::abs(x) > 2147483520.0f) return false;
-    for (size_t k = 0; k < n; ++k) static_cast<int32_t*>(val)[k] = int32_t(v.numbers[k]);
+    for (size_t k = 0; k < n; ++k) static_cast<int32_t*>(val)[k] = int32_t(v[k]);
     return true;
   }
-  std::memcpy(val, v.numbers.data(), n * sizeof(float));
+  std::memcpy(val, v.data(), n * sizeof(float));
   return true;
+}
+
+} // namespace
+
+bool SceneServices::write(const scene::UserValue& v, DataType type, void* val) {
+  return v.is_text ? write_text(v.text.c_str(), type, val) : write_numbers(v.numbers, type, val);
 }
 
 bool SceneServices::get_userdata(const ShaderGlobals& sg, std::string_view name, DataType type,
@@ -47,28 +60,22 @@ bool SceneServices::get_attribute(const ShaderGlobals& sg, std::string_view obje
                                   std::string_view name, int index, DataType type, bool derivatives,
                                   void* val) const {
   if (!object.empty()) return false;
-  scene::UserValue v;
-  if (name == "camera:resolution")
-    v.numbers = {float(width_), float(height_)};
-  else if (name == "camera:fov")
-    v.numbers = {camera_.fov};
-  else if (name == "camera:pixelaspect")
-    v.numbers = {1.0f};
-  else if (name == "camera:projection") {
-    v.text = "perspective";
-    v.is_text = true;
-  } else
+  if (name == "camera:projection") return index < 0 && write_text("perspective", type, val);
+  float v[2];
+  size_t n = 1;
+  if (name == "camera:resolution") {
+    v[0] = float(width_), v[1] = float(height_);
+    n = 2;
+  } else if (name == "camera:fov") {
+    v[0] = camera_.fov;
+  } else if (name == "camera:pixelaspect") {
+    v[0] = 1.0f;
+  } else {
     return index < 0 && get_userdata(sg, name, type, derivatives, val);
-  if (index >= 0) { // one element of an array attribute
-    if (v.is_text || size_t(index) >= v.numbers.size() || type.arraylen != 0) return false;
-    v.numbers = {v.numbers[size_t(index)]};
   }
-  if (v.is_text) { // a literal: it outlives the call
-    if (type != DataType{DataType::Base::String, 0}) return false;
-    *static_cast<const char**>(val) = "perspective";
-    return true;
-  }
-  return write(v, type, val);
+  if (index < 0) return write_numbers({v, n}, type, val);
+  // One element of an array attribute.
+  return size_t(index) < n && type.arraylen == 0 && write_numbers({v + index, 1}, type, val);
 }
 
 bool SceneServices::trace(const ShaderGlobals& sg, const TraceOptions& opt, const Vec3& P,
