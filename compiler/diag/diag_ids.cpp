@@ -89,7 +89,7 @@ const Row kTable[] = {
         "subscripted value of type '%0' is not an array, triple or matrix"),
     ROW(err_index_not_int, Error, "index must be an int, not '%0'"),
     ROW(err_no_member, Error, "no member named '%1' in '%0'"),
-    ROW(err_bad_condition, Error, "condition of type '%0' is not int or float"),
+    ROW(err_bad_condition, Error, "a value of type '%0' cannot be used as a condition"),
     ROW(err_break_outside_loop, Error, "'%0' statement not in a loop"),
     ROW(err_unknown_keyword, Error, "unknown keyword argument '%0' for '%1'"),
     ROW(err_keyword_type, Error, "keyword argument '%0' of '%1' needs '%2', not '%3'"),

@@ -84,6 +84,7 @@ inline constexpr OpcodeInfo kOpcodes[] = {
   {"construct",    2, 18,         1, 0, kArith, "a = triple/matrix from components, optional leading space name"},
   // ---- closures ------------------------------------------------------------------------------
   {"closure",      2, kVariadic,  1, 0, kPure,  "a = closure \"key\" positional... \"kw\" value...; weight 1"},
+  {"declared_closure", 2, kVariadic, 1, 0, kPure, "a = closure the shader declared [[ builtin = 1 ]]: \"name\", npos, positional... \"kw\" value...; laid out by the operands' types"},
   // ---- control flow and bookkeeping ----------------------------------------------------------
   {"br",           0, 0,          0, 0, kJump,  "jump to jumps[0]"},
   {"cbr",          1, 1,          0, 0, kJump,  "if a != 0 jump to jumps[0] else to jumps[1]"},

@@ -207,6 +207,12 @@ void Verifier::types(const Op& o) {
   } else if (c == "closure") {
     expect(scalar(t(0), BaseType::Closure), "result must be a closure");
     expect(is_const_string(1), "second operand must be the registry key (a string constant)");
+  } else if (c == "declared_closure") {
+    expect(scalar(t(0), BaseType::Closure), "result must be a closure");
+    expect(is_const_string(1), "second operand must be the closure's name (a string constant)");
+    expect(o.args.size() >= 3 && scalar(t(2), BaseType::Int) &&
+               sh_.symbols[o.args[2]].kind == SymKind::Const,
+           "third operand must be the number of positional arguments (an int constant)");
   } else if (c == "cbr") {
     expect(numeric(t(0)), "condition " + name(0) + " must be int or float");
   } else if (c == "useparam") {

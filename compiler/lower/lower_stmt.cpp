@@ -294,16 +294,22 @@ int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
   return returns ? args[0] : -1;
 }
 
-int Lowerer::call_closure(const ast::CallExpr* c, const std::string& key, int hint) {
+// `closure` (a registry entry, by key) or `declared_closure` (one the shader declares with
+// [[ int builtin = 1 ]], by name, then its number of positional arguments: its operands'
+// types are its layout).
+int Lowerer::call_closure(const ast::CallExpr* c, const std::string& key, int hint,
+                          const char* opcode) {
   int dst = pick(hint, ir::Type{ir::BaseType::Closure});
   std::vector<int> args = {dst, ir::intern_string(sh_, key)};
   size_t npos = c->num_positional < 0 ? c->args.size() : size_t(c->num_positional);
+  if (std::string_view(opcode) == "declared_closure")
+    args.push_back(ir::intern_int(sh_, int(npos)));
   for (size_t i = 0; i < npos; ++i) args.push_back(rvalue(c->args[i].get()));
   for (const ast::KeywordArg& k : c->keywords) {
     args.push_back(ir::intern_string(sh_, k.name));
     args.push_back(rvalue(k.value));
   }
-  emit("closure", args, 1, c);
+  emit(opcode, args, 1, c);
   return dst;
 }
 
@@ -316,7 +322,7 @@ int Lowerer::call(const ast::CallExpr* c, int hint) {
   case ast::CalleeKind::User: {
     const ast::FunctionDecl* f = c->callee.function;
     if (f && !f->body) {
-      if (f->return_type.is_closure()) return call_closure(c, f->name, hint);
+      if (f->return_type.is_closure()) return call_closure(c, f->name, hint, "declared_closure");
       return call_builtin(c, hint);
     }
     std::vector<const ast::Expr*> args;

@@ -91,7 +91,8 @@ public:
   std::vector<int> call_user(const ast::FunctionDecl* f, const std::vector<const ast::Expr*>& args,
                              const ast::Node* where);
   int call_builtin(const ast::CallExpr* c, int hint);
-  int call_closure(const ast::CallExpr* c, const std::string& key, int hint);
+  int call_closure(const ast::CallExpr* c, const std::string& key, int hint,
+                   const char* opcode = "closure");
   int call_arith(const ast::CallExpr* c, int hint); // builtins lowered to arithmetic, or -2
   int floor_mod(const ast::CallExpr* c, int hint);  // OSL mod(): a - b*floor(a/b)
 

@@ -182,7 +182,11 @@ int Sema::candidate_cost(const Candidate& c, const std::vector<ExprPtr>& args) c
   }
   size_t n = params.size();
   using Extra = BuiltinSig::Extra;
-  Extra extra = c.builtin ? c.builtin->extra : Extra::None;
+  // A closure the shader declares itself ([[ int builtin = 1 ]]) takes keyword arguments of
+  // any name and type after its positional ones, as OSL's renderers register them.
+  Extra extra = c.builtin                   ? c.builtin->extra
+                : is_declared_closure(c.fn) ? Extra::Keywords
+                                            : Extra::None;
   if (args.size() < n || (extra == Extra::None && args.size() != n)) return -1;
   if (extra == Extra::Keywords) {
     if ((args.size() - n) % 2) return -1;
@@ -229,6 +233,12 @@ void Sema::apply_candidate(ast::CallExpr* e, const Candidate& c) {
     e->callee.kind = ast::CalleeKind::User;
     e->callee.function = c.fn;
     e->type = c.fn->return_type;
+    if (is_declared_closure(c.fn)) {
+      e->num_positional = int(n);
+      for (size_t i = n; i + 1 < e->args.size(); i += 2)
+        add_keyword(e, static_cast<ast::StringLit*>(e->args[i].get())->value, -1,
+                    e->args[i + 1].get());
+    }
     user_calls_.push_back(e);
     if (!functions_.empty()) edges_.push_back({functions_.back(), c.fn, e->name_range});
     return;
@@ -242,14 +252,24 @@ void Sema::apply_candidate(ast::CallExpr* e, const Candidate& c) {
     for (size_t i = n; i + 1 < e->args.size(); i += 2) {
       auto* name = static_cast<ast::StringLit*>(e->args[i].get());
       check_builtin_keyword(e, name, e->args[i + 1]);
-      auto it = std::find_if(e->keywords.begin(), e->keywords.end(),
-                             [&](const ast::KeywordArg& k) { return k.name == name->value; });
-      if (it != e->keywords.end())
-        it->value = e->args[i + 1].get(); // the last one wins
-      else
-        e->keywords.push_back({name->value, -1, e->args[i + 1].get()});
+      add_keyword(e, name->value, -1, e->args[i + 1].get());
     }
   }
+}
+
+bool Sema::is_declared_closure(const ast::FunctionDecl* f) {
+  return f && f->is_builtin && !f->body && f->return_type.is_closure();
+}
+
+// Records a keyword argument; given several times, the last one wins.
+void Sema::add_keyword(ast::CallExpr* e, const std::string& name, int param_index,
+                       ast::Expr* value) {
+  auto it = std::find_if(e->keywords.begin(), e->keywords.end(),
+                         [&](const ast::KeywordArg& k) { return k.name == name; });
+  if (it != e->keywords.end())
+    it->value = value;
+  else
+    e->keywords.push_back({name, param_index, value});
 }
 
 namespace {

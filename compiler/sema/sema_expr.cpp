@@ -92,6 +92,12 @@ void Sema::convert(ExprPtr& e, const Type& to) {
 
 void Sema::coerce(ExprPtr& e, const Type& to) {
   if (e->type == to || e->type.is_error() || to.is_error() || to.is_unsized_array()) return;
+  if (to.is_closure() && e->kind == ast::ExprKind::FloatLit) { // 0.0: the null closure, as 0
+    auto zero = std::make_unique<ast::IntLit>();
+    zero->range = e->range;
+    zero->type = t_int();
+    e = std::move(zero);
+  }
   auto c = std::make_unique<ast::CastExpr>();
   c->range = e->range;
   c->target = to;
@@ -159,8 +165,9 @@ void Sema::unary(ast::UnaryExpr* e) {
   case ast::UnaryOp::Plus:
     if (t.is_scalar_or_triple() || t.is_matrix() || t.is_closure()) e->type = t;
     break;
-  case ast::UnaryOp::Not:
-    if (t.is_numeric()) e->type = t_int();
+  case ast::UnaryOp::Not: // !x is !(x as a condition); "not" itself tests a closure for null
+    if (!t.is_closure()) truth(e->operand);
+    if (e->operand->type.is_numeric() || e->operand->type.is_closure()) e->type = t_int();
     break;
   case ast::UnaryOp::Compl:
     if (t.is_int()) e->type = t_int();
@@ -203,18 +210,17 @@ void Sema::binary(ast::BinaryExpr* e) {
     if (!operator_overload(e, ast::operator_name(e->op), {&e->lhs, &e->rhs}, e->overload)) fail();
     return;
   }
+  if (e->op == Op::LogicalAnd || e->op == Op::LogicalOr) {
+    truth(e->lhs);
+    truth(e->rhs);
+    if (e->lhs->type.is_numeric() && e->rhs->type.is_numeric()) e->type = t_int();
+    return;
+  }
   if (l.is_closure() || r.is_closure()) {
     if (!closure_binary(e)) fail();
     return;
   }
   switch (e->op) {
-  case Op::LogicalAnd:
-  case Op::LogicalOr:
-    if (l.is_numeric() && r.is_numeric())
-      e->type = t_int();
-    else
-      fail();
-    return;
   case Op::BitAnd:
   case Op::BitOr:
   case Op::BitXor:
@@ -395,7 +401,7 @@ void Sema::incdec(ast::IncDecExpr* e) {
 }
 
 void Sema::ternary(ast::TernaryExpr* e, const Type* expected) {
-  condition(e->cond);
+  condition(e->cond, /*allow_closure=*/false);
   expr(e->then_expr, expected);
   expr(e->else_expr, expected);
   const Type a = e->then_expr->type, b = e->else_expr->type;

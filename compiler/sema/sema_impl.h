@@ -68,7 +68,8 @@ private:
   // --- statements (sema_stmt.cpp)
   void stmt(ast::Stmt* s);
   void compound(ast::CompoundStmt* c, bool new_scope = true);
-  void condition(ExprPtr& e);
+  void condition(ExprPtr& e, bool allow_closure = true);
+  void truth(ExprPtr& e, bool allow_closure = true); // e becomes an int condition
 
   // --- expressions (sema_expr.cpp)
   void expr(ExprPtr& e, const ast::Type* expected = nullptr);
@@ -103,6 +104,8 @@ private:
   bool closure_call(ast::CallExpr* e);
   int candidate_cost(const Candidate& c, const std::vector<ExprPtr>& args) const;
   void apply_candidate(ast::CallExpr* e, const Candidate& c);
+  static bool is_declared_closure(const ast::FunctionDecl* f);
+  void add_keyword(ast::CallExpr* e, const std::string& name, int param_index, ast::Expr* value);
   void check_format_args(ast::CallExpr* e);
   void report_no_match(ast::CallExpr* e, const std::vector<Candidate>& cands, bool ambiguous);
   std::string arg_types(const std::vector<ExprPtr>& args) const;

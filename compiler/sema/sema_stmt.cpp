@@ -12,11 +12,48 @@ void Sema::compound(ast::CompoundStmt* c, bool new_scope) {
   if (new_scope) pop_scope();
 }
 
-// Conditions are int or float (non-zero is true).
-void Sema::condition(ExprPtr& e) {
+// A condition (if, while, for, do-while, ?:, !, &&, ||) follows OSL's truth rules: an int or
+// float is true when non-zero, a triple or matrix when any component is, a string when it is not
+// empty and a closure when it is not null (a closure is no condition for ?:, as in oslc). Anything
+// else is an error. A condition that is not an int or float becomes one here (`c != 0`,
+// `s != ""`, `!!cl`), so lowering and codegen only ever branch on numbers.
+void Sema::condition(ExprPtr& e, bool allow_closure) {
   expr(e);
-  if (!e->type.is_numeric() && !e->type.is_error())
-    error(DiagId::err_bad_condition, e->range, {ast::to_string(e->type)});
+  truth(e, allow_closure);
+}
+
+void Sema::truth(ExprPtr& e, bool allow_closure) {
+  const Type t = e->type;
+  if (t.is_error() || t.is_numeric()) return;
+  SourceRange r = e->range;
+  auto typed = [&](ExprPtr x, const Type& ty) {
+    x->range = r;
+    x->type = ty;
+    return x;
+  };
+  if (t.is_closure() && !t.is_array() && allow_closure) {
+    for (int k = 0; k < 2; ++k) { // !!cl: "not" tests a closure for null
+      auto n = std::make_unique<ast::UnaryExpr>();
+      n->op = ast::UnaryOp::Not;
+      n->operand = std::move(e);
+      e = typed(std::move(n), t_int());
+    }
+    return;
+  }
+  if (!t.is_array() && (t.is_triple() || t.is_matrix() || t.is_string())) {
+    auto ne = std::make_unique<ast::BinaryExpr>();
+    ne->op = ast::BinaryOp::Ne;
+    ne->lhs = std::move(e);
+    if (t.is_string()) {
+      ne->rhs = typed(std::make_unique<ast::StringLit>(), t_string());
+    } else {
+      ne->rhs = typed(std::make_unique<ast::FloatLit>(), t_float());
+      coerce(ne->rhs, t);
+    }
+    e = typed(std::move(ne), t_int());
+    return;
+  }
+  error(DiagId::err_bad_condition, r, {ast::to_string(t)});
 }
 
 void Sema::stmt(ast::Stmt* s) {

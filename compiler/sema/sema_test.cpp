@@ -378,9 +378,15 @@ TEST(Sema, RedefinitionHasNote) {
 
 TEST(Sema, ScopesLoopsAndConditions) {
   Checked c("shader s() { for (int i = 0; i < 3; ++i) { float i2 = i; } int j = i;"
-            " if (\"str\") {} while (P) {} }");
+            " float a[2]; if (a) {} closure color cc = 0; int k = cc ? 1 : 2; }");
   EXPECT_EQ(c.count(DiagId::err_undeclared), 1) << c.text();
+  // An array is no condition, nor a closure for ?: (oslc: "Cannot use a closure as a
+  // condition"); strings, triples, matrices and closures are (OSL's truth rules, below).
   EXPECT_EQ(c.count(DiagId::err_bad_condition), 2) << c.text();
+  Checked ok("shader s() { string s = \"x\"; matrix m = 1; closure color cc = 0;"
+             " if (s) {} while (P) {} for (; m; ) {} do {} while (N); if (cc) {} if (!cc) {}"
+             " int k = (N && s) || !m; float f = P ? 1 : 0; }");
+  EXPECT_TRUE(ok.ok()) << ok.text();
 }
 
 TEST(Sema, ShaderParamsDefaultsAndMetadata) {

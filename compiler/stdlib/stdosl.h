@@ -6,20 +6,20 @@
 #define STDOSL_H
 
 // Constants
-#define M_PI       3.1415926535897932
-#define M_PI_2     1.5707963267948966
-#define M_PI_4     0.7853981633974483
-#define M_2_PI     0.6366197723675813
-#define M_2PI      6.2831853071795865
-#define M_4PI      12.566370614359173
+#define M_PI 3.1415926535897932
+#define M_PI_2 1.5707963267948966
+#define M_PI_4 0.7853981633974483
+#define M_2_PI 0.6366197723675813
+#define M_2PI 6.2831853071795865
+#define M_4PI 12.566370614359173
 #define M_2_SQRTPI 1.1283791670955126
-#define M_E        2.7182818284590452
-#define M_LN2      0.6931471805599453
-#define M_LN10     2.3025850929940457
-#define M_LOG2E    1.4426950408889634
-#define M_LOG10E   0.4342944819032518
-#define M_SQRT2    1.4142135623730950
-#define M_SQRT1_2  0.7071067811865475
+#define M_E 2.7182818284590452
+#define M_LN2 0.6931471805599453
+#define M_LN10 2.3025850929940457
+#define M_LOG2E 1.4426950408889634
+#define M_LOG10E 0.4342944819032518
+#define M_SQRT2 1.4142135623730950
+#define M_SQRT1_2 0.7071067811865475
 
 // hypot
 float hypot(float a, float b) { return sqrt(a * a + b * b); }
@@ -49,6 +49,13 @@ vector mix(vector a, vector b, float t) { return a * (1 - t) + b * t; }
 normal mix(normal a, normal b, float t) { return a * (1 - t) + b * t; }
 closure color mix(closure color a, closure color b, float t) { return (1 - t) * a + t * b; }
 closure color mix(closure color a, closure color b, color t) { return (1 - t) * a + t * b; }
+
+// Closure overloads defined in the language, as OSL's stdosl.h defines them: each forwards to
+// the registry's closure, so it prints (and renders) as that closure.
+closure color microfacet(string distribution, normal N, float alpha, float eta, int refr) {
+  return microfacet(distribution, N, vector(0), alpha, alpha, eta, refr);
+}
+closure color reflection(normal N) { return reflection(N, 0.0); }
 
 // Directions
 normal faceforward(normal N, vector I, normal Nref) { return (dot(I, Nref) > 0) ? -N : N; }
@@ -96,7 +103,9 @@ point rotate(point p, float angle, point a, point b) {
   vector r = v * cosang + cross(axis, v) * sinang + axis * dot(axis, v) * (1 - cosang);
   return a + r;
 }
-point rotate(point p, float angle, vector axis) { return rotate(p, angle, point(0, 0, 0), point(axis)); }
+point rotate(point p, float angle, vector axis) {
+  return rotate(p, angle, point(0, 0, 0), point(axis));
+}
 
 // Steps
 float linearstep(float edge0, float edge1, float x) {
@@ -120,11 +129,16 @@ float smooth_linearstep(float edge0, float edge1, float x_, float eps_) {
     float width_inv = 1.0 / (edge1 - edge0);
     float eps = eps_ * width_inv;
     float x = (x_ - edge0) * width_inv;
-    if (x <= -eps) result = 0;
-    else if (x >= eps && x <= 1.0 - eps) result = x;
-    else if (x >= 1.0 + eps) result = 1;
-    else if (x < eps) result = rampup(x + eps, 2.0 * eps);
-    else result = 1.0 - rampup(1.0 - x + eps, 2.0 * eps);
+    if (x <= -eps)
+      result = 0;
+    else if (x >= eps && x <= 1.0 - eps)
+      result = x;
+    else if (x >= 1.0 + eps)
+      result = 1;
+    else if (x < eps)
+      result = rampup(x + eps, 2.0 * eps);
+    else
+      result = 1.0 - rampup(1.0 - x + eps, 2.0 * eps);
   } else {
     result = step(edge0, x_);
   }

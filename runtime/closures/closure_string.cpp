@@ -1,8 +1,10 @@
 // closure_to_string (bsdf.h): a closure tree in OSL's print format,
 //   (w0, w1, w2) * name ((Nx, Ny, Nz), arg, "kw", value)
 // one term per component with the product of the weights above it, terms joined by "\n\t+ ".
-// Keyword arguments are printed only when they differ from their registry default, so that
-// `diffuse(N)` prints as OSL prints it. A layer prints its two sub-closures in parentheses.
+// Keyword arguments are printed when they differ from their registry default or are marked
+// always_printed (the ones OSL's reference renderer registers), so that `diffuse(N)` prints
+// `diffuse ((0, 0, 1), "label", "")` as OSL prints it. A layer prints its two sub-closures in
+// parentheses.
 #include "closure_registry.h"
 #include "closures.h"
 #include "lobe/bsdf.h"
@@ -68,6 +70,55 @@ std::string fmt_value(ArgType t, const unsigned char* p) {
   return "";
 }
 
+// One argument of a shader-declared closure: arrays as [a, b, ...].
+std::string fmt_declared(const DeclaredClosureArg& a, const unsigned char* values) {
+  using B = DeclaredClosureArg::Base;
+  ArgType t = a.base == B::Int       ? ArgType::Int
+              : a.base == B::Float   ? ArgType::Float
+              : a.base == B::String  ? ArgType::String
+              : a.base == B::Closure ? ArgType::Closure
+                                     : ArgType::Vector;
+  size_t stride = a.base == B::Matrix                               ? 64
+                  : a.base == B::Triple                             ? 12
+                  : (t == ArgType::String || t == ArgType::Closure) ? 8
+                                                                    : 4;
+  auto one = [&](const unsigned char* p) {
+    if (a.base != B::Matrix) return fmt_value(t, p);
+    std::string s = "(";
+    for (int k = 0; k < 16; ++k) {
+      float v;
+      std::memcpy(&v, p + 4 * k, 4);
+      if (k) s += ", ";
+      s += fmt_float(v);
+    }
+    return s + ")";
+  };
+  const unsigned char* p = values + a.offset;
+  if (a.arraylen == 0) return one(p);
+  std::string s = "[";
+  for (int k = 0; k < a.arraylen; ++k) {
+    if (k) s += ", ";
+    s += one(p + size_t(k) * stride);
+  }
+  return s + "]";
+}
+
+std::string declared(const ClosureDeclared& c, const Color3& w) {
+  const DeclaredClosureInfo& info = *c.info;
+  std::string s = fmt_triple(w) + " * " + info.name + " (";
+  for (uint32_t i = 0; i < info.nargs; ++i) {
+    const DeclaredClosureArg& a = info.args[i];
+    if (i) s += ", ";
+    if (a.keyword) {
+      s.push_back('"');
+      s.append(a.keyword);
+      s.append("\", ");
+    }
+    s += fmt_declared(a, c.values());
+  }
+  return s + ")";
+}
+
 bool is_default(const registry::ClosureEntry& e, size_t i, const unsigned char* p) {
   closures::Params d(e.key);
   size_t off = registry::param_offset(e.params, i);
@@ -86,7 +137,7 @@ std::string component(int id, const unsigned char* p, const Color3& w) {
   bool first = true;
   for (size_t i = 0; i < e.params.size(); ++i) {
     const registry::ClosureParam& q = e.params[i];
-    if (q.keyword && is_default(e, i, p)) continue;
+    if (q.keyword && !q.always_printed && is_default(e, i, p)) continue;
     if (!first) s += ", ";
     first = false;
     if (q.keyword) {
@@ -108,6 +159,9 @@ void collect(const ClosureNode* node, const Color3& w, std::vector<std::string>&
   } else if (node->id == kClosureMul) {
     const auto* m = static_cast<const ClosureMul*>(node);
     collect(m->closure, w * m->weight, out, depth + 1);
+  } else if (node->id == kClosureDeclared) {
+    const auto* c = static_cast<const ClosureDeclared*>(node);
+    out.push_back(declared(*c, w * c->weight));
   } else if (node->id >= 0 && node->id < static_cast<int>(registry::closures().size())) {
     const auto* c = static_cast<const ClosureComponent*>(node);
     out.push_back(component(c->id, c->params(), w * c->weight));

@@ -69,13 +69,6 @@ template <class Fn> bool with_lobe(int id, const unsigned char* p, Fn&& fn) {
        f);
     return true;
   }
-  case kMicrofacet5Id: {
-    const auto& q = as<Microfacet5Params>(p);
-    if (!make_frame(q.N, f)) return false;
-    fn(make_microfacet(q.distribution, q.alpha, q.alpha, q.eta, q.refract, q.energy_compensation),
-       f);
-    return true;
-  }
   case kConductorId: {
     const auto& q = as<ConductorParams>(p);
     if (!make_frame(q.N, q.U, f)) return false;
@@ -94,16 +87,16 @@ template <class Fn> bool with_lobe(int id, const unsigned char* p, Fn&& fn) {
     fn(make_generalized_schlick(q), f);
     return true;
   }
-  case kReflectionId: {
-    if (!make_frame(as<DiffuseParams>(p).N, f)) return false;
-    fn(make_specular(0.0f, false), f);
+  case kReflectionId: { // eta 0 (OSL's reflection(N)): no Fresnel, a perfect mirror
+    const auto& q = as<ReflectionParams>(p);
+    if (!make_frame(q.N, f)) return false;
+    fn(make_specular(q.eta > 0.0f ? q.eta : 0.0f, false), f);
     return true;
   }
-  case kReflectionEtaId:
   case kRefractionId: {
-    const auto& q = as<ReflectionEtaParams>(p);
+    const auto& q = as<ReflectionParams>(p);
     if (!make_frame(q.N, f)) return false;
-    fn(make_specular(q.eta > 0.0f ? q.eta : 1.0f, id == kRefractionId), f);
+    fn(make_specular(q.eta > 0.0f ? q.eta : 1.0f, true), f);
     return true;
   }
   case kPhongId: {

@@ -165,8 +165,12 @@ TEST(EnergyTables, RederiveGgxEntries) {
 }
 
 TEST(EnergyTables, BeckmannEntriesMatchLobeQuadrature) {
-  Params p("microfacet_5");
-  p.set("distribution", "beckmann").set("alpha", 20.0f / 31.0f).set("eta", 1.0f).set("refract", 0);
+  Params p("microfacet");
+  p.set("distribution", "beckmann")
+      .set("xalpha", 20.0f / 31.0f)
+      .set("yalpha", 20.0f / 31.0f)
+      .set("eta", 1.0f)
+      .set("refract", 0);
   // Fresnel 1 through generalized_schlick with f0 = f90 = 1 and compensation off.
   Params g("generalized_schlick_bsdf");
   g.set("distribution", "beckmann")

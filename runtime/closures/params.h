@@ -59,15 +59,7 @@ struct MicrofacetParams {
   int energy_compensation;
   Str label;
 };
-struct Microfacet5Params {
-  Str distribution;
-  Vec3 N;
-  float alpha, eta;
-  int refract;
-  int energy_compensation;
-  Str label;
-};
-struct ReflectionEtaParams {
+struct ReflectionParams {
   Vec3 N;
   float eta;
   Str label;
@@ -142,9 +134,7 @@ LOBE_ID(kPhongId, "phong");
 LOBE_ID(kBlinnPhongId, "blinn_phong");
 LOBE_ID(kWardId, "ward");
 LOBE_ID(kMicrofacetId, "microfacet");
-LOBE_ID(kMicrofacet5Id, "microfacet_5");
 LOBE_ID(kReflectionId, "reflection");
-LOBE_ID(kReflectionEtaId, "reflection_eta");
 LOBE_ID(kRefractionId, "refraction");
 LOBE_ID(kConductorId, "conductor_bsdf");
 LOBE_ID(kDielectricId, "dielectric_bsdf");
@@ -163,12 +153,12 @@ LOBE_ID(kMeasuredId, "measured_bsdf");
 #undef LOBE_ID
 static_assert(kDiffuseId >= 0 && kOrenNayarId >= 0 && kOrenNayarDiffuseId >= 0 && kBurleyId >= 0 &&
                   kTranslucentId >= 0 && kTranslucentBsdfId >= 0 && kPhongId >= 0 &&
-                  kBlinnPhongId >= 0 && kWardId >= 0 && kMicrofacetId >= 0 && kMicrofacet5Id >= 0 &&
-                  kReflectionId >= 0 && kReflectionEtaId >= 0 && kRefractionId >= 0 &&
-                  kConductorId >= 0 && kDielectricId >= 0 && kGeneralizedSchlickId >= 0 &&
-                  kSheenId >= 0 && kTransparentId >= 0 && kTransparentBsdfId >= 0 &&
-                  kEmissionId >= 0 && kUniformEdfId >= 0 && kBackgroundId >= 0 && kHoldoutId >= 0 &&
-                  kDebugId >= 0 && kLayerId >= 0 && kToonId >= 0 && kMeasuredId >= 0,
+                  kBlinnPhongId >= 0 && kWardId >= 0 && kMicrofacetId >= 0 && kReflectionId >= 0 &&
+                  kRefractionId >= 0 && kConductorId >= 0 && kDielectricId >= 0 &&
+                  kGeneralizedSchlickId >= 0 && kSheenId >= 0 && kTransparentId >= 0 &&
+                  kTransparentBsdfId >= 0 && kEmissionId >= 0 && kUniformEdfId >= 0 &&
+                  kBackgroundId >= 0 && kHoldoutId >= 0 && kDebugId >= 0 && kLayerId >= 0 &&
+                  kToonId >= 0 && kMeasuredId >= 0,
               "every implementation names a registry entry");
 
 // True if the registry entry `key` has exactly these parameter offsets and a block size that
@@ -188,8 +178,6 @@ constexpr bool layout_is(const char* key, const size_t (&offsets)[K], size_t str
 static_assert(layout_is("diffuse", {O(DiffuseParams, N), O(DiffuseParams, label)},
                         sizeof(DiffuseParams)));
 static_assert(layout_is("translucent", {O(DiffuseParams, N), O(DiffuseParams, label)},
-                        sizeof(DiffuseParams)));
-static_assert(layout_is("reflection", {O(DiffuseParams, N), O(DiffuseParams, label)},
                         sizeof(DiffuseParams)));
 static_assert(layout_is("oren_nayar",
                         {O(OrenNayarParams, N), O(OrenNayarParams, sigma),
@@ -229,20 +217,14 @@ static_assert(layout_is("microfacet",
                          O(MicrofacetParams, refract), O(MicrofacetParams, energy_compensation),
                          O(MicrofacetParams, label)},
                         sizeof(MicrofacetParams)));
-static_assert(layout_is("microfacet_5",
-                        {O(Microfacet5Params, distribution), O(Microfacet5Params, N),
-                         O(Microfacet5Params, alpha), O(Microfacet5Params, eta),
-                         O(Microfacet5Params, refract), O(Microfacet5Params, energy_compensation),
-                         O(Microfacet5Params, label)},
-                        sizeof(Microfacet5Params)));
-static_assert(layout_is("reflection_eta",
-                        {O(ReflectionEtaParams, N), O(ReflectionEtaParams, eta),
-                         O(ReflectionEtaParams, label)},
-                        sizeof(ReflectionEtaParams)));
+static_assert(layout_is("reflection",
+                        {O(ReflectionParams, N), O(ReflectionParams, eta),
+                         O(ReflectionParams, label)},
+                        sizeof(ReflectionParams)));
 static_assert(layout_is("refraction",
-                        {O(ReflectionEtaParams, N), O(ReflectionEtaParams, eta),
-                         O(ReflectionEtaParams, label)},
-                        sizeof(ReflectionEtaParams)));
+                        {O(ReflectionParams, N), O(ReflectionParams, eta),
+                         O(ReflectionParams, label)},
+                        sizeof(ReflectionParams)));
 static_assert(layout_is("conductor_bsdf",
                         {O(ConductorParams, N), O(ConductorParams, U),
                          O(ConductorParams, roughness_x), O(ConductorParams, roughness_y),

@@ -17,7 +17,7 @@ TEST(RegistryCompleteness, EveryEntryHasAnImplementation) {
     EXPECT_TRUE(has_implementation(registry::id_of(e.key))) << e.key;
     ++n;
   }
-  EXPECT_EQ(n, 28);
+  EXPECT_EQ(n, 26);
   EXPECT_FALSE(has_implementation(-1));
   EXPECT_FALSE(has_implementation(n));
 }
@@ -29,14 +29,14 @@ TEST(RegistryCompleteness, LobeFlagsAgreeWithRegistry) {
     Params p(e.key);
     p.set("N", Vec3{0, 0, 1});
     if (id == kDielectricId || id == kGeneralizedSchlickId) p.set("transmission_tint", 1.0f);
-    if (id == kMicrofacetId || id == kMicrofacet5Id) p.set("refract", 2).set("eta", 1.5f);
+    if (id == kMicrofacetId) p.set("refract", 2).set("eta", 1.5f);
     uint32_t f = lobe_flags(id, p.data());
     ASSERT_NE(f, 0u) << e.key;
     EXPECT_EQ((f & kLobeReflect) != 0, (e.flags & registry::kReflect) != 0) << e.key;
     EXPECT_EQ((f & kLobeTransmit) != 0, (e.flags & registry::kTransmit) != 0) << e.key;
     EXPECT_EQ((f & kLobeSpecular) != 0, (e.flags & registry::kDelta) != 0 || id == kDielectricId ||
-                                            id == kMicrofacetId || id == kMicrofacet5Id ||
-                                            id == kGeneralizedSchlickId || id == kConductorId)
+                                            id == kMicrofacetId || id == kGeneralizedSchlickId ||
+                                            id == kConductorId)
         << e.key; // rough lobes default to roughness 0: delta
   }
 }

@@ -4,12 +4,14 @@
 #include "op_tables.h"
 
 #include "closure_registry.h"
+#include "env.h"
 #include "lobe/renderer_services.h"
 #include "lobe/shading.h"
 #include "shadeops.h"
 
 #include <llvm/IR/Constants.h>
 
+#include <algorithm>
 #include <climits>
 #include <cstdlib>
 #include <sstream>
@@ -246,6 +248,79 @@ void op_closure(LayerEmitter& e, const ir::Op& op) {
   llvm::Value* c = e.call("lobe_closure_component",
                           {e.sg(), e.iconst(registry::id_of(key)), block, e.iconst(int(size))});
   e.store(op.args[0], Val{Dual{c}});
+}
+
+// A closure the shader declared: each argument is stored as its own type (arrays whole), at its
+// natural alignment, and described once in the environment's table, which the closure points
+// at so that printing and renderers can read it.
+void op_declared_closure(LayerEmitter& e, const ir::Op& op) {
+  using Arg = DeclaredClosureArg;
+  std::string name = const_string(e.arg(op, 1));
+  const ir::Symbol& npos_sym = e.arg(op, 2);
+  size_t npos = npos_sym.init.empty() ? 0 : size_t(std::max(0, npos_sym.init[0].i));
+  struct Item {
+    int symbol;
+    Arg arg;
+  };
+  std::vector<Item> items;
+  auto base_of = [](BaseType b) {
+    switch (b) {
+    case BaseType::Int:
+      return Arg::Base::Int;
+    case BaseType::Float:
+      return Arg::Base::Float;
+    case BaseType::Matrix:
+      return Arg::Base::Matrix;
+    case BaseType::String:
+      return Arg::Base::String;
+    case BaseType::Closure:
+      return Arg::Base::Closure;
+    default:
+      return Arg::Base::Triple;
+    }
+  };
+  uint32_t offset = 0;
+  auto add = [&](const char* keyword, int symbol) {
+    const ir::Type& t = e.sym(symbol).type;
+    bool pointer = t.base == BaseType::String || t.base == BaseType::Closure;
+    uint32_t align = pointer ? 8 : 4, scalar = pointer ? 8 : 4;
+    offset = (offset + align - 1) / align * align;
+    items.push_back({symbol, {keyword, base_of(t.base), std::max(0, t.arraylen), offset}});
+    offset += scalar * uint32_t(t.components()) * uint32_t(std::max(1, t.arraylen));
+  };
+  size_t argi = 3;
+  for (; argi < op.args.size() && argi < 3 + npos; ++argi) add(nullptr, op.args[argi]);
+  for (; argi + 1 < op.args.size(); argi += 2) {
+    std::string kw = const_string(e.arg(op, int(argi)));
+    const char* interned = e.group().env->strings.intern(kw);
+    auto same = [&](const Item& it) { return it.arg.keyword == interned; };
+    auto it = std::find_if(items.begin(), items.end(), same);
+    if (it != items.end()) items.erase(it); // given again: the last one wins
+    add(interned, op.args[argi + 1]);
+  }
+  uint32_t size = (offset + 7) / 8 * 8;
+  auto& B = e.b();
+  auto* block = e.entry_alloca(llvm::ArrayType::get(B.getInt8Ty(), std::max<uint32_t>(size, 8)), 1,
+                               "declared_closure");
+  std::vector<Arg> args;
+  for (const Item& it : items) {
+    const ir::Symbol& s = e.sym(it.symbol);
+    bool pointer = s.type.base == BaseType::String || s.type.base == BaseType::Closure;
+    int comps = s.type.components(), elems = std::max(1, s.type.arraylen);
+    for (int k = 0; k < elems; ++k) {
+      Val v = e.load(it.symbol, s.type.is_array() ? e.iconst(k) : nullptr, false);
+      for (int c = 0; c < comps; ++c) {
+        uint64_t at = it.arg.offset + uint64_t((k * comps + c) * (pointer ? 8 : 4));
+        B.CreateStore(v[size_t(c)].v, B.CreateConstInBoundsGEP1_64(B.getInt8Ty(), block, at));
+      }
+    }
+    args.push_back(it.arg);
+  }
+  const DeclaredClosureInfo* info =
+      e.group().env->declared_closures.get(e.group().env->strings.intern(name), args, size);
+  llvm::Value* info_ptr =
+      llvm::ConstantExpr::getIntToPtr(B.getInt64(reinterpret_cast<uintptr_t>(info)), e.ptr());
+  e.store(op.args[0], Val{Dual{e.call("lobe_closure_declared", {e.sg(), info_ptr, block})}});
 }
 
 // ---- noise ----------------------------------------------------------------------------------
@@ -653,6 +728,7 @@ const OpEntry kLibraryOps[] = {
     {"regex_match", op_string},
     {"hash", op_hash},
     {"closure", op_closure},
+    {"declared_closure", op_declared_closure},
     {"noise", op_noise},
     {"snoise", op_noise},
     {"pnoise", op_noise},

@@ -34,6 +34,10 @@ struct ClosureParam {
   bool keyword;              // optional `"name", value` argument after the positional ones
   const char* default_value; // keywords only: literal text ("0", "1 1 1", "\"\"")
   const char* doc;
+  // Keywords only: printed even at its default value. OSL prints every parameter its renderer
+  // registered; its reference renderer registers "label" for diffuse and phong and no other
+  // keyword, so those two print `"label", ""` and Lobe's other keywords print only when set.
+  bool always_printed = false;
 };
 
 // What a closure contributes; the runtime routes components by these.
@@ -50,7 +54,7 @@ enum Flags : uint32_t {
 };
 
 struct ClosureEntry {
-  const char* key;  // unique; equals `name` unless the name is overloaded ("microfacet_5")
+  const char* key;  // unique; equals `name` unless two entries share a name (none do today)
   const char* name; // the name shaders call
   std::span<const ClosureParam> params;
   uint32_t flags;
@@ -66,11 +70,14 @@ int id_of(std::string_view key); // -1 if absent
 constexpr size_t arg_size(ArgType t) {
   switch (t) {
   case ArgType::Int:
-  case ArgType::Float: return 4;
+  case ArgType::Float:
+    return 4;
   case ArgType::Color:
-  case ArgType::Vector: return 12;
+  case ArgType::Vector:
+    return 12;
   case ArgType::String:
-  case ArgType::Closure: return 8;
+  case ArgType::Closure:
+    return 8;
   }
   return 0;
 }

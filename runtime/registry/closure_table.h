@@ -15,6 +15,8 @@ using T = ArgType;
 inline constexpr const char* kLabelDoc = "lobe label for light path expressions (unused)";
 #define LOBE_LABEL                                                                                 \
   { "label", T::String, true, "\"\"", kLabelDoc }
+#define LOBE_LABEL_PRINTED                                                                         \
+  { "label", T::String, true, "\"\"", kLabelDoc, true }
 #define LOBE_EC(def)                                                                               \
   { "energy_compensation", T::Int, true, def, "1: Kulla-Conty multiple scattering" }
 #define LOBE_THINFILM                                                                              \
@@ -23,7 +25,9 @@ inline constexpr const char* kLabelDoc = "lobe label for light path expressions 
   }
 
 inline constexpr ClosureParam kDiffuse[] = {{"N", T::Vector, false, nullptr, "shading normal"},
-                                            LOBE_LABEL};
+                                            LOBE_LABEL_PRINTED};
+inline constexpr ClosureParam kNormalOnly[] = {{"N", T::Vector, false, nullptr, "shading normal"},
+                                               LOBE_LABEL};
 inline constexpr ClosureParam kOrenNayar[] = {
     {"N", T::Vector, false, nullptr, "shading normal"},
     {"sigma", T::Float, false, nullptr, "roughness: std. dev. of facet slope angle, radians"},
@@ -45,6 +49,10 @@ inline constexpr ClosureParam kNormalAlbedo[] = {{"N", T::Vector, false, nullptr
 inline constexpr ClosureParam kPhong[] = {
     {"N", T::Vector, false, nullptr, "shading normal"},
     {"exponent", T::Float, false, nullptr, "Phong exponent (>= 0)"},
+    LOBE_LABEL_PRINTED};
+inline constexpr ClosureParam kBlinnPhong[] = {
+    {"N", T::Vector, false, nullptr, "shading normal"},
+    {"exponent", T::Float, false, nullptr, "Blinn-Phong exponent (>= 0)"},
     LOBE_LABEL};
 inline constexpr ClosureParam kWard[] = {
     {"N", T::Vector, false, nullptr, "shading normal"},
@@ -62,19 +70,9 @@ inline constexpr ClosureParam kMicrofacet[] = {
     {"refract", T::Int, false, nullptr, "0: reflect, 1: refract, 2: both"},
     LOBE_EC("1"),
     LOBE_LABEL};
-inline constexpr ClosureParam kMicrofacet5[] = {
-    {"distribution", T::String, false, nullptr, "\"ggx\" or \"beckmann\""},
+inline constexpr ClosureParam kReflection[] = {
     {"N", T::Vector, false, nullptr, "shading normal"},
-    {"alpha", T::Float, false, nullptr, "isotropic roughness"},
-    {"eta", T::Float, false, nullptr, "relative IOR inside/outside"},
-    {"refract", T::Int, false, nullptr, "0: reflect, 1: refract, 2: both"},
-    LOBE_EC("1"),
-    LOBE_LABEL};
-inline constexpr ClosureParam kReflection[] = {{"N", T::Vector, false, nullptr, "shading normal"},
-                                               LOBE_LABEL};
-inline constexpr ClosureParam kReflectionEta[] = {
-    {"N", T::Vector, false, nullptr, "shading normal"},
-    {"eta", T::Float, false, nullptr, "IOR for dielectric Fresnel"},
+    {"eta", T::Float, false, nullptr, "IOR for dielectric Fresnel; 0: no Fresnel (a mirror)"},
     LOBE_LABEL};
 inline constexpr ClosureParam kRefraction[] = {
     {"N", T::Vector, false, nullptr, "shading normal"},
@@ -138,6 +136,7 @@ inline constexpr ClosureParam kMeasured[] = {
     LOBE_LABEL};
 
 #undef LOBE_LABEL
+#undef LOBE_LABEL_PRINTED
 #undef LOBE_EC
 #undef LOBE_THINFILM
 
@@ -151,16 +150,14 @@ inline constexpr ClosureEntry kClosures[] = {
      "Fujii Oren-Nayar; energy-preserving (EON) with energy_compensation"},
     {"burley_diffuse_bsdf", "burley_diffuse_bsdf", kNormalAlbedoRoughness, kR,
      "Disney/Burley diffuse with retro-reflection"},
-    {"translucent", "translucent", kDiffuse, kTransmit, "Lambertian transmission"},
+    {"translucent", "translucent", kNormalOnly, kTransmit, "Lambertian transmission"},
     {"translucent_bsdf", "translucent_bsdf", kNormalAlbedo, kTransmit,
      "Lambertian transmission with albedo"},
     {"phong", "phong", kPhong, kR, "modified Phong, (n+2)/(2pi) normalisation"},
-    {"blinn_phong", "blinn_phong", kPhong, kR, "Lobe: normalised Blinn-Phong microfacet lobe"},
+    {"blinn_phong", "blinn_phong", kBlinnPhong, kR, "Lobe: normalised Blinn-Phong microfacet lobe"},
     {"ward", "ward", kWard, kR, "anisotropic Ward, energy-conserving normalisation"},
     {"microfacet", "microfacet", kMicrofacet, kRT, "GGX/Beckmann microfacet, dielectric Fresnel"},
-    {"microfacet_5", "microfacet", kMicrofacet5, kRT, "isotropic microfacet(dist, N, alpha, ...)"},
-    {"reflection", "reflection", kReflection, kR | kDelta, "perfect mirror"},
-    {"reflection_eta", "reflection", kReflectionEta, kR | kDelta, "mirror with Fresnel(eta)"},
+    {"reflection", "reflection", kReflection, kR | kDelta, "mirror with Fresnel(eta)"},
     {"refraction", "refraction", kRefraction, kTransmit | kDelta, "perfect refraction"},
     {"conductor_bsdf", "conductor_bsdf", kConductor, kR, "microfacet metal, complex Fresnel"},
     {"dielectric_bsdf", "dielectric_bsdf", kDielectric, kRT, "microfacet glass/coat"},

@@ -6,11 +6,14 @@
 
 #include "lobe/shading.h"
 
+#include <deque>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
 #include <string_view>
 #include <unordered_set>
+#include <vector>
 
 namespace lobe::shadeops {
 
@@ -24,6 +27,23 @@ private:
   std::unordered_set<std::string> strings_; // node-based: element addresses are stable
 };
 
+// Descriptions of shader-declared closures (lobe/shading.h), one per distinct name and argument
+// list, kept for the table's life: closures built by any material point at them.
+class DeclaredClosureTable {
+public:
+  // `args`' keyword names must be interned strings.
+  const DeclaredClosureInfo* get(const char* name, const std::vector<DeclaredClosureArg>& args,
+                                 uint32_t block_size);
+
+private:
+  struct Entry {
+    DeclaredClosureInfo info;
+    std::vector<DeclaredClosureArg> args;
+  };
+  std::mutex mutex_;
+  std::map<std::string, Entry> entries_; // by a text key of name and arguments
+};
+
 struct RuntimeEnv {
   RuntimeEnv() = default;
   RuntimeEnv(const RuntimeEnv&) = delete;
@@ -31,6 +51,7 @@ struct RuntimeEnv {
   ~RuntimeEnv();
 
   StringTable strings;
+  DeclaredClosureTable declared_closures;
   // OpenImageIO TextureSystem, created on the first texture lookup (texture.cpp).
   void* texture_system = nullptr;
   std::once_flag texture_once;

@@ -27,6 +27,23 @@ const ClosureNode* lobe_closure_component(ShaderGlobals* sg, int id, const void*
   return c;
 }
 
+const ClosureNode* lobe_closure_declared(ShaderGlobals* sg, const DeclaredClosureInfo* info,
+                                         const void* block) {
+  ShadingContext* ctx = sg->context;
+  if (!ctx) return nullptr;
+  void* mem = ctx->allocate(sizeof(ClosureDeclared) + info->block_size);
+  if (!mem) {
+    ctx->closures_dropped++;
+    return nullptr;
+  }
+  auto* c = static_cast<ClosureDeclared*>(mem);
+  c->id = kClosureDeclared;
+  c->weight = {1, 1, 1};
+  c->info = info;
+  if (info->block_size > 0) std::memcpy(c->values(), block, info->block_size);
+  return c;
+}
+
 const ClosureNode* lobe_closure_add(ShaderGlobals* sg, const ClosureNode* a, const ClosureNode* b) {
   if (!a) return b;
   if (!b) return a;

@@ -27,6 +27,7 @@ void lobe_regex();
 void lobe_regex_results();
 void lobe_closure_component();
 void lobe_closure_add();
+void lobe_closure_declared();
 void lobe_closure_mul();
 void lobe_mat_mul();
 void lobe_mat_inverse();
@@ -83,6 +84,7 @@ const ShadeOpSymbol kTable[] = {
     {"lobe_regex_results", addr(lobe_regex_results), "ippipi"},
     {"lobe_closure_component", addr(lobe_closure_component), "ppipi"},
     {"lobe_closure_add", addr(lobe_closure_add), "pppp"},
+    {"lobe_closure_declared", addr(lobe_closure_declared), "pppp"},
     {"lobe_closure_mul", addr(lobe_closure_mul), "pppp"},
     {"lobe_mat_mul", addr(lobe_mat_mul), "vppp"},
     {"lobe_mat_inverse", addr(lobe_mat_inverse), "vpp"},

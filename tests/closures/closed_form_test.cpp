@@ -144,9 +144,9 @@ TEST(QuickClosedForm, EnergyPreservingOrenNayarFurnace) {
 }
 
 TEST(QuickClosedForm, DielectricFresnelOfDeltaMirror) {
-  REQUIRE_CLOSURE("reflection_eta");
+  REQUIRE_CLOSURE("reflection");
   for (float eta : {1.5f, 2.417f}) {
-    closures::Params p("reflection_eta");
+    closures::Params p("reflection");
     p.set("eta", eta);
     ClosureLobe l(p);
     for (double th : kAngles) {

@@ -215,6 +215,25 @@ std::optional<ExprError> bind_entry(const registry::ClosureEntry& e, const std::
   return std::nullopt;
 }
 
+// The two overloads that stdosl.h defines in the language by forwarding to a registry closure:
+// microfacet(dist, N, alpha, eta, refr) is microfacet(dist, N, vector(0), alpha, alpha, eta,
+// refr) and reflection(N) is reflection(N, 0).
+void expand_stdosl_forms(const std::string& name, std::vector<Arg>& args) {
+  if (name == "microfacet" && args.size() >= 5 && args[2].kind == Arg::Number) {
+    Arg u = args[2];
+    u.kind = Arg::Triple;
+    u.triple = {0, 0, 0};
+    Arg alpha = args[2];
+    args.insert(args.begin() + 2, u);
+    args.insert(args.begin() + 4, alpha);
+  } else if (name == "reflection" && args.size() == 1) {
+    Arg eta = args[0];
+    eta.kind = Arg::Number;
+    eta.number = 0;
+    args.push_back(eta);
+  }
+}
+
 } // namespace
 
 ExprResult parse_closure_expr(std::string_view text) {
@@ -223,6 +242,7 @@ ExprResult parse_closure_expr(std::string_view text) {
   size_t name_pos = 0, close_pos = 0;
   std::vector<Arg> args;
   if (auto e = parser.parse_call(name, name_pos, args, close_pos)) return {std::nullopt, *e};
+  expand_stdosl_forms(name, args);
   std::optional<ExprError> first_error;
   for (const registry::ClosureEntry& e : registry::closures()) {
     if (name != e.name) continue;

@@ -3,8 +3,9 @@
 //   dielectric_bsdf(N, U, 1, 1, 0.1, 0.1, 1.5, "ggx", "energy_compensation", 0)
 // Arguments: numbers, N (the local normal +z), U / T (the tangent +x), color(...) / vector(...)
 // / normal(...) / point(...) with one or three numbers, "strings", then keyword pairs
-// `"name", value`. Overloads (microfacet, reflection) are resolved by argument count and
-// types. Errors are values carrying the byte offset they refer to (for a caret).
+// `"name", value`. Overloads are resolved by argument count and types; microfacet's 5-argument
+// form and reflection(N) forward to the registry's forms as stdosl.h defines them. Errors are
+// values carrying the byte offset they refer to (for a caret).
 #pragma once
 
 #include "closures.h"

@@ -29,26 +29,26 @@ enum RayType : int32_t {
 // The shading globals of one point. Directions follow OSL: I points from the eye towards P
 // (the incoming ray direction), N and Ng face wherever the geometry says (backfacing tells).
 struct ShaderGlobals {
-  Vec3 P, dPdx, dPdy;       // position and its screen-space derivatives
-  Vec3 dPdz;                // volumes only
-  Vec3 I, dIdx, dIdy;       // incident ray direction
-  Vec3 N;                   // shading normal (writable in surface shaders)
-  Vec3 Ng;                  // geometric normal
-  float u, dudx, dudy;      // surface parameters and their derivatives
+  Vec3 P, dPdx, dPdy;  // position and its screen-space derivatives
+  Vec3 dPdz;           // volumes only
+  Vec3 I, dIdx, dIdy;  // incident ray direction
+  Vec3 N;              // shading normal (writable in surface shaders)
+  Vec3 Ng;             // geometric normal
+  float u, dudx, dudy; // surface parameters and their derivatives
   float v, dvdx, dvdy;
-  Vec3 dPdu, dPdv;          // surface tangents
+  Vec3 dPdu, dPdv; // surface tangents
   float time, dtime;
   Vec3 dPdtime;
-  Vec3 Ps, dPsdx, dPsdy;    // light position (light shaders)
-  float surfacearea;        // area of the emitting object (surfacearea())
-  int32_t raytype;          // RayType bits of the ray that hit this point
-  int32_t backfacing;       // 1 when I and Ng point the same way
+  Vec3 Ps, dPsdx, dPsdy; // light position (light shaders)
+  float surfacearea;     // area of the emitting object (surfacearea())
+  int32_t raytype;       // RayType bits of the ray that hit this point
+  int32_t backfacing;    // 1 when I and Ng point the same way
   int32_t flip_handedness;
   const float* object2common; // 4x4 row-major, or null for identity
   const float* shader2common;
-  void* renderstate;          // the renderer's; opaque to shaders
-  ShadingContext* context;    // closure allocation, messages, errors
-  const ClosureNode* Ci;      // the surface closure (output)
+  void* renderstate;       // the renderer's; opaque to shaders
+  ShadingContext* context; // closure allocation, messages, errors
+  const ClosureNode* Ci;   // the surface closure (output)
 };
 
 // Field table for codegen: name as shaders see it, kind, byte offset.
@@ -86,9 +86,11 @@ inline constexpr GlobalField kGlobalFields[] = {
 };
 
 // Closure tree nodes, built by shader code through the ShadingContext's arena.
-// id >= 0: a component (registry id); kClosureAdd / kClosureMul: combinators.
+// id >= 0: a component (registry id); kClosureAdd / kClosureMul: combinators;
+// kClosureDeclared: a closure the shader declared itself (ClosureDeclared).
 inline constexpr int32_t kClosureAdd = -1;
 inline constexpr int32_t kClosureMul = -2;
+inline constexpr int32_t kClosureDeclared = -3;
 
 struct ClosureNode {
   int32_t id;
@@ -109,5 +111,31 @@ struct alignas(8) ClosureComponent : ClosureNode {
   unsigned char* params() { return reinterpret_cast<unsigned char*>(this + 1); }
 };
 static_assert(sizeof(ClosureComponent) == 16);
+
+// A closure the shader declares itself, `closure color name(...) [[ int builtin = 1 ]]`, as
+// OSL lets renderers add closures: it is no registry entry, so it carries a description of its
+// arguments (the positional ones in order, then the keywords the call gave, each once). A
+// renderer implements it by name or reports it by name. The description is owned by the
+// ShadingSystem and outlives every closure pointing at it.
+struct DeclaredClosureArg {
+  enum class Base : uint8_t { Int, Float, Triple, Matrix, String, Closure };
+  const char* keyword; // null for a positional argument
+  Base base;
+  int32_t arraylen; // 0: not an array
+  uint32_t offset;  // byte offset in the value block
+};
+struct DeclaredClosureInfo {
+  const char* name;
+  const DeclaredClosureArg* args;
+  uint32_t nargs;
+  uint32_t block_size;
+};
+struct alignas(8) ClosureDeclared : ClosureNode {
+  Color3 weight;
+  const DeclaredClosureInfo* info;
+  const unsigned char* values() const { return reinterpret_cast<const unsigned char*>(this + 1); }
+  unsigned char* values() { return reinterpret_cast<unsigned char*>(this + 1); }
+};
+static_assert(sizeof(ClosureDeclared) == 24);
 
 } // namespace lobe
