@@ -111,6 +111,8 @@ const Row kTable[] = {
     ROW(err_format_too_many_args, Error,
         "too many arguments for the format string of '%0' (%1 needed, %2 given)"),
     ROW(err_format_arg_type, Error, "format '%0' needs %1, but argument %2 of '%3' is '%4'"),
+    ROW(err_format_conversion, Error,
+        "format '%0' of '%1' is not an OSL conversion (%d %i %o %x %X, %f %g %e, %s)"),
     ROW(err_format_struct_arg, Error,
         "argument %0 of '%1' is a struct ('%2'), which cannot be printed"),
     ROW(warn_confusing_comma, Warning,

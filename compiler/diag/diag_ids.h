@@ -103,6 +103,7 @@ enum class DiagId : uint16_t {
   err_format_too_few_args,
   err_format_too_many_args,
   err_format_arg_type,
+  err_format_conversion,
   err_format_struct_arg,
   warn_confusing_comma,
   warn_param_hides_function,

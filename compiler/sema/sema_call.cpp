@@ -378,20 +378,24 @@ void Sema::check_format_args(ast::CallExpr* e) {
     const ast::Expr* a = e->args[arg].get();
     const Type& t = a->type;
     std::string spec = f.substr(start, i + 1 - start);
-    bool int_conv = std::strchr("dioxXu", conv), float_conv = std::strchr("fFgGeEaA", conv);
+    // oslc's rules: ints print with %d %i %o %x %X, floats, triples and matrices with %f %g %e,
+    // strings and closures with %s; nothing else (no %u, %c, %E, %s of a number).
+    bool int_conv = std::strchr("dioxX", conv), float_conv = std::strchr("fge", conv),
+         str_conv = conv == 's';
     std::string argno = std::to_string(arg + 1);
     if (t.base == BaseType::Struct) {
       error(DiagId::err_format_struct_arg, a->range, {argno, e->name, tname(t)});
       reported = true;
-    } else if (t.base == BaseType::String || t.base == BaseType::Closure) {
-      if (int_conv || float_conv) {
-        error(DiagId::err_format_arg_type, a->range,
-              {spec, int_conv ? "an int" : "a float, triple or matrix", argno, e->name, tname(t)});
-        reported = true;
-      }
-    } else if (t.base == BaseType::Int ? float_conv : int_conv) {
-      error(DiagId::err_format_arg_type, a->range,
-            {spec, int_conv ? "an int" : "a float, triple or matrix", argno, e->name, tname(t)});
+    } else if (!int_conv && !float_conv && !str_conv) {
+      error(DiagId::err_format_conversion, a->range, {spec, e->name});
+      reported = true;
+    } else if (t.base == BaseType::Int                                     ? !int_conv
+               : t.base == BaseType::String || t.base == BaseType::Closure ? !str_conv
+                                                                           : !float_conv) {
+      const char* need = int_conv     ? "an int"
+                         : float_conv ? "a float, triple or matrix"
+                                      : "a string or closure";
+      error(DiagId::err_format_arg_type, a->range, {spec, need, argno, e->name, tname(t)});
       reported = true;
     }
     ++arg;

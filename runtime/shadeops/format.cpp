@@ -1,8 +1,10 @@
 // OSL printf formatting (see format.h).
 #include "format.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 
 namespace lobe::shadeops {
 namespace {
@@ -31,6 +33,16 @@ std::string printf1(const std::string& spec, double v) {
   std::snprintf(buf, sizeof buf, spec.c_str(), v);
   return buf;
 }
+std::string printf1(const std::string& spec, int v) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, spec.c_str(), v);
+  return buf;
+}
+std::string printf1(const std::string& spec, unsigned v) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, spec.c_str(), v);
+  return buf;
+}
 std::string printf1(const std::string& spec, long long v) {
   char buf[512];
   std::snprintf(buf, sizeof buf, spec.c_str(), v);
@@ -48,38 +60,77 @@ std::string closure_text(const RuntimeEnv& env, const ClosureNode* c) {
   return "closure#" + std::to_string(c->id);
 }
 
+// Pads `body` to the spec's width: left-aligned unless `right`, with zeros when `zeros`.
+std::string pad(const std::string& head, std::string body, bool right, bool zeros) {
+  size_t w = 0, k = 1;
+  while (k < head.size() && std::strchr("-+ #0", head[k])) ++k;
+  w = size_t(std::atoi(head.c_str() + k));
+  if (body.size() >= w) return body;
+  std::string fill(w - body.size(), zeros ? '0' : ' ');
+  return right ? fill + body : body + fill;
+}
+
+// A string through OSL's printf: truncated to the precision and, unlike C, left-aligned in its
+// width (OSL 1.13 prints "%10s" of "str" as "str       "); a 0 flag pads with zeros on the left.
+std::string format_string(const std::string& head, const char* s) {
+  std::string body = s ? s : "";
+  size_t dot = head.find('.');
+  if (dot != std::string::npos)
+    body = body.substr(0, size_t(std::max(0, std::atoi(head.c_str() + dot + 1))));
+  bool zeros = head.find('0') != std::string::npos && head.find('-') == std::string::npos &&
+               head.find_first_of("0") < head.find_first_of("123456789.");
+  std::string h = head.substr(0, dot);
+  return pad(h, body, zeros, zeros);
+}
+
+// An int through OSL's printf: ints are 32 bits, %x and %X print them unsigned (-1 is
+// ffffffff), %o prints the sign and the magnitude in octal (-1 is -1), and every other
+// conversion prints a decimal with C's width and precision ("%8.3f" of -1 is "    -001").
+std::string format_int(const std::string& head, char conv, int32_t v) {
+  if (conv == 'x' || conv == 'X') return printf1(head + conv, unsigned(uint32_t(v)));
+  if (conv == 'o') {
+    std::string h = "%";
+    for (char c : head)
+      if (c == '#') h += c;
+    unsigned mag = v < 0 ? 0u - unsigned(v) : unsigned(v);
+    std::string body = (v < 0 ? "-" : "") + printf1(h + "o", mag);
+    bool left = head.find('-') != std::string::npos;
+    return pad(head, body, !left, false);
+  }
+  return printf1(head + 'd', int(v));
+}
+
 // Formats one scalar component with conversion `conv` and the spec's flags (`head` is the
-// spec without its conversion character).
-std::string format_scalar(const RuntimeEnv& env, const std::string& head, char conv, char code,
-                          const void* p) {
+// spec without its conversion character). A literal format string was checked by the type
+// checker (OSL's rules); one known only at run time may pair any conversion with any value,
+// which converts as OSL does: a float to an int conversion truncates, an int to a float one
+// widens, and %s prints a number as %g would.
+std::string format_scalar(const RuntimeEnv& env, const std::string& head, char conv, bool length,
+                          char code, const void* p) {
   bool int_conv = conv == 'd' || conv == 'i' || conv == 'x' || conv == 'X' || conv == 'o' ||
                   conv == 'u' || conv == 'c';
-  if (code == 's') return printf1(head + "s", *static_cast<const char* const*>(p));
-  if (code == 'c') {
+  if (code == 's') return format_string(head, *static_cast<const char* const*>(p));
+  if (code == 'c') { // a closure prints its whole tree, ignoring width and precision (as OSL)
     auto* node = *static_cast<const ClosureNode* const*>(p);
-    return printf1(head + "s", closure_text(env, node).c_str());
+    return closure_text(env, node);
   }
-  if (code == 'i') {
-    long long v = *static_cast<const int32_t*>(p);
-    if (conv == 's') return std::to_string(v);
-    if (int_conv) return printf1(head + "ll" + conv, v);
-    return printf1(head + conv, double(v));
-  }
+  if (code == 'i') return format_int(head, conv, *static_cast<const int32_t*>(p));
+  // A float: its own conversions as in C; any other prints as %f, or %g after a length
+  // modifier ("%ld" of -3.75 is -3.75), as OSL 1.13 does.
   double v = *static_cast<const float*>(p);
-  if (conv == 's') return printf1("%g", v);
-  if (int_conv) return printf1(head + "ll" + conv, (long long)v);
-  return printf1(head + conv, v);
+  if (std::strchr("fFgGeEaA", conv)) return printf1(head + conv, v);
+  return printf1(head + (int_conv && length ? 'g' : 'f'), v);
 }
 
 // Formats a whole argument: every component of every element, space-separated.
-std::string format_arg(const RuntimeEnv& env, const std::string& head, char conv, ArgDesc d,
-                       const void* p) {
+std::string format_arg(const RuntimeEnv& env, const std::string& head, char conv, bool length,
+                       ArgDesc d, const void* p) {
   size_t stride = (d.code == 's' || d.code == 'c') ? sizeof(void*) : 4;
   int n = components(d.code) * d.count;
   std::string out;
   for (int k = 0; k < n; ++k) {
     if (k) out += ' ';
-    out += format_scalar(env, head, conv, d.code, static_cast<const char*>(p) + k * stride);
+    out += format_scalar(env, head, conv, length, d.code, static_cast<const char*>(p) + k * stride);
   }
   return out;
 }
@@ -107,8 +158,10 @@ std::string format_values(const RuntimeEnv& env, std::string_view fmt, std::stri
     while (j < fmt.size() &&
            std::string_view("-+ #0123456789.*").find(fmt[j]) != std::string_view::npos)
       head += fmt[j++];
+    size_t length_at = j;
     while (j < fmt.size() && std::string_view("hlLqjzt").find(fmt[j]) != std::string_view::npos)
       ++j; // length modifiers are meaningless for shader types
+    bool length = j > length_at;
     if (j >= fmt.size()) {
       out += fmt.substr(i);
       break;
@@ -118,7 +171,7 @@ std::string format_values(const RuntimeEnv& env, std::string_view fmt, std::stri
     if (d.code == 0) {
       out += fmt.substr(i, j - i + 1); // more conversions than arguments: print them verbatim
     } else {
-      out += format_arg(env, head, conv, d, args[argi++]);
+      out += format_arg(env, head, conv, length, d, args[argi++]);
     }
     i = j;
   }
