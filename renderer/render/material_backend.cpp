@@ -73,11 +73,8 @@ std::shared_ptr<const Material> MaterialBackend::compile(const scene::MaterialDe
     // The JIT ignores an instance value for a parameter the shader lacks (with a warning, as
     // OSL does); in a scene that is a mistake (a misspelt parameter), so it is an error.
     for (const Diagnostic& d : diags)
-      if (d.severity == Diagnostic::Severity::Warning &&
-          d.text.find("' has no parameter '") != std::string::npos) {
-        error = d.text.substr(d.text.rfind("warning: ", 0) == 0 ? 9 : 0);
-        if (size_t cut = error.rfind("; value ignored"); cut != std::string::npos)
-          error.resize(cut);
+      if (d.severity == Diagnostic::Severity::Note && d.id == "nonexistent_param") {
+        error = d.text.substr(d.text.rfind("note: ", 0) == 0 ? 6 : 0);
         return nullptr;
       }
     std::lock_guard<std::mutex> lock(mu_);

@@ -1,10 +1,10 @@
 // The JSON scene format (docs/scene-format.md): camera, settings, materials as shader groups,
 // shapes, lights and environment. Every error names the file, the JSON pointer and what was
 // expected; unknown keys are errors, so a misspelt setting is never silently ignored.
-#include "group_text.h"
 #include "json_reader.h"
 #include "mesh_io.h"
 #include "scene.h"
+#include "scene_group.h"
 
 #include <cmath>
 #include <filesystem>

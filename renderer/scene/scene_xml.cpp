@@ -14,8 +14,8 @@
 // `type name value;` lines. Lobe adds <Settings resolution="W H" spp max_depth seed
 // exposure/> and <PointLight position intensity/>. Unknown attributes become warnings;
 // unknown elements are errors. Every message names the file and line.
-#include "group_text.h"
 #include "scene.h"
+#include "scene_group.h"
 
 #include <pugixml.hpp>
 

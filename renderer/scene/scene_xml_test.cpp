@@ -1,7 +1,7 @@
 // OSL testrender XML scenes: shader groups bind to the shapes after them, the group before
 // <Background> is the background shader, and errors carry the line number.
-#include "group_text.h"
 #include "scene.h"
+#include "scene_group.h"
 
 #include <gtest/gtest.h>
 
@@ -54,11 +54,11 @@ TEST(SceneXml, ErrorsCarryLines) {
   EXPECT_FALSE(parse_xml_scene("<World>\n<Camera fov=\"40\"/>\n<ShaderGroup>\ncolor Cs 0.5 0.5 "
                                "0.5;\nshadr matte m;\n</ShaderGroup>\n</World>",
                                "t.xml", err));
-  EXPECT_EQ(err, "t.xml:5: expected `param`, `shader` or `connect`, found `shadr`");
+  EXPECT_EQ(err, "t.xml:5: error: expected `param`, `shader` or `connect`, found `shadr`");
   EXPECT_FALSE(parse_xml_scene("<World>\n<ShaderGroup>shader matte m;\nfloat Kd \"x;</ShaderGroup>"
                                "\n</World>",
                                "t.xml", err));
-  EXPECT_EQ(err, "t.xml:3: unterminated string");
+  EXPECT_EQ(err, "t.xml:3: error: unterminated string");
   EXPECT_FALSE(parse_xml_scene("<World><Sphere", "t.xml", err));
   EXPECT_NE(err.find("invalid XML"), std::string::npos);
 }
@@ -89,8 +89,8 @@ TEST(GroupText, ParamsShadersAndConnections) {
   EXPECT_EQ(g->connections[0].src_param, "Cout");
   // Bare form only where allowed.
   EXPECT_FALSE(parse_group_text("float Kd 1; shader m l;", "x", false, err));
-  EXPECT_EQ(err, "x: line 1: expected `param`, `shader` or `connect`, found `float`");
+  EXPECT_EQ(err, "x:1: error: expected `param`, `shader` or `connect`, found `float`");
   EXPECT_TRUE(parse_group_text("float Kd 1; shader m l;", "x", true, err));
   EXPECT_FALSE(parse_group_text("shader m l;\nparam float Kd 1;", "x", false, err));
-  EXPECT_EQ(err, "x: line 2: parameter values after the last `shader`");
+  EXPECT_EQ(err, "x:2: error: parameter values after the last `shader`");
 }

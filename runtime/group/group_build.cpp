@@ -274,19 +274,32 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         std::string names; // the shader's parameters, as a hint
         for (const ir::Symbol& ps : sources[i]->symbols)
           if (is_param(ps)) names += (names.empty() ? "" : ", ") + ps.name;
-        diags.push_back(warn("layer '" + group.layers[i].name + "': shader '" + sources[i]->name +
-                             "' has no parameter '" + v.name + "' (its parameters: " + names +
-                             "); value ignored"));
+        // OSL's warning, then Lobe's hint as a note (a scene reader turns the pair into an
+        // error: a misspelt parameter in a scene is a mistake).
+        Diagnostic w = warn("attempting to set nonexistent parameter: " + v.name);
+        w.id = "nonexistent_param";
+        diags.push_back(w);
+        diags.push_back({Diagnostic::Severity::Note,
+                         "note: layer '" + group.layers[i].name + "': shader '" + sources[i]->name +
+                             "' has no parameter '" + v.name + "' (its parameters: " + names + ")",
+                         "nonexistent_param"});
         continue;
       }
-      std::vector<ir::ConstValue> cv;
-      int len = 0;
-      if (!parse_value(v.value, sources[i]->symbols[size_t(s)].type, cv, len)) {
-        diags.push_back(err("layer '" + group.layers[i].name + "': value '" + v.value +
-                            "' does not fit parameter '" + v.name + "' of type " +
-                            ir::to_string(sources[i]->symbols[size_t(s)].type)));
+      ValueFit fit = fit_instance_value(v, sources[i]->symbols[size_t(s)].type);
+      if (!fit.error.empty()) {
+        diags.push_back(err("layer '" + group.layers[i].name + "': " + fit.error));
         return false;
       }
+      if (!fit.note.empty())
+        diags.push_back(warn("layer '" + group.layers[i].name + "': " + fit.note));
+      if (!fit.ok) {
+        Diagnostic w = warn(fit.warning);
+        w.id = "param_type";
+        diags.push_back(w);
+        continue;
+      }
+      std::vector<ir::ConstValue>& cv = fit.values;
+      int len = fit.arraylen;
       values[i][v.name] = cv;
       lengths[i][v.name] = len;
     }

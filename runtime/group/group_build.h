@@ -30,9 +30,16 @@ struct GroupBuild {
 bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
                  bool specialize, GroupBuild& out, DiagnosticList& diags);
 
-// Parses an instance value's text for a symbol of type `t` (one value broadcasts to every
-// component). Sets `arraylen` for unsized arrays. False if the text does not fit the type.
-bool parse_value(const std::string& text, const ir::Type& t, std::vector<ir::ConstValue>& out,
-                 int& arraylen);
+// An instance value for a parameter of type `param` (the rules are InstanceValue's). `ok`:
+// use `values` (`arraylen` sizes an unsized array); else `warning` (OSL's: the value is ignored
+// and the default kept) or `error` (the value cannot be read) says why.
+struct ValueFit {
+  bool ok = false;
+  std::vector<ir::ConstValue> values;
+  int arraylen = 0;
+  std::string warning, error;
+  std::string note; // a remark on a value that was used (Lobe's; OSL is silent)
+};
+ValueFit fit_instance_value(const InstanceValue& v, const ir::Type& param);
 
 } // namespace lobe::group

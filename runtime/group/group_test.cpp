@@ -253,8 +253,15 @@ TEST_F(Groups, ErrorsAreDiagnostics) {
   EXPECT_NE(d.back().text.find("not found"), std::string::npos);
   g = ss.parse_group("shader downstream d ; shader upstream u ; connect u.Cout d.Cin ;", "t", d);
   EXPECT_FALSE(ss.compile(*g, d)); // source layer after destination
+  // A typed value reads as C's atof does, as in OSL (oops is 0), with a warning from Lobe.
   g = ss.parse_group("param float g oops ; shader downstream d ;", "t", d);
-  EXPECT_FALSE(ss.compile(*g, d)); // bad value
+  d.clear();
+  EXPECT_TRUE(ss.compile(*g, d));
+  ASSERT_FALSE(d.empty());
+  EXPECT_NE(d[0].text.find("value 'oops' for parameter 'g' is not a number"), std::string::npos)
+      << d[0].text;
+  g = ss.parse_group("param float g 1 ; shader downstream d ; shader nosuch n ;", "t", d);
+  EXPECT_FALSE(ss.compile(*g, d)); // a missing shader
 }
 
 TEST(GroupGlobals, GlobalsRead) {

@@ -13,45 +13,53 @@ struct Token {
   std::string text;
   bool quoted = false;
   int line = 1;
+  bool end() const { return !quoted && (text == ";" || text == ","); }
 };
 
-std::vector<Token> tokenize(const std::string& s) {
-  std::vector<Token> out;
-  int line = 1;
+// Words, quoted strings (with C escapes) and the statement ends ';' and ','. False on an
+// unterminated string (`line` says where it starts).
+bool tokenize(const std::string& s, std::vector<Token>& out, int& line) {
+  line = 1;
   for (size_t i = 0; i < s.size();) {
     char c = s[i];
     if (c == '\n') ++line;
     if (std::isspace(static_cast<unsigned char>(c))) {
       ++i;
-    } else if (c == '#') { // comment to end of line
+    } else if (c == '#') {
       while (i < s.size() && s[i] != '\n') ++i;
-    } else if (c == ';') {
-      out.push_back({";", false, line});
+    } else if (c == ';' || c == ',') {
+      out.push_back({std::string(1, c), false, line});
       ++i;
     } else if (c == '"') {
       Token t{"", true, line};
       for (++i; i < s.size() && s[i] != '"'; ++i) {
-        if (s[i] == '\\' && i + 1 < s.size()) ++i;
-        t.text += s[i];
+        if (s[i] == '\n') ++line;
+        if (s[i] == '\\' && i + 1 < s.size()) {
+          char e = s[++i];
+          t.text += e == 'n' ? '\n' : e == 't' ? '\t' : e;
+        } else {
+          t.text += s[i];
+        }
+      }
+      if (i >= s.size()) {
+        line = t.line;
+        return false;
       }
       ++i;
       out.push_back(t);
     } else {
       Token t{"", false, line};
-      while (i < s.size() && !std::isspace(static_cast<unsigned char>(s[i])) && s[i] != ';')
+      while (i < s.size() && !std::isspace(static_cast<unsigned char>(s[i])) && s[i] != ';' &&
+             s[i] != ',' && s[i] != '"')
         t.text += s[i++];
       out.push_back(t);
     }
   }
-  return out;
+  return true;
 }
 
 bool is_keyword(const Token& t) {
   return !t.quoted && (t.text == "param" || t.text == "shader" || t.text == "connect");
-}
-
-Diagnostic error(const std::string& where, int line, const std::string& msg) {
-  return {Diagnostic::Severity::Error, where + ":" + std::to_string(line) + ": error: " + msg};
 }
 
 bool split_endpoint(const std::string& s, std::string& layer, std::string& param) {
@@ -64,74 +72,99 @@ bool split_endpoint(const std::string& s, std::string& layer, std::string& param
 
 } // namespace
 
+bool is_param_type(const std::string& word) {
+  size_t br = word.find('[');
+  std::string base = word.substr(0, br);
+  if (br != std::string::npos && word.back() != ']') return false;
+  static const char* kTypes[] = {"int",    "float",  "color",  "point",
+                                 "vector", "normal", "string", "matrix"};
+  for (const char* t : kTypes)
+    if (base == t) return true;
+  return false;
+}
+
 std::unique_ptr<ShaderGroup> parse_group_text(const std::string& text, const std::string& where,
-                                              DiagnosticList& diags) {
+                                              DiagnosticList& diags,
+                                              const GroupTextOptions& options) {
+  auto at = [&](int line) {
+    return where + ":" +
+           std::to_string(options.first_line > 0 ? options.first_line + line - 1 : line);
+  };
+  size_t errors = 0;
+  auto error = [&](int line, const std::string& msg) {
+    diags.push_back({Diagnostic::Severity::Error, at(line) + ": error: " + msg});
+    ++errors;
+  };
+  std::vector<Token> toks;
+  int bad_line = 1;
+  if (!tokenize(text, toks, bad_line)) {
+    error(bad_line, "unterminated string");
+    return nullptr;
+  }
   auto group = std::make_unique<ShaderGroup>();
   std::vector<InstanceValue> pending;
-  std::vector<Token> toks = tokenize(text);
-  size_t errors = 0;
+  auto starts_statement = [&](const Token& t) {
+    return is_keyword(t) || (options.allow_bare_params && !t.quoted && is_param_type(t.text));
+  };
   for (size_t i = 0; i < toks.size();) {
-    if (toks[i].text == ";" && !toks[i].quoted) {
+    if (toks[i].end()) {
       ++i;
       continue;
     }
-    // One statement: the keyword and its words up to `;` or the next keyword.
+    // One statement: its words up to ';' or ',' or the next keyword (a bare param, which
+    // starts with a type name, must end with ';' or ',').
     size_t j = i + 1;
-    while (j < toks.size() && !(toks[j].text == ";" && !toks[j].quoted) && !is_keyword(toks[j]))
-      ++j;
+    while (j < toks.size() && !toks[j].end() && !is_keyword(toks[j])) ++j;
     std::vector<Token> st(toks.begin() + long(i), toks.begin() + long(j));
     i = j;
     const std::string& kw = st[0].text;
     int line = st[0].line;
-    if (kw == "param") {
-      if (st.size() < 4) {
-        diags.push_back(error(where, line, "'param' needs a type, a name and a value"));
-        ++errors;
+    bool bare = kw != "param" && options.allow_bare_params && is_param_type(kw) && !st[0].quoted;
+    if (kw == "param" || bare) {
+      size_t t = bare ? 0 : 1;
+      if (st.size() < t + 3 || !is_param_type(st[t].text)) {
+        error(line, "expected `param <type> <name> <value>...;`");
         continue;
       }
-      InstanceValue v{st[1].text, st[2].text, ""};
-      size_t k = 3;
+      InstanceValue v{st[t].text, st[t + 1].text, ""};
+      v.osl_rules = true;
+      size_t k = t + 2;
       for (; k < st.size() && !(!st[k].quoted && st[k].text.rfind("[[", 0) == 0); ++k) {
         if (!v.value.empty()) v.value += ' ';
         v.value += st[k].text;
+        v.words.push_back(st[k].text);
       }
-      // Metadata after the value: `[[ int lockgeom = 0 ]]` is kept; other items are ignored.
-      std::string meta;
+      std::string meta; // of the metadata, `int lockgeom = 0|1` is kept
       for (; k < st.size(); ++k) meta += st[k].text + " ";
       static const std::regex kLockgeom(R"(\bint\s+lockgeom\s*=\s*([01])\b)");
       std::smatch m;
       if (std::regex_search(meta, m, kLockgeom)) v.lockgeom = m[1].str() == "0" ? 0 : 1;
-      pending.push_back(v);
+      pending.push_back(std::move(v));
     } else if (kw == "shader") {
-      if (st.size() != 3) {
-        diags.push_back(error(where, line, "'shader' needs a shader name and a layer name"));
-        ++errors;
+      if (st.size() < 2 || st.size() > 3) {
+        error(line, "expected `shader <name> [<layer>];`");
         continue;
       }
-      group->layers.push_back({st[1].text, st[2].text, std::move(pending)});
+      std::string name =
+          st.size() == 3 ? st[2].text : st[1].text + "_" + std::to_string(group->layers.size());
+      group->layers.push_back({st[1].text, name, std::move(pending)});
       pending.clear();
     } else if (kw == "connect") {
       Connection c;
       if (st.size() != 3 || !split_endpoint(st[1].text, c.src_layer, c.src_param) ||
           !split_endpoint(st[2].text, c.dst_layer, c.dst_param)) {
-        diags.push_back(error(where, line, "'connect' needs two endpoints, layer.param"));
-        ++errors;
+        error(line, "expected `connect <layer>.<param> <layer>.<param>;`");
         continue;
       }
       group->connections.push_back(c);
     } else {
-      diags.push_back(
-          error(where, line, "expected 'param', 'shader' or 'connect', found '" + kw + "'"));
-      ++errors;
+      error(line, "expected `param`, `shader` or `connect`, found `" + kw + "`");
     }
   }
-  if (!pending.empty()) {
-    diags.push_back(
-        error(where, toks.empty() ? 1 : toks.back().line, "'param' after the last 'shader'"));
-    ++errors;
-  }
+  if (!pending.empty() && !errors)
+    error(toks.back().line, "parameter values after the last `shader`");
   if (group->layers.empty() && !errors) {
-    diags.push_back(error(where, 1, "the group has no shader"));
+    diags.push_back({Diagnostic::Severity::Error, where + ": error: the group has no `shader`"});
     ++errors;
   }
   return errors ? nullptr : std::move(group);

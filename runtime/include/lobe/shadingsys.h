@@ -22,22 +22,38 @@
 namespace lobe {
 
 // One diagnostic, already located and formatted (`file:line:col: error: msg` + source + caret).
+// `id` names the kind for callers that act on it ("nonexistent_param", "param_type"), else "".
 struct Diagnostic {
   enum class Severity : uint8_t { Note, Warning, Error } severity = Severity::Error;
   std::string text;
+  std::string id;
 };
 using DiagnosticList = std::vector<Diagnostic>;
 
-// A value given to a parameter: an instance value, as text in OSL's `param` syntax
-// (type and value: "float" "0.5", "color" "1 0 0", "string" "ggx", "float[3]" "1 2 3").
+// A value given to a parameter: an instance value, of `type` ("float", "color", "float[3]",
+// "float[]", "string", ...), as text (`value`) or words (`words`, when the caller has split it
+// already: group text's quoted strings).
+//
+// With `osl_rules` (group text, testshade's --param) it follows OSL: the words are that type's
+// values, separated by spaces or commas, read as C's atof/atoi read numbers; missing values are
+// 0 and extra ones ignored; a scalar string is the whole text. The value then applies if its
+// type is the parameter's (any triple for a triple; any length for an unsized array) or is a
+// float given to a triple (broadcast); otherwise the default stays, with OSL's warning
+// ("attempting to set parameter with wrong type: ..."). Without (scene files), `type` is only
+// informative and the words must fill the parameter's type exactly, or be one number
+// broadcast to every component and element; anything else is an error.
 // `lockgeom`: 0 lets the renderer's user data of the same name and type override the value
 // (OSL's interpolated parameters; renderer_services.h), 1 forbids it, -1 (the default) keeps
-// what the shader's `[[ int lockgeom = 0 ]]` metadata says.
+// what the shader's `[[ int lockgeom = 0 ]]` metadata says. `interpolated`: testshade's
+// `:interpolated=1` (isconnected() may report it connected to user data).
 struct InstanceValue {
   std::string type;
   std::string name;
   std::string value;
   int lockgeom = -1;
+  std::vector<std::string> words; // the value already split (group text's quoted strings)
+  bool osl_rules = false;
+  bool interpolated = false;
 };
 
 struct Connection {
