@@ -66,11 +66,18 @@ void* ShadingContext::allocate(size_t bytes) {
   return arena_.get() + start;
 }
 
-void ShadingContext::message(const std::string& text) {
+void ShadingContext::message(MessageKind kind, const std::string& text) {
+  if (report) {
+    report(kind, text);
+    return;
+  }
+  std::string line = kind == MessageKind::Print     ? text
+                     : kind == MessageKind::Warning ? "WARNING: " + text + "\n"
+                                                    : "ERROR: " + text + "\n";
   if (print)
-    print(text);
+    print(line);
   else
-    output += text;
+    output += line;
 }
 
 } // namespace lobe

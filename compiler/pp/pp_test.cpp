@@ -117,7 +117,7 @@ TEST(PP, PredefinedAndCommandLine) {
   o.undefines = {"GONE"};
   EXPECT_EQ(
       r.run("OSL_VERSION OSL_VERSION_MAJOR OSL_VERSION_MINOR OSL_VERSION_PATCH FOO BAR GONE\n", o),
-      "11300 1 13 0 1 7 GONE");
+      "11312 1 13 12 1 7 GONE"); // OSL 1.13.12 (oslc -E)
 }
 
 TEST(PP, ConditionalErrors) {

@@ -25,7 +25,7 @@ Preprocessor::~Preprocessor() = default;
 // definitions have a location like any other.
 void Preprocessor::define_predefined() {
   std::string text = "#define OSL_VERSION_MAJOR 1\n#define OSL_VERSION_MINOR 13\n"
-                     "#define OSL_VERSION_PATCH 0\n#define OSL_VERSION 11300\n";
+                     "#define OSL_VERSION_PATCH 12\n#define OSL_VERSION 11312\n";
   for (const auto& d : opts_.defines) {
     auto eq = d.find('=');
     text += "#define " +

@@ -3,8 +3,9 @@
 // Input: a GroupPlan (layers in execution order, each an ir::Shader plus where its parameters
 // live in the group-data block and which of them are connected upstream). Output: one LLVM
 // function per layer, `void <layer>(ShaderGlobals*, char* groupdata)`, and the entry
-// `void <entry>(ShaderGlobals*, char* groupdata)` that runs the last layer; upstream layers run
-// lazily, the first time a connected parameter is used (`useparam`).
+// `void <entry>(ShaderGlobals*, char* groupdata)` that runs the entry layers (those with
+// renderer outputs), in order, then the last layer; other upstream layers run lazily, the first
+// time a connected parameter is used (`useparam`).
 //
 // Group-data block (laid out by the group compiler): per layer a 4-byte "ran" flag, then every
 // parameter's storage. A symbol's storage is [planes][elements][components] of 4-byte scalars
@@ -49,6 +50,7 @@ struct LayerPlan {
   std::vector<bool> userdata;     // per symbol: a lockgeom=0 param asks the renderer first
   std::string layer_name;         // for getattribute("shader:layername")
   int group_index = 0;            // position among the group's layers (compiled or not)
+  bool entry = false;             // runs at every shade (a renderer output), not only lazily
   std::vector<ConnectionPlan> connections;
 };
 

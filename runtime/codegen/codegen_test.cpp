@@ -248,7 +248,10 @@ main
   printf $f x
 end
 )");
-  EXPECT_EQ(out, "ERROR: Index [5] out of range [0..2]: t.osl:4\nx = 9\n");
+  // OSL's wording (testshade 1.13.12 on the same code): the symbol, the range, the location and
+  // the layer.
+  EXPECT_EQ(out, "ERROR: Index [5] out of range a[0..2]: t.osl:4 (group unnamed_group, layer 0 , "
+                 "shader t)\nx = 9\n");
 }
 
 TEST(Codegen, TriplesAndGeometry) {

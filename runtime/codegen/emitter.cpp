@@ -294,9 +294,17 @@ llvm::Value* LayerEmitter::checked_index(const ir::Op& op, int index_arg, int le
   auto* ok = llvm::BasicBlock::Create(ctx(), "range_ok", fn_);
   b_.CreateCondBr(bad, report, ok);
   b_.SetInsertPoint(report);
-  call("lobe_range_error",
-       {sg_, idx, iconst(length), string_const(op.loc.file.empty() ? shader().name : op.loc.file),
-        iconst(op.loc.line)});
+  // The indexed symbol: the destination of an element store, else the source.
+  const ir::Symbol& what = arg(
+      op,
+      op.opcode.size() > 6 && op.opcode.compare(op.opcode.size() - 6, 6, "assign") == 0 ? 0 : 1);
+  std::string where = "(group " +
+                      (group_.group_name.empty() ? "unnamed_group" : group_.group_name) +
+                      ", layer " + std::to_string(plan().group_index) + " " + plan().layer_name +
+                      ", shader " + shader().name + ")";
+  call("lobe_range_error", {sg_, idx, iconst(length), string_const(what.name),
+                            string_const(op.loc.file.empty() ? shader().name : op.loc.file),
+                            iconst(op.loc.line), string_const(where)});
   b_.CreateBr(ok);
   b_.SetInsertPoint(ok);
   llvm::Value* lo = b_.CreateSelect(b_.CreateICmpSLT(idx, iconst(0)), iconst(0), idx);

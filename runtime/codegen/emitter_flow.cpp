@@ -310,7 +310,21 @@ std::string emit_group(const GroupPlan& plan, llvm::Module& module) {
   auto* entry =
       llvm::Function::Create(fty, llvm::Function::ExternalLinkage, plan.entry_name, module);
   llvm::IRBuilder<> b(llvm::BasicBlock::Create(ctx, "entry", entry));
-  if (!fns.empty()) b.CreateCall(fns.back(), {entry->getArg(0), entry->getArg(1)});
+  llvm::Value* sg = entry->getArg(0);
+  llvm::Value* gd = entry->getArg(1);
+  for (size_t i = 0; i + 1 < plan.layers.size(); ++i) { // entry layers, unless one already ran
+    if (!plan.layers[i].entry) continue;
+    llvm::Value* ran = b.CreateLoad(
+        b.getInt32Ty(), b.CreateConstInBoundsGEP1_64(b.getInt8Ty(), gd, plan.layers[i].ran_offset));
+    auto* run = llvm::BasicBlock::Create(ctx, "run_entry", entry);
+    auto* next = llvm::BasicBlock::Create(ctx, "next", entry);
+    b.CreateCondBr(b.CreateICmpEQ(ran, b.getInt32(0)), run, next);
+    b.SetInsertPoint(run);
+    b.CreateCall(fns[i], {sg, gd});
+    b.CreateBr(next);
+    b.SetInsertPoint(next);
+  }
+  if (!fns.empty()) b.CreateCall(fns.back(), {sg, gd});
   b.CreateRetVoid();
   std::string err;
   llvm::raw_string_ostream os(err);

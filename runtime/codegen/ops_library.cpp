@@ -85,12 +85,17 @@ void op_printf(LayerEmitter& e, const ir::Op& op) {
             Val{Dual{e.call("lobe_format", {e.env_ptr(), fmt, e.string_const(codes), argv})}});
     return;
   }
-  if (to_file) { // the file name is ignored: text goes to the context like printf
+  if (to_file) {
+    e.call("lobe_fprintf",
+           {e.sg(), e.env_ptr(), e.load(op.args[0])[0].v, fmt, e.string_const(codes), argv});
+    return;
+  }
+  if (o == "printf") {
     e.call("lobe_printf", {e.sg(), e.env_ptr(), fmt, e.string_const(codes), argv});
     return;
   }
-  const char* fn = o == "printf" ? "lobe_printf" : (o == "error" ? "lobe_error" : "lobe_warning");
-  e.call(fn, {e.sg(), e.env_ptr(), fmt, e.string_const(codes), argv});
+  e.call(o == "error" ? "lobe_error" : "lobe_warning",
+         {e.sg(), e.env_ptr(), e.string_const(e.shader().name), fmt, e.string_const(codes), argv});
 }
 
 // ---- strings --------------------------------------------------------------------------------

@@ -343,9 +343,20 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     }
   }
 
-  // Layers the last one depends on.
-  std::vector<bool> needed(n, false);
+  // Layers the last one depends on, and layers with a renderer output (which run at every
+  // shade) with theirs.
+  std::vector<bool> needed(n, false), entry(n, false);
   needed[n - 1] = true;
+  for (size_t i = 0; i + 1 < n; ++i)
+    for (const std::string& ro : group.renderer_outputs) {
+      size_t dot = ro.find('.');
+      std::string layer = dot == std::string::npos ? "" : ro.substr(0, dot);
+      std::string var = dot == std::string::npos ? ro : ro.substr(dot + 1);
+      int s = sources[i]->find_symbol(var);
+      if ((layer.empty() || layer == group.layers[i].name) && s >= 0 &&
+          sources[i]->symbols[size_t(s)].kind == ir::SymKind::OutputParam)
+        needed[i] = entry[i] = true;
+    }
   for (size_t i = n; i-- > 0;)
     for (const Link& l : links)
       if (l.dst_layer == int(i) && needed[i]) needed[size_t(l.src_layer)] = true;
@@ -421,6 +432,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     const ir::Shader& sh = *out.shaders[li];
     codegen::LayerPlan& lp = out.plan.layers[li];
     lp.group_index = int(i);
+    lp.entry = entry[i];
     std::set<std::string> connected;
     for (const Link& l : links)
       if (l.dst_layer == int(i)) {

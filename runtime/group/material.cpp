@@ -70,6 +70,58 @@ bool MaterialImpl::read_output(const ShadingContext& ctx, const std::string& lay
                    param, dst);
 }
 
+std::optional<Material::OutputInfo> MaterialImpl::output_info(const std::string& layer,
+                                                              const std::string& param) const {
+  auto it = slots_.find(layer + "." + param);
+  if (it == slots_.end() || !it->second.output) return std::nullopt;
+  const ir::Type& t = it->second.type;
+  OutputInfo info;
+  info.closure = t.base == ir::BaseType::Closure;
+  using B = DataType::Base;
+  switch (t.base) {
+  case ir::BaseType::Int:
+    info.type.base = B::Int;
+    break;
+  case ir::BaseType::Color:
+    info.type.base = B::Color;
+    break;
+  case ir::BaseType::Point:
+    info.type.base = B::Point;
+    break;
+  case ir::BaseType::Vector:
+    info.type.base = B::Vector;
+    break;
+  case ir::BaseType::Normal:
+    info.type.base = B::Normal;
+    break;
+  case ir::BaseType::Matrix:
+    info.type.base = B::Matrix;
+    break;
+  case ir::BaseType::String:
+    info.type.base = B::String;
+    break;
+  default:
+    info.type.base = B::Float;
+    break;
+  }
+  info.type.arraylen = std::max(0, t.arraylen);
+  return info;
+}
+
+bool MaterialImpl::read_output_bytes(const ShadingContext& ctx, const std::string& layer,
+                                     const std::string& param,
+                                     std::vector<unsigned char>& dst) const {
+  auto it = slots_.find(layer + "." + param);
+  if (it == slots_.end() || it->second.type.base == ir::BaseType::Closure) return false;
+  const ir::Type& t = it->second.type;
+  size_t scalar = t.base == ir::BaseType::String ? sizeof(const char*) : 4;
+  size_t n = size_t(t.components()) * size_t(std::max(1, t.arraylen)) * scalar;
+  const unsigned char* gd =
+      (ctx.groupdata_owner == this ? ctx.groupdata.data() : groupdata_.data()) + it->second.offset;
+  dst.assign(gd, gd + n);
+  return true;
+}
+
 bool MaterialImpl::read_from(const unsigned char* gd, const std::string& layer,
                              const std::string& param, std::vector<float>& dst) const {
   auto it = slots_.find(layer + "." + param);

@@ -20,6 +20,7 @@ namespace lobe::group {
 struct OutputSlot {
   size_t offset = 0;
   ir::Type type;
+  bool output = false; // an `output` parameter (the others are readable, not outputs)
 };
 
 class MaterialImpl final : public Material {
@@ -38,6 +39,10 @@ public:
                    std::vector<float>& dst) const override;
   bool read_output(const ShadingContext& ctx, const std::string& layer, const std::string& param,
                    std::vector<float>& dst) const override;
+  std::optional<OutputInfo> output_info(const std::string& layer,
+                                        const std::string& param) const override;
+  bool read_output_bytes(const ShadingContext& ctx, const std::string& layer,
+                         const std::string& param, std::vector<unsigned char>& dst) const override;
   const CompileStats& stats() const override { return stats_; }
   const ClosureKernels* closure_kernels() const override;
   std::string closure_kernels_error() const override;
@@ -77,6 +82,14 @@ public:
   bool read_output(const ShadingContext& ctx, const std::string& layer, const std::string& param,
                    std::vector<float>& dst) const override {
     return m_->read_output(ctx, layer, param, dst);
+  }
+  std::optional<OutputInfo> output_info(const std::string& layer,
+                                        const std::string& param) const override {
+    return m_->output_info(layer, param);
+  }
+  bool read_output_bytes(const ShadingContext& ctx, const std::string& layer,
+                         const std::string& param, std::vector<unsigned char>& dst) const override {
+    return m_->read_output_bytes(ctx, layer, param, dst);
   }
   const CompileStats& stats() const override { return stats_; }
   const ClosureKernels* closure_kernels() const override { return m_->closure_kernels(); }

@@ -27,10 +27,12 @@ bool read_file(const std::string& path, std::string& out) {
   out = ss.str();
   return true;
 }
+} // namespace
+
 // OSL source: front end (preprocess, parse, type-check) then lowering to IR.
-std::optional<ir::Shader> compile_osl(const std::string& path, const std::string& text,
-                                      const CompileOptions& options, DiagnosticList& diags,
-                                      CompileStats& stats) {
+std::optional<ir::Shader> compile_osl_source(const std::string& path, const std::string& text,
+                                             const CompileOptions& options, DiagnosticList& diags,
+                                             CompileStats& stats) {
   frontend::FrontendOptions fo;
   fo.include_dirs = options.include_dirs;
   fo.defines = options.defines;
@@ -52,8 +54,6 @@ std::optional<ir::Shader> compile_osl(const std::string& path, const std::string
   if (!lr.shader) return std::nullopt;
   return std::move(lr.shader);
 }
-
-} // namespace
 
 std::string find_shader_file(const std::string& name, const CompileOptions& options) {
   fs::path p(name);
@@ -93,7 +93,7 @@ std::optional<ir::Shader> compile_shader_file(const std::string& path,
     return std::nullopt;
   }
   if (fs::path(path).extension() == ".lir") return parse_ir_text(text, path, diags);
-  return compile_osl(path, text, options, diags, stats);
+  return compile_osl_source(path, text, options, diags, stats);
 }
 
 } // namespace lobe::group

@@ -20,6 +20,11 @@ std::optional<ir::Shader> compile_shader_file(const std::string& path,
                                               const CompileOptions& options, DiagnosticList& diags,
                                               CompileStats& stats);
 
+// OSL source text compiled as if read from `path` (which names it in diagnostics).
+std::optional<ir::Shader> compile_osl_source(const std::string& path, const std::string& text,
+                                             const CompileOptions& options, DiagnosticList& diags,
+                                             CompileStats& stats);
+
 std::optional<ir::Shader> parse_ir_text(const std::string& text, const std::string& where,
                                         DiagnosticList& diags);
 

@@ -71,6 +71,16 @@ bool ShadingSystem::add_shader_ir(const std::string& name, const std::string& ir
   return true;
 }
 
+bool ShadingSystem::add_shader_source(const std::string& name, const std::string& source,
+                                      const std::string& where, DiagnosticList& diags) {
+  CompileStats st;
+  auto sh = group::compile_osl_source(where, source, impl_->options, diags, st);
+  if (!sh) return false;
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->registered[name] = std::move(*sh);
+  return true;
+}
+
 std::optional<ir::Shader> ShadingSystem::Impl::load(const std::string& name, DiagnosticList& diags,
                                                     CompileStats& st) {
   {
@@ -100,9 +110,12 @@ std::string ShadingSystem::Impl::cache_key(const ShaderGroup& g,
     for (const InstanceValue& v : g.layers[i].values) {
       key += "value " + v.type + " " + v.name + " " + v.value + " ";
       key += std::to_string(v.lockgeom);
+      key += v.osl_rules ? " osl" : " fit";
+      for (const std::string& w : v.words) key += " [" + w + "]";
       key += "\n";
     }
   }
+  for (const std::string& o : g.renderer_outputs) key += "output " + o + "\n";
   for (const Connection& c : g.connections)
     key +=
         "connect " + c.src_layer + "." + c.src_param + " " + c.dst_layer + "." + c.dst_param + "\n";
@@ -148,7 +161,8 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
     for (size_t s = 0; s < sh.symbols.size(); ++s)
       if (b.plan.layers[li].symbol_offset[s] >= 0)
         slots[b.layer_names[li] + "." + sh.symbols[s].name] = {
-            size_t(b.plan.layers[li].symbol_offset[s]), sh.symbols[s].type};
+            size_t(b.plan.layers[li].symbol_offset[s]), sh.symbols[s].type,
+            sh.symbols[s].kind == ir::SymKind::OutputParam};
   }
   // Registry ids of the closures the specialised layers can create (for closure kernels).
   std::vector<int> closure_ids;

@@ -452,9 +452,8 @@ void lobe_noise_named(lobe::ShaderGlobals* sg, const char* name, const float* x,
   if (grad)
     for (int k = 0; k < nout * nin; ++k) grad[k] = 0;
   if (sg && sg->context) {
-    sg->context->errors++;
-    sg->context->message("ERROR: Unknown noise type \"" + std::string(n) + "\": " + file + ":" +
-                         std::to_string(line) + "\n");
+    sg->context->error("Unknown noise type \"" + std::string(n) + "\": " + file + ":" +
+                       std::to_string(line));
   }
 }
 

@@ -195,9 +195,8 @@ void lobe_transformc(ShaderGlobals* sg, const char* from, const char* to, float*
   if (!ok) {
     out = in;
     if (sg && sg->context) {
-      sg->context->errors++;
-      sg->context->message(std::string("ERROR: Unknown color space \"") +
-                           (to_rgb(from, in, rgb) ? to : from) + "\"\n");
+      sg->context->error(std::string("Unknown color space \"") +
+                         (to_rgb(from, in, rgb) ? to : from) + "\"");
     }
   }
   dst[0] = out.r;

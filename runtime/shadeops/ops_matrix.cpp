@@ -1,8 +1,9 @@
 // Matrix and coordinate-space shadeops. Matrices are 16 floats, row-major, and points are row
 // vectors (OSL): p' = p * M. Named spaces map to "common" through ShaderGlobals::object2common
-// and shader2common (null: identity); "common" and "world" are the identity; "camera",
-// "screen", "raster" and "NDC" are identity too (the runtime has no camera; documented in
-// docs/runtime.md). An unknown space name is an error and gives the identity.
+// and shader2common (null: identity); "common" and "world" are the identity. The renderer
+// (RendererServices::get_matrix) answers any other name first; without an answer "camera",
+// "screen", "raster" and "NDC" are identity too (documented in docs/runtime.md). An unknown
+// space name is an error and gives the identity.
 #include "shadeops.h"
 
 #include "lobe/context.h"
@@ -63,13 +64,16 @@ double det3(double a, double b, double c, double d, double e, double f, double g
   return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g);
 }
 
-// space -> common; false for an unknown name.
+// space -> common; false for an unknown name. The renderer answers first (any name but
+// "common" and "world").
 bool space_to_common(const ShaderGlobals* sg, const char* space, float* m) {
   std::string s = space;
   identity(m);
-  if (s == "common" || s == "world" || s == "camera" || s == "screen" || s == "raster" ||
-      s == "NDC" || s == "rgb")
+  if (s == "common" || s == "world") return true;
+  if (sg && sg->context && sg->context->renderer && sg->context->renderer->get_matrix(*sg, s, m))
     return true;
+  identity(m);
+  if (s == "camera" || s == "screen" || s == "raster" || s == "NDC" || s == "rgb") return true;
   if (s == "object") {
     if (sg && sg->object2common) std::memcpy(m, sg->object2common, 16 * sizeof(float));
     return true;
@@ -83,8 +87,7 @@ bool space_to_common(const ShaderGlobals* sg, const char* space, float* m) {
 
 void unknown_space(ShaderGlobals* sg, const char* space) {
   if (sg && sg->context) {
-    sg->context->errors++;
-    sg->context->message(std::string("ERROR: Unknown transformation \"") + space + "\"\n");
+    sg->context->error(std::string("Unknown transformation \"") + space + "\"");
   }
 }
 
@@ -167,9 +170,8 @@ float lobe_transformu_scale(ShaderGlobals* sg, const char* from, const char* to,
   double b = lobe::shadeops::unit_scale(to ? to : "");
   if (a > 0 && b > 0) return float(a / b);
   if (sg && sg->context) {
-    sg->context->errors++;
-    sg->context->message(std::string("ERROR: Unknown unit \"") + (a > 0 ? to : from) +
-                         "\": " + file + ":" + std::to_string(line) + "\n");
+    sg->context->error(std::string("Unknown unit \"") + (a > 0 ? to : from) + "\": " + file + ":" +
+                       std::to_string(line));
   }
   return 1.0f;
 }

@@ -45,14 +45,12 @@ std::string where(const char* file, int line) {
   return s;
 }
 
-// A run-time error through the context: "ERROR: " and the pieces, joined.
+// A run-time error through the context: the pieces, joined.
 void report(lobe::ShaderGlobals* sg, std::initializer_list<std::string_view> pieces) {
   if (!sg || !sg->context) return;
-  sg->context->errors++;
-  std::string text = "ERROR: ";
+  std::string text;
   for (std::string_view p : pieces) text += p;
-  text += "\n";
-  sg->context->message(text);
+  sg->context->error(text);
 }
 
 bool builtin_attribute(std::string_view name, int code, void* dest, lobe::shadeops::RuntimeEnv* env,
@@ -74,7 +72,7 @@ bool builtin_attribute(std::string_view name, int code, void* dest, lobe::shadeo
     std::memcpy(dest, &s, sizeof(s));
   } else {
     if (code != int(lobe::DataType::Base::Int)) return true;
-    int32_t v = 11300; // OSL_VERSION of the language Lobe accepts (1.13.0)
+    int32_t v = 11312; // OSL_VERSION of the language Lobe accepts (1.13.12, the reference)
     std::memcpy(dest, &v, sizeof(v));
   }
   found = 1;

@@ -6,8 +6,10 @@
 
 #include <OpenImageIO/strutil.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
 #include <regex>
 #include <string>
 
@@ -32,24 +34,49 @@ const char* lobe_format(RuntimeEnv* env, const char* fmt, const char* codes,
   return env->strings.intern(lobe::shadeops::format_values(*env, fmt, codes, args));
 }
 
-void lobe_warning(ShaderGlobals* sg, RuntimeEnv* env, const char* fmt, const char* codes,
-                  const void* const* args) {
-  if (sg && sg->context) sg->context->warnings++;
-  send(sg, "WARNING: " + lobe::shadeops::format_values(*env, fmt, codes, args));
+// warning() and error() from a shader, worded as OSL words them: "Shader warning [shader]:
+// text" (the text as formatted, a trailing newline kept).
+void lobe_warning(ShaderGlobals* sg, RuntimeEnv* env, const char* shader, const char* fmt,
+                  const char* codes, const void* const* args) {
+  if (sg && sg->context)
+    sg->context->warning(std::string("Shader warning [") + shader +
+                         "]: " + lobe::shadeops::format_values(*env, fmt, codes, args));
 }
 
-void lobe_error(ShaderGlobals* sg, RuntimeEnv* env, const char* fmt, const char* codes,
-                const void* const* args) {
-  if (sg && sg->context) sg->context->errors++;
-  send(sg, "ERROR: " + lobe::shadeops::format_values(*env, fmt, codes, args));
+void lobe_error(ShaderGlobals* sg, RuntimeEnv* env, const char* shader, const char* fmt,
+                const char* codes, const void* const* args) {
+  if (sg && sg->context)
+    sg->context->error(std::string("Shader error [") + shader +
+                       "]: " + lobe::shadeops::format_values(*env, fmt, codes, args));
 }
 
-// An out-of-range array or component index (the generated code clamps it). The message names
-// the source location, not the variable: after specialisation the operand may be a constant.
-void lobe_range_error(ShaderGlobals* sg, int index, int length, const char* file, int line) {
-  if (sg && sg->context) sg->context->errors++;
-  send(sg, "ERROR: Index [" + std::to_string(index) + "] out of range [0.." +
-               std::to_string(length - 1) + "]: " + file + ":" + std::to_string(line) + "\n");
+// fprintf(file, ...): appends to the file (created if missing), as OSL does; one writer at a
+// time, so that lines from several shading threads never interleave. A file that cannot be
+// opened is an error.
+void lobe_fprintf(ShaderGlobals* sg, RuntimeEnv* env, const char* file, const char* fmt,
+                  const char* codes, const void* const* args) {
+  static std::mutex mutex;
+  std::string text = lobe::shadeops::format_values(*env, fmt, codes, args);
+  std::lock_guard<std::mutex> lock(mutex);
+  std::FILE* f = std::fopen(file ? file : "", "a");
+  if (!f) {
+    if (sg && sg->context)
+      sg->context->error(std::string("fprintf: cannot open \"") + (file ? file : "") + "\"");
+    return;
+  }
+  std::fwrite(text.data(), 1, text.size(), f);
+  std::fclose(f);
+}
+
+// An out-of-range array or component index (the generated code clamps it), worded as OSL:
+// "Index [5] out of range a[0..2]: f.osl:3 (group g, layer 0 l, shader s)". `what` names the
+// indexed symbol, `where` is the parenthesised layer description.
+void lobe_range_error(ShaderGlobals* sg, int index, int length, const char* what, const char* file,
+                      int line, const char* where) {
+  if (sg && sg->context)
+    sg->context->error("Index [" + std::to_string(index) + "] out of range " + what + "[0.." +
+                       std::to_string(length - 1) + "]: " + file + ":" + std::to_string(line) +
+                       " " + where);
 }
 
 const char* lobe_concat(RuntimeEnv* env, const char* a, const char* b) {

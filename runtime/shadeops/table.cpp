@@ -14,6 +14,7 @@ void lobe_format();
 void lobe_warning();
 void lobe_error();
 void lobe_range_error();
+void lobe_fprintf();
 void lobe_concat();
 void lobe_strlen();
 void lobe_substr();
@@ -68,9 +69,10 @@ const ShadeOpSymbol kTable[] = {
     // name, address, signature (return type, then parameters)
     {"lobe_printf", addr(lobe_printf), "vppppp"},
     {"lobe_format", addr(lobe_format), "ppppp"},
-    {"lobe_warning", addr(lobe_warning), "vppppp"},
-    {"lobe_error", addr(lobe_error), "vppppp"},
-    {"lobe_range_error", addr(lobe_range_error), "vpiipi"},
+    {"lobe_warning", addr(lobe_warning), "vpppppp"},
+    {"lobe_error", addr(lobe_error), "vpppppp"},
+    {"lobe_fprintf", addr(lobe_fprintf), "vpppppp"},
+    {"lobe_range_error", addr(lobe_range_error), "vpiippip"},
     {"lobe_concat", addr(lobe_concat), "pppp"},
     {"lobe_strlen", addr(lobe_strlen), "ip"},
     {"lobe_substr", addr(lobe_substr), "pppii"},

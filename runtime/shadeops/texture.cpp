@@ -61,9 +61,8 @@ void missing(ShaderGlobals* sg, OIIO::TextureSystem* ts, const TextureArgs* a, c
   for (int c = 0; c < n; ++c) out[c] = a->has_missing ? a->missing[std::min(c, 3)] : 0.0f;
   std::string err = ts->geterror();
   if (a->has_missing || !sg || !sg->context) return;
-  sg->context->errors++;
-  sg->context->message("ERROR: texture \"" + std::string(file) +
-                       "\": " + (err.empty() ? "cannot read" : err) + "\n");
+  sg->context->error("texture \"" + std::string(file) +
+                     "\": " + (err.empty() ? "cannot read" : err));
 }
 
 } // namespace
@@ -130,11 +129,7 @@ int lobe_gettextureinfo(ShaderGlobals* sg, RuntimeEnv* env, const char* file, co
       return true;
     std::string err = ts->geterror();
     if (!err.empty() && sg && sg->context) {
-      sg->context->errors++;
-      std::string msg = "ERROR: [RendererServices::get_texture_info] ";
-      msg += err;
-      msg += "\n";
-      sg->context->message(msg);
+      sg->context->error("[RendererServices::get_texture_info] " + err);
     }
     return false;
   });

@@ -33,15 +33,33 @@ public:
   // builder then drops the component and counts it in closures_dropped).
   void* allocate(size_t bytes);
 
-  // Sends text from shader code to `print` if set, else appends it to `output`.
-  void message(const std::string& text);
+  // What shader code says: printf text as is; a warning or an error as one line without its
+  // "WARNING: " / "ERROR: " prefix and newline, as OSL words them ("Shader error [name]: ...",
+  // "Index [5] out of range a[0..2]: f.osl:3 (group g, layer 0 l, shader s)").
+  enum class MessageKind : uint8_t { Print, Warning, Error };
+  // Sends a message to `report` if set, else to `print` (or `output`) formatted as OSL's
+  // testshade prints it: "WARNING: text\n", "ERROR: text\n".
+  void message(MessageKind kind, const std::string& text);
+  void message(const std::string& text) { message(MessageKind::Print, text); }
+  // A run-time error or warning from shader code (counted in `errors` / `warnings`).
+  void error(const std::string& text) {
+    ++errors;
+    message(MessageKind::Error, text);
+  }
+  void warning(const std::string& text) {
+    ++warnings;
+    message(MessageKind::Warning, text);
+  }
 
   // Per-thread scratch for a material's group data (layer parameters and outputs) during
   // shade(); Material::read_output reads the most recent shade() from here.
   std::vector<unsigned char> groupdata;
   const void* groupdata_owner = nullptr; // the Material that last wrote `groupdata`
 
-  // Message sink for printf/warning/error from shader code. Default: append to `output`.
+  // Message sinks for printf/warning/error from shader code: `report` receives each message
+  // with its kind; without it, `print` receives the formatted text; without either, it is
+  // appended to `output`.
+  std::function<void(MessageKind, const std::string&)> report;
   std::function<void(const std::string&)> print;
   std::string output;
   int errors = 0;

@@ -87,6 +87,16 @@ public:
     return false;
   }
 
+  // The matrix from the named space to "common" at this point (OSL's get_matrix by name):
+  // 16 floats, row-major, points as row vectors (p' = p * M). Asked for every space name but
+  // "common" and "world" (the identity) before Lobe's defaults: "object" and "shader" from
+  // ShaderGlobals, the camera spaces ("camera", "screen", "NDC", "raster") as the identity;
+  // any other name is an unknown space unless the renderer knows it.
+  virtual bool get_matrix(const ShaderGlobals& sg, std::string_view space, float* m) const {
+    (void)sg, (void)space, (void)m;
+    return false;
+  }
+
   // trace(P, R, ...): casts a ray from P along the direction of R (R need not be unit length)
   // with the differentials of both; true when it hits something between opt.mindist and
   // opt.maxdist, with `hit`'s hitdist, P, N, Ng, u, v filled (Lobe sets `traced` and `hit`).

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,10 @@ struct ShaderGroup {
   std::string name;
   std::vector<Layer> layers;
   std::vector<Connection> connections;
+  // OSL's renderer outputs: output parameters the renderer reads ("Cout", or "layer.Cout" for
+  // one layer). A layer that has one runs at every shade, in layer order before the last
+  // layer, even when nothing downstream reads it (testshade's `-o`; its default is "Cout").
+  std::vector<std::string> renderer_outputs;
 };
 
 struct CompileOptions {
@@ -110,6 +115,29 @@ public:
     (void)ctx;
     return read_output(layer, param, dst);
   }
+  // An output parameter of a layer: its type, or nullopt when the layer has no output
+  // parameter of that name. `closure`: a closure output (its value is a pointer into the
+  // shading context, not data to copy).
+  struct OutputInfo {
+    DataType type;
+    bool closure = false;
+  };
+  virtual std::optional<OutputInfo> output_info(const std::string& layer,
+                                                const std::string& param) const {
+    (void)layer;
+    (void)param;
+    return std::nullopt;
+  }
+  // The value of an output parameter after the most recent shade() with `ctx`, as stored:
+  // type.bytes() bytes (int32, float or interned const char* scalars). False if absent.
+  virtual bool read_output_bytes(const ShadingContext& ctx, const std::string& layer,
+                                 const std::string& param, std::vector<unsigned char>& dst) const {
+    (void)ctx;
+    (void)layer;
+    (void)param;
+    (void)dst;
+    return false;
+  }
   virtual const CompileStats& stats() const = 0;
   // The closure library's eval/sample/albedo for this material's closures, JIT-compiled and
   // inlined (bsdf.h, ClosureKernels); compiled on the first call, from any thread. Null when
@@ -137,6 +165,10 @@ public:
   // if compiled from source; it takes precedence over files on the search path. False with
   // diagnostics if the text does not parse.
   bool add_shader_ir(const std::string& name, const std::string& ir_text, DiagnosticList& diags);
+  // The same from OSL source text (testshade's --expr and --inbuffer); `where` names the
+  // source in diagnostics.
+  bool add_shader_source(const std::string& name, const std::string& source,
+                         const std::string& where, DiagnosticList& diags);
 
   // Compiles (or fetches from the in-process cache) a group. Thread-safe. Null on error.
   std::shared_ptr<const Material> compile(const ShaderGroup& group, DiagnosticList& diags);
