@@ -133,18 +133,25 @@ void patterns(Builder& b) {
       b.add(f, r, {t_point(), t_float(), t_point(), t_float()});
     }
   }
-  // Generic noise("perlin" | "uperlin" | "cell" | "hash" | "simplex" | "gabor" ..., ...)
+  // Generic noise("perlin" | "uperlin" | "cell" | "hash" | "simplex" | "gabor" ..., ...), 1-4 D,
+  // and pnoise(name, ...) in the same 4 domains; trailing `"name", value` keyword pairs are the
+  // gabor options ("anisotropic", "direction", "bandwidth", "impulses", "do_filter"; ignored by
+  // the other kinds, as in OSL).
   for (const char* f : {"noise", "pnoise"}) {
     bool periodic = std::string(f) == "pnoise";
     for (Type r : results) {
       if (periodic) {
-        b.add(f, r, {t_string(), t_float(), t_float()});
-        b.add(f, r, {t_string(), t_point(), t_point()});
+        b.add(f, r, {t_string(), t_float(), t_float()}).extra = Sig::Extra::Keywords;
+        b.add(f, r, {t_string(), t_float(), t_float(), t_float(), t_float()}).extra =
+            Sig::Extra::Keywords;
+        b.add(f, r, {t_string(), t_point(), t_point()}).extra = Sig::Extra::Keywords;
+        b.add(f, r, {t_string(), t_point(), t_float(), t_point(), t_float()}).extra =
+            Sig::Extra::Keywords;
       } else {
-        b.add(f, r, {t_string(), t_float()});
-        b.add(f, r, {t_string(), t_float(), t_float()});
-        b.add(f, r, {t_string(), t_point()});
-        b.add(f, r, {t_string(), t_point(), t_float()});
+        b.add(f, r, {t_string(), t_float()}).extra = Sig::Extra::Keywords;
+        b.add(f, r, {t_string(), t_float(), t_float()}).extra = Sig::Extra::Keywords;
+        b.add(f, r, {t_string(), t_point()}).extra = Sig::Extra::Keywords;
+        b.add(f, r, {t_string(), t_point(), t_float()}).extra = Sig::Extra::Keywords;
       }
     }
   }

@@ -276,7 +276,7 @@ namespace {
 // The optional arguments OSL's texture functions and trace() take, with their types. `Float`
 // takes an int too; `Output` ones are written (an lvalue of that type).
 struct BuiltinKeyword {
-  const char* function; // "texture" also covers texture3d and environment
+  const char* function; // "texture" also covers texture3d and environment; "noise", pnoise
   const char* name;
   ast::BaseType type;
   bool output = false;
@@ -308,13 +308,21 @@ const BuiltinKeyword kBuiltinKeywords[] = {
     {"trace", "maxdist", ast::BaseType::Float},
     {"trace", "shade", ast::BaseType::Int},
     {"trace", "traceset", ast::BaseType::String},
+    // noise("gabor", ...) / pnoise("gabor", ...) options (OSL's NoiseParams).
+    {"noise", "anisotropic", ast::BaseType::Int},
+    {"noise", "do_filter", ast::BaseType::Int},
+    {"noise", "direction", ast::BaseType::Vector},
+    {"noise", "bandwidth", ast::BaseType::Float},
+    {"noise", "impulses", ast::BaseType::Float},
 };
 } // namespace
 
 // A builtin's `"keyword", value` pair: a keyword it takes, with a value of the right type
 // (converted to it), as OSL requires; codegen then reads each value as its type.
 void Sema::check_builtin_keyword(ast::CallExpr* e, const ast::StringLit* name, ExprPtr& value) {
-  std::string fn = e->name == "trace" ? "trace" : "texture";
+  std::string fn = e->name == "trace"                          ? "trace"
+                   : e->name == "noise" || e->name == "pnoise" ? "noise"
+                                                               : "texture";
   const BuiltinKeyword* k = nullptr;
   for (const BuiltinKeyword& b : kBuiltinKeywords)
     if (fn == b.function && name->value == b.name) k = &b;

@@ -1,379 +1,429 @@
-// `lobe shade`: runs a shader group over a grid of points, like OSL's testshade.
+// `lobe shade`: runs a shader group over a grid of points, as OSL's testshade does; its options
+// and output follow testshade 1.13.12 (shade_args.h lists them, docs/cli.md describes them).
 //
-//   lobe shade [options] shadername [more layers]
-//     -g W H                  grid size (default 1 1)
-//     -param[:type=T][:lockgeom=0] N V
-//                             instance value for the next layer (also --param); lockgeom=0
-//                             lets user data override it
-//     --userdata[:type=T] N V user data N (constant over the grid); "s" and "t" are always
-//                             there: u and v with their derivatives, as in testshade
-//     -layer NAME shader      add a layer with a name (also --layer)
-//     -connect A out B in     connect layer A's `out` to layer B's `in` (also --connect)
-//     -group file|text        read the group from a file (or take the text itself)
-//     --center                sample pixel centres: u = (x + 0.5) / W
-//     --raytype name          the ray type (default camera)
-//     -o var file.exr|png     write output variable `var` over the grid as an image
-//     -O0 | -O1 | -O2         optimisation (-O0 also turns specialisation off)
-//     --stats                 compile time per stage and shading time per point
-//     -I dir, -D NAME[=val]   include/search path, preprocessor definition
-//     -U NAME                 undefine a preprocessor macro
+// What it prints, in order: `Connect A.x to B.y` for each --connect (while reading the command
+// line); with -v the group; a blank line if any -o was given; `Output VAR to FILE` for each
+// output found (not for FILE "null"); with --print a `Pixel (x, y):` block per point; then
+// what the shaders said (printf on stdout, warnings and errors on stderr, as OSL words them);
+// a blank line when there is exactly one output and its file is "null" (as without -o, whose
+// default is `-o Cout null`); then --print-groupdata and --runstats.
 //
-// Shaders are found by name on the search path (name.osl, name.lir) or by path. Printed output
-// follows OSL's formatting; each connection is announced as `Connect A.out to B.in` first.
+// Points are shaded on -t threads (default: one per core) and everything a point prints is
+// kept with the point, so the output is the same, in row-major order, whatever the threads.
 #include "command.h"
 
 #include "grid.h"
 #include "image.h"
-#include "lobe/renderer_services.h"
 #include "lobe/shadingsys.h"
+#include "shade_args.h"
+#include "shade_services.h"
 #include "shader_source.h"
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <chrono>
-#include <climits>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <deque>
 #include <filesystem>
-#include <fstream>
+#include <locale>
 #include <optional>
 #include <sstream>
 
+namespace lobe::cli {
 namespace {
 
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// One -o once the group is compiled: the layer it reads, its type, and its image.
 struct Output {
-  std::string var, file;
+  ShadeOutput spec;
+  std::string layer; // resolved
+  DataType type;
+  bool closure = false;
+  image::Image img;
 };
 
-struct UserDatum {
-  std::string name;
-  lobe::DataType type;
-  std::vector<std::string> words; // the value's words; one broadcasts to every component
-  std::vector<float> floats;      // the words as numbers, parsed once (not for strings)
-  std::vector<int32_t> ints;
+// What one point's shaders said, in order.
+struct Said {
+  ShadingContext::MessageKind kind;
+  std::string text;
 };
 
-// lobe shade's renderer: testshade's "s" and "t" user data (u and v with their derivatives),
-// the --userdata values, and "camera:resolution" (the grid size). As in testshade, a
-// getattribute of a name it does not know, for the shaded object and without an index, is
-// answered from the user data.
-class ShadeServices final : public lobe::RendererServices {
-public:
-  ShadeServices(std::vector<UserDatum> data, int w, int h) : data_(std::move(data)), w_(w), h_(h) {}
+// The shader testshade's --expr builds around an expression (OSL 1.13.12's text).
+std::string expression_shader(const std::string& name, const std::string& expr) {
+  return "shader " + name +
+         " (\n"
+         "    float s = u [[ int interpolated=1 ]],\n"
+         "    float t = v [[ int interpolated=1 ]],\n"
+         "    output color result = 0,\n"
+         "    output float alpha = 1,\n"
+         "  )\n"
+         "{\n    " +
+         expr + "\n    ;\n}\n";
+}
 
-  bool get_userdata(const lobe::ShaderGlobals& sg, std::string_view name, lobe::DataType type,
-                    bool derivatives, void* val) const override {
-    for (const UserDatum& d : data_) // the user's values first, even for "s" and "t"
-      if (d.name == name) return write(d, type, val);
-    auto* f = static_cast<float*>(val);
-    if ((name == "s" || name == "t") && type == lobe::DataType{}) {
-      bool s = name == "s";
-      f[0] = s ? sg.u : sg.v;
-      if (derivatives) {
-        f[1] = s ? sg.dudx : sg.dvdx;
-        f[2] = s ? sg.dudy : sg.dvdy;
-      }
-      return true;
-    }
-    return false;
+// A layer's shader named as testshade names them: `x`, `x.oso` or `dir/x` (Lobe reads x.osl).
+std::string shader_name(std::string s) {
+  if (s.size() > 4 && s.compare(s.size() - 4, 4, ".oso") == 0) s.resize(s.size() - 4);
+  return s;
+}
+
+void print_diagnostics(const DiagnosticList& diags, bool notes) {
+  for (const Diagnostic& d : diags) {
+    if (d.severity == Diagnostic::Severity::Note && !notes) continue;
+    std::string t = d.text;
+    // Group-level warnings print as testshade prints them: "WARNING: ...".
+    if (d.severity == Diagnostic::Severity::Warning && t.rfind("warning: ", 0) == 0)
+      t = "WARNING: " + t.substr(9);
+    std::fprintf(stderr, "%s%s", t.c_str(), !t.empty() && t.back() == '\n' ? "" : "\n");
   }
+}
 
-  bool get_attribute(const lobe::ShaderGlobals& sg, std::string_view object, std::string_view name,
-                     int index, lobe::DataType type, bool derivatives, void* val) const override {
-    if (object.empty() && name == "camera:resolution") {
-      int32_t res[2] = {w_, h_};
-      if (index < 0 && type == lobe::DataType{lobe::DataType::Base::Int, 2}) {
-        std::memcpy(val, res, sizeof(res));
-        return true;
-      }
-      if (index >= 0 && index < 2 && type == lobe::DataType{lobe::DataType::Base::Int, 0}) {
-        std::memcpy(val, &res[index], sizeof(int32_t));
-        return true;
-      }
-      return false;
+// The group as -v prints it (in OSL's group-text form).
+void print_group(const ShaderGroup& g) {
+  std::printf("Shader group:\n---\n");
+  for (const ShaderGroup::Layer& l : g.layers) {
+    for (const InstanceValue& v : l.values)
+      std::printf("param %s %s %s ;\n", v.type.c_str(), v.name.c_str(), v.value.c_str());
+    std::printf("shader %s %s ;\n", l.shader.c_str(), l.name.c_str());
+  }
+  for (const Connection& c : g.connections)
+    std::printf("connect %s.%s %s.%s ;\n", c.src_layer.c_str(), c.src_param.c_str(),
+                c.dst_layer.c_str(), c.dst_param.c_str());
+  std::printf("\n---\n\nShader group \"%s\" layers are:\n", g.name.c_str());
+  for (const ShaderGroup::Layer& l : g.layers) std::printf("    %s\n", l.name.c_str());
+  std::printf("\n");
+}
+
+std::vector<std::string> channel_names(int n) {
+  if (n == 1) return {"Y"};
+  std::vector<std::string> names;
+  const char* first[] = {"R", "G", "B", "A"};
+  for (int k = 0; k < n; ++k) names.push_back(k < 4 ? first[k] : "channel" + std::to_string(k));
+  return names;
+}
+
+// One output's value at a point, as --print shows it ("0.5 1 2"; ints as ints).
+std::string value_text(const DataType& t, const std::vector<unsigned char>& bytes) {
+  std::string s;
+  size_t n = size_t(t.elements() * t.components());
+  for (size_t k = 0; k < n; ++k) {
+    char buf[32];
+    if (t.base == DataType::Base::Int) {
+      int32_t v;
+      std::memcpy(&v, bytes.data() + 4 * k, 4);
+      std::snprintf(buf, sizeof buf, "%d", v);
+    } else {
+      float v;
+      std::memcpy(&v, bytes.data() + 4 * k, 4);
+      std::snprintf(buf, sizeof buf, "%g", double(v));
     }
-    if (object.empty() && index < 0) return get_userdata(sg, name, type, derivatives, val);
-    return false;
+    if (k) s += ' ';
+    s += buf;
+  }
+  return s;
+}
+
+// Prints what the shaders said: printf text as is; errors and warnings once each (an identical
+// one among the recent ones is not repeated, as OSL's error handler does, unless
+// error_repeats), each with its prefix and a newline.
+class Journal {
+public:
+  explicit Journal(bool repeats) : repeats_(repeats) {}
+  void print(const Said& s) {
+    if (s.kind == ShadingContext::MessageKind::Print) {
+      std::fputs(s.text.c_str(), stdout);
+      return;
+    }
+    bool error = s.kind == ShadingContext::MessageKind::Error;
+    std::deque<std::string>& recent = error ? errors_ : warnings_;
+    if (!repeats_) {
+      for (const std::string& r : recent)
+        if (r == s.text) return;
+      recent.push_back(s.text);
+      if (recent.size() > 32) recent.pop_front();
+    }
+    std::fflush(stdout);
+    std::fprintf(stderr, "%s%s\n", error ? "ERROR: " : "WARNING: ", s.text.c_str());
   }
 
 private:
-  // A value of the declared type, asked for as the same type (any triple kind for a triple).
-  static bool write(const UserDatum& d, lobe::DataType want, void* val) {
-    bool same = d.type.arraylen == want.arraylen &&
-                (d.type.base == want.base || (d.type.is_triple() && want.is_triple()));
-    if (!same) return false;
-    int n = want.elements() * want.components();
-    for (int k = 0; k < n; ++k) {
-      size_t at = d.words.size() == 1 ? 0 : size_t(k);
-      if (want.base == lobe::DataType::Base::Int)
-        static_cast<int32_t*>(val)[k] = d.ints[at];
-      else if (want.base == lobe::DataType::Base::String)
-        static_cast<const char**>(val)[k] = d.words[at].c_str();
-      else
-        static_cast<float*>(val)[k] = d.floats[at];
-    }
-    return true;
-  }
-
-  std::vector<UserDatum> data_;
-  int w_, h_;
+  bool repeats_;
+  std::deque<std::string> errors_, warnings_;
 };
 
-struct Options {
-  lobe::ShaderGroup group;
-  std::vector<lobe::InstanceValue> pending;
-  std::vector<UserDatum> userdata;
-  std::string group_source;
-  int w = 1, h = 1;
-  bool center = false, stats = false;
-  std::string raytype = "camera";
-  std::vector<Output> outputs;
-  lobe::CompileOptions compile;
+class Shade {
+public:
+  explicit Shade(ShadeJob& job) : job_(job) {}
+  int run();
+
+private:
+  bool compile(const ShaderGroup& g, std::shared_ptr<const Material>& out);
+  bool resolve_outputs();
+  void shade_grid(const Material& m, bool last_iteration);
+  int write_outputs();
+  void print_stats(double setup, double run, double write) const;
+
+  ShadeJob& job_;
+  ShadingSystem ss_;
+  std::shared_ptr<const Material> mat_;
+  std::vector<Output> outputs_;
+  std::vector<std::vector<Said>> said_;   // per iteration and point, in order
+  std::vector<std::string> pixel_blocks_; // --print, per point of the last iteration
 };
 
-void usage(FILE* f) {
-  std::fprintf(f,
-               "usage: lobe shade [options] shadername [more layers]\n"
-               "  -g W H  -param[:type=T][:lockgeom=0] name value  --userdata[:type=T] name value\n"
-               "  -layer NAME shader  -connect A out B in\n"
-               "  -group file  --center  --raytype name  -o var file.exr|png  -O0|-O1|-O2\n"
-               "  --stats  -I dir  -D NAME[=val]  -U NAME\n");
+bool Shade::compile(const ShaderGroup& g, std::shared_ptr<const Material>& out) {
+  DiagnosticList diags;
+  out = ss_.compile(g, diags);
+  print_diagnostics(diags, job_.verbose || !out);
+  return out != nullptr;
 }
 
-std::string layer_name_for(const std::string& shader) {
-  return std::filesystem::path(shader).stem().string();
-}
-
-void add_layer(Options& o, const std::string& shader, const std::string& name) {
-  o.group.layers.push_back({shader, name, std::move(o.pending)});
-  o.pending.clear();
-}
-
-bool is_opt(const std::string& a, const char* name) { // -name or --name
-  return a == std::string("-") + name || a == std::string("--") + name;
-}
-
-// Returns 0 to continue, 2 on a usage error, -1 after --help.
-int parse_args(int argc, char** argv, Options& o) {
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    auto need = [&](int n) { return i + n < argc; };
-    if (a == "-h" || a == "--help") {
-      usage(stdout);
-      return -1;
+// Each -o reads its layer's output (the last layer that has one, unless named); outputs that
+// no layer has are skipped silently, as testshade does.
+bool Shade::resolve_outputs() {
+  const ShaderGroup& g = job_.group;
+  for (const ShadeOutput& o : job_.outputs) {
+    Output out{o, "", {}, false, {}};
+    for (size_t i = g.layers.size(); i-- > 0 && out.layer.empty();) {
+      if (!o.layer.empty() && g.layers[i].name != o.layer) continue;
+      if (auto info = mat_->output_info(g.layers[i].name, o.var)) {
+        out.layer = g.layers[i].name;
+        out.type = info->type;
+        out.closure = info->closure;
+      }
     }
-    if (a == "-g" && need(2)) {
-      o.w = std::atoi(argv[i + 1]);
-      o.h = std::atoi(argv[i + 2]);
-      i += 2;
-    } else if ((a.rfind("-param", 0) == 0 || a.rfind("--param", 0) == 0) && need(2)) {
-      lobe::InstanceValue v{"float", argv[i + 1], argv[i + 2]};
-      size_t colon = a.find(':');
-      std::string mods = colon == std::string::npos ? "" : a.substr(colon); // ":type=T:..."
-      for (size_t p = 0; p < mods.size();) {
-        size_t q = mods.find(':', p + 1);
-        std::string m = mods.substr(p, q == std::string::npos ? std::string::npos : q - p);
-        p = q == std::string::npos ? mods.size() : q;
-        if (m.rfind(":type=", 0) == 0)
-          v.type = m.substr(6);
-        else if (m == ":lockgeom=0" || m == ":lockgeom=1")
-          v.lockgeom = m.back() - '0';
-        else {
-          std::fprintf(stderr, "lobe shade: unknown modifier '%s' in '%s'\n", m.c_str(), a.c_str());
-          return 2;
-        }
-      }
-      o.pending.push_back(v);
-      i += 2;
-    } else if ((a.rfind("-userdata", 0) == 0 || a.rfind("--userdata", 0) == 0) && need(2)) {
-      std::string type = "float";
-      size_t c = a.find(":type=");
-      if (c != std::string::npos) type = a.substr(c + 6);
-      std::optional<lobe::DataType> t = lobe::DataType::parse(type);
-      UserDatum d{argv[i + 1], t.value_or(lobe::DataType{}), {}};
-      bool one_string = t && t->base == lobe::DataType::Base::String && t->arraylen == 0;
-      std::istringstream words(argv[i + 2]);
-      for (std::string w; words >> w;) d.words.push_back(w);
-      if (one_string) d.words = {argv[i + 2]}; // a string keeps its spaces
-      size_t n = t ? size_t(t->elements() * t->components()) : 0;
-      bool fits = t && (d.words.size() == n ||
-                        (d.words.size() == 1 && t->base != lobe::DataType::Base::String));
-      for (const std::string& w : d.words) { // numbers must be numbers
-        if (!fits || t->base == lobe::DataType::Base::String) break;
-        char* end = nullptr;
-        if (t->base == lobe::DataType::Base::Int) {
-          long v = std::strtol(w.c_str(), &end, 10);
-          fits = *end == 0 && v >= INT32_MIN && v <= INT32_MAX;
-          d.ints.push_back(int32_t(v));
-        } else {
-          d.floats.push_back(std::strtof(w.c_str(), &end));
-          fits = *end == 0;
-        }
-      }
-      if (!fits) {
-        std::fprintf(stderr, "lobe shade: %s: '%s' is not a value of type %s\n", a.c_str(),
-                     argv[i + 2], type.c_str());
-        return 2;
-      }
-      o.userdata.push_back(std::move(d));
-      i += 2;
-    } else if (is_opt(a, "layer") && need(2)) {
-      add_layer(o, argv[i + 2], argv[i + 1]);
-      i += 2;
-    } else if (is_opt(a, "connect") && need(4)) {
-      o.group.connections.push_back({argv[i + 1], argv[i + 2], argv[i + 3], argv[i + 4]});
-      i += 4;
-    } else if (is_opt(a, "group") && need(1))
-      o.group_source = argv[++i];
-    else if (is_opt(a, "center"))
-      o.center = true;
-    else if (is_opt(a, "raytype") && need(1))
-      o.raytype = argv[++i];
-    else if (a == "-o" && need(2)) {
-      o.outputs.push_back({argv[i + 1], argv[i + 2]});
-      i += 2;
-    } else if (a == "-O0" || a == "-O1" || a == "-O2") {
-      o.compile.opt_level = a[2] - '0';
-      o.compile.specialize = o.compile.opt_level > 0;
-    } else if (is_opt(a, "stats"))
-      o.stats = true;
-    else if (a.rfind("-I", 0) == 0) {
-      std::string d = a.size() > 2 ? a.substr(2) : (need(1) ? argv[++i] : "");
-      o.compile.include_dirs.push_back(d);
-    } else if (a.rfind("-D", 0) == 0) {
-      std::string d = a.size() > 2 ? a.substr(2) : (need(1) ? argv[++i] : "");
-      o.compile.defines.push_back(d);
-    } else if (a.rfind("-U", 0) == 0) {
-      std::string d = a.size() > 2 ? a.substr(2) : (need(1) ? argv[++i] : "");
-      o.compile.undefines.push_back(d);
-    } else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "lobe shade: unknown or incomplete option '%s'\n", a.c_str());
-      return 2;
-    } else
-      add_layer(o, a, layer_name_for(a));
+    if (out.layer.empty()) continue;
+    if (!out.closure && out.type.base != DataType::Base::String)
+      out.img = image::Image(job_.xres, job_.yres,
+                             channel_names(out.type.elements() * out.type.components()));
+    outputs_.push_back(std::move(out));
   }
-  if (o.w < 1 || o.h < 1) {
-    std::fprintf(stderr, "lobe shade: bad grid size\n");
-    return 2;
+  for (const Output& o : outputs_)
+    if (o.spec.file != "null")
+      std::printf("Output %s to %s\n", o.spec.var.c_str(), o.spec.file.c_str());
+  for (const Output& o : outputs_)
+    if (o.closure)
+      std::printf("No output copy for closure color %s because of type mismatch vs "
+                  "symloc=pointer\n",
+                  o.spec.var.c_str());
+  // An image that cannot be written is known before anything is shaded.
+  for (const Output& o : outputs_) {
+    if (o.spec.file == "null" || job_.print || o.closure) continue;
+    std::string err = image::check_writable(o.spec.file);
+    if (!err.empty()) {
+      std::fprintf(stderr, "lobe shade: %s\n", err.c_str());
+      return false;
+    }
   }
-  return 0;
-}
-
-lobe::ShaderGlobals grid_point(const Options& o, int x, int y, lobe::ShadingContext& ctx) {
-  lobe::group::GridSpec g{o.w, o.h, o.center, lobe::group::raytype_from_name(o.raytype)};
-  return lobe::group::grid_globals(g, x, y, &ctx);
-}
-
-bool read_text(const std::string& path, std::string& out) {
-  std::ifstream in(path);
-  if (!in) return false;
-  std::stringstream ss;
-  ss << in.rdbuf();
-  out = ss.str();
   return true;
 }
 
-// Each diagnostic's text is already a complete block ending in a newline (as lobe compile
-// prints them): no blank line between them.
-void print_diags(const lobe::DiagnosticList& d) {
-  for (const auto& x : d)
-    std::fprintf(stderr, "%s%s", x.text.c_str(),
-                 !x.text.empty() && x.text.back() == '\n' ? "" : "\n");
-}
-
-// Finds `var` among the layers' parameters, last layer first.
-bool read_var(const lobe::Material& m, const lobe::ShadingContext& ctx, const lobe::ShaderGroup& g,
-              const std::string& var, std::vector<float>& v) {
-  for (size_t i = g.layers.size(); i-- > 0;)
-    if (m.read_output(ctx, g.layers[i].name, var, v)) return true;
-  return false;
-}
-
-int run_shade(int argc, char** argv) {
-  Options o;
-  int st = parse_args(argc, argv, o);
-  if (st) return st < 0 ? 0 : st;
-  lobe::ShadingSystem ss;
-  ss.options() = o.compile;
-  lobe::DiagnosticList diags;
-  if (!o.group_source.empty()) {
-    std::string text = o.group_source;
-    read_text(o.group_source, text); // a file, else the text itself
-    auto g = ss.parse_group(text, o.group_source, diags);
-    if (!g) {
-      print_diags(diags);
-      return 1;
-    }
-    for (auto& l : o.group.layers) g->layers.push_back(l);
-    for (auto& c : o.group.connections) g->connections.push_back(c);
-    o.group = *g;
-  }
-  if (o.group.layers.empty()) {
-    usage(stderr);
-    return 2;
-  }
-  // Shaders named without a path resolve on the search path here, so that one found in the
-  // working directory is `x.osl` (as for lobe compile and OSL) in diagnostics and __FILE__,
-  // not `./x.osl`.
-  for (auto& l : o.group.layers) {
-    std::string p = lobe::group::find_shader_file(l.shader, o.compile);
-    if (p.rfind("./", 0) == 0) p.erase(0, 2);
-    if (!p.empty()) l.shader = p;
-  }
-  for (const auto& c : o.group.connections)
-    std::printf("Connect %s.%s to %s.%s\n", c.src_layer.c_str(), c.src_param.c_str(),
-                c.dst_layer.c_str(), c.dst_param.c_str());
-  auto mat = ss.compile(o.group, diags);
-  print_diags(diags);
-  if (!mat) return 1;
-
-  std::vector<lobe::image::Image> images;
-  for (size_t i = 0; i < o.outputs.size(); ++i)
-    images.emplace_back(o.w, o.h, std::vector<std::string>{"R", "G", "B"});
-  lobe::ShadingContext ctx;
-  ctx.print = [](const std::string& s) { std::fputs(s.c_str(), stdout); };
-  ShadeServices services(o.userdata, o.w, o.h);
-  ctx.renderer = &services;
-  auto t0 = std::chrono::steady_clock::now();
-  std::vector<float> v;
-  for (int y = 0; y < o.h; ++y)
-    for (int x = 0; x < o.w; ++x) {
+void Shade::shade_grid(const Material& m, bool last_iteration) {
+  group::GridSpec grid;
+  grid.width = job_.xres;
+  grid.height = job_.yres;
+  grid.center = job_.center;
+  grid.raytype = group::raytype_from_name(job_.raytype);
+  grid.offset_u = job_.offset_u;
+  grid.offset_v = job_.offset_v;
+  grid.scale_u = job_.scale_u;
+  grid.scale_v = job_.scale_v;
+  grid.vary_pdxdy = job_.vary_pdxdy;
+  grid.vary_udxdy = job_.vary_udxdy;
+  grid.vary_vdxdy = job_.vary_vdxdy;
+  ShadeServices services(job_.userdata, job_.xres, job_.yres);
+  size_t points = size_t(job_.xres) * size_t(job_.yres), first = said_.size();
+  said_.resize(first + points);
+  if (last_iteration && job_.print) pixel_blocks_.assign(points, "");
+  tbb::enumerable_thread_specific<ShadingContext> contexts;
+  tbb::enumerable_thread_specific<std::vector<unsigned char>> scratch;
+  auto shade_row = [&](int y) {
+    ShadingContext& ctx = contexts.local();
+    std::vector<unsigned char>& bytes = scratch.local();
+    ctx.renderer = &services;
+    for (int x = 0; x < job_.xres; ++x) {
+      size_t p = size_t(y) * size_t(job_.xres) + size_t(x);
+      std::vector<Said>& said = said_[first + p];
+      ctx.report = [&said](ShadingContext::MessageKind k, const std::string& t) {
+        said.push_back({k, t});
+      };
       ctx.reset();
-      lobe::ShaderGlobals sg = grid_point(o, x, y, ctx);
-      mat->shade(sg);
-      for (size_t k = 0; k < o.outputs.size(); ++k) {
-        if (!read_var(*mat, ctx, o.group, o.outputs[k].var, v) || v.empty()) continue;
-        float* px = images[k].pixel(x, y);
-        for (int c = 0; c < 3; ++c) px[c] = v[v.size() >= 3 ? size_t(c) : 0];
+      ShaderGlobals sg = group::grid_globals(grid, x, y, &ctx);
+      m.shade(sg);
+      if (!last_iteration) continue;
+      std::string block;
+      if (job_.print) block = "Pixel (" + std::to_string(x) + ", " + std::to_string(y) + "):\n";
+      for (Output& o : outputs_) {
+        if (o.closure || !m.read_output_bytes(ctx, o.layer, o.spec.var, bytes)) continue;
+        if (o.type.base == DataType::Base::String) continue;
+        if (job_.print) block += "  " + o.spec.var + " : " + value_text(o.type, bytes) + "\n";
+        float* px = o.img.pixel(x, y);
+        for (int c = 0; c < o.img.nchannels(); ++c) {
+          if (o.type.base == DataType::Base::Int) {
+            int32_t v;
+            std::memcpy(&v, bytes.data() + 4 * size_t(c), 4);
+            px[c] = float(v);
+          } else {
+            std::memcpy(&px[c], bytes.data() + 4 * size_t(c), 4);
+          }
+        }
       }
+      if (job_.print) pixel_blocks_[p] = std::move(block);
     }
-  double shade_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  std::fflush(stdout);
+  };
+  auto all_rows = [&] { tbb::parallel_for(0, job_.yres, [&](int y) { shade_row(y); }); };
+  if (job_.threads > 0) {
+    tbb::task_arena arena(job_.threads);
+    arena.execute(all_rows);
+  } else {
+    all_rows();
+  }
+}
+
+int Shade::write_outputs() {
   int status = 0;
-  for (size_t k = 0; k < o.outputs.size(); ++k) {
-    if (!read_var(*mat, ctx, o.group, o.outputs[k].var, v)) {
-      std::fprintf(stderr, "lobe shade: no output variable '%s'\n", o.outputs[k].var.c_str());
-      status = 1;
+  for (const Output& o : outputs_) {
+    if (o.spec.file == "null" || job_.print || o.closure || o.type.base == DataType::Base::String)
       continue;
-    }
-    std::string err = lobe::image::write_image(o.outputs[k].file, images[k]);
+    std::string format =
+        job_.dataformat == "uint8" || job_.dataformat == "half" || job_.dataformat == "float"
+            ? job_.dataformat
+        : o.type.base == DataType::Base::Int ? "int"
+                                             : "float";
+    std::string err = image::write_channels(o.spec.file, o.img, format);
     if (!err.empty()) {
       std::fprintf(stderr, "lobe shade: %s\n", err.c_str());
       status = 1;
     }
   }
-  if (o.stats) {
-    const lobe::CompileStats& s = mat->stats();
-    std::printf(
-        "stats: preprocess %.3f ms, parse %.3f ms, sema %.3f ms, ir %.3f ms, specialize %.3f ms,"
-        " llvm-ir %.3f ms, optimize %.3f ms, codegen %.3f ms%s\n",
-        s.preprocess_ms, s.parse_ms, s.sema_ms, s.ir_ms, s.specialize_ms, s.llvm_ir_ms,
-        s.optimize_ms, s.codegen_ms, s.cache_hit ? " (cache hit)" : "");
-    std::printf("stats: %d points, %.3f us per point\n", o.w * o.h,
-                1000.0 * shade_ms / (o.w * o.h));
-  }
   return status;
 }
 
-} // namespace
+void Shade::print_stats(double setup, double run, double write) const {
+  const CompileStats& s = mat_->stats();
+  std::printf("\nSetup : %.4fs\nWarmup: %.4fs\nRun   : %.4fs\nWrite : %.4fs\n\n", setup, 0.0, run,
+              write);
+  std::printf("Lobe %s\n", "0.1.0");
+  std::printf("  compile: preprocess %.3f ms, parse %.3f ms, sema %.3f ms, ir %.3f ms, specialize "
+              "%.3f ms, llvm-ir %.3f ms, optimize %.3f ms, codegen %.3f ms%s\n",
+              s.preprocess_ms, s.parse_ms, s.sema_ms, s.ir_ms, s.specialize_ms, s.llvm_ir_ms,
+              s.optimize_ms, s.codegen_ms, s.cache_hit ? " (cache hit)" : "");
+  size_t points = size_t(job_.xres) * size_t(job_.yres) * size_t(std::max(1, job_.iters));
+  std::printf("  shade: %zu points, %.3f us per point, %d threads\n", points,
+              points ? 1e6 * run / double(points) : 0.0,
+              job_.threads > 0 ? job_.threads : tbb::this_task_arena::max_concurrency());
+}
 
-LOBE_COMMAND(shade, "run a shader group over a grid of points (OSL testshade)", run_shade);
+int Shade::run() {
+  auto t0 = Clock::now();
+  if (!job_.locale.empty()) {
+    try {
+      std::locale::global(std::locale(job_.locale));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "lobe shade: --locale %s: %s\n", job_.locale.c_str(), e.what());
+      return 1;
+    }
+    if (job_.verbose)
+      std::printf("lobe shade: locale '%s', floats look like: %g\n", job_.locale.c_str(), 3.5);
+  }
+  ss_.options() = job_.compile;
+  ss_.options().debug_nan = job_.debug_nan;
+  ss_.options().debug_uninit = job_.debug_uninit;
+  ss_.options().range_checking = job_.range_checking;
+  for (size_t k = 0; k < job_.expressions.size(); ++k) {
+    std::string name = "expr_" + std::to_string(k);
+    std::string text = expression_shader(name, job_.expressions[k]);
+    if (job_.verbose) std::printf("Expression-based shader text is:\n---\n%s---\n", text.c_str());
+    DiagnosticList diags;
+    if (!ss_.add_shader_source(name, text, "<buffer>", diags)) {
+      print_diagnostics(diags, true);
+      std::fprintf(stderr, "Could not compile \"%s\"\n", name.c_str());
+      return 1;
+    }
+  }
+  ShaderGroup& g = job_.group;
+  // A shader named without a path resolves on the search path here, so that one found in the
+  // working directory is `x.osl` in diagnostics and __FILE__ (as for lobe compile and OSL).
+  for (ShaderGroup::Layer& l : g.layers) {
+    l.shader = shader_name(l.shader);
+    std::string p = group::find_shader_file(l.shader, ss_.options());
+    if (p.rfind("./", 0) == 0) p.erase(0, 2);
+    if (!p.empty()) l.shader = p;
+  }
+  for (const ShadeOutput& o : job_.outputs)
+    g.renderer_outputs.push_back(o.layer.empty() ? o.var : o.layer + "." + o.var);
+  for (const std::string& e : job_.entry_layers) g.entry_layers.push_back(e);
+  if (job_.verbose || job_.oslquery) print_group(g);
+  if (!compile(g, mat_)) return 1;
+  if (!job_.entry_layers.empty()) {
+    std::string line = "Entry layers:";
+    for (const std::string& e : job_.entry_layers) {
+      int at = -1;
+      for (size_t i = 0; i < g.layers.size(); ++i)
+        if (g.layers[i].name == e) at = int(i);
+      line += " " + e + "(" + std::to_string(at) + ")";
+      if (at < 0) {
+        std::printf("%s\n", line.c_str());
+        std::fprintf(stderr, "lobe shade: --entry %s: no such layer\n", e.c_str());
+        return 1;
+      }
+    }
+    std::printf("%s\n", line.c_str());
+  }
+  if (job_.outputs_given) std::printf("\n");
+  if (!resolve_outputs()) return 1;
+  double setup = seconds_since(t0);
+
+  auto t1 = Clock::now();
+  std::shared_ptr<const Material> reparam; // --reparam's values, from the second iteration
+  for (int it = 0; it < job_.iters; ++it) {
+    if (it == 1 && !job_.reparams.empty()) {
+      ShaderGroup changed = g;
+      bool any = false;
+      for (const ShadeReparam& r : job_.reparams)
+        for (ShaderGroup::Layer& l : changed.layers)
+          if (l.name == r.layer)
+            for (InstanceValue& v : l.values)
+              if (v.name == r.param && v.interactive) {
+                v = r.value, v.interactive = true;
+                any = true;
+              }
+      if (any && !compile(changed, reparam)) return 1;
+    }
+    shade_grid(reparam ? *reparam : *mat_, it + 1 == job_.iters);
+  }
+  double run = seconds_since(t1);
+  std::fflush(stdout);
+  for (const std::string& b : pixel_blocks_) std::fputs(b.c_str(), stdout);
+  Journal journal(job_.error_repeats);
+  for (const std::vector<Said>& point : said_)
+    for (const Said& s : point) journal.print(s);
+  std::fflush(stdout);
+  if (job_.outputs.size() == 1 && job_.outputs[0].file == "null") std::printf("\n");
+  auto t2 = Clock::now();
+  int status = write_outputs();
+  if (job_.print_groupdata) std::printf("Groupdata size: %zu\n", mat_->groupdata_bytes());
+  if (job_.runstats) print_stats(setup, run, seconds_since(t2));
+  return status;
+}
+
+int run_shade(int argc, char** argv) {
+  ShadeJob job;
+  int st = parse_shade_args(argc, argv, job);
+  if (st) return st < 0 ? 0 : st;
+  return Shade(job).run();
+}
+
+} // namespace
+} // namespace lobe::cli
+
+LOBE_COMMAND(shade, "run a shader group over a grid of points (OSL testshade)",
+             lobe::cli::run_shade);

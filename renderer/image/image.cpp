@@ -90,12 +90,13 @@ static std::vector<uint8_t> to_display(const Image& img, const WriteOptions& opt
   return out;
 }
 
+// Writes `data`, pixels of type `buffer` (default: the file's own), converted to spec.format.
 static std::string write_with(const std::string& path, const OIIO::ImageSpec& spec,
-                              const void* data) {
+                              const void* data, OIIO::TypeDesc buffer = OIIO::TypeUnknown) {
   auto out = OIIO::ImageOutput::create(path);
   if (!out) return path + ": cannot write this format (" + OIIO::geterror() + ")";
   if (!out->open(path, spec)) return path + ": cannot open for writing: " + out->geterror();
-  bool ok = out->write_image(spec.format, data);
+  bool ok = out->write_image(buffer == OIIO::TypeUnknown ? spec.format : buffer, data);
   std::string err = ok ? "" : path + ": write failed: " + out->geterror();
   if (!out->close() && err.empty()) err = path + ": close failed: " + out->geterror();
   return err;
@@ -124,6 +125,39 @@ std::string write_image(const std::string& path, const Image& img, const WriteOp
   OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);
   spec.attribute("oiio:ColorSpace", "sRGB");
   return write_with(path, spec, rgb.data());
+}
+
+std::string write_channels(const std::string& path, const Image& img, const std::string& format) {
+  if (img.width <= 0 || img.height <= 0 || img.channels.empty()) return path + ": empty image";
+  std::string ext = lower_extension(path);
+  size_t n = img.pixels.size();
+  OIIO::ImageSpec spec(img.width, img.height, img.nchannels(), OIIO::TypeDesc::FLOAT);
+  spec.channelnames = img.channels;
+  if (ext == "png" || ext == "jpg" || ext == "jpeg") {
+    std::vector<uint8_t> enc(n);
+    for (size_t k = 0; k < n; ++k)
+      enc[k] = static_cast<uint8_t>(std::lround(srgb_encode(img.pixels[k]) * 255.0f));
+    spec.set_format(OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", "sRGB");
+    return write_with(path, spec, enc.data());
+  }
+  if (ext == "exr") spec.attribute("compression", "zip");
+  if (format == "int" && ext != "exr") {
+    std::vector<int32_t> ints(n);
+    for (size_t k = 0; k < n; ++k) ints[k] = static_cast<int32_t>(img.pixels[k]);
+    spec.set_format(OIIO::TypeDesc::INT32);
+    return write_with(path, spec, ints.data());
+  }
+  spec.set_format(format == "half" || format == "int" ? OIIO::TypeDesc::HALF
+                  : format == "uint8"                 ? OIIO::TypeDesc::UINT8
+                                                      : OIIO::TypeDesc::FLOAT);
+  if (spec.format == OIIO::TypeDesc::UINT8) { // linear 8 bits, as testshade's -d uint8
+    std::vector<uint8_t> q(n);
+    for (size_t k = 0; k < n; ++k)
+      q[k] = static_cast<uint8_t>(std::lround(std::clamp(img.pixels[k], 0.0f, 1.0f) * 255.0f));
+    return write_with(path, spec, q.data());
+  }
+  return write_with(path, spec, img.pixels.data(), OIIO::TypeDesc::FLOAT);
 }
 
 std::string read_image(const std::string& path, Image& out) {

@@ -56,6 +56,12 @@ std::string check_writable(const std::string& path);
 // Writes `img` to `path`, format chosen from the extension.
 std::string write_image(const std::string& path, const Image& img, const WriteOptions& opt = {});
 
+// testshade's output files: every channel as it is, stored as `format` ("float", "half",
+// "uint8", or "int" for integer data, whose values are written as int32), linear, except in
+// PNG and JPEG files, whose 8 bits are sRGB-encoded (0.5 is 188) as testshade writes them.
+// EXR is zip-compressed and keeps ints as half (EXR has no int32 pixels).
+std::string write_channels(const std::string& path, const Image& img, const std::string& format);
+
 // Reads `path` into `out` as linear float, all channels.
 std::string read_image(const std::string& path, Image& out);
 

@@ -50,7 +50,7 @@ struct LayerPlan {
   std::vector<bool> userdata;     // per symbol: a lockgeom=0 param asks the renderer first
   std::string layer_name;         // for getattribute("shader:layername")
   int group_index = 0;            // position among the group's layers (compiled or not)
-  bool entry = false;             // runs at every shade (a renderer output), not only lazily
+  bool entry = false; // runs at every shade (the last layer, a renderer output, an entry layer)
   std::vector<ConnectionPlan> connections;
 };
 

@@ -312,8 +312,12 @@ std::string emit_group(const GroupPlan& plan, llvm::Module& module) {
   llvm::IRBuilder<> b(llvm::BasicBlock::Create(ctx, "entry", entry));
   llvm::Value* sg = entry->getArg(0);
   llvm::Value* gd = entry->getArg(1);
-  for (size_t i = 0; i + 1 < plan.layers.size(); ++i) { // entry layers, unless one already ran
-    if (!plan.layers[i].entry) continue;
+  // The entry layers in order, each unless it already ran (lazily, for an earlier one); with
+  // none marked, the last layer.
+  bool any_entry = false;
+  for (const LayerPlan& lp : plan.layers) any_entry |= lp.entry;
+  for (size_t i = 0; i < plan.layers.size(); ++i) {
+    if (!(any_entry ? plan.layers[i].entry : i + 1 == plan.layers.size())) continue;
     llvm::Value* ran = b.CreateLoad(
         b.getInt32Ty(), b.CreateConstInBoundsGEP1_64(b.getInt8Ty(), gd, plan.layers[i].ran_offset));
     auto* run = llvm::BasicBlock::Create(ctx, "run_entry", entry);
@@ -324,7 +328,6 @@ std::string emit_group(const GroupPlan& plan, llvm::Module& module) {
     b.CreateBr(next);
     b.SetInsertPoint(next);
   }
-  if (!fns.empty()) b.CreateCall(fns.back(), {sg, gd});
   b.CreateRetVoid();
   std::string err;
   llvm::raw_string_ostream os(err);

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstddef>
 #include <cstdlib>
 #include <sstream>
 
@@ -339,26 +340,38 @@ void op_noise(LayerEmitter& e, const ir::Op& op) {
                                              : shadeops::kUPerlin;
   // noise("name", ...): a constant known name selects the kind here; a name known only at run
   // time (or an unknown constant, so that -O0 and -O2 agree when specialisation makes a name
-  // constant) dispatches in lobe_noise_named, which reports an unknown name as a run-time error.
+  // constant) dispatches in lobe_noise_named_d, which reports an unknown name as a run-time
+  // error. "gabor" calls lobe_gabor.
   bool periodic = o == "pnoise" || o == "psnoise";
-  bool named = false;
+  bool named = false, gabor = false, maybe_gabor = false;
   if (e.arg(op, 1).type.base == BaseType::String) {
     first = 2;
     named = true;
+    maybe_gabor = true;
     if (is_const_string(e.arg(op, 1))) {
       std::string name = const_string(e.arg(op, 1));
-      kind = name == "gabor" ? shadeops::kUPerlin : shadeops::noise_kind_from_name(name, periodic);
-      named = kind < 0;
+      gabor = name == "gabor";
+      maybe_gabor = gabor;
+      kind = gabor ? -1 : shadeops::noise_kind_from_name(name, periodic);
+      named = !gabor && kind < 0;
     }
   }
-  size_t nargs = op.args.size() - first, ncoord = periodic ? nargs / 2 : nargs;
+  // Coordinates (and periods) up to the first string: the `"keyword", value` options after
+  // them (the gabor options; OSL ignores them for the other kinds).
+  size_t end = first;
+  while (end < op.args.size() && e.arg(op, int(end)).type.base != BaseType::String) ++end;
+  size_t nargs = end - first, ncoord = periodic ? nargs / 2 : nargs;
+  // OSL evaluates the Dual2 form exactly when the result needs derivatives (its value can
+  // differ in the last bits from the value-only form), with the inputs' derivatives or zeros;
+  // gabor noise always takes P's derivatives (its filter is the pixel footprint).
   bool derivs = e.wants_derivs(op.args[0]);
+  bool in_derivs = derivs || maybe_gabor;
   std::vector<Dual> x;
   std::vector<llvm::Value*> per;
   for (size_t i = 0; i < nargs; ++i) {
     const ir::Symbol& s = e.arg(op, int(first + i));
     Val v = e.load_as(op, int(first + i), s.type.is_triple() ? BaseType::Vector : BaseType::Float,
-                      derivs);
+                      i < ncoord && in_derivs);
     for (const Dual& d : v) {
       if (i < ncoord)
         x.push_back(d);
@@ -367,34 +380,74 @@ void op_noise(LayerEmitter& e, const ir::Op& op) {
     }
   }
   int nin = int(x.size()), nout = e.arg(op, 0).type.components();
-  std::vector<llvm::Value*> xv;
-  for (const Dual& d : x) xv.push_back(d.v);
+  auto ptr_null = [&] { return llvm::ConstantPointerNull::get(e.b().getPtrTy()); };
+  std::vector<llvm::Value*> xv, dxv, dyv;
+  for (const Dual& d : x) {
+    xv.push_back(d.v);
+    dxv.push_back(d.dx ? d.dx : e.fconst(0));
+    dyv.push_back(d.dy ? d.dy : e.fconst(0));
+  }
   llvm::Value* in = e.spill(xv);
-  llvm::Value* pp = periodic ? e.spill(per) : llvm::ConstantPointerNull::get(e.b().getPtrTy());
-  llvm::Value* out = e.spill(std::vector<llvm::Value*>(size_t(nout), e.fconst(0)));
-  bool any_d = false;
-  for (const Dual& d : x) any_d |= d.dx || d.dy;
-  llvm::Value* grad = any_d ? e.spill(std::vector<llvm::Value*>(size_t(nout * nin), e.fconst(0)))
-                            : llvm::ConstantPointerNull::get(e.b().getPtrTy());
-  if (named)
-    e.call("lobe_noise_named",
-           {e.sg(), e.load(op.args[1])[0].v, in, e.iconst(nin), pp, out, e.iconst(nout), grad,
-            e.string_const(op.loc.file.empty() ? e.shader().name : op.loc.file),
+  llvm::Value* indx = in_derivs ? e.spill(dxv) : ptr_null();
+  llvm::Value* indy = in_derivs ? e.spill(dyv) : ptr_null();
+  llvm::Value* pp = periodic ? e.spill(per) : ptr_null();
+  std::vector<llvm::Value*> zeros(size_t(nout), e.fconst(0));
+  llvm::Value* out = e.spill(zeros);
+  llvm::Value* odx = derivs || maybe_gabor ? e.spill(zeros) : ptr_null();
+  llvm::Value* ody = derivs || maybe_gabor ? e.spill(zeros) : ptr_null();
+  // The gabor options, by field offset into shadeops::GaborOptions.
+  llvm::Value* opts = ptr_null();
+  if (maybe_gabor) {
+    auto& B = e.b();
+    shadeops::GaborOptions def;
+    auto* block = e.entry_alloca(
+        llvm::ArrayType::get(B.getInt8Ty(), unsigned(sizeof(shadeops::GaborOptions))), 1,
+        "gabor_opts");
+    auto at = [&](size_t off) { return B.CreateConstInBoundsGEP1_64(B.getInt8Ty(), block, off); };
+    B.CreateStore(e.iconst(def.anisotropic), at(offsetof(shadeops::GaborOptions, anisotropic)));
+    B.CreateStore(e.iconst(def.do_filter), at(offsetof(shadeops::GaborOptions, do_filter)));
+    for (int k = 0; k < 3; ++k)
+      B.CreateStore(e.fconst(def.direction[k]),
+                    at(offsetof(shadeops::GaborOptions, direction) + 4 * size_t(k)));
+    B.CreateStore(e.fconst(def.bandwidth), at(offsetof(shadeops::GaborOptions, bandwidth)));
+    B.CreateStore(e.fconst(def.impulses), at(offsetof(shadeops::GaborOptions, impulses)));
+    for (size_t i = end; i + 1 < op.args.size(); i += 2) {
+      std::string kw = const_string(e.arg(op, int(i)));
+      int vi = int(i + 1);
+      if (kw == "anisotropic" || kw == "do_filter") {
+        size_t off = kw == "anisotropic" ? offsetof(shadeops::GaborOptions, anisotropic)
+                                         : offsetof(shadeops::GaborOptions, do_filter);
+        B.CreateStore(e.load_as(op, vi, BaseType::Int, false)[0].v, at(off));
+      } else if (kw == "bandwidth" || kw == "impulses") {
+        size_t off = kw == "bandwidth" ? offsetof(shadeops::GaborOptions, bandwidth)
+                                       : offsetof(shadeops::GaborOptions, impulses);
+        B.CreateStore(e.load_as(op, vi, BaseType::Float, false)[0].v, at(off));
+      } else if (kw == "direction") {
+        Val d = e.load_as(op, vi, BaseType::Vector, false);
+        for (size_t k = 0; k < 3; ++k)
+          B.CreateStore(d[k].v, at(offsetof(shadeops::GaborOptions, direction) + 4 * k));
+      } // other keywords: ignored (sema reports unknown ones)
+    }
+    opts = block;
+  }
+  if (gabor)
+    e.call("lobe_gabor", {in, indx, indy, e.iconst(nin), pp, opts, out, odx, ody, e.iconst(nout)});
+  else if (named)
+    e.call("lobe_noise_named_d",
+           {e.sg(), e.load(op.args[1])[0].v, in, indx, indy, e.iconst(nin), pp, opts, out, odx, ody,
+            e.iconst(nout), e.string_const(op.loc.file.empty() ? e.shader().name : op.loc.file),
             e.iconst(op.loc.line)});
   else
-    e.call("lobe_noise", {e.iconst(kind), in, e.iconst(nin), pp, out, e.iconst(nout), grad});
-  std::vector<llvm::Value*> ov = e.reload(out, nout), gv;
-  if (any_d) gv = e.reload(grad, nout * nin);
-  DualOps d(e);
-  Val r;
-  for (int j = 0; j < nout; ++j) {
-    Dual rj{ov[size_t(j)]};
-    for (int k = 0; any_d && k < nin; ++k) {
-      rj.dx = d.dadd(rj.dx, d.scale(x[size_t(k)].dx, gv[size_t(j * nin + k)]));
-      rj.dy = d.dadd(rj.dy, d.scale(x[size_t(k)].dy, gv[size_t(j * nin + k)]));
-    }
-    r.push_back(rj);
+    e.call("lobe_noise_d",
+           {e.iconst(kind), in, indx, indy, e.iconst(nin), pp, out, odx, ody, e.iconst(nout)});
+  std::vector<llvm::Value*> ov = e.reload(out, nout), dxo, dyo;
+  if (derivs) {
+    dxo = e.reload(odx, nout);
+    dyo = e.reload(ody, nout);
   }
+  Val r;
+  for (int j = 0; j < nout; ++j)
+    r.push_back(derivs ? Dual{ov[size_t(j)], dxo[size_t(j)], dyo[size_t(j)]} : Dual{ov[size_t(j)]});
   e.store(op.args[0],
           e.convert(r, nout == 1 ? BaseType::Float : BaseType::Color, e.arg(op, 0).type.base));
 }
@@ -526,12 +579,14 @@ void op_getattribute(LayerEmitter& e, const ir::Op& op) {
   llvm::Value* index = indexed ? e.load(op.args[n - 1])[0].v : e.iconst(INT_MIN); // none
   const std::string& group = e.group().group_name;
   const codegen::LayerPlan& lp = e.group().layers[size_t(e.layer())];
+  // The shader:* attributes, for a name known now only (see lobe_getattribute).
+  bool known = is_const_string(e.arg(op, strings == 2 ? 3 : 2));
+  auto named = [&](const std::string& s) { return known ? e.string_const(s) : null_ptr(e); };
   llvm::Value* r =
       e.call("lobe_getattribute", {e.sg(), e.env_ptr(), object, name, index,
                                    e.iconst(LayerEmitter::type_code(e.sym(dest).type)),
                                    e.iconst(e.wants_derivs(dest) ? 1 : 0), e.storage_address(dest),
-                                   e.string_const(e.shader().name), e.string_const(lp.layer_name),
-                                   e.string_const(group)});
+                                   named(e.shader().name), named(lp.layer_name), named(group)});
   e.store(op.args[0], e.convert(Val{Dual{r}}, BaseType::Int, e.arg(op, 0).type.base));
 }
 

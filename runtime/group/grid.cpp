@@ -1,11 +1,14 @@
 // Grid shading globals (see grid.h).
 #include "grid.h"
 
+#include <algorithm>
+
 namespace lobe::group {
 
 namespace {
-void coord(const GridSpec& g, int i, int n, float& t, float& dt) {
-  if (g.center) {
+// The coordinate of cell i of n, unscaled, and its derivative.
+void coord(bool center, int i, int n, float& t, float& dt) {
+  if (center) {
     t = (float(i) + 0.5f) / float(n);
     dt = 1.0f / float(n);
   } else if (n == 1) {
@@ -20,11 +23,27 @@ void coord(const GridSpec& g, int i, int n, float& t, float& dt) {
 
 ShaderGlobals grid_globals(const GridSpec& g, int x, int y, ShadingContext* ctx) {
   ShaderGlobals sg{};
-  coord(g, x, g.width, sg.u, sg.dudx);
-  coord(g, y, g.height, sg.v, sg.dvdy);
+  coord(g.center, x, g.width, sg.u, sg.dudx);
+  coord(g.center, y, g.height, sg.v, sg.dvdy);
+  sg.u = g.scale_u * sg.u + g.offset_u;
+  sg.v = g.scale_v * sg.v + g.offset_v;
+  sg.dudx *= g.scale_u;
+  sg.dvdy *= g.scale_v;
   sg.P = {sg.u, sg.v, 1};
-  sg.dPdx = {sg.dudx, 0, 0};
-  sg.dPdy = {0, sg.dvdy, 0};
+  sg.dPdx = {g.scale_u / float(std::max(1, g.width - 1)), 0, 0};
+  sg.dPdy = {0, g.scale_v / float(std::max(1, g.height - 1)), 0};
+  if (g.vary_pdxdy) {
+    sg.dPdx = {1 - sg.u, 1 - sg.v, sg.u * 0.5f};
+    sg.dPdy = {1 - sg.v, 1 - sg.u, sg.v * 0.5f};
+  }
+  if (g.vary_udxdy) {
+    sg.dudx = 1 - sg.u;
+    sg.dudy = sg.u;
+  }
+  if (g.vary_vdxdy) {
+    sg.dvdx = 1 - sg.v;
+    sg.dvdy = sg.v;
+  }
   sg.N = sg.Ng = {0, 0, 1};
   sg.dPdu = {1, 0, 0};
   sg.dPdv = {0, 1, 0};
@@ -39,7 +58,7 @@ int32_t raytype_from_name(const std::string& name) {
                          "diffuse", "glossy", "subsurface", "displacement"};
   for (int i = 0; i < 8; ++i)
     if (name == names[i]) return int32_t(1) << i;
-  return kRayCamera;
+  return 0;
 }
 
 } // namespace lobe::group

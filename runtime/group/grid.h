@@ -1,7 +1,11 @@
-// Shading globals for a point of a W x H grid, with OSL testshade's conventions: u = x/(W-1)
-// (0.5 when W = 1; (x+0.5)/W with `center`), P = (u, v, 1), dPdx = (dudx, 0, 0),
-// dPdy = (0, dvdy, 0), N = Ng = (0,0,1), dPdu = (1,0,0), dPdv = (0,1,0), I = 0,
-// surfacearea = 1. Used by `lobe shade` and the execution corpus (tests/shade).
+// Shading globals for a point of a W x H grid, with OSL testshade's conventions (1.13.12,
+// measured): u = x/(W-1) (0.5 when W = 1; (x+0.5)/W with `center`), then scaled and offset
+// (u = su * u + ou), likewise v; P = (u, v, 1); dudx = su/(W-1) (su/W with `center`), dvdy
+// likewise; dPdx = (su/max(1, W-1), 0, 0) and dPdy = (0, sv/max(1, H-1), 0) even with
+// `center`; N = Ng = (0,0,1), dPdu = (1,0,0), dPdv = (0,1,0), I = 0, surfacearea = 1. The
+// `vary_*` switches make derivatives vary over the grid as testshade's do: dPdx = (1-u, 1-v,
+// u/2), dPdy = (1-v, 1-u, v/2); dudx = 1-u, dudy = u; dvdx = 1-v, dvdy = v. Used by
+// `lobe shade` and the execution corpus (tests/shade).
 #pragma once
 
 #include "lobe/shading.h"
@@ -14,11 +18,14 @@ struct GridSpec {
   int width = 1, height = 1;
   bool center = false;
   int32_t raytype = kRayCamera;
+  float offset_u = 0, offset_v = 0, scale_u = 1, scale_v = 1;
+  bool vary_pdxdy = false, vary_udxdy = false, vary_vdxdy = false;
 };
 
 ShaderGlobals grid_globals(const GridSpec& g, int x, int y, ShadingContext* ctx);
 
-// RayType bit for a name ("camera", "shadow", ...); camera for an unknown name.
+// RayType bit for a name ("camera", "shadow", ...); 0 (no type) for an unknown name, as
+// testshade: every raytype() is then 0.
 int32_t raytype_from_name(const std::string& name);
 
 } // namespace lobe::group

@@ -70,13 +70,15 @@ bool is_param(const ir::Symbol& s) {
 
 // A param the renderer may bind to user data: `[[ int lockgeom = 0 ]]` in the shader, unless
 // the instance value says otherwise (`lockgeom` of InstanceValue, -1: as the shader says).
-bool interpolated(const ir::Symbol& s, int instance_lockgeom) {
-  if (s.kind != SymKind::Param || s.type.base == ir::BaseType::Closure) return false;
+bool interpolated(const ir::Symbol& s, int instance_lockgeom, bool lockgeom_default) {
+  if ((s.kind != SymKind::Param && s.kind != SymKind::OutputParam) ||
+      s.type.base == ir::BaseType::Closure)
+    return false;
   if (instance_lockgeom >= 0) return instance_lockgeom == 0;
   for (const ir::Metadata& m : s.metadata)
     if (m.name == "lockgeom" && m.type == ir::Type{ir::BaseType::Int, 0} && !m.value.empty())
       return m.value[0].i == 0;
-  return false;
+  return !lockgeom_default;
 }
 
 std::set<int> written_symbols(const ir::Shader& sh) {
@@ -257,7 +259,7 @@ void write_value(unsigned char* p, const ir::Symbol& s, const std::vector<ir::Co
 } // namespace
 
 bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
-                 bool specialize, GroupBuild& out, DiagnosticList& diags) {
+                 bool specialize, GroupBuild& out, DiagnosticList& diags, bool lockgeom_default) {
   size_t n = group.layers.size();
   std::map<std::string, int> layer_index;
   for (size_t i = 0; i < n; ++i) layer_index[group.layers[i].name] = int(i);
@@ -309,7 +311,8 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
   for (size_t i = 0; i < n; ++i)
     for (const ir::Symbol& sym : sources[i]->symbols) {
       auto lg = lockgeom[i].find(sym.name);
-      if (interpolated(sym, lg == lockgeom[i].end() ? -1 : lg->second)) interp[i].insert(sym.name);
+      if (interpolated(sym, lg == lockgeom[i].end() ? -1 : lg->second, lockgeom_default))
+        interp[i].insert(sym.name);
     }
 
   // Connections, by names.
@@ -347,7 +350,11 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
   // shade) with theirs.
   std::vector<bool> needed(n, false), entry(n, false);
   needed[n - 1] = true;
-  for (size_t i = 0; i + 1 < n; ++i)
+  entry[n - 1] = group.entry_layers.empty();
+  for (size_t i = 0; i < n; ++i)
+    for (const std::string& e : group.entry_layers)
+      if (e == group.layers[i].name) needed[i] = entry[i] = true;
+  for (size_t i = 0; i + 1 < n && group.entry_layers.empty(); ++i)
     for (const std::string& ro : group.renderer_outputs) {
       size_t dot = ro.find('.');
       std::string layer = dot == std::string::npos ? "" : ro.substr(0, dot);

@@ -27,8 +27,10 @@ struct GroupBuild {
 };
 
 // `sources[i]` is the compiled IR of group.layers[i]. Returns false with diagnostics on error.
+// `lockgeom_default`: CompileOptions::lockgeom_default.
 bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
-                 bool specialize, GroupBuild& out, DiagnosticList& diags);
+                 bool specialize, GroupBuild& out, DiagnosticList& diags,
+                 bool lockgeom_default = true);
 
 // An instance value for a parameter of type `param` (the rules are InstanceValue's). `ok`:
 // use `values` (`arraylen` sizes an unsized array); else `warning` (OSL's: the value is ignored

@@ -103,9 +103,6 @@ std::unique_ptr<ShaderGroup> parse_group_text(const std::string& text, const std
   }
   auto group = std::make_unique<ShaderGroup>();
   std::vector<InstanceValue> pending;
-  auto starts_statement = [&](const Token& t) {
-    return is_keyword(t) || (options.allow_bare_params && !t.quoted && is_param_type(t.text));
-  };
   for (size_t i = 0; i < toks.size();) {
     if (toks[i].end()) {
       ++i;

@@ -41,6 +41,7 @@ public:
                    std::vector<float>& dst) const override;
   std::optional<OutputInfo> output_info(const std::string& layer,
                                         const std::string& param) const override;
+  size_t groupdata_bytes() const override { return groupdata_.size(); }
   bool read_output_bytes(const ShadingContext& ctx, const std::string& layer,
                          const std::string& param, std::vector<unsigned char>& dst) const override;
   const CompileStats& stats() const override { return stats_; }
@@ -87,6 +88,7 @@ public:
                                         const std::string& param) const override {
     return m_->output_info(layer, param);
   }
+  size_t groupdata_bytes() const override { return m_->groupdata_bytes(); }
   bool read_output_bytes(const ShadingContext& ctx, const std::string& layer,
                          const std::string& param, std::vector<unsigned char>& dst) const override {
     return m_->read_output_bytes(ctx, layer, param, dst);

@@ -101,7 +101,11 @@ std::string ShadingSystem::Impl::cache_key(const ShaderGroup& g,
                                            const std::vector<const ir::Shader*>& layers) const {
   std::string key = "O"; // appended piecewise: "O" + to_string(...) trips GCC 12's -Wrestrict
   key += std::to_string(options.opt_level);
-  key += options.specialize ? "s\n" : "n\n";
+  key += options.specialize ? "s" : "n";
+  key += options.lockgeom_default ? "" : "u";
+  key += options.range_checking ? "" : "r";
+  key += options.debug_nan ? "N" : "";
+  key += options.debug_uninit ? "U\n" : "\n";
   key += "group "; // getattribute("shader:groupname") reads it
   key += g.name;
   key += "\n";
@@ -116,6 +120,7 @@ std::string ShadingSystem::Impl::cache_key(const ShaderGroup& g,
     }
   }
   for (const std::string& o : g.renderer_outputs) key += "output " + o + "\n";
+  for (const std::string& e : g.entry_layers) key += "entry " + e + "\n";
   for (const Connection& c : g.connections)
     key +=
         "connect " + c.src_layer + "." + c.src_param + " " + c.dst_layer + "." + c.dst_param + "\n";
@@ -129,7 +134,8 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   group::GroupBuild b;
   b.plan.env = env.get();
   bool specialize = options.specialize && options.opt_level > 0;
-  if (!group::build_group(g, layers, specialize, b, diags)) return nullptr;
+  if (!group::build_group(g, layers, specialize, b, diags, options.lockgeom_default))
+    return nullptr;
   stats.specialize_ms = ms_since(t0);
 
   auto t1 = Clock::now();

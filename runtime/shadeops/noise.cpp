@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 
 namespace {
 
@@ -84,23 +85,16 @@ inline float bits_to_01(uint32_t bits) {
   return float(bits) * (1.0f / float(std::numeric_limits<unsigned int>::max()));
 }
 
-inline int ifloor(float x) { return int(std::floor(x)); }
-
-// Inputs of gradient and simplex noise, made safe for ifloor: an infinite or NaN coordinate
-// becomes 0, one of magnitude 2^24 or more (where every float is an integer, so the noise has
-// no detail left to show) is wrapped modulo 2^24, exactly. Below 2^24 nothing changes.
-inline float lattice_safe(float x) {
-  if (!std::isfinite(x)) return 0.0f;
-  constexpr float kWrap = 16777216.0f;
-  return std::fabs(x) < kWrap ? x : std::fmod(x, kWrap);
+// OSL's float -> int conversions, with the result x86 gives (and OSL, built for x86, returns)
+// where C++ leaves it undefined: a NaN, or a value outside the int range, converts to INT_MIN.
+inline int to_int(float f) {
+  return f >= -2147483648.0f && f < 2147483648.0f ? int(f) : std::numeric_limits<int>::min();
 }
+// OIIO::ifloor: int(floor(x)).
+inline int ifloor(float x) { return to_int(std::floor(x)); }
 
-// floor as a lattice key for cell noise: int64 first, so that any finite input is defined
-// (the key wraps modulo 2^32, like OSL's int conversion in range); non-finite inputs give 0.
-inline uint32_t cell_key(float x) {
-  if (!std::isfinite(x) || std::fabs(x) >= 9.2e18f) return 0;
-  return uint32_t(int64_t(std::floor(x)));
-}
+// Cell noise key: OSL's ifloor, as unsigned.
+inline uint32_t cell_key(float x) { return uint32_t(ifloor(x)); }
 
 // OSL's wrap(): s modulo floor(period) (period at least 1), in float.
 inline float wrapf(float s, float period) {
@@ -109,10 +103,11 @@ inline float wrapf(float s, float period) {
   return s - period * std::floor(s / period);
 }
 
+// OSL's HashScalarPeriodic period: ifloor(p), at least 1 (NaN and huge periods give 1, as
+// ifloor gives INT_MIN for them).
 inline int period_of(float p) {
-  if (!(p >= 1.0f)) return 1;            // also NaN
-  if (p >= 16777216.0f) return 16777216; // inputs wrap at 2^24 anyway (lattice_safe)
-  return ifloor(p);
+  int i = ifloor(p);
+  return i < 1 ? 1 : i;
 }
 
 inline int imod(int a, int b) {
@@ -120,101 +115,72 @@ inline int imod(int a, int b) {
   return a < 0 ? a + b : a;
 }
 
-// ---- A value with its partials with respect to the (up to 4) inputs: OSL's Dual2 ----
+// ---- OSL's Dual2<float>: a value with its derivatives along screen x and y ----
+//
+// Gradient noise with derivatives is evaluated on these, seeded with the inputs' own Dx/Dy, as
+// OSL does (not as partials with respect to the inputs combined by the chain rule afterwards):
+// the same operations in the same order round the same way, so Dx(noise(P)) is OSL's to the
+// bit. The operators are OSL's dual.h ones: a constant operand of a Dual2 expression (fade's
+// 6, 15, 10 and lerp's 1) is itself a Dual2 with zero derivatives.
 
-struct D {
-  float v;
-  float d[4];
+struct D2 {
+  float v, dx, dy;
 };
 
-inline D dconst(float v) { return D{v, {0, 0, 0, 0}}; }
-inline D operator+(const D& a, const D& b) {
-  D r;
-  r.v = a.v + b.v;
-  for (int k = 0; k < 4; ++k) r.d[k] = a.d[k] + b.d[k];
-  return r;
+inline D2 operator+(const D2& a, const D2& b) { return {a.v + b.v, a.dx + b.dx, a.dy + b.dy}; }
+inline D2 operator-(const D2& a, const D2& b) { return {a.v - b.v, a.dx - b.dx, a.dy - b.dy}; }
+inline D2 operator-(const D2& a) { return {-a.v, -a.dx, -a.dy}; }
+inline D2 operator-(const D2& a, float b) { return {a.v - b, a.dx, a.dy}; }
+inline D2 operator+(const D2& a, float b) { return {a.v + b, a.dx, a.dy}; }
+inline D2 operator*(const D2& a, const D2& b) {
+  return {a.v * b.v, a.v * b.dx + a.dx * b.v, a.v * b.dy + a.dy * b.v};
 }
-inline D operator-(const D& a, const D& b) {
-  D r;
-  r.v = a.v - b.v;
-  for (int k = 0; k < 4; ++k) r.d[k] = a.d[k] - b.d[k];
-  return r;
-}
-inline D operator-(const D& a) {
-  D r;
-  r.v = -a.v;
-  for (int k = 0; k < 4; ++k) r.d[k] = -a.d[k];
-  return r;
-}
-inline D operator*(const D& a, const D& b) {
-  D r;
-  r.v = a.v * b.v;
-  for (int k = 0; k < 4; ++k) r.d[k] = a.v * b.d[k] + a.d[k] * b.v;
-  return r;
-}
-inline D operator*(float a, const D& b) {
-  D r;
-  r.v = a * b.v;
-  for (int k = 0; k < 4; ++k) r.d[k] = a * b.d[k];
-  return r;
-}
-inline D operator*(const D& a, float b) { return b * a; }
-inline D operator+(const D& a, float b) {
-  D r = a;
-  r.v = a.v + b;
-  return r;
-}
-inline D operator-(const D& a, float b) {
-  D r = a;
-  r.v = a.v - b;
-  return r;
-}
-inline D operator-(float a, const D& b) {
-  D r = -b;
-  r.v = a - b.v;
-  return r;
-}
+inline D2 operator*(float s, const D2& a) { return {a.v * s, a.dx * s, a.dy * s}; }
+
+// A constant of the evaluation type (a Dual2 constant has zero derivatives).
+template <class T> inline T cst(float c);
+template <> inline float cst<float>(float c) { return c; }
+template <> inline D2 cst<D2>(float c) { return {c, 0.0f, 0.0f}; }
+
+inline float val(float x) { return x; }
+inline float val(const D2& x) { return x.v; }
 
 // t * t * t * (t * (t * 6 - 15) + 10)
-inline D fade(const D& t) { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f); }
-
-// OIIO::lerp / bilerp / trilerp (a*(1-x) + b*x forms).
-inline D lerp(const D& v0, const D& v1, const D& x) { return v0 * (1.0f - x) + v1 * x; }
-inline D bilerp(const D& v0, const D& v1, const D& v2, const D& v3, const D& s, const D& t) {
-  D s1 = 1.0f - s;
-  return (1.0f - t) * (v0 * s1 + v1 * s) + t * (v2 * s1 + v3 * s);
-}
-inline D trilerp(const D* v, const D& s, const D& t, const D& r) {
-  D s1 = 1.0f - s, t1 = 1.0f - t, r1 = 1.0f - r;
-  return r1 * (t1 * (v[0] * s1 + v[1] * s) + t * (v[2] * s1 + v[3] * s)) +
-         r * (t1 * (v[4] * s1 + v[5] * s) + t * (v[6] * s1 + v[7] * s));
+template <class T> inline T fade(const T& t) {
+  return t * t * t * (t * (t * cst<T>(6.0f) - cst<T>(15.0f)) + cst<T>(10.0f));
 }
 
-// OSL's gradient functions.
-inline D grad(uint32_t hash, const D& x) {
+// OIIO::lerp: v0 * (1 - x) + v1 * x.
+template <class T> inline T lerp(const T& v0, const T& v1, const T& x) {
+  return v0 * (cst<T>(1.0f) - x) + v1 * x;
+}
+
+// OSL's gradient functions (negate_if / select forms).
+template <class T> inline T neg_if(const T& x, bool c) { return c ? -x : x; }
+template <class T> inline T grad(uint32_t hash, const T& x) {
   int h = int(hash & 15);
   float g = float(1 + (h & 7)); // 1, 2, .., 8
   if (h & 8) g = -g;            // random sign
   return g * x;
 }
-inline D grad(uint32_t hash, const D& x, const D& y) {
+template <class T> inline T grad(uint32_t hash, const T& x, const T& y) {
   int h = int(hash & 7); // 8 directions (+-1,+-2) and (+-2,+-1)
-  D u = h < 4 ? x : y;
-  D v = 2.0f * (h < 4 ? y : x);
-  return ((h & 1) ? -u : u) + ((h & 2) ? -v : v);
+  T u = h < 4 ? x : y;
+  T v = 2.0f * (h < 4 ? y : x);
+  return neg_if(u, h & 1) + neg_if(v, h & 2);
 }
-inline D grad(uint32_t hash, const D& x, const D& y, const D& z) {
+template <class T> inline T grad(uint32_t hash, const T& x, const T& y, const T& z) {
   int h = int(hash & 15); // the 12 cube edges (Perlin's improved noise)
-  D u = h < 8 ? x : y;
-  D v = h < 4 ? y : (h == 12 || h == 14) ? x : z;
-  return ((h & 1) ? -u : u) + ((h & 2) ? -v : v);
+  T u = h < 8 ? x : y;
+  T v = h < 4 ? y : (h == 12 || h == 14) ? x : z;
+  return neg_if(u, h & 1) + neg_if(v, h & 2);
 }
-inline D grad(uint32_t hash, const D& x, const D& y, const D& z, const D& w) {
+template <class T> inline T grad(uint32_t hash, const T& x, const T& y, const T& z, const T& w) {
   int h = int(hash & 31); // the edges of the hypercube
-  D u = h < 24 ? x : y;
-  D v = h < 16 ? y : z;
-  D s = h < 8 ? z : w;
-  return ((h & 1) ? -u : u) + ((h & 2) ? -v : v) + ((h & 4) ? -s : s);
+  T u = h < 24 ? x : y;
+  T v = h < 16 ? y : z;
+  T s = h < 8 ? z : w;
+  return neg_if(u, h & 1) + neg_if(v, h & 2) + neg_if(s, h & 4);
 }
 
 // OSL's HashScalar / HashVector (and the periodic variants): one inthash of the integer corner
@@ -230,43 +196,68 @@ struct CornerHash {
   }
 };
 
-// OSL's perlin(): signed gradient noise; x[k] carries d/dx_k = 1.
-D perlin(const float* xin, int n, const CornerHash& hash) {
+// OSL's perlin(): signed gradient noise, T = float (no derivatives) or D2. The interpolation
+// order is that of OSL's SIMD (OIIO_SIMD) code, which is what OSL runs on x86: 1-D lerp; 2-D x
+// then y; 3-D z, then x, then y; 4-D without derivatives: (z, x, y) on each w face, then w;
+// 4-D with derivatives: w, then z, x, y. The corners are numbered with bit k for axis k.
+template <class T> T perlin(const T* xin, int n, const CornerHash& hash) {
   int X[4];
-  D f[4], u[4];
+  T f[4], u[4];
   for (int k = 0; k < n; ++k) {
-    X[k] = ifloor(xin[k]); // floorfrac: the fraction carries the input's derivative
-    f[k] = dconst(xin[k] - float(X[k]));
-    f[k].d[k] = 1;
+    X[k] = ifloor(val(xin[k])); // floorfrac: x - float(ifloor(x)); derivatives pass through
+    f[k] = xin[k];
+    if constexpr (std::is_same_v<T, D2>)
+      f[k].v = xin[k].v - float(X[k]);
+    else
+      f[k] = xin[k] - float(X[k]);
     u[k] = fade(f[k]);
   }
-  auto corner = [&](int bits) {
+  T g[16];
+  for (int bits = 0; bits < (1 << n); ++bits) {
     int c[4];
-    D r[4];
+    T r[4];
     for (int k = 0; k < n; ++k) {
       int b = (bits >> k) & 1;
-      c[k] = X[k] + b;
+      c[k] = int(uint32_t(X[k]) + uint32_t(b)); // X + 1 wraps at INT_MAX, as in OSL
       r[k] = b ? f[k] - 1.0f : f[k];
     }
     uint32_t h = hash(c);
-    switch (n) {
-    case 1:
-      return grad(h, r[0]);
-    case 2:
-      return grad(h, r[0], r[1]);
-    case 3:
-      return grad(h, r[0], r[1], r[2]);
-    default:
-      return grad(h, r[0], r[1], r[2], r[3]);
+    g[bits] = n == 1   ? grad(h, r[0])
+              : n == 2 ? grad(h, r[0], r[1])
+              : n == 3 ? grad(h, r[0], r[1], r[2])
+                       : grad(h, r[0], r[1], r[2], r[3]);
+  }
+  // x then y over the four (x, y) corners at v[0..3] (index = x + 2 y).
+  auto xy = [&](const T* v) { return lerp(lerp(v[0], v[1], u[0]), lerp(v[2], v[3], u[0]), u[1]); };
+  if (n == 1) return 0.2500f * lerp(g[0], g[1], u[0]);
+  if (n == 2) return 0.6616f * xy(g);
+  T m[4];
+  if (n == 3) {
+    for (int i = 0; i < 4; ++i) m[i] = lerp(g[i], g[i + 4], u[2]);
+    return 0.9820f * xy(m);
+  }
+  if constexpr (std::is_same_v<T, D2>) {
+    for (int i = 0; i < 4; ++i)
+      m[i] = lerp(lerp(g[i], g[i + 8], u[3]), lerp(g[i + 4], g[i + 12], u[3]), u[2]);
+    return 0.8344f * xy(m);
+  } else {
+    T m1[4];
+    for (int i = 0; i < 4; ++i) {
+      m[i] = lerp(g[i], g[i + 4], u[2]);
+      m1[i] = lerp(g[i + 8], g[i + 12], u[2]);
     }
-  };
-  if (n == 1) return 0.2500f * lerp(corner(0), corner(1), u[0]);
-  if (n == 2) return 0.6616f * bilerp(corner(0), corner(1), corner(2), corner(3), u[0], u[1]);
-  D v[16];
-  for (int i = 0; i < (1 << n); ++i) v[i] = corner(i);
-  if (n == 3) return 0.9820f * trilerp(v, u[0], u[1], u[2]);
-  return 0.8344f * lerp(trilerp(v, u[0], u[1], u[2]), trilerp(v + 8, u[0], u[1], u[2]), u[3]);
+    return 0.8344f * lerp(xy(m), xy(m1), u[3]);
+  }
 }
+
+// ---- Partials with respect to the (up to 4) inputs, for simplex noise ----
+
+struct D {
+  float v;
+  float d[4];
+};
+
+inline D dconst(float v) { return D{v, {0, 0, 0, 0}}; }
 
 // ---- Simplex noise: OSL's simplexnoise.cpp (Stefan Gustavson's sdnoise1234) ----
 //
@@ -309,20 +300,30 @@ const float* simplex_grad(const int* c, int n, uint32_t seed) {
 }
 
 // OSL's simplexnoise1: corners floor(x) and floor(x) + 1, gradients +-1..8 (grad1), scale 0.36.
+// The derivative is summed in OSL's (Gustavson's sdnoise1) order: -8 * (t0^3 g0 x0^2 + t1^3 g1
+// x1^2) + (t0^4 g0 + t1^4 g1), times the scale.
 D simplex1(float x, uint32_t seed) {
   int i0 = ifloor(x);
-  float x0 = x - float(i0), n[2], dn[2];
+  float x0 = x - float(i0), x1 = x0 - 1.0f;
+  float g[2], t[2], t2[2], t4[2], xx[2], n[2];
   for (int c = 0; c < 2; ++c) {
-    float xc = c ? x0 - 1.0f : x0;
-    uint32_t h = scramble(uint32_t(i0 + c), seed) & 15;
-    float g = float(1 + (h & 7));
-    if (h & 8) g = -g;
-    float t = 1.0f - xc * xc, t2 = t * t, t4 = t2 * t2; // |xc| <= 1, so t >= 0
-    n[c] = t4 * g * xc;
-    dn[c] = t4 * g - 8.0f * t2 * t * g * xc * xc;
+    float xc = c ? x1 : x0;
+    uint32_t h = scramble(uint32_t(i0) + uint32_t(c), seed) & 15;
+    g[c] = float(1 + (h & 7));
+    if (h & 8) g[c] = -g[c];
+    xx[c] = xc * xc;
+    t[c] = 1.0f - xx[c]; // |xc| <= 1, so t >= 0
+    t2[c] = t[c] * t[c];
+    t4[c] = t2[c] * t2[c];
+    n[c] = t4[c] * g[c] * xc;
   }
+  float dn = t2[0] * t[0] * g[0] * xx[0];
+  dn += t2[1] * t[1] * g[1] * xx[1];
+  dn *= -8.0f;
+  dn += t4[0] * g[0] + t4[1] * g[1];
+  dn *= 0.36f;
   D r = dconst(0.36f * (n[0] + n[1]));
-  r.d[0] = 0.36f * (dn[0] + dn[1]);
+  r.d[0] = dn;
   return r;
 }
 
@@ -366,12 +367,16 @@ D simplex(const float* x, int n, uint32_t seed) {
       d[a] = c == 0 ? d0[a] : d0[a] - float(step) + float(c) * k.G;
       tc -= d[a] * d[a];
     }
-    if (tc < 0.0f) continue; // outside this corner's support
-    const float* g = simplex_grad(corner, n, seed);
+    // Outside this corner's support (or NaN): no value, and zero gradient and t^2, t^4 -- but
+    // tc itself is kept in the derivative's t^2 * tc * (g . d) term, as in OSL, so that a
+    // non-finite offset (a huge or NaN input) gives a NaN derivative there as OSL's does.
+    static constexpr float kZero[4] = {0, 0, 0, 0};
+    bool inside = tc >= 0.0f;
+    const float* g = inside ? simplex_grad(corner, n, seed) : kZero;
     float dot = g[0] * d[0];
     for (int a = 1; a < n; ++a) dot += g[a] * d[a];
-    float t2 = tc * tc, t4 = t2 * t2, t3dot = t2 * tc * dot;
-    nc[c] = t4 * dot;
+    float t2 = inside ? tc * tc : 0.0f, t4 = t2 * t2, t3dot = t2 * tc * dot;
+    nc[c] = inside ? t4 * dot : 0.0f;
     for (int a = 0; a < n; ++a) {
       dd[a] += t3dot * d[a];
       gt[a] += t4 * g[a];
@@ -388,29 +393,80 @@ D simplex(const float* x, int n, uint32_t seed) {
 
 extern "C" {
 
-// out[nout] = noise of `kind` at x[nin] (optionally periodic); grad, if non-null, receives
-// d out[j] / d x[k] at grad[j * nin + k].
-void lobe_noise(int kind, const float* x, int nin, const float* period, float* out, int nout,
-                float* grad) {
+// Gabor noise (gabor.cpp).
+void lobe_gabor(const float* x, const float* dx, const float* dy, int nin, const float* period,
+                const lobe::shadeops::GaborOptions* opt, float* out, float* odx, float* ody,
+                int nout);
+
+// out[nout] = noise of `kind` at x[nin] (optionally periodic), evaluated as OSL does. With dx
+// null, OSL's value-only code path; otherwise dx[nin] and dy[nin] are the inputs' screen
+// derivatives (zeros where an input has none) and odx[nout] / ody[nout] receive the result's,
+// computed as OSL's Dual2 code path (whose value can differ from the value-only one in the last
+// bits: 4-D perlin interpolates in another order). Call with derivatives exactly when the result
+// needs them, as OSL does.
+void lobe_noise_d(int kind, const float* x, const float* dx, const float* dy, int nin,
+                  const float* period, float* out, float* odx, float* ody, int nout) {
   using namespace lobe::shadeops;
   bool simplex_kind = kind == kSimplex || kind == kUSimplex;
-  if (simplex_kind || kind == kPerlin || kind == kUPerlin) {
-    float safe[4];
-    for (int k = 0; k < nin && k < 4; ++k) safe[k] = lattice_safe(x[k]);
-    x = safe;
+  bool unsigned_kind = kind == kUPerlin || kind == kUSimplex;
+  // Lobe keeps gradient and simplex noise finite and in range for every input, where OSL's is
+  // inf or garbage beyond the int range and for inf/NaN: such a coordinate reads as 0, with no
+  // derivative (a deliberate difference, docs/language.md). Everything smaller matches OSL.
+  float safe_x[4], sdx[4], sdy[4];
+  if (kind != kCell && kind != kHash)
+    for (int k = 0; k < nin; ++k)
+      if (!(std::fabs(x[k]) < 2147483648.0f)) {
+        for (int m = 0; m < nin; ++m) {
+          safe_x[m] = x[m];
+          sdx[m] = dx ? dx[m] : 0.0f;
+          sdy[m] = dy ? dy[m] : 0.0f;
+        }
+        for (int m = 0; m < nin; ++m)
+          if (!(std::fabs(safe_x[m]) < 2147483648.0f)) safe_x[m] = sdx[m] = sdy[m] = 0.0f;
+        x = safe_x;
+        if (dx) dx = sdx, dy = sdy;
+        break;
+      }
+  if (kind == kPerlin || kind == kUPerlin) {
     // Simplex noise has no periodic form (OSL has none; the name dispatch rejects
-    // pnoise("simplex")), so `period` only applies to gradient noise.
+    // pnoise("simplex")), so `period` only applies to gradient and cell/hash noise.
     int per[4];
     if (period)
       for (int k = 0; k < nin; ++k) per[k] = period_of(period[k]);
     for (int j = 0; j < nout; ++j) {
-      D r = simplex_kind
-                ? simplex(x, nin, uint32_t(j))
-                : perlin(x, nin, CornerHash{nin, period ? per : nullptr, nout == 1 ? 0 : 8 * j});
-      if (kind == kUPerlin || kind == kUSimplex) r = 0.5f * (r + 1.0f);
+      CornerHash h{nin, period ? per : nullptr, nout == 1 ? 0 : 8 * j};
+      if (dx) {
+        D2 in[4];
+        for (int k = 0; k < nin; ++k) in[k] = D2{x[k], dx[k], dy[k]};
+        D2 r = perlin(in, nin, h);
+        if (unsigned_kind) r = 0.5f * (r + 1.0f);
+        out[j] = r.v;
+        odx[j] = r.dx;
+        ody[j] = r.dy;
+      } else {
+        float r = perlin(x, nin, h);
+        out[j] = unsigned_kind ? 0.5f * (r + 1.0f) : r;
+      }
+    }
+    return;
+  }
+  if (simplex_kind) {
+    for (int j = 0; j < nout; ++j) {
+      D r = simplex(x, nin, uint32_t(j));
+      if (unsigned_kind) { // OSL's usimplex: 0.5 * (n + 1), partials times 0.5
+        r.v = 0.5f * (r.v + 1.0f);
+        for (int k = 0; k < nin; ++k) r.d[k] *= 0.5f;
+      }
       out[j] = r.v;
-      if (grad)
-        for (int k = 0; k < nin; ++k) grad[j * nin + k] = r.d[k];
+      if (dx) { // OSL's chain rule: dn/dx0 * x0' + dn/dx1 * x1' + ...
+        float sx = r.d[0] * dx[0], sy = r.d[0] * dy[0];
+        for (int k = 1; k < nin; ++k) {
+          sx = sx + r.d[k] * dx[k];
+          sy = sy + r.d[k] * dy[k];
+        }
+        odx[j] = sx;
+        ody[j] = sy;
+      }
     }
     return;
   }
@@ -432,29 +488,65 @@ void lobe_noise(int kind, const float* x, int nin, const float* period, float* o
       k[nin] = uint32_t(j);
       out[j] = bits_to_01(inthash(k, nin + 1));
     }
-    if (grad)
-      for (int i = 0; i < nin; ++i) grad[j * nin + i] = 0;
+    if (dx) odx[j] = ody[j] = 0;
+  }
+}
+
+// The partials form: grad, if non-null, receives d out[j] / d x[k] at grad[j * nin + k]
+// (the Dual2 path seeded with unit derivatives, two inputs at a time).
+void lobe_noise(int kind, const float* x, int nin, const float* period, float* out, int nout,
+                float* grad) {
+  if (!grad)
+    return lobe_noise_d(kind, x, nullptr, nullptr, nin, period, out, nullptr, nullptr, nout);
+  float ox[3], oy[3];
+  for (int k0 = 0; k0 < nin; k0 += 2) {
+    float sx[4] = {0, 0, 0, 0}, sy[4] = {0, 0, 0, 0};
+    sx[k0] = 1;
+    if (k0 + 1 < nin) sy[k0 + 1] = 1;
+    lobe_noise_d(kind, x, sx, sy, nin, period, out, ox, oy, nout);
+    for (int j = 0; j < nout; ++j) {
+      grad[j * nin + k0] = ox[j];
+      if (k0 + 1 < nin) grad[j * nin + k0 + 1] = oy[j];
+    }
   }
 }
 
 // noise(name, ...) with a name known only at run time (OSL's genericnoise / genericpnoise):
-// dispatches on the name like the constant case in codegen ("gabor" is the gradient noise). An
-// unknown name, or "simplex"/"usimplex" with a period, is a run-time error naming the source
-// location; the result (and its gradient) is 0.
+// dispatches on the name like the constant case in codegen. An unknown name, or
+// "simplex"/"usimplex" with a period, is a run-time error naming the source location; the
+// result (and its derivatives) is 0. "gabor" goes to lobe_gabor (gabor.cpp) with the call's
+// keyword options (null: the defaults).
+void lobe_noise_named_d(lobe::ShaderGlobals* sg, const char* name, const float* x, const float* dx,
+                        const float* dy, int nin, const float* period, const void* gabor_opts,
+                        float* out, float* odx, float* ody, int nout, const char* file, int line) {
+  std::string_view n = name ? name : "";
+  if (n == "gabor")
+    return lobe_gabor(x, dx, dy, nin, period,
+                      static_cast<const lobe::shadeops::GaborOptions*>(gabor_opts), out, odx, ody,
+                      nout);
+  int kind = lobe::shadeops::noise_kind_from_name(n, period != nullptr);
+  if (kind >= 0) return lobe_noise_d(kind, x, dx, dy, nin, period, out, odx, ody, nout);
+  for (int j = 0; j < nout; ++j) {
+    out[j] = 0;
+    if (dx) odx[j] = ody[j] = 0;
+  }
+  if (sg && sg->context) {
+    sg->context->error("noise type \"" + std::string(n) + "\" is unknown, called from (" + file +
+                       ":" + std::to_string(line) + ")"); // OSL's words
+  }
+}
+
+// The partials form of lobe_noise_named.
 void lobe_noise_named(lobe::ShaderGlobals* sg, const char* name, const float* x, int nin,
                       const float* period, float* out, int nout, float* grad, const char* file,
                       int line) {
   std::string_view n = name ? name : "";
-  int kind = n == "gabor" ? lobe::shadeops::kUPerlin
-                          : lobe::shadeops::noise_kind_from_name(n, period != nullptr);
+  int kind = lobe::shadeops::noise_kind_from_name(n, period != nullptr);
   if (kind >= 0) return lobe_noise(kind, x, nin, period, out, nout, grad);
-  for (int j = 0; j < nout; ++j) out[j] = 0;
+  lobe_noise_named_d(sg, name, x, nullptr, nullptr, nin, period, nullptr, out, nullptr, nullptr,
+                     nout, file, line);
   if (grad)
     for (int k = 0; k < nout * nin; ++k) grad[k] = 0;
-  if (sg && sg->context) {
-    sg->context->error("Unknown noise type \"" + std::string(n) + "\": " + file + ":" +
-                       std::to_string(line));
-  }
 }
 
 } // extern "C"

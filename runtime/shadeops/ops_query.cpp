@@ -56,6 +56,9 @@ void report(lobe::ShaderGlobals* sg, std::initializer_list<std::string_view> pie
 bool builtin_attribute(std::string_view name, int code, void* dest, lobe::shadeops::RuntimeEnv* env,
                        const char* shadername, const char* layername, const char* groupname,
                        int& found) {
+  // The shader:* names are answered only for a name known when the shader compiles (null
+  // names otherwise, as in OSL, which folds them then): a name computed at run time goes to
+  // the renderer.
   const char* text = nullptr;
   if (name == "shader:shadername")
     text = shadername;
@@ -65,6 +68,7 @@ bool builtin_attribute(std::string_view name, int code, void* dest, lobe::shadeo
     text = groupname;
   else if (name != "osl:version")
     return false;
+  if (!text && name != "osl:version") return false;
   found = 0;
   if (text) {
     if (code != int(lobe::DataType::Base::String)) return true;

@@ -46,6 +46,18 @@ enum NoiseKind : int {
   kSimplex = 4,
   kUSimplex = 5
 };
+// Gabor noise options: the keyword arguments of noise("gabor", ...) / pnoise("gabor", ...)
+// ("anisotropic" int, "do_filter" int, "direction" vector, "bandwidth" float, "impulses"
+// float), with OSL's defaults; codegen fills this struct by field offset and passes its address
+// to lobe_gabor / lobe_noise_named_d.
+struct GaborOptions {
+  int32_t anisotropic = 0; // 0 isotropic, 1 anisotropic (fixed direction), 2 hybrid
+  int32_t do_filter = 1;
+  float direction[3] = {1, 0, 0};
+  float bandwidth = 1.0f; // clamped to [0.01, 100]
+  float impulses = 16.0f; // per cell, clamped to [1, 32]
+};
+
 // -1: unknown, or "simplex"/"usimplex" when `periodic` (OSL has no periodic simplex noise, so
 // pnoise("simplex", ...) is an unknown noise type).
 int noise_kind_from_name(std::string_view name, bool periodic);

@@ -45,6 +45,9 @@ void lobe_blackbody();
 void lobe_luminance();
 void lobe_noise();
 void lobe_noise_named();
+void lobe_noise_d();
+void lobe_noise_named_d();
+void lobe_gabor();
 void lobe_spline();
 void lobe_texture();
 void lobe_getattribute();
@@ -103,6 +106,9 @@ const ShadeOpSymbol kTable[] = {
     {"lobe_luminance", addr(lobe_luminance), "fp"},
     {"lobe_noise", addr(lobe_noise), "vipippip"},
     {"lobe_noise_named", addr(lobe_noise_named), "vpppippippi"},
+    {"lobe_noise_d", addr(lobe_noise_d), "vipppippppi"},
+    {"lobe_noise_named_d", addr(lobe_noise_named_d), "vpppppipppppipi"},
+    {"lobe_gabor", addr(lobe_gabor), "vpppipppppi"},
     {"lobe_spline", addr(lobe_spline), "vpfpiipp"},
     {"lobe_texture", addr(lobe_texture), "vpppffffffipppp"},
     {"lobe_getattribute", addr(lobe_getattribute), "ippppiiipppp"},

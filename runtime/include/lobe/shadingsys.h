@@ -55,6 +55,7 @@ struct InstanceValue {
   std::vector<std::string> words; // the value already split (group text's quoted strings)
   bool osl_rules = false;
   bool interpolated = false;
+  bool interactive = false; // testshade's `:interactive=1`: --reparam may change it later
 };
 
 struct Connection {
@@ -77,6 +78,9 @@ struct ShaderGroup {
   // one layer). A layer that has one runs at every shade, in layer order before the last
   // layer, even when nothing downstream reads it (testshade's `-o`; its default is "Cout").
   std::vector<std::string> renderer_outputs;
+  // OSL's entry layers: when given, these layers (by name) run at every shade, in layer order,
+  // instead of the last layer and the layers with renderer outputs; the others run lazily.
+  std::vector<std::string> entry_layers;
 };
 
 struct CompileOptions {
@@ -85,6 +89,15 @@ struct CompileOptions {
   std::vector<std::string> undefines;
   int opt_level = 2;      // 0: no specialisation, LLVM -O0; 1/2: specialise, optimise
   bool specialize = true; // fold instance values into constants before LLVM optimises
+  // OSL's "lockgeom" option: false lets every parameter without `[[ int lockgeom = 1 ]]` take
+  // the renderer's user data (renderer_services.h), as if each said `lockgeom = 0`.
+  bool lockgeom_default = true;
+  // Run-time checks, as OSL's options of the same names: an out-of-range index is reported
+  // (range_checking); every float-based result of every op is checked for NaN and Inf
+  // (debug_nan); a read of a local before it is written is reported (debug_uninit).
+  bool range_checking = true;
+  bool debug_nan = false;
+  bool debug_uninit = false;
 };
 
 // Time spent per stage, for --stats and bench/.
@@ -138,6 +151,9 @@ public:
     (void)dst;
     return false;
   }
+  // Bytes of per-shade group data (layer parameters and outputs), for testshade's
+  // --print-groupdata.
+  virtual size_t groupdata_bytes() const { return 0; }
   virtual const CompileStats& stats() const = 0;
   // The closure library's eval/sample/albedo for this material's closures, JIT-compiled and
   // inlined (bsdf.h, ClosureKernels); compiled on the first call, from any thread. Null when

@@ -1,0 +1,42 @@
+// `lobe shade`'s renderer, answering shaders as OSL's testshade does (measured against 1.13.12):
+// - user data: "s" and "t", u and v with their derivatives; then the --userdata values, of
+//   exactly the asked type;
+// - attributes: "camera:resolution" (the grid), testshade's camera (a 90 degree perspective
+//   camera, clip 0.1 to 1000, shutter 0 to 1), "options"/"blahblah" (3.14159, testshade's
+//   probe), and any other name without an object or index from the user data;
+// - spaces: testshade's "object" (translated by (0, 1, 0) then turned 90 degrees about z),
+//   "shader" (translated by (1, 0, 0) then turned 45 degrees), "myspace" (scaled by 2 in y),
+//   "screen", "NDC" and "raster" of its camera; common = world = camera.
+#pragma once
+
+#include "lobe/renderer_services.h"
+#include "shade_args.h"
+
+#include <string>
+#include <vector>
+
+namespace lobe::cli {
+
+class ShadeServices final : public RendererServices {
+public:
+  ShadeServices(std::vector<ShadeUserDatum> data, int xres, int yres);
+
+  bool get_userdata(const ShaderGlobals& sg, std::string_view name, DataType type, bool derivatives,
+                    void* val) const override;
+  bool get_attribute(const ShaderGlobals& sg, std::string_view object, std::string_view name,
+                     int index, DataType type, bool derivatives, void* val) const override;
+  bool get_matrix(const ShaderGlobals& sg, std::string_view space, float* m) const override;
+
+  bool has_userdata(std::string_view name) const;
+
+private:
+  std::vector<ShadeUserDatum> data_;
+  int xres_, yres_;
+  struct Space {
+    const char* name;
+    float to_common[16];
+  };
+  std::vector<Space> spaces_;
+};
+
+} // namespace lobe::cli
