@@ -27,18 +27,10 @@ void mark_stdlib(ast::TranslationUnit& tu, const diag::SourceManager& sm, int st
   for (auto& d : tu.decls) d->from_stdlib = sm.buffer_of(sm.file_loc(d->range.begin)) == stdlib_id;
 }
 
-} // namespace
-
-std::unique_ptr<ast::TranslationUnit> compile_to_ast(const SourceInput& input,
-                                                     const FrontendOptions& options,
-                                                     diag::DiagnosticEngine& diags,
-                                                     FrontendTimings* timings) {
-  FrontendTimings t;
-  auto tu = std::make_unique<ast::TranslationUnit>();
-  tu->sources = std::make_shared<diag::SourceManager>();
-  diag::SourceManager& sm = *tu->sources;
-
-  auto t0 = Clock::now();
+// Runs the preprocessor over the standard header (unless turned off) and the input; returns
+// the output buffer's id and sets `stdlib_id` (-1 without the header).
+int run_preprocessor(const SourceInput& input, const FrontendOptions& options,
+                     diag::SourceManager& sm, diag::DiagnosticEngine& diags, int& stdlib_id) {
   pp::PPOptions ppo;
   ppo.include_dirs = options.include_dirs;
   ppo.defines = options.defines;
@@ -55,7 +47,7 @@ std::unique_ptr<ast::TranslationUnit> compile_to_ast(const SourceInput& input,
     return std::nullopt;
   };
   pp::Preprocessor pp(sm, diags, ppo);
-  int stdlib_id = -1;
+  stdlib_id = -1;
   if (options.include_stdlib) {
     stdlib_id = sm.add_file(stdlib::kStdoslName, std::string(stdlib::stdosl_source()));
     pp.process_buffer(stdlib_id);
@@ -64,7 +56,23 @@ std::unique_ptr<ast::TranslationUnit> compile_to_ast(const SourceInput& input,
     pp.process_buffer(sm.add_file(input.path.empty() ? "<source>" : input.path, *input.text));
   else
     pp.process_file(input.path);
-  int out = pp.finish();
+  return pp.finish();
+}
+
+} // namespace
+
+std::unique_ptr<ast::TranslationUnit> compile_to_ast(const SourceInput& input,
+                                                     const FrontendOptions& options,
+                                                     diag::DiagnosticEngine& diags,
+                                                     FrontendTimings* timings) {
+  FrontendTimings t;
+  auto tu = std::make_unique<ast::TranslationUnit>();
+  tu->sources = std::make_shared<diag::SourceManager>();
+  diag::SourceManager& sm = *tu->sources;
+
+  auto t0 = Clock::now();
+  int stdlib_id = -1;
+  int out = run_preprocessor(input, options, sm, diags, stdlib_id);
   t.preprocess_ms = ms_since(t0);
 
   t0 = Clock::now();
@@ -82,6 +90,31 @@ std::unique_ptr<ast::TranslationUnit> compile_to_ast(const SourceInput& input,
   }
   if (timings) *timings = t;
   return tu;
+}
+
+// The output a line at a time, with a `# N "file"` line wherever the next line is not the
+// one after the line before in the same file (as cpp marks them).
+std::string preprocess(const SourceInput& input, const FrontendOptions& options,
+                       diag::DiagnosticEngine& diags, diag::SourceManager& sm) {
+  int stdlib_id = -1;
+  int out = run_preprocessor(input, options, sm, diags, stdlib_id);
+  const std::string& text = sm.buffer_text(out);
+  uint32_t base = sm.buffer_start(out).offset;
+  std::string result, file;
+  int next_line = 0;
+  for (size_t b = 0; b < text.size();) {
+    size_t e = text.find('\n', b);
+    e = e == std::string::npos ? text.size() : e + 1;
+    diag::PresumedLoc p = sm.presumed(diag::SourceLoc{base + uint32_t(b)});
+    if (p.valid() && (p.file != file || p.line != next_line)) {
+      file = p.file;
+      result += "# " + std::to_string(p.line) + " \"" + file + "\"\n";
+    }
+    next_line = p.valid() ? p.line + 1 : next_line + 1;
+    result.append(text, b, e - b);
+    b = e;
+  }
+  return result;
 }
 
 } // namespace lobe::frontend

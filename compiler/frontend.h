@@ -8,6 +8,7 @@
 //
 // The translation unit is always returned (with its SourceManager in tu->sources, which
 // renders the diagnostics); it is fit for lowering only when no error was reported.
+// preprocess() stops after the first stage, for `lobe compile -E`.
 #pragma once
 
 #include "ast/ast.h"
@@ -48,5 +49,11 @@ std::unique_ptr<ast::TranslationUnit> compile_to_ast(const SourceInput& input,
                                                      const FrontendOptions& options,
                                                      diag::DiagnosticEngine& diags,
                                                      FrontendTimings* timings = nullptr);
+
+// Only preprocesses (`lobe compile -E`): the preprocessed text of the standard header (unless
+// include_stdlib is false) and the input, with cpp's `# N "file"` line markers. Diagnostics go
+// to `diags`, rendered with `sources`.
+std::string preprocess(const SourceInput& input, const FrontendOptions& options,
+                       diag::DiagnosticEngine& diags, diag::SourceManager& sources);
 
 } // namespace lobe::frontend

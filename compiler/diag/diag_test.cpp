@@ -124,6 +124,21 @@ TEST(Engine, CountsAndErrorCap) {
   EXPECT_EQ(de.diagnostics().back().id, DiagId::fatal_too_many_errors);
 }
 
+// -Werror: warnings are reported, counted and rendered as errors; notes stay notes.
+TEST(Engine, WarningsAsErrors) {
+  SourceManager sm;
+  int f = sm.add_file("t.osl", "x\n");
+  DiagnosticEngine de;
+  de.set_warnings_as_errors(true);
+  de.report(DiagId::warn_pragma_warning, sm.buffer_start(f), {"careful"});
+  de.report(DiagId::note_previous_decl, sm.buffer_start(f));
+  EXPECT_EQ(de.warning_count(), 0);
+  EXPECT_EQ(de.error_count(), 1);
+  ASSERT_EQ(de.diagnostics().size(), 2u);
+  EXPECT_EQ(de.diagnostics()[1].severity, Severity::Note);
+  EXPECT_EQ(render(de.diagnostics()[0], sm).rfind("t.osl:1:1: error: careful\n", 0), 0u);
+}
+
 TEST(Engine, RuntimeConversion) {
   SourceManager sm;
   int f = sm.add_file("t.osl", "x\n");

@@ -10,12 +10,14 @@ namespace lobe::diag {
 
 void DiagnosticEngine::report(DiagId id, SourceRange range, std::vector<std::string> args) {
   const DiagInfo& info = diag_info(id);
-  if (info.severity == Severity::Note) {
+  Severity severity =
+      werror_ && info.severity == Severity::Warning ? Severity::Error : info.severity;
+  if (severity == Severity::Note) {
     if (last_dropped_ || diags_.empty()) return;
   } else {
     last_dropped_ = stopped_;
     if (stopped_) return;
-    if (info.severity >= Severity::Error && errors_ >= max_errors_) {
+    if (severity >= Severity::Error && errors_ >= max_errors_) {
       stopped_ = true;
       last_dropped_ = true;
       diags_.push_back({DiagId::fatal_too_many_errors, Severity::Fatal, range,
@@ -23,9 +25,9 @@ void DiagnosticEngine::report(DiagId id, SourceRange range, std::vector<std::str
       return;
     }
   }
-  if (info.severity >= Severity::Error) ++errors_;
-  if (info.severity == Severity::Warning) ++warnings_;
-  diags_.push_back({id, info.severity, range, format_message(info.format, args)});
+  if (severity >= Severity::Error) ++errors_;
+  if (severity == Severity::Warning) ++warnings_;
+  diags_.push_back({id, severity, range, format_message(info.format, args)});
 }
 
 void DiagnosticEngine::clear() {

@@ -44,6 +44,8 @@ public:
   bool has_errors() const { return errors_ > 0; }
   bool stopped() const { return stopped_; } // the error cap was reached
   void clear();
+  // -Werror: warnings reported from now on are errors (and counted as errors).
+  void set_warnings_as_errors(bool on) { werror_ = on; }
 
 private:
   std::vector<Diagnostic> diags_;
@@ -51,6 +53,7 @@ private:
   int errors_ = 0, warnings_ = 0;
   bool stopped_ = false;
   bool last_dropped_ = false;
+  bool werror_ = false;
 };
 
 // One diagnostic as text: include trail, location line, source line, caret line, and an

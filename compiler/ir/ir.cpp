@@ -10,15 +10,24 @@ namespace lobe::ir {
 
 const char* to_string(BaseType t) {
   switch (t) {
-  case BaseType::Int: return "int";
-  case BaseType::Float: return "float";
-  case BaseType::Color: return "color";
-  case BaseType::Point: return "point";
-  case BaseType::Vector: return "vector";
-  case BaseType::Normal: return "normal";
-  case BaseType::Matrix: return "matrix";
-  case BaseType::String: return "string";
-  case BaseType::Closure: return "closure";
+  case BaseType::Int:
+    return "int";
+  case BaseType::Float:
+    return "float";
+  case BaseType::Color:
+    return "color";
+  case BaseType::Point:
+    return "point";
+  case BaseType::Vector:
+    return "vector";
+  case BaseType::Normal:
+    return "normal";
+  case BaseType::Matrix:
+    return "matrix";
+  case BaseType::String:
+    return "string";
+  case BaseType::Closure:
+    return "closure";
   }
   return "?";
 }
@@ -38,34 +47,41 @@ int Type::components() const {
   return 1;
 }
 
-std::string to_string(const Type& t) {
-  std::string s = to_string(t.base);
-  if (t.arraylen != 0) {
-    s.push_back('[');
-    if (t.arraylen > 0) s.append(std::to_string(t.arraylen));
-    s.push_back(']');
-  }
-  return s;
+std::string array_suffix(const Type& t) {
+  if (t.arraylen == 0) return "";
+  return "[" + (t.arraylen > 0 ? std::to_string(t.arraylen) : std::string()) + "]";
 }
+
+std::string to_string(const Type& t) { return to_string(t.base) + array_suffix(t); }
 
 const char* to_string(SymKind k) {
   switch (k) {
-  case SymKind::Param: return "param";
-  case SymKind::OutputParam: return "oparam";
-  case SymKind::Global: return "global";
-  case SymKind::Local: return "local";
-  case SymKind::Temp: return "temp";
-  case SymKind::Const: return "const";
+  case SymKind::Param:
+    return "param";
+  case SymKind::OutputParam:
+    return "oparam";
+  case SymKind::Global:
+    return "global";
+  case SymKind::Local:
+    return "local";
+  case SymKind::Temp:
+    return "temp";
+  case SymKind::Const:
+    return "const";
   }
   return "?";
 }
 
 const char* to_string(ShaderType t) {
   switch (t) {
-  case ShaderType::Surface: return "surface";
-  case ShaderType::Displacement: return "displacement";
-  case ShaderType::Volume: return "volume";
-  case ShaderType::Shader: return "shader";
+  case ShaderType::Surface:
+    return "surface";
+  case ShaderType::Displacement:
+    return "displacement";
+  case ShaderType::Volume:
+    return "volume";
+  case ShaderType::Shader:
+    return "shader";
   }
   return "?";
 }
@@ -74,6 +90,12 @@ int Shader::find_symbol(const std::string& n) const {
   for (size_t i = 0; i < symbols.size(); ++i)
     if (symbols[i].name == n) return static_cast<int>(i);
   return -1;
+}
+
+const StructType* Shader::find_struct(const std::string& n) const {
+  for (const StructType& st : structs)
+    if (st.name == n) return &st;
+  return nullptr;
 }
 
 // A linear scan would do (about 130 entries), but codegen and the verifier look up every op.

@@ -38,7 +38,8 @@ struct Type {
   int components() const; // floats/ints per element: 1, 3, 16; strings and closures: 1
   friend bool operator==(const Type&, const Type&) = default;
 };
-std::string to_string(const Type& t); // "float", "color[3]", "float[]"
+std::string to_string(const Type& t);    // "float", "color[3]", "float[]"
+std::string array_suffix(const Type& t); // "", "[3]", "[]"
 
 enum class SymKind : uint8_t {
   Param,       // shader parameter (instance value, connection or default)
@@ -106,7 +107,25 @@ struct Symbol {
   std::vector<Metadata> metadata;
   std::string
       struct_name; // the flattened struct's type name for a struct-field param ("" otherwise)
+  // A param whose constant `init` Lobe folded from an expression that oslc keeps as code
+  // (`float(3)`, `2 * 3.5`, `S(1, c)`, an array field of a struct): OSL's tools report such a
+  // default as unknown, and so does `lobe info` (the value still serves as the default).
+  bool folded = false;
   SourceLoc loc;
+};
+
+// A struct type of a struct parameter, for the interface listing (`lobe info`): the params are
+// flattened into one symbol per leaf field, and this keeps the fields' order, types and nesting.
+struct StructField {
+  std::string name;
+  Type type;               // for a struct-typed field only `arraylen` counts
+  std::string struct_name; // the field's struct type, "" for a field of a base type
+  friend bool operator==(const StructField&, const StructField&) = default;
+};
+struct StructType {
+  std::string name;
+  std::vector<StructField> fields;
+  friend bool operator==(const StructType&, const StructType&) = default;
 };
 
 // An operation: `opcode dst src...`. The opcode is a name: the core ops listed in
@@ -131,13 +150,16 @@ struct Shader {
   ShaderType type = ShaderType::Surface;
   std::string name;
   std::vector<Metadata> metadata; // shader-level metadata
+  // The struct types of struct parameters, each after the structs its fields use.
+  std::vector<StructType> structs;
   std::vector<Symbol> symbols;
   // The main body starts at op `main_begin` and runs to the end; ops before it are the
   // parameter default initialisers referenced by Symbol::init_begin/init_end.
   std::vector<Op> ops;
   int main_begin = 0;
 
-  int find_symbol(const std::string& name) const; // -1 if absent
+  int find_symbol(const std::string& name) const;               // -1 if absent
+  const StructType* find_struct(const std::string& name) const; // null if absent
 };
 
 } // namespace lobe::ir

@@ -51,8 +51,10 @@ Shader sample() {
   nn.init_end = 1;
   nn.loc = {"plastic.osl", 4, 10};
   sh.symbols.push_back(nn);
+  sh.structs.push_back({"S", {{"a", Type{BaseType::Int, 2}, ""}}});
   Symbol sa = sym("s.a", BaseType::Int, SymKind::Param, 2);
   sa.init = {i(1), i(-2)};
+  sa.folded = true; // an array field of a struct: oslc computes its default
   sa.struct_name = "S";
   sh.symbols.push_back(sa);
   Symbol n = sym("N", BaseType::Normal, SymKind::Global);
@@ -80,10 +82,11 @@ Shader sample() {
 
 const char* kSampleText = R"(lobe-ir 1
 surface plastic [[ string help = "A \"shiny\" one" ]]
+struct S { int[2] a }
 symbols
   param float Kd = 0.5 [[ float min = 0, float[2] range = 0 1 ]] @"my shader.osl":3:9
   param normal Nn init=0:1 @plastic.osl:4:10
-  param int[2] s.a = 1 -2 struct=S
+  param int[2] s.a = 1 -2 folded struct=S
   global normal N
   global point P derivs
   global closure Ci
@@ -111,6 +114,7 @@ TEST(IrText, ParsesBackTheSameData) {
   Shader want = sample();
   EXPECT_EQ(sh.name, "plastic");
   EXPECT_EQ(sh.metadata, want.metadata);
+  EXPECT_EQ(sh.structs, want.structs);
   ASSERT_EQ(sh.symbols.size(), want.symbols.size());
   for (size_t k = 0; k < sh.symbols.size(); ++k) {
     const Symbol& a = sh.symbols[k];
@@ -120,6 +124,7 @@ TEST(IrText, ParsesBackTheSameData) {
     EXPECT_EQ(a.kind, b.kind);
     EXPECT_EQ(a.derivs, b.derivs);
     EXPECT_EQ(a.init, b.init) << a.name;
+    EXPECT_EQ(a.folded, b.folded) << a.name;
     EXPECT_EQ(a.init_begin, b.init_begin);
     EXPECT_EQ(a.init_end, b.init_end);
     EXPECT_EQ(a.metadata, b.metadata);
@@ -264,6 +269,44 @@ TEST(IrText, UnsizedParamDefaultLengthSurvives) {
   auto errs = verify(bad);
   ASSERT_EQ(errs.size(), 1u);
   EXPECT_EQ(errs[0], "symbol 'amp': len=2 only on unsized array parameters");
+}
+
+// The struct table: struct-typed fields name a struct listed before, with an array length.
+TEST(IrText, StructTableRoundTripsAndIsVerified) {
+  const char* text = R"(lobe-ir 1
+shader st
+struct S { float a, closure c }
+struct T { S s, S[2] sa, int[] k }
+symbols
+  param float t.s.a = 1 struct=T
+main
+end
+)";
+  ParseResult r = parse(text);
+  ASSERT_TRUE(r.shader) << r.error.to_string();
+  ASSERT_EQ(r.shader->structs.size(), 2u);
+  const StructType& t = r.shader->structs[1];
+  ASSERT_EQ(t.fields.size(), 3u);
+  EXPECT_EQ(t.fields[0].struct_name, "S");
+  EXPECT_EQ(t.fields[1].struct_name, "S");
+  EXPECT_EQ(t.fields[1].type.arraylen, 2);
+  EXPECT_EQ(t.fields[2].type, (Type{BaseType::Int, -1}));
+  EXPECT_EQ(print(*r.shader), text);
+  EXPECT_TRUE(verify(*r.shader).empty());
+  Shader bad = *r.shader;
+  std::swap(bad.structs[0], bad.structs[1]);
+  auto errs = verify(bad);
+  ASSERT_EQ(errs.size(), 2u);
+  EXPECT_EQ(errs[0], "struct 'T': field 's' of struct type 'S' not listed before");
+  bad = *r.shader;
+  bad.symbols[0].folded = true;
+  bad.symbols[0].init.clear();
+  errs = verify(bad);
+  ASSERT_EQ(errs.size(), 1u);
+  EXPECT_EQ(errs[0], "symbol 't.s.a': 'folded' only on parameters with a constant default");
+  ParseResult u = parse("lobe-ir 1\nshader st\nstruct T { U u }\nsymbols\nmain\nend\n");
+  ASSERT_FALSE(u.shader);
+  EXPECT_EQ(u.error.to_string(), "3:12: unknown type 'U'");
 }
 
 struct BadCase {

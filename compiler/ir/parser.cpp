@@ -116,12 +116,15 @@ private:
 
   void line(std::vector<Token>& toks);
   void shader_line(std::vector<Token>& toks);
+  void struct_line(std::vector<Token>& toks);
   void symbol_line(std::vector<Token>& toks);
   void op_line(std::vector<Token>& toks);
   size_t values(const std::vector<Token>& toks, size_t i, const Type& t,
                 std::vector<ConstValue>& out);
   size_t metadata(const std::vector<Token>& toks, size_t i, std::vector<Metadata>& out);
   Type type(const Token& t);
+  // "float[3]" -> "float" and 3; "S[]" -> "S" and -1; "int" -> "int" and 0.
+  std::string split_array(const Token& t, int& arraylen);
   SourceLoc loc(const Token& t);
   int integer(const Token& t, std::string_view what);
   const Token& at(const std::vector<Token>& toks, size_t i, std::string_view what);
@@ -152,18 +155,21 @@ int Parser::integer(const Token& t, std::string_view what) {
   return v;
 }
 
-Type Parser::type(const Token& t) {
-  std::string s = t.text;
-  Type ty;
+std::string Parser::split_array(const Token& t, int& arraylen) {
+  const std::string& s = t.text;
+  arraylen = 0;
   size_t lb = s.find('[');
-  if (lb != std::string::npos) {
-    if (s.back() != ']') throw Fail{t.col, "malformed array type '" + s + "'"};
-    std::string len = s.substr(lb + 1, s.size() - lb - 2);
-    ty.arraylen = len.empty() ? -1 : integer(Token{len, false, t.col}, "array length");
-    if (ty.arraylen == 0) throw Fail{t.col, "array length must not be 0"};
-    s = s.substr(0, lb);
-  }
-  auto b = base_type_from_string(s);
+  if (lb == std::string::npos) return s;
+  if (s.back() != ']') throw Fail{t.col, "malformed array type '" + s + "'"};
+  std::string len = s.substr(lb + 1, s.size() - lb - 2);
+  arraylen = len.empty() ? -1 : integer(Token{len, false, t.col}, "array length");
+  if (arraylen == 0) throw Fail{t.col, "array length must not be 0"};
+  return s.substr(0, lb);
+}
+
+Type Parser::type(const Token& t) {
+  Type ty;
+  auto b = base_type_from_string(split_array(t, ty.arraylen));
   if (!b || t.quoted) throw Fail{t.col, "unknown type '" + t.text + "'"};
   ty.base = *b;
   return ty;
@@ -246,6 +252,35 @@ void Parser::shader_line(std::vector<Token>& toks) {
   section_ = Section::Shader;
 }
 
+// struct NAME { TYPE name, ... }: a field's TYPE is a base type or a struct declared above,
+// with an optional array suffix.
+void Parser::struct_line(std::vector<Token>& toks) {
+  StructType st;
+  const Token& name = at(toks, 1, "struct name");
+  st.name = name.text;
+  if (sh_.find_struct(st.name)) throw Fail{name.col, "duplicate struct '" + st.name + "'"};
+  if (at(toks, 2, "'{'").text != "{") throw Fail{toks[2].col, "expected '{'"};
+  size_t i = 3;
+  while (at(toks, i, "a field or '}'").text != "}" || toks[i].quoted) {
+    const Token& t = toks[i++];
+    StructField f;
+    std::string base = split_array(t, f.type.arraylen);
+    if (!t.quoted && sh_.find_struct(base))
+      f.struct_name = base;
+    else
+      f.type = type(t);
+    f.name = at(toks, i++, "field name").text;
+    st.fields.push_back(std::move(f));
+    const Token& sep = at(toks, i, "',' or '}'");
+    if (sep.text == "," && !sep.quoted)
+      ++i;
+    else if (sep.text != "}")
+      throw Fail{sep.col, "expected ',' or '}'"};
+  }
+  if (i + 1 < toks.size()) throw Fail{toks[i + 1].col, "unexpected '" + toks[i + 1].text + "'"};
+  sh_.structs.push_back(std::move(st));
+}
+
 void Parser::symbol_line(std::vector<Token>& toks) {
   static constexpr SymKind kKinds[] = {SymKind::Param, SymKind::OutputParam, SymKind::Global,
                                        SymKind::Local, SymKind::Temp,        SymKind::Const};
@@ -268,6 +303,8 @@ void Parser::symbol_line(std::vector<Token>& toks) {
     const Token& t = toks[i];
     if (t.text == "derivs")
       s.derivs = true;
+    else if (t.text == "folded")
+      s.folded = true;
     else if (t.text.rfind("init=", 0) == 0) {
       size_t colon = t.text.find(':');
       if (colon == std::string::npos) throw Fail{t.col, "expected init=BEGIN:END"};
@@ -358,6 +395,7 @@ void Parser::line(std::vector<Token>& toks) {
       return;
     }
   }
+  if (section_ == Section::Shader && w == "struct" && !first.quoted) return struct_line(toks);
   if (section_ == Section::Symbols) return symbol_line(toks);
   if (section_ == Section::Init || section_ == Section::Main) return op_line(toks);
   throw Fail{first.col, "unexpected '" + w + "'"};

@@ -1,8 +1,10 @@
 // Prints the IR text form. Layout (docs/ir.md):
 //   lobe-ir 1
 //   surface name [[ metadata ]]
+//   struct S { float a, color[2] c }  (the struct types of struct parameters, if any)
 //   symbols
-//     kind type name [= values] [derivs] [init=B:E] [len=N] [struct=S] [[ metadata ]] [@loc]
+//     kind type name [= values] [folded] [derivs] [init=B:E] [len=N] [struct=S] [[ metadata ]]
+//     [@loc]
 //   init                          (only when there are parameter-initialisation ops)
 //     opcode args... [-> Ltarget...] [wmask=N] [@loc]
 //   main
@@ -110,6 +112,7 @@ static std::string print_symbol(const Symbol& s) {
   std::string line =
       std::string("  ") + to_string(s.kind) + " " + to_string(s.type) + " " + format_name(s.name);
   if (!s.init.empty()) line += " = " + format_values(s.type, s.init);
+  if (s.folded) line += " folded";
   if (s.derivs) line += " derivs";
   if (s.init_begin >= 0)
     line += " init=" + std::to_string(s.init_begin) + ":" + std::to_string(s.init_end);
@@ -118,6 +121,18 @@ static std::string print_symbol(const Symbol& s) {
   append(line, format_metadata(s.metadata));
   append(line, format_loc(s.loc));
   return line;
+}
+
+// `struct T { S s, int[2] k }`: a struct-typed field prints its struct's name as its type.
+static std::string print_struct(const StructType& st) {
+  std::string line = "struct " + format_name(st.name) + " {";
+  for (size_t i = 0; i < st.fields.size(); ++i) {
+    const StructField& f = st.fields[i];
+    std::string type = f.struct_name.empty() ? to_string(f.type)
+                                             : format_name(f.struct_name) + array_suffix(f.type);
+    line += (i ? ", " : " ") + type + " " + format_name(f.name);
+  }
+  return line + " }";
 }
 
 static std::string sym_name(const Shader& sh, int i) {
@@ -143,7 +158,9 @@ std::string print(const Shader& sh) {
   std::string out = "lobe-ir 1\n";
   out += std::string(to_string(sh.type)) + " " + format_name(sh.name);
   append(out, format_metadata(sh.metadata));
-  out += "\nsymbols\n";
+  out += "\n";
+  for (const StructType& st : sh.structs) out += print_struct(st) + "\n";
+  out += "symbols\n";
   for (const Symbol& s : sh.symbols) out += print_symbol(s) + "\n";
   std::set<int> targets;
   for (const Op& op : sh.ops) targets.insert(op.jumps.begin(), op.jumps.end());

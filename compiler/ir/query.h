@@ -1,16 +1,26 @@
-// A shader's interface as text, in the style of `oslinfo -v` (OSL_FACTS.md "Query output"):
+// A shader's interface as text, exactly as OSL 1.13's `oslinfo` prints it for the .oso oslc
+// makes of the same source (docs/ir.md, "lobe info"). Verbose (`oslinfo -v`):
 //
 //   surface "plastic"
+//   <tab><tab>metadata: string help = "A plastic"
 //       "Kd" "float"
 //   <tab><tab>Default value: 0.5
-//   <tab><tab>metadata: float min = 0
+//   <tab><tab>metadata: float range[2] = 0 1
 //       "Cs" "color"
 //   <tab><tab>Default value: [ 1 1 1 ]
 //       "Nn" "normal"
-//   <tab><tab>Default value: (computed at run time)
+//   <tab><tab>Unknown default value
+//       "st" "struct S"
+//   <tab><tab>fields: {float a, color c}
+//       "st.a" "float"
+//   ...
 //
-// Parameters in declaration order (struct fields flattened as "s.a"); shader metadata after
-// the first line. Printed by `lobe info`.
+// and plain (`oslinfo`): `float Kd  0.5`, `color Cs  [ 1 1 1 ]`, `normal Nn nodefault`,
+// `string s "x" `, `struct S st fields: {float a, color c}`, no metadata. Parameters come in
+// declaration order; a struct parameter is announced (with its fields) before its flattened
+// fields, and so is a struct nested in it. Numbers print with %g, every array and aggregate in
+// `[ ]`, strings C-escaped; closures are `pointer`. A default is unknown when it is computed
+// (init ops), folded by Lobe where oslc computes it (Symbol::folded), or a closure's.
 #pragma once
 
 #include "ir/ir.h"
@@ -19,6 +29,11 @@
 
 namespace lobe::ir {
 
-std::string describe(const Shader& shader);
+struct DescribeOptions {
+  bool verbose = true;
+  std::string param; // only this parameter (or struct), without the shader line; "" for all
+};
+
+std::string describe(const Shader& shader, const DescribeOptions& options = {});
 
 } // namespace lobe::ir

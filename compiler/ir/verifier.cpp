@@ -17,6 +17,7 @@ public:
 
 private:
   void symbols();
+  void structs();
   void op(int index);
   void jumps(int index, const OpcodeInfo& info);
   void types(const Op& op);
@@ -67,6 +68,8 @@ void Verifier::symbols() {
     bool is_param = s.kind == SymKind::Param || s.kind == SymKind::OutputParam;
     if (is_param && !s.init.empty() && s.type.arraylen >= 0 && s.init.size() != n)
       error("default has " + std::to_string(s.init.size()) + " values, needs " + std::to_string(n));
+    if (s.folded && (!is_param || s.init.empty()))
+      error("'folded' only on parameters with a constant default");
     if (s.default_len != 0 && (!is_param || s.type.arraylen >= 0 || s.default_len < 0))
       error("len=" + std::to_string(s.default_len) + " only on unsized array parameters");
     if (s.init_begin >= 0 || s.init_end >= 0) {
@@ -229,7 +232,20 @@ void Verifier::types(const Op& o) {
   }
 }
 
+// The struct table: unique names, each struct-typed field naming a struct listed before it.
+void Verifier::structs() {
+  std::unordered_set<std::string> seen;
+  for (const StructType& st : sh_.structs) {
+    prefix_ = "struct '" + st.name + "': ";
+    for (const StructField& f : st.fields)
+      if (!f.struct_name.empty() && !seen.count(f.struct_name))
+        error("field '" + f.name + "' of struct type '" + f.struct_name + "' not listed before");
+    if (!seen.insert(st.name).second) error("duplicate struct");
+  }
+}
+
 std::vector<std::string> Verifier::run() {
+  structs();
   symbols();
   if (sh_.main_begin < 0 || sh_.main_begin > int(sh_.ops.size()))
     errors_.push_back("main_begin " + std::to_string(sh_.main_begin) + " out of range");

@@ -1,5 +1,6 @@
 // The lowering entry: the shader declaration, its parameters (constant defaults into `init`,
 // computed ones into init op ranges), metadata, the body, then the derivative analysis.
+#include "lower/literal_default.h"
 #include "lower/lowerer.h"
 
 #include "ir/verifier.h"
@@ -8,31 +9,71 @@
 #include "passes/derivs.h"
 
 #include <algorithm>
+#include <optional>
 
 namespace lobe::lower {
 
-// Per-leaf constant defaults of a (struct) parameter, or false if any part is not constant.
-bool Lowerer::const_flat(const ast::Expr* e, const ast::Type& t,
-                         std::vector<std::vector<ir::ConstValue>>& out) {
+static size_t leaf_count(const ast::Type& t) {
+  if (t.base != ast::BaseType::Struct) return 1;
+  size_t n = 0;
+  for (const auto& f : t.strct->fields) n += leaf_count(f->type);
+  return n;
+}
+
+// Appends the constant default of each leaf of a (struct) parameter, nullopt for a leaf whose
+// part of the default is not constant. `e` null: no leaf is constant.
+void Lowerer::const_flat(const ast::Expr* e, const ast::Type& t, std::vector<ConstLeaf>& out) {
   if (t.base != ast::BaseType::Struct) {
     std::vector<ir::ConstValue> v;
-    if (!const_values(e, irtype(t, e), v)) return false;
-    out.push_back(std::move(v));
-    return true;
+    if (e && const_values(e, irtype(t, e), v))
+      out.push_back(std::move(v));
+    else
+      out.push_back(std::nullopt);
+    return;
   }
-  if (t.is_array()) return false;
   std::vector<const ast::Expr*> parts;
-  if (e->kind == ast::ExprKind::InitList)
+  if (e && e->kind == ast::ExprKind::InitList)
     for (const auto& x : static_cast<const ast::InitListExpr*>(e)->elems) parts.push_back(x.get());
-  else if (e->kind == ast::ExprKind::Call &&
+  else if (e && e->kind == ast::ExprKind::Call &&
            static_cast<const ast::CallExpr*>(e)->callee.kind == ast::CalleeKind::StructCtor)
     for (const auto& x : static_cast<const ast::CallExpr*>(e)->args) parts.push_back(x.get());
-  else
-    return false;
-  if (parts.size() != t.strct->fields.size()) return false;
-  for (size_t i = 0; i < parts.size(); ++i)
-    if (!const_flat(parts[i], t.strct->fields[i]->type, out)) return false;
-  return true;
+  if (t.is_array()) {
+    // An array of structs: each leaf holds the elements' fields one after the other.
+    bool whole = e && e->kind == ast::ExprKind::InitList && parts.size() == size_t(t.arraylen);
+    std::vector<ConstLeaf> flat(leaf_count(t),
+                                whole ? ConstLeaf(std::vector<ir::ConstValue>{}) : ConstLeaf());
+    for (size_t k = 0; whole && k < parts.size(); ++k) {
+      std::vector<ConstLeaf> elem;
+      const_flat(parts[k], t.element(), elem);
+      for (size_t i = 0; i < elem.size(); ++i)
+        if (!elem[i])
+          flat[i] = std::nullopt;
+        else if (flat[i])
+          flat[i]->insert(flat[i]->end(), elem[i]->begin(), elem[i]->end());
+    }
+    out.insert(out.end(), flat.begin(), flat.end());
+    return;
+  }
+  if (parts.size() != t.strct->fields.size()) parts.assign(t.strct->fields.size(), nullptr);
+  for (size_t i = 0; i < parts.size(); ++i) const_flat(parts[i], t.strct->fields[i]->type, out);
+}
+
+// Adds struct `s` (after the structs its fields use) to the shader's struct table.
+void Lowerer::record_struct(const ast::StructDecl* s) {
+  if (sh_.find_struct(s->name)) return;
+  ir::StructType st{s->name, {}};
+  for (const auto& f : s->fields) {
+    ir::StructField field{f->name, {}, ""};
+    if (f->type.base == ast::BaseType::Struct) {
+      record_struct(f->type.strct);
+      field.struct_name = f->type.strct->name;
+      field.type.arraylen = f->type.arraylen;
+    } else {
+      field.type = irtype(f->type, f.get());
+    }
+    st.fields.push_back(std::move(field));
+  }
+  sh_.structs.push_back(std::move(st));
 }
 
 static ir::ShaderType shader_type(ast::ShaderType t) {
@@ -75,16 +116,26 @@ LowerResult Lowerer::run() {
         declare(p.get(), p->is_output ? ir::SymKind::OutputParam : ir::SymKind::Param);
     std::vector<ir::Metadata> md = metadata(p->metadata);
     for (int s : syms) sh_.symbols[size_t(s)].metadata = md;
+    if (p->type.base == ast::BaseType::Struct) record_struct(p->type.strct);
     if (!p->init) continue;
-    std::vector<std::vector<ir::ConstValue>> values;
-    if (const_flat(p->init.get(), p->type, values) && values.size() == syms.size()) {
-      for (size_t i = 0; i < syms.size(); ++i) sh_.symbols[size_t(syms[i])].init = values[i];
-      continue;
+    // The leaves with a constant default get it; `folded` where oslc would compute it.
+    std::vector<ConstLeaf> values;
+    const_flat(p->init.get(), p->type, values);
+    std::vector<bool> literal = literal_default_leaves(p->init.get(), p->type);
+    bool all_const = values.size() == syms.size();
+    for (size_t i = 0; i < syms.size() && i < values.size(); ++i) {
+      ir::Symbol& sym = sh_.symbols[size_t(syms[i])];
+      all_const &= values[i].has_value();
+      if (!values[i]) continue;
+      sym.init = *values[i];
+      sym.folded = i >= literal.size() || !literal[i];
     }
-    // Each symbol gets an init range of its own (the fields of a struct parameter may get
-    // values independently): the default is evaluated once per field, the other fields'
+    if (all_const) continue;
+    // Each other symbol gets an init range of its own (the fields of a struct parameter may
+    // get values independently): the default is evaluated once per field, the other fields'
     // parts going to temporaries.
     for (size_t i = 0; i < syms.size(); ++i) {
+      if (!sh_.symbols[size_t(syms[i])].init.empty()) continue;
       int begin = here();
       size_t mark = temp_mark();
       std::vector<LRef> dst;

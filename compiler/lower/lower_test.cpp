@@ -244,6 +244,7 @@ TEST(Lower, StructsFlattenIntoFieldSymbols) {
   b.tu.decls.insert(b.tu.decls.begin(), std::move(sd));
   EXPECT_EQ(b.lower_text(), R"(lobe-ir 1
 surface test
+struct S { float a, color c }
 symbols
   param float p.a = 1 struct=S
   param color p.c = 2 2 2 struct=S

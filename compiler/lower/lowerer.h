@@ -8,6 +8,7 @@
 #include "lower/lower.h"
 
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <unordered_map>
@@ -59,6 +60,9 @@ public:
   int global(const ast::VarDecl* v);
   bool const_values(const ast::Expr* e, const ir::Type& t, std::vector<ir::ConstValue>& out);
 
+  // ---- lower_shader.cpp
+  void record_struct(const ast::StructDecl* s);
+
   // ---- lower_expr.cpp
   int rvalue(const ast::Expr* e, int hint = -1); // non-struct value -> symbol
   int folded(const ast::Expr* e); // the constant an all-constant expression folds to, or -1
@@ -81,8 +85,8 @@ public:
   int construct(const ast::ConstructExpr* c, int hint);
   int call(const ast::CallExpr* c, int hint);
   std::vector<int> struct_parts(const ast::Expr* e, const ast::Type& t);
-  bool const_flat(const ast::Expr* e, const ast::Type& t,
-                  std::vector<std::vector<ir::ConstValue>>& out);
+  using ConstLeaf = std::optional<std::vector<ir::ConstValue>>; // a leaf's constant default
+  void const_flat(const ast::Expr* e, const ast::Type& t, std::vector<ConstLeaf>& out);
   int convert(int sym, const ir::Type& to, const ast::Node* where);
 
   // ---- lower_stmt.cpp

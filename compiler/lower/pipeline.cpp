@@ -25,6 +25,7 @@ std::string render_lower_diag(const LowerDiag& d, const diag::SourceManager& sm)
 PipelineResult compile_osl(const frontend::SourceInput& input, const PipelineOptions& options) {
   PipelineResult r;
   diag::DiagnosticEngine diags;
+  diags.set_warnings_as_errors(options.warnings_as_errors);
   frontend::FrontendTimings ft;
   r.tu = frontend::compile_to_ast(input, options.frontend, diags, &ft);
   r.timings.preprocess_ms = ft.preprocess_ms;

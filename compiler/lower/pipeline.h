@@ -16,8 +16,9 @@ namespace lobe::lower {
 
 struct PipelineOptions {
   frontend::FrontendOptions frontend;
-  bool lower = true;     // false: stop after sema (--emit=ast)
-  bool optimize = false; // constant folding + dead-code elimination after lowering
+  bool lower = true;               // false: stop after sema (--emit=ast)
+  bool optimize = false;           // constant folding + dead-code elimination after lowering
+  bool warnings_as_errors = false; // -Werror
 };
 
 struct PipelineTimings {

@@ -262,6 +262,8 @@ void Sema::var_decl(ast::VarDecl* v) {
 }
 
 namespace {
+// A metadata value: literals and what lowering folds of them (casts, negation, arithmetic,
+// constructors, `{...}`).
 bool constant_expr(const ast::Expr* e) {
   switch (e->kind) {
   case ast::ExprKind::IntLit:
@@ -272,6 +274,10 @@ bool constant_expr(const ast::Expr* e) {
     return constant_expr(static_cast<const ast::UnaryExpr*>(e)->operand.get());
   case ast::ExprKind::Cast:
     return constant_expr(static_cast<const ast::CastExpr*>(e)->operand.get());
+  case ast::ExprKind::Binary: { // `1.0 / 3.0`, which oslc folds
+    auto* b = static_cast<const ast::BinaryExpr*>(e);
+    return constant_expr(b->lhs.get()) && constant_expr(b->rhs.get());
+  }
   case ast::ExprKind::InitList:
     for (auto& x : static_cast<const ast::InitListExpr*>(e)->elems)
       if (!constant_expr(x.get())) return false;

@@ -402,6 +402,8 @@ TEST(Sema, ShaderParamsDefaultsAndMetadata) {
   EXPECT_NE(local.body().find("(var float[3] a"), std::string::npos) << local.body();
   Checked bad("surface s(float k = 1 [[ float min = u ]]) {}");
   EXPECT_EQ(bad.count(DiagId::err_metadata_not_const), 1) << bad.text();
+  Checked folded("surface s(float k = 1 [[ float third = 1.0 / 3.0, int n = -(1 + 2) ]]) {}");
+  EXPECT_TRUE(folded.ok()) << folded.text();
 }
 
 TEST(Sema, BuiltinTableCoversTheStandardLibrary) {

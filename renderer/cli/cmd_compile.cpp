@@ -1,15 +1,28 @@
-// `lobe compile file [-I dir] [-D NAME[=val]] [-U NAME] [-o out] [--emit=ast|ir|llvm|asm]
-// [-O0|-O1|-O2]` Compiles a shader and writes the requested form (default: Lobe IR text) to
-// stdout or -o. OSL source goes through the whole pipeline (compiler/lower/pipeline.h); Lobe IR
-// text (.lir) is parsed, verified and re-optimised. --emit=llvm|asm compile the shader (OSL or
-// IR text) as a one-layer group the way the ShadingSystem does (its defaults, specialised
-// above -O0) and print the LLVM IR after the JIT's pipeline at that level, or the host assembly
-// (runtime/group/emit_text.h). Diagnostics go to stderr; exit status 1 on errors in the
-// input, 2 on usage errors.
+// `lobe compile [options] file`: compiles a shader as OSL's oslc does, to Lobe IR text (Lobe's
+// compiled form, as .oso is OSL's). Without -o the output is the file's base name with .lir in
+// the current directory (oslc writes x.oso there); stdout says `Compiled x.osl -> x.lir` (not
+// with -q), or `FAILED x.osl` with exit status 1. Options, one word or two (-Idir, -I dir):
+//   -o FILE                  the output file
+//   -I DIR, -D N[=V], -U N   #include directory, preprocessor definitions
+//   -O0 | -O1 | -O2          optimisation level (default -O1)
+//   -q, -v                   no `Compiled` line / the default; the last one wins
+//   -Werror                  warnings are errors
+//   -E                       print the preprocessed source to stdout instead of compiling
+//   --emit=ast|ir|llvm|asm   print that form to stdout (or -o FILE), without oslc's lines: the
+//                            typed AST, the IR, or the shader compiled as a one-layer group the
+//                            way the ShadingSystem does, as LLVM IR after the JIT's pipeline at
+//                            the -O level or host assembly (runtime/group/emit_text.h)
+// oslc's -d, -embed-source and -buffer are accepted and do nothing; other unknown options are
+// ignored with a warning (oslc ignores them silently). The input is a path or a shader name
+// (`x` finds x.osl, then x.lir, in the current directory and the -I dirs); Lobe IR text (.lir)
+// is parsed, verified and re-optimised. Diagnostics go to stderr in Clang's form (file:line:col,
+// the source line, a caret; oslc prints file:line). Exit status 1 on errors in the input, 2 on
+// usage errors.
 #include "command.h"
 #include "load_shader.h"
 
 #include "ast/ast_dump.h"
+#include "diag/source_manager.h"
 #include "emit_text.h"
 #include "ir/printer.h"
 #include "passes/constfold.h"
@@ -18,142 +31,194 @@
 
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 
 namespace {
 
+namespace fs = std::filesystem;
+
 struct Options {
-  std::string file, out, emit = "ir";
+  std::string file, out;
+  std::string emit; // "" writes the compiled file; else ast|ir|llvm|asm to stdout or -o
   std::vector<std::string> includes, defines, undefines;
   int opt = 1;
+  bool quiet = false, werror = false, preprocess_only = false;
 };
 
-void usage(FILE* f) {
-  std::fprintf(f, "usage: lobe compile file.osl|file.lir [-I dir] [-D NAME[=val]] [-U NAME]\n"
-                  "                    [-o out] [--emit=ast|ir|llvm|asm] [-O0|-O1|-O2]\n");
+void help() {
+  std::printf("lobe compile -- Lobe " LOBE_VERSION ", an Open Shading Language 1.13 compiler\n"
+              "Usage:  lobe compile [options] file\n"
+              "  Options:\n"
+              "\t--help         Print this usage message\n"
+              "\t-o filename    Specify output filename\n"
+              "\t-v             Verbose mode\n"
+              "\t-q             Quiet mode\n"
+              "\t-Ipath         Add path to the #include search path\n"
+              "\t-Dsym[=val]    Define preprocessor symbol\n"
+              "\t-Usym          Undefine preprocessor symbol\n"
+              "\t-O0, -O1, -O2  Set optimization level (default=1)\n"
+              "\t-E             Only preprocess the input and output to stdout\n"
+              "\t-Werror        Treat all warnings as errors\n"
+              "\t--emit=FORM    Print the ast, ir, llvm or asm to stdout (or -o) instead\n");
 }
 
-// Returns 0 on success, 2 on a usage error (message printed).
+// Fills `o`; returns -1 to go on, else the exit status (after --help or a usage error).
 int parse_args(int argc, char** argv, Options& o) {
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
-    auto value = [&](const char* opt, std::string& dst) {
-      if (a.size() > std::strlen(opt)) {
-        dst = a.substr(std::strlen(opt));
-        return true;
-      }
-      if (i + 1 >= argc) return false;
-      dst = argv[++i];
+    // -Xvalue or -X value.
+    auto value = [&](const char* opt, std::vector<std::string>& dst) {
+      if (a.size() > std::strlen(opt))
+        dst.push_back(a.substr(std::strlen(opt)));
+      else if (i + 1 < argc)
+        dst.push_back(argv[++i]);
+      else
+        return false;
       return true;
     };
-    std::string v;
-    if (a == "-h" || a == "--help") {
-      usage(stdout);
-      return -1;
-    } else if (a.rfind("--emit=", 0) == 0)
+    bool ok = true;
+    if (a == "--help" || a == "-h") {
+      help();
+      return 0;
+    } else if (a.rfind("--emit=", 0) == 0) {
       o.emit = a.substr(7);
-    else if (a == "-O0" || a == "-O1" || a == "-O2")
+    } else if (a == "-O0" || a == "-O1" || a == "-O2") {
       o.opt = a[2] - '0';
-    else if (a.rfind("-I", 0) == 0) {
-      if (!value("-I", v)) return 2;
-      o.includes.push_back(v);
+    } else if (a == "-q" || a == "-v") {
+      o.quiet = a == "-q";
+    } else if (a == "-Werror") {
+      o.werror = true;
+    } else if (a == "-E") {
+      o.preprocess_only = true;
+    } else if (a.rfind("-I", 0) == 0) {
+      ok = value("-I", o.includes);
     } else if (a.rfind("-D", 0) == 0) {
-      if (!value("-D", v)) return 2;
-      o.defines.push_back(v);
+      ok = value("-D", o.defines);
     } else if (a.rfind("-U", 0) == 0) {
-      if (!value("-U", v)) return 2;
-      o.undefines.push_back(v);
+      ok = value("-U", o.undefines);
     } else if (a == "-o") {
-      if (i + 1 >= argc) return 2;
-      o.out = argv[++i];
-    } else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "lobe compile: unknown option '%s'\n", a.c_str());
-      return 2;
-    } else if (o.file.empty())
+      ok = i + 1 < argc;
+      if (ok) o.out = argv[++i];
+    } else if (a == "-d" || a == "-embed-source" || a == "--embed-source" || a == "-buffer") {
+      continue; // oslc's debugging aids: nothing to do for Lobe IR
+    } else if (a == "-MF" || a == "-MT" || a == "-MD" || a == "-MMD" || a == "-M" || a == "-MM") {
+      std::fprintf(stderr, "lobe compile: warning: %s (dependency files) is not supported\n",
+                   a.c_str());
+      if ((a == "-MF" || a == "-MT") && i + 1 < argc) ++i;
+    } else if (a.size() > 1 && a[0] == '-') {
+      std::fprintf(stderr, "lobe compile: warning: unknown option '%s' ignored\n", a.c_str());
+    } else if (o.file.empty()) {
       o.file = a;
-    else {
-      std::fprintf(stderr, "lobe compile: more than one input file\n");
+    } else {
+      std::fprintf(stderr, "lobe compile: more than one input file ('%s', '%s')\n", o.file.c_str(),
+                   a.c_str());
+      return 2;
+    }
+    if (!ok) {
+      std::fprintf(stderr, "lobe compile: option '%s' needs a value\n", a.c_str());
       return 2;
     }
   }
-  if (o.file.empty()) return 2;
-  if (o.emit != "ast" && o.emit != "ir" && o.emit != "llvm" && o.emit != "asm") {
+  if (o.file.empty()) { // as oslc: no input prints the help
+    help();
+    return 0;
+  }
+  if (!o.emit.empty() && o.emit != "ast" && o.emit != "ir" && o.emit != "llvm" && o.emit != "asm") {
     std::fprintf(stderr, "lobe compile: unknown --emit form '%s'\n", o.emit.c_str());
     return 2;
   }
-  return 0;
+  return -1;
 }
 
-int write_output(const Options& o, const std::string& text) {
-  if (o.out.empty()) {
+// Writes `text` to -o FILE or to the compiled file's default name, or to stdout for --emit
+// without -o. `Compiled X -> Y` follows a file written (unless -q).
+bool write_output(const Options& o, const std::string& text) {
+  std::string out = o.out;
+  if (out.empty() && !o.emit.empty()) {
     std::fwrite(text.data(), 1, text.size(), stdout);
-    return 0;
+    return true;
   }
-  FILE* f = std::fopen(o.out.c_str(), "wb");
+  if (out.empty()) out = fs::path(o.file).stem().string() + ".lir";
+  std::error_code ec;
+  if (fs::equivalent(out, o.file, ec)) {
+    std::fprintf(stderr, "lobe compile: error: the output \"%s\" is the input; give -o FILE\n",
+                 out.c_str());
+    return false;
+  }
+  FILE* f = std::fopen(out.c_str(), "wb");
   if (!f) {
-    std::fprintf(stderr, "lobe compile: cannot write '%s'\n", o.out.c_str());
-    return 1;
+    std::fprintf(stderr, "lobe compile: error: could not open \"%s\" for writing\n", out.c_str());
+    return false;
   }
-  std::fwrite(text.data(), 1, text.size(), f);
-  std::fclose(f);
-  return 0;
+  bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  ok &= std::fclose(f) == 0;
+  if (!ok) std::fprintf(stderr, "lobe compile: error: could not write \"%s\"\n", out.c_str());
+  if (ok && !o.quiet) std::printf("Compiled %s -> %s\n", o.file.c_str(), out.c_str());
+  return ok;
 }
 
-// OSL source: the typed AST (--emit=ast) or the verified IR, optimised at -O1.
-int compile_source(const Options& o, const std::string& path) {
+lobe::frontend::FrontendOptions frontend_options(const Options& o) {
+  lobe::frontend::FrontendOptions fo;
+  fo.include_dirs = o.includes;
+  fo.defines = o.defines;
+  fo.undefines = o.undefines;
+  return fo;
+}
+
+// -E: the preprocessed text on stdout.
+bool preprocess(const Options& o, const std::string& path) {
+  lobe::diag::DiagnosticEngine diags;
+  diags.set_warnings_as_errors(o.werror);
+  lobe::diag::SourceManager sm;
+  std::string text =
+      lobe::frontend::preprocess({path, std::nullopt}, frontend_options(o), diags, sm);
+  std::fputs(lobe::diag::render_all(diags, sm).c_str(), stderr);
+  if (diags.has_errors()) return false;
+  std::fwrite(text.data(), 1, text.size(), stdout);
+  return true;
+}
+
+// OSL source: the typed AST (--emit=ast) or the verified IR, optimised at -O1 and -O2.
+bool compile_source(const Options& o, const std::string& path) {
   lobe::lower::PipelineOptions po;
-  po.frontend.include_dirs = o.includes;
-  po.frontend.defines = o.defines;
-  po.frontend.undefines = o.undefines;
+  po.frontend = frontend_options(o);
   po.lower = o.emit != "ast";
   po.optimize = o.opt > 0;
+  po.warnings_as_errors = o.werror;
   lobe::lower::PipelineResult r = lobe::lower::compile_osl({path, std::nullopt}, po);
   std::fputs(r.diagnostics.c_str(), stderr);
-  if (!r.ok) return 1;
+  if (!r.ok) return false;
   if (o.emit == "ast")
     return write_output(o, lobe::ast::dump(*r.tu, {.types = true, .stdlib = false}));
   return write_output(o, lobe::ir::print(*r.shader));
 }
 
-int run_compile(int argc, char** argv) {
-  Options o;
-  int st = parse_args(argc, argv, o);
-  if (st < 0) return 0;
-  if (st) {
-    usage(stderr);
-    return 2;
+// --emit=llvm|asm (OSL or IR text) through the runtime.
+bool emit_machine_text(const Options& o, const std::string& path) {
+  lobe::CompileOptions co;
+  co.include_dirs = o.includes;
+  co.defines = o.defines;
+  co.undefines = o.undefines;
+  co.opt_level = o.opt;
+  lobe::DiagnosticList diags;
+  std::string text;
+  bool ok = lobe::group::emit_shader_text(
+      path, co, o.emit == "asm" ? lobe::group::EmitForm::Assembly : lobe::group::EmitForm::LlvmIr,
+      text, diags);
+  for (const lobe::Diagnostic& d : diags) {
+    std::fputs(d.text.c_str(), stderr);
+    if (d.text.empty() || d.text.back() != '\n') std::fputc('\n', stderr);
+    ok &= !(o.werror && d.severity == lobe::Diagnostic::Severity::Warning);
   }
-  std::string path = lobe::cli::find_shader(o.file, o.includes);
-  if (path.empty()) {
-    std::fprintf(stderr, "lobe compile: cannot find shader '%s'\n", o.file.c_str());
-    return 1;
-  }
-  if (o.emit == "llvm" || o.emit == "asm") {
-    lobe::CompileOptions co;
-    co.include_dirs = o.includes;
-    co.defines = o.defines;
-    co.undefines = o.undefines;
-    co.opt_level = o.opt;
-    lobe::DiagnosticList diags;
-    std::string text;
-    bool ok = lobe::group::emit_shader_text(
-        path, co, o.emit == "asm" ? lobe::group::EmitForm::Assembly : lobe::group::EmitForm::LlvmIr,
-        text, diags);
-    for (const lobe::Diagnostic& d : diags) {
-      std::fputs(d.text.c_str(), stderr);
-      if (d.text.empty() || d.text.back() != '\n') std::fputc('\n', stderr);
-    }
-    if (!ok) return 1;
-    return write_output(o, text);
-  }
-  if (!lobe::cli::is_ir_text(path)) return compile_source(o, path);
-  if (o.emit != "ir") {
-    std::fprintf(stderr, "lobe compile: --emit=%s needs OSL source\n", o.emit.c_str());
-    return 2;
-  }
+  return ok && write_output(o, text);
+}
+
+// Lobe IR text: parsed, verified, re-optimised above -O0.
+bool compile_ir_text(const Options& o, const std::string& path) {
   lobe::cli::Loaded l = lobe::cli::load_ir_text(path);
   if (!l.shader) {
     std::fputs(l.errors.c_str(), stderr);
-    return l.status;
+    return false;
   }
   if (o.opt > 0)
     for (int round = 0; round < 8; ++round)
@@ -163,6 +228,35 @@ int run_compile(int argc, char** argv) {
   return write_output(o, lobe::ir::print(*l.shader));
 }
 
+int run_compile(int argc, char** argv) {
+  Options o;
+  int st = parse_args(argc, argv, o);
+  if (st >= 0) return st;
+  bool oslc_lines = o.emit.empty(); // FAILED on stdout, as oslc prints it
+  std::error_code ec;
+  std::string path = fs::is_regular_file(o.file, ec) ? o.file : lobe::cli::find_shader(o.file, [&] {
+    std::vector<std::string> dirs = {"."};
+    dirs.insert(dirs.end(), o.includes.begin(), o.includes.end());
+    return dirs;
+  }());
+  bool ok = false;
+  if (path.empty()) {
+    std::fprintf(stderr, "error: Input file \"%s\" not found\n", o.file.c_str());
+  } else if (lobe::cli::is_ir_text(path) && (o.preprocess_only || o.emit == "ast")) {
+    std::fprintf(stderr, "lobe compile: %s needs OSL source\n",
+                 o.preprocess_only ? "-E" : "--emit=ast");
+    return 2;
+  } else if (o.preprocess_only) {
+    ok = preprocess(o, path);
+  } else if (o.emit == "llvm" || o.emit == "asm") {
+    ok = emit_machine_text(o, path);
+  } else {
+    ok = lobe::cli::is_ir_text(path) ? compile_ir_text(o, path) : compile_source(o, path);
+  }
+  if (!ok && oslc_lines) std::printf("FAILED %s\n", o.file.c_str());
+  return ok ? 0 : 1;
+}
+
 } // namespace
 
-LOBE_COMMAND(compile, "compile a shader to Lobe IR (or LLVM IR / assembly)", run_compile);
+LOBE_COMMAND(compile, "compile a shader to Lobe IR, as OSL's oslc does", run_compile);

@@ -18,16 +18,22 @@
 
 namespace lobe::cli {
 
-// `name` as given, else name.osl / name.lir in the current directory and each include dir.
-inline std::string find_shader(const std::string& name, const std::vector<std::string>& dirs) {
+// Where `lobe compile` and `lobe info` look for shader `name`: `x.oso` stands for `x` (oslc's
+// output; Lobe reads the source), a name ending in .osl or .lir is that file, any other name is
+// name.osl, else name.lir. A relative name is looked for in each of `dirs` in order ("." is the
+// current directory), an absolute one where it is. "" if not found.
+inline std::string find_shader(std::string name, const std::vector<std::string>& dirs) {
   namespace fs = std::filesystem;
+  if (fs::path(name).extension() == ".oso") name.resize(name.size() - 4);
+  std::string ext = fs::path(name).extension().string();
+  std::vector<std::string> files = {name};
+  if (ext != ".osl" && ext != ".lir") files = {name + ".osl", name + ".lir"};
+  std::vector<std::string> places = dirs;
+  if (fs::path(name).is_absolute()) places = {""};
   std::error_code ec;
-  if (fs::is_regular_file(name, ec)) return name;
-  std::vector<std::string> places = {"."};
-  places.insert(places.end(), dirs.begin(), dirs.end());
   for (const std::string& d : places)
-    for (const char* ext : {".osl", ".lir"}) {
-      fs::path p = fs::path(d) / (name + ext);
+    for (const std::string& f : files) {
+      fs::path p = d.empty() || d == "." ? fs::path(f) : fs::path(d) / f;
       if (fs::is_regular_file(p, ec)) return p.lexically_normal().string();
     }
   return "";
