@@ -74,7 +74,7 @@ enum class DiagId : uint16_t {
   err_bad_unary,
   err_cannot_assign,
   err_not_assignable,
-  err_write_readonly_param,
+  warn_write_nonoutput_param,
   err_write_readonly_global,
   err_output_arg_not_lvalue,
   err_missing_return,

@@ -224,7 +224,7 @@ void Sema::apply_candidate(ast::CallExpr* e, const Candidate& c) {
       if (!a->lvalue)
         error(DiagId::err_output_arg_not_lvalue, a->range, {std::to_string(i + 1), e->name});
       else
-        check_writable(a.get(), a->range);
+        check_writable(a.get(), a->range, /*output_arg=*/true);
     } else {
       coerce(a, pt);
     }
@@ -341,7 +341,7 @@ void Sema::check_builtin_keyword(ast::CallExpr* e, const ast::StringLit* name, E
     if (!value->lvalue)
       error(DiagId::err_not_assignable, value->range);
     else
-      check_writable(value.get(), value->range);
+      check_writable(value.get(), value->range, /*output_arg=*/true);
     return;
   }
   if (!assignable(want, value->type) || value->type.is_array()) {

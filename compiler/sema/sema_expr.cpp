@@ -63,7 +63,8 @@ void Sema::expr(ExprPtr& e, const Type* expected) {
     member(static_cast<ast::MemberExpr*>(e.get()));
     break;
   case K::InitList:
-    if (expected && (expected->is_array() || expected->is_struct())) {
+    if (expected && (expected->is_array() || expected->is_struct() || expected->is_triple() ||
+                     expected->is_matrix())) {
       init_list(e, *expected);
     } else {
       error(DiagId::err_init_list_context, e->range);
@@ -284,12 +285,18 @@ ast::VarDecl* Sema::root_var(ast::Expr* e) const {
 }
 
 // Function parameters are read-only unless `output`; globals depend on the shader type.
-bool Sema::check_writable(ast::Expr* target, SourceRange where) {
+// A function's parameters are references to the caller's values: writing one that is not
+// `output` reaches the caller all the same, with oslc's warning (none when it is written as the
+// output argument of a call, as oslc gives none).
+bool Sema::check_writable(ast::Expr* target, SourceRange where, bool output_arg) {
   ast::VarDecl* v = root_var(target);
   if (!v) return true;
   if (v->storage == ast::Storage::FuncParam && !v->is_output) {
-    error(DiagId::err_write_readonly_param, where, {v->name});
-    return false;
+    // oslc does not warn for an array element either.
+    auto* ix = ast::as<ast::IndexExpr>(target);
+    bool element = ix && ix->base->type.is_array();
+    if (!output_arg && !element) error(DiagId::warn_write_nonoutput_param, where, {v->name});
+    return true;
   }
   if (v->storage == ast::Storage::Global) {
     bool ok = v->writable;

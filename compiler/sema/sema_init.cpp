@@ -67,12 +67,28 @@ void Sema::construct(ExprPtr& e) {
   for (size_t i = first; i < n; ++i) coerce(c->args[i], t_float());
 }
 
-// {a, b, ...} for an array (elements) or a struct (fields). Missing trailing elements or fields
-// are zero (documented in docs/language.md).
+// {a, b, ...} for an array (elements) or a struct (fields); for a triple or a matrix it is the
+// type's constructor ({x}, {x, y, z}, {"space", x, y, z}, 16 floats), as in oslc. Missing
+// trailing elements or fields are zero (documented in docs/language.md).
 void Sema::init_list(ExprPtr& e, const Type& target) {
   auto* l = static_cast<ast::InitListExpr*>(e.get());
   l->type = t_error();
   if (target.is_error()) return;
+  if (!target.is_array() && (target.is_triple() || target.is_matrix())) {
+    auto c = std::make_unique<ast::ConstructExpr>();
+    c->range = l->range;
+    c->target = target;
+    for (auto& x : l->elems) {
+      if (x->kind == ast::ExprKind::InitList) {
+        error(DiagId::err_init_list_context, x->range);
+        return;
+      }
+      c->args.push_back(std::move(x));
+    }
+    e = std::move(c);
+    construct(e);
+    return;
+  }
   std::vector<Type> slots;
   if (target.is_array()) {
     size_t n = target.arraylen > 0 ? size_t(target.arraylen) : l->elems.size();
@@ -102,6 +118,12 @@ void Sema::init_list(ExprPtr& e, const Type& target) {
 bool Sema::init_list_fits(const ast::Expr* e, const Type& target) const {
   auto* l = ast::as<ast::InitListExpr>(e);
   if (!l) return false;
+  if (!target.is_array() && (target.is_triple() || target.is_matrix())) {
+    size_t n = l->elems.size();
+    bool space = n > 0 && l->elems[0]->kind == ast::ExprKind::StringLit;
+    size_t rest = n - (space ? 1 : 0);
+    return target.is_triple() ? (rest == 1 || rest == 3) : (rest == 1 || rest == 16);
+  }
   if (target.is_array()) return target.arraylen < 0 || l->elems.size() <= size_t(target.arraylen);
   if (target.is_struct() && target.strct) return l->elems.size() <= target.strct->fields.size();
   return false;
