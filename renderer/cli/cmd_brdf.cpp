@@ -418,7 +418,7 @@ int run_brdf(int argc, char** argv) {
     if (const char* w = closures::param_warning(r.closure->params.id(), r.closure->params.data()))
       subject.note = w;
     subject.eta_below = r.closure->eta_below;
-    owned = std::make_unique<ClosureLobe>(r.closure->params);
+    owned = std::make_unique<ClosureLobe>(r.closure->params, r.closure->strings);
   }
   const LobeView& lobe = *owned;
   Transport mode = o.mode == "importance" ? Transport::Importance : Transport::Radiance;

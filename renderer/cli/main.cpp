@@ -3,6 +3,8 @@
 
 #include <cstdio>
 #include <cstring>
+#include <exception>
+#include <new>
 
 namespace lobe::cli {
 std::map<std::string, Command>& commands() {
@@ -28,6 +30,10 @@ int main(int argc, char** argv) {
     usage(stdout);
     return 0;
   }
+  if (!std::strcmp(argv[1], "--version") || !std::strcmp(argv[1], "version")) {
+    std::printf("lobe " LOBE_VERSION " (Open Shading Language 1.13 compatible)\n");
+    return 0;
+  }
   auto& table = lobe::cli::commands();
   auto it = table.find(argv[1]);
   if (it == table.end()) {
@@ -35,5 +41,15 @@ int main(int argc, char** argv) {
     usage(stderr);
     return 2;
   }
-  return it->second.run(argc - 1, argv + 1);
+  // The last line of defence: a command that runs out of memory or meets an error nobody
+  // expected says so and exits 1, never terminate() and exit 134.
+  try {
+    return it->second.run(argc - 1, argv + 1);
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "lobe %s: error: out of memory (a request too big for this machine; "
+                         "try a smaller resolution, grid or scene)\n", argv[1]);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "lobe %s: error: %s\n", argv[1], e.what());
+  }
+  return 1;
 }

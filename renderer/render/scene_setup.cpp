@@ -13,6 +13,8 @@
 #include <tbb/parallel_for.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <set>
 
@@ -270,8 +272,61 @@ void RenderScene::find_emitters(std::vector<LightSet::Emitter>& out,
   }
 }
 
+// Embree traces in single precision and asserts that ray origins lie within about 1.8e18; far
+// below that a float has no room left for the scene's detail. Every position the scene gives is
+// checked against this bound (and for finiteness) before anything is built, with its place named.
+constexpr float kMaxCoordinate = 1e15f;
+
+static std::string check_point(const Vec3& p, const std::string& where, const char* what) {
+  for (float c : {p.x, p.y, p.z})
+    if (!std::isfinite(c) || std::fabs(c) > kMaxCoordinate) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf,
+                    "%s (%g, %g, %g) is not finite or lies farther than %g from the origin", what,
+                    p.x, p.y, p.z, kMaxCoordinate);
+      return where + ": " + buf;
+    }
+  return "";
+}
+
+std::string check_scene_extent(const scene::SceneDesc& d) {
+  const std::string at = d.path.empty() ? "<scene>" : d.path;
+  const scene::Camera& c = d.camera;
+  if (std::string e = check_point(c.eye, at + ": camera", "eye"); !e.empty()) return e;
+  if (std::string e = check_point(c.look_at, at + ": camera", "look_at"); !e.empty()) return e;
+  if (std::string e = check_point(c.up, at + ": camera", "up"); !e.empty()) return e;
+  for (const scene::Shape& s : d.shapes) {
+    const std::string w = s.where.empty() ? at + ": shape" : s.where;
+    std::string e;
+    switch (s.kind) {
+    case scene::Shape::Kind::Sphere:
+      e = check_point(s.center, w, "centre");
+      if (e.empty() && !(std::isfinite(s.radius) && s.radius > 0 && s.radius <= kMaxCoordinate))
+        e = w + ": radius " + std::to_string(s.radius) + " is not in (0, 1e15]";
+      break;
+    case scene::Shape::Kind::Quad:
+      e = check_point(s.corner, w, "corner");
+      if (e.empty()) e = check_point(s.edge_x, w, "edge");
+      if (e.empty()) e = check_point(s.edge_y, w, "edge");
+      break;
+    case scene::Shape::Kind::Mesh:
+      for (size_t i = 0; i < s.mesh.positions.size() && e.empty(); ++i)
+        e = check_point(s.mesh.positions[i], w, ("vertex " + std::to_string(i)).c_str());
+      break;
+    }
+    if (!e.empty()) return e;
+  }
+  for (const scene::Light& l : d.lights)
+    if (std::string e = check_point(l.position, l.where.empty() ? at + ": light" : l.where,
+                                    "position");
+        !e.empty())
+      return e;
+  return "";
+}
+
 std::string RenderScene::setup(const scene::SceneDesc& desc, const MaterialCompiler& compile,
                                int width, int height) {
+  if (std::string e = check_scene_extent(desc); !e.empty()) return e;
   desc_ = desc;
   camera_ = Camera(desc_.camera, width, height);
   services_ = SceneServices(desc_.camera, width, height, &geo_);

@@ -20,6 +20,11 @@
 
 namespace lobe::render {
 
+// "" when every position in the scene (camera, shapes, mesh vertices, lights) is finite and within
+// 1e15 of the origin, the range single-precision ray tracing can resolve; else the first one
+// that is not, with its place. RenderScene::setup checks this first.
+std::string check_scene_extent(const scene::SceneDesc& desc);
+
 // Turns one scene material into a compiled Material: the CLI passes one backed by the JIT's
 // ShadingSystem, tests pass make_native_material. Must be thread-safe (called in parallel).
 using MaterialCompiler =

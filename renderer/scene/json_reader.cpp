@@ -29,6 +29,8 @@ float JsonReader::number(const json& j, const std::string& ptr) const {
   if (!j.is_number()) fail(ptr, std::string("expected a number, found ") + kind_name(j));
   double v = j.get<double>();
   if (!std::isfinite(v)) fail(ptr, "expected a finite number");
+  if (std::fabs(v) > std::numeric_limits<float>::max())
+    fail(ptr, "number " + j.dump() + " is out of the range of a 32-bit float");
   return static_cast<float>(v);
 }
 

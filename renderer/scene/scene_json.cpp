@@ -6,6 +6,7 @@
 #include "scene.h"
 #include "scene_group.h"
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -392,6 +393,27 @@ std::optional<SceneDesc> parse_json_scene(const std::string& text, const std::st
     }
     error =
         path + ":" + std::to_string(line) + ":" + std::to_string(col) + ": invalid JSON: " + what;
+    return std::nullopt;
+  } catch (const json::out_of_range& e) {
+    // A number too big for a double ("1e999"): nlohmann names the text but not its place, so
+    // find the first occurrence of that text standing as a number token.
+    std::string what = e.what(), token;
+    if (size_t q = what.find('\''); q != std::string::npos)
+      if (size_t q2 = what.find('\'', q + 1); q2 != std::string::npos)
+        token = what.substr(q + 1, q2 - q - 1);
+    size_t line = 1, col = 1;
+    if (!token.empty()) {
+      for (size_t at = text.find(token); at != std::string::npos; at = text.find(token, at + 1)) {
+        auto num = [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '.'; };
+        bool starts = at == 0 || !(num(text[at - 1]) || text[at - 1] == '-' || text[at - 1] == '+');
+        bool ends = at + token.size() >= text.size() || !num(text[at + token.size()]);
+        if (!starts || !ends) continue;
+        for (size_t i = 0; i < at; ++i) text[i] == '\n' ? (++line, col = 1) : ++col;
+        break;
+      }
+    }
+    error = path + ":" + std::to_string(line) + ":" + std::to_string(col) + ": number " +
+            (token.empty() ? std::string("") : token + " ") + "is too large for a double";
     return std::nullopt;
   }
   try {

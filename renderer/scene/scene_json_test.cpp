@@ -156,3 +156,14 @@ TEST(SceneJson, ShapeUserData) {
   EXPECT_EQ(error_of(R"({"shapes": [{"type": "sphere", "userdata": [1]}]})"),
             "t.json: /shapes/0/userdata: expected an object, found array");
 }
+
+// Numbers no float (or no double) can hold are errors at their place, never an uncaught
+// exception: nlohmann throws out_of_range for 1e999 while parsing.
+TEST(SceneJson, NumbersOutOfRangeAreLocatedErrors) {
+  EXPECT_EQ(error_of("{\n  \"settings\": {\"spp\": 1e999}}"),
+            "t.json:2:23: number 1e999 is too large for a double");
+  EXPECT_EQ(error_of(R"({"materials": {"m": {"shader": "matte", "params": {"Cs": -1e999}}}})"),
+            "t.json:1:58: number -1e999 is too large for a double");
+  EXPECT_EQ(error_of(R"({"camera": {"eye": [1e300, 0, 0]}})"),
+            "t.json: /camera/eye/0: number 1e+300 is out of the range of a 32-bit float");
+}

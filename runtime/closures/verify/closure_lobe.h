@@ -17,6 +17,10 @@ namespace lobe::verify {
 class ClosureLobe : public LobeView {
 public:
   explicit ClosureLobe(const closures::Params& p) : p_(p) {}
+  // A block whose string parameters point into `strings` (a parsed closure call): the lobe keeps
+  // that storage alive, so the parameters never outlive the text they point into.
+  ClosureLobe(const closures::Params& p, std::shared_ptr<const void> strings)
+      : p_(p), strings_(std::move(strings)) {}
   BsdfEval eval(const Vec3& wo, const Vec3& wi, Transport mode) const override {
     return closures::eval(p_.id(), p_.data(), wo, wi, mode);
   }
@@ -32,6 +36,7 @@ public:
 
 private:
   closures::Params p_;
+  std::shared_ptr<const void> strings_;
 };
 
 // A weighted sum of components flattened by Bsdf::build, viewed from a fixed wo (Bsdf's lobe
