@@ -46,8 +46,10 @@ int main(int argc, char** argv) {
   try {
     return it->second.run(argc - 1, argv + 1);
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "lobe %s: error: out of memory (a request too big for this machine; "
-                         "try a smaller resolution, grid or scene)\n", argv[1]);
+    std::fprintf(stderr,
+                 "lobe %s: error: out of memory (a request too big for this machine; "
+                 "try a smaller resolution, grid or scene)\n",
+                 argv[1]);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "lobe %s: error: %s\n", argv[1], e.what());
   }

@@ -317,8 +317,8 @@ std::string check_scene_extent(const scene::SceneDesc& d) {
     if (!e.empty()) return e;
   }
   for (const scene::Light& l : d.lights)
-    if (std::string e = check_point(l.position, l.where.empty() ? at + ": light" : l.where,
-                                    "position");
+    if (std::string e =
+            check_point(l.position, l.where.empty() ? at + ": light" : l.where, "position");
         !e.empty())
       return e;
   return "";

@@ -404,7 +404,9 @@ std::optional<SceneDesc> parse_json_scene(const std::string& text, const std::st
     size_t line = 1, col = 1;
     if (!token.empty()) {
       for (size_t at = text.find(token); at != std::string::npos; at = text.find(token, at + 1)) {
-        auto num = [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '.'; };
+        auto num = [](char ch) {
+          return std::isalnum(static_cast<unsigned char>(ch)) || ch == '.';
+        };
         bool starts = at == 0 || !(num(text[at - 1]) || text[at - 1] == '-' || text[at - 1] == '+');
         bool ends = at + token.size() >= text.size() || !num(text[at + token.size()]);
         if (!starts || !ends) continue;
