@@ -9,9 +9,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <mutex>
 #include <regex>
 #include <string>
+#include <unordered_map>
 
 using lobe::ShaderGlobals;
 using lobe::shadeops::RuntimeEnv;
@@ -19,6 +21,28 @@ using lobe::shadeops::RuntimeEnv;
 namespace {
 void send(ShaderGlobals* sg, const std::string& text) {
   if (sg && sg->context) sg->context->message(text);
+}
+} // namespace
+
+namespace {
+// Compiling a std::regex costs about 100 microseconds, matching a short string a few hundred
+// nanoseconds: a shader calls regex_search with the same few patterns at every point, so each
+// thread keeps the patterns it has compiled (an invalid pattern as null: it matches nothing).
+// The cache is dropped whole when it reaches kRegexCacheSize patterns, which only a shader
+// building patterns from varying text would do.
+constexpr size_t kRegexCacheSize = 64;
+
+const std::regex* compiled_regex(const char* pattern) {
+  thread_local std::unordered_map<std::string, std::unique_ptr<std::regex>> cache;
+  auto it = cache.find(pattern);
+  if (it != cache.end()) return it->second.get();
+  if (cache.size() >= kRegexCacheSize) cache.clear();
+  std::unique_ptr<std::regex> re;
+  try {
+    re = std::make_unique<std::regex>(pattern);
+  } catch (...) {
+  }
+  return cache.emplace(pattern, std::move(re)).first->second.get();
 }
 } // namespace
 
@@ -120,12 +144,13 @@ int lobe_strhash(const char* s) {
 }
 
 // regex_search / regex_match (ECMAScript syntax); an invalid pattern matches nothing.
-// std::regex throws on bad patterns: caught here, this code never runs inside LLVM frames.
+// std::regex throws on bad patterns: caught in compiled_regex, never inside LLVM frames.
 int lobe_regex(const char* s, const char* pattern, int full_match) {
+  const std::regex* re = compiled_regex(pattern);
+  if (!re) return 0;
   try {
-    std::regex re(pattern);
-    return full_match ? std::regex_match(s, re) : std::regex_search(s, re);
-  } catch (...) {
+    return full_match ? std::regex_match(s, *re) : std::regex_search(s, *re);
+  } catch (...) { // std::regex_error from the matcher (complexity, stack)
     return 0;
   }
 }
@@ -137,12 +162,13 @@ int lobe_regex(const char* s, const char* pattern, int full_match) {
 int lobe_regex_results(const char* s, const char* pattern, int full_match, int* results, int n) {
   int matched = 0, nsub = 0;
   std::cmatch m;
-  try {
-    std::regex re(pattern);
-    matched = full_match ? std::regex_match(s, m, re) : std::regex_search(s, m, re);
-    nsub = matched ? int(m.size()) : 0;
-  } catch (...) {
-    matched = 0;
+  if (const std::regex* re = compiled_regex(pattern)) {
+    try {
+      matched = full_match ? std::regex_match(s, m, *re) : std::regex_search(s, m, *re);
+      nsub = matched ? int(m.size()) : 0;
+    } catch (...) {
+      matched = 0;
+    }
   }
   for (int r = 0; r < n; ++r) {
     const std::csub_match* k = r / 2 < nsub ? &m[size_t(r / 2)] : nullptr;

@@ -85,6 +85,20 @@ TEST(Strings, RegexResults) {
   EXPECT_EQ(m[0], 1);
 }
 
+// Compiled patterns are kept per thread: the same pattern keeps its meaning after many others
+// (more than the cache holds) and an invalid one stays invalid when asked again.
+TEST(Strings, RegexCacheKeepsMeaning) {
+  for (int round = 0; round < 3; ++round) {
+    for (int i = 0; i < 100; ++i) {
+      std::string p = "^x" + std::to_string(i) + "$";
+      EXPECT_EQ(lobe_regex(("x" + std::to_string(i)).c_str(), p.c_str(), 1), 1) << p;
+      EXPECT_EQ(lobe_regex(("x" + std::to_string(i + 1)).c_str(), p.c_str(), 1), 0) << p;
+    }
+    EXPECT_EQ(lobe_regex("foo", "(", 0), 0);
+    EXPECT_EQ(lobe_regex("a(b", "a\\(b", 1), 1);
+  }
+}
+
 TEST(Matrix, InverseDeterminantTransform) {
   // Scale by 2 along x, translate by (1,2,3) (row-vector convention: translation in row 3).
   float m[16] = {2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 2, 3, 1};
