@@ -65,6 +65,22 @@ inline uint32_t bjfinal(uint32_t a, uint32_t b, uint32_t c) {
   return c;
 }
 
+// inthash<N>(k) for N in 1..5, with N known at compile time (the gradient-noise corners: the
+// hash inlines and the corner loop unrolls).
+template <int N> inline uint32_t inthash_n(const uint32_t* k) {
+  constexpr uint32_t start = 0xdeadbeefu + (uint32_t(N) << 2) + 13u;
+  uint32_t a = start, b = start, c = start;
+  a += k[0];
+  if constexpr (N > 1) b += k[1];
+  if constexpr (N > 2) c += k[2];
+  if constexpr (N > 3) {
+    bjmix(a, b, c);
+    a += k[3];
+    if constexpr (N > 4) b += k[4];
+  }
+  return bjfinal(a, b, c);
+}
+
 // inthash<N>(k) for N in 1..5.
 uint32_t inthash(const uint32_t* k, int n) {
   uint32_t start = 0xdeadbeefu + (uint32_t(n) << 2) + 13u;
@@ -183,27 +199,19 @@ template <class T> inline T grad(uint32_t hash, const T& x, const T& y, const T&
   return neg_if(u, h & 1) + neg_if(v, h & 2) + neg_if(s, h & 4);
 }
 
-// OSL's HashScalar / HashVector (and the periodic variants): one inthash of the integer corner
-// (wrapped by the period); output channel j of a vector noise uses h >> (8 * j).
-struct CornerHash {
-  int n;
-  const int* period; // null: not periodic
-  int shift;
-  uint32_t operator()(const int* c) const {
-    uint32_t k[5] = {0, 0, 0, 0, 0};
-    for (int i = 0; i < n; ++i) k[i] = uint32_t(period ? imod(c[i], period[i]) : c[i]);
-    return inthash(k, n) >> shift;
-  }
-};
-
-// OSL's perlin(): signed gradient noise, T = float (no derivatives) or D2. The interpolation
-// order is that of OSL's SIMD (OIIO_SIMD) code, which is what OSL runs on x86: 1-D lerp; 2-D x
-// then y; 3-D z, then x, then y; 4-D without derivatives: (z, x, y) on each w face, then w;
-// 4-D with derivatives: w, then z, x, y. The corners are numbered with bit k for axis k.
-template <class T> T perlin(const T* xin, int n, const CornerHash& hash) {
-  int X[4];
-  T f[4], u[4];
-  for (int k = 0; k < n; ++k) {
+// OSL's perlin(): signed gradient noise, T = float (no derivatives) or D2, in N dimensions, for
+// nout = 1 or 3 channels. The corner hash is OSL's HashScalar / HashVector (and the periodic
+// variants): one inthash of the integer corner (wrapped by the period); channel j of a vector
+// noise uses h >> (8 * j), so the hash of each corner is computed once for all channels.
+// The interpolation order is that of OSL's SIMD (OIIO_SIMD) code, which is what OSL runs on
+// x86: 1-D lerp; 2-D x then y; 3-D z, then x, then y; 4-D without derivatives: (z, x, y) on
+// each w face, then w; 4-D with derivatives: w, then z, x, y. The corners are numbered with bit
+// k for axis k. Every channel goes through the same operations in the same order as a scalar
+// evaluation would, so the results are bit for bit those of one call per channel.
+template <class T, int N> void perlin(const T* xin, const int* period, int nout, T* out) {
+  int X[N];
+  T f[N], u[N];
+  for (int k = 0; k < N; ++k) {
     X[k] = ifloor(val(xin[k])); // floorfrac: x - float(ifloor(x)); derivatives pass through
     f[k] = xin[k];
     if constexpr (std::is_same_v<T, D2>)
@@ -212,41 +220,70 @@ template <class T> T perlin(const T* xin, int n, const CornerHash& hash) {
       f[k] = xin[k] - float(X[k]);
     u[k] = fade(f[k]);
   }
-  T g[16];
-  for (int bits = 0; bits < (1 << n); ++bits) {
-    int c[4];
-    T r[4];
-    for (int k = 0; k < n; ++k) {
-      int b = (bits >> k) & 1;
-      c[k] = int(uint32_t(X[k]) + uint32_t(b)); // X + 1 wraps at INT_MAX, as in OSL
-      r[k] = b ? f[k] - 1.0f : f[k];
+  constexpr int kCorners = 1 << N;
+  uint32_t h[kCorners];
+  for (int bits = 0; bits < kCorners; ++bits) {
+    uint32_t key[N];
+    for (int k = 0; k < N; ++k) {
+      int c = int(uint32_t(X[k]) + uint32_t((bits >> k) & 1)); // X + 1 wraps at INT_MAX, as OSL
+      key[k] = uint32_t(period ? imod(c, period[k]) : c);
     }
-    uint32_t h = hash(c);
-    g[bits] = n == 1   ? grad(h, r[0])
-              : n == 2 ? grad(h, r[0], r[1])
-              : n == 3 ? grad(h, r[0], r[1], r[2])
-                       : grad(h, r[0], r[1], r[2], r[3]);
+    h[bits] = inthash_n<N>(key);
   }
-  // x then y over the four (x, y) corners at v[0..3] (index = x + 2 y).
-  auto xy = [&](const T* v) { return lerp(lerp(v[0], v[1], u[0]), lerp(v[2], v[3], u[0]), u[1]); };
-  if (n == 1) return 0.2500f * lerp(g[0], g[1], u[0]);
-  if (n == 2) return 0.6616f * xy(g);
-  T m[4];
-  if (n == 3) {
-    for (int i = 0; i < 4; ++i) m[i] = lerp(g[i], g[i + 4], u[2]);
-    return 0.9820f * xy(m);
-  }
-  if constexpr (std::is_same_v<T, D2>) {
-    for (int i = 0; i < 4; ++i)
-      m[i] = lerp(lerp(g[i], g[i + 8], u[3]), lerp(g[i + 4], g[i + 12], u[3]), u[2]);
-    return 0.8344f * xy(m);
-  } else {
-    T m1[4];
-    for (int i = 0; i < 4; ++i) {
-      m[i] = lerp(g[i], g[i + 4], u[2]);
-      m1[i] = lerp(g[i + 8], g[i + 12], u[2]);
+  for (int j = 0; j < nout; ++j) {
+    const int shift = nout == 1 ? 0 : 8 * j;
+    T g[kCorners];
+    for (int bits = 0; bits < kCorners; ++bits) {
+      T r[N];
+      for (int k = 0; k < N; ++k) r[k] = ((bits >> k) & 1) ? f[k] - 1.0f : f[k];
+      uint32_t hj = h[bits] >> shift;
+      if constexpr (N == 1)
+        g[bits] = grad(hj, r[0]);
+      else if constexpr (N == 2)
+        g[bits] = grad(hj, r[0], r[1]);
+      else if constexpr (N == 3)
+        g[bits] = grad(hj, r[0], r[1], r[2]);
+      else
+        g[bits] = grad(hj, r[0], r[1], r[2], r[3]);
     }
-    return 0.8344f * lerp(xy(m), xy(m1), u[3]);
+    // x then y over the four (x, y) corners at v[0..3] (index = x + 2 y).
+    auto xy = [&](const T* v) {
+      return lerp(lerp(v[0], v[1], u[0]), lerp(v[2], v[3], u[0]), u[1]);
+    };
+    if constexpr (N == 1) {
+      out[j] = 0.2500f * lerp(g[0], g[1], u[0]);
+    } else if constexpr (N == 2) {
+      out[j] = 0.6616f * xy(g);
+    } else if constexpr (N == 3) {
+      T m[4];
+      for (int i = 0; i < 4; ++i) m[i] = lerp(g[i], g[i + 4], u[2]);
+      out[j] = 0.9820f * xy(m);
+    } else if constexpr (std::is_same_v<T, D2>) {
+      T m[4];
+      for (int i = 0; i < 4; ++i)
+        m[i] = lerp(lerp(g[i], g[i + 8], u[3]), lerp(g[i + 4], g[i + 12], u[3]), u[2]);
+      out[j] = 0.8344f * xy(m);
+    } else {
+      T m[4], m1[4];
+      for (int i = 0; i < 4; ++i) {
+        m[i] = lerp(g[i], g[i + 4], u[2]);
+        m1[i] = lerp(g[i + 8], g[i + 12], u[2]);
+      }
+      out[j] = 0.8344f * lerp(xy(m), xy(m1), u[3]);
+    }
+  }
+}
+
+template <class T> void perlin(const T* xin, int n, const int* period, int nout, T* out) {
+  switch (n) {
+  case 1:
+    return perlin<T, 1>(xin, period, nout, out);
+  case 2:
+    return perlin<T, 2>(xin, period, nout, out);
+  case 3:
+    return perlin<T, 3>(xin, period, nout, out);
+  default:
+    return perlin<T, 4>(xin, period, nout, out);
   }
 }
 
@@ -433,20 +470,20 @@ void lobe_noise_d(int kind, const float* x, const float* dx, const float* dy, in
     int per[4];
     if (period)
       for (int k = 0; k < nin; ++k) per[k] = period_of(period[k]);
-    for (int j = 0; j < nout; ++j) {
-      CornerHash h{nin, period ? per : nullptr, nout == 1 ? 0 : 8 * j};
-      if (dx) {
-        D2 in[4];
-        for (int k = 0; k < nin; ++k) in[k] = D2{x[k], dx[k], dy[k]};
-        D2 r = perlin(in, nin, h);
-        if (unsigned_kind) r = 0.5f * (r + 1.0f);
-        out[j] = r.v;
-        odx[j] = r.dx;
-        ody[j] = r.dy;
-      } else {
-        float r = perlin(x, nin, h);
-        out[j] = unsigned_kind ? 0.5f * (r + 1.0f) : r;
+    if (dx) {
+      D2 in[4], r[3];
+      for (int k = 0; k < nin; ++k) in[k] = D2{x[k], dx[k], dy[k]};
+      perlin(in, nin, period ? per : nullptr, nout, r);
+      for (int j = 0; j < nout; ++j) {
+        if (unsigned_kind) r[j] = 0.5f * (r[j] + 1.0f);
+        out[j] = r[j].v;
+        odx[j] = r[j].dx;
+        ody[j] = r[j].dy;
       }
+    } else {
+      float r[3];
+      perlin(x, nin, period ? per : nullptr, nout, r);
+      for (int j = 0; j < nout; ++j) out[j] = unsigned_kind ? 0.5f * (r[j] + 1.0f) : r[j];
     }
     return;
   }
