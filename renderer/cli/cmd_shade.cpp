@@ -227,6 +227,8 @@ int parse_args(int argc, char** argv, Options& o) {
       o.center = true;
     else if (is_opt(a, "raytype") && need(1))
       o.raytype = argv[++i];
+    else if (is_opt(a, "colorspace") && need(1))
+      o.compile.colorspace = argv[++i];
     else if (a == "-o" && need(2)) {
       o.outputs.push_back({argv[i + 1], argv[i + 2]});
       i += 2;
@@ -292,6 +294,8 @@ int run_shade(int argc, char** argv) {
   int st = parse_args(argc, argv, o);
   if (st) return st < 0 ? 0 : st;
   lobe::ShadingSystem ss;
+  std::string cs_error = lobe::colorspace_error(o.compile.colorspace);
+  if (!cs_error.empty()) std::fprintf(stderr, "ERROR: %s\n", cs_error.c_str()); // keeps Rec709
   ss.options() = o.compile;
   lobe::DiagnosticList diags;
   if (!o.group_source.empty()) {
