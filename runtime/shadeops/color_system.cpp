@@ -338,12 +338,28 @@ float fast_expm1(float x) {
   return fast_exp2(x * float(1 / M_LN2)) - 1.0f;
 }
 
-// Planck's law: spectral exitance of a blackbody in W/m^2 per metre of wavelength.
+// Planck's law: spectral exitance of a blackbody in W/m^2 per metre of wavelength, all in
+// float as OSL 1.13.12's compiled code does it (read from its machine code): lambda^-5 as
+// 1 / ((l^2)^2 l), times c1, over fast_expm1(c2 / (lambda T)).
 float planck(float kelvin, float nm) {
-  const double c1 = 3.74183e-16; // 2 pi h c^2, W m^2
-  const double c2 = 1.4388e-2;   // h c / k, m K
-  double wlm = nm * 1e-9;
-  return float(c1 * std::pow(wlm, -5.0) / fast_expm1(float(c2 / (wlm * kelvin))));
+  const float c1 = 3.74183e-16f; // 2 pi h c^2, W m^2
+  const float c2 = 1.4388e-2f;   // h c / k, m K
+  float l = nm * 1e-9f, l2 = l * l;
+  return (1.0f / ((l2 * l2) * l)) * c1 / fast_expm1(c2 / (l * kelvin));
+}
+
+// OpenImageIO's fast_cbrt (fmath.h; facts carried over): a bit-level first guess, then two
+// Newton steps.
+float fast_cbrt(float x) {
+  float x0 = std::fabs(x);
+  int32_t bits;
+  std::memcpy(&bits, &x0, 4);
+  bits = 0x2a5137a0 + bits / 3;
+  float a;
+  std::memcpy(&a, &bits, 4);
+  a = 0.333333333f * (2.0f * a + x0 / (a * a));
+  a = 0.333333333f * (2.0f * a + x0 / (a * a));
+  return x == 0 ? 0.0f : std::copysign(a, x);
 }
 
 // Blackbody temperatures are tabulated from the Draper point (800 K, below which OSL returns a
@@ -355,9 +371,11 @@ float table_temperature(float i) {
   float s = std::sqrt(i);
   return s * s * s * 2.0f + kDraper;
 }
+// The inverse of table_temperature: ((T - 800) / 2)^(2/3), which OSL computes as the square of
+// fast_cbrt.
 float table_index(float kelvin) {
-  float t = (kelvin - kDraper) / 2.0f;
-  return std::cbrt(t * t);
+  float c = fast_cbrt((kelvin - kDraper) * 0.5f);
+  return c * c;
 }
 
 } // namespace
@@ -544,9 +562,9 @@ bool ColorSystem::to_rgb(std::string_view space, const Color3f& c, Color3f& out)
 // with negative components clipped.
 Color3f ColorSystem::blackbody_spectral(float kelvin) const {
   float X = 0, Y = 0, Z = 0;
-  const float dlambda = 5.0f * 1e-9f;
+  const float dlambda = 5e-9f;
   for (int i = 0; i < 81; ++i) {
-    float me = planck(kelvin, 380.0f + 5.0f * float(i)) * dlambda;
+    float me = planck(kelvin, float(i) * 5.0f + 380.0f) * dlambda;
     X += me * kCieMatch[i][0];
     Y += me * kCieMatch[i][1];
     Z += me * kCieMatch[i][2];
@@ -564,7 +582,11 @@ Color3f ColorSystem::blackbody(float kelvin) const {
   const Color3f& b = blackbody_table_[size_t(i) + 1];
   float w = 1.0f - t;
   Color3f c{a.r * w + b.r * t, a.g * w + b.g * t, a.b * w + b.b * t};
-  return {std::pow(c.r, 5.0f), std::pow(c.g, 5.0f), std::pow(c.b, 5.0f)};
+  auto pow5 = [](float x) { // as OSL's compiled code: (x^2)^2 x
+    float x2 = x * x;
+    return (x2 * x2) * x;
+  };
+  return {pow5(c.r), pow5(c.g), pow5(c.b)};
 }
 
 Color3f ColorSystem::wavelength_color(float nm) const {

@@ -5,6 +5,7 @@
 #include "lobe/context.h"
 #include "lobe/shading.h"
 
+#include <algorithm>
 #include <string>
 
 using lobe::ShaderGlobals;
@@ -42,9 +43,17 @@ void lobe_transformc(ShaderGlobals* sg, const void* cs, const char* from, const 
   store(dst, out);
 }
 
-// The same with derivatives: src and dst hold 9 floats, value then d/dx then d/dy.
+// The same with derivatives: src and dst hold 9 floats, value then d/dx then d/dy. Input
+// derivatives that are all zero take the value-only form: OSL's dual sRGB curve rounds
+// differently from its value-only one, and Lobe gives derivatives to some values OSL does not
+// (temporaries shared with differentiated expressions); zero derivatives mark most of those.
 void lobe_transformc_d(ShaderGlobals* sg, const void* cs, const char* from, const char* to,
                        float* dst, const float* src) {
+  if (std::all_of(src + 3, src + 9, [](float d) { return d == 0; })) {
+    lobe_transformc(sg, cs, from, to, dst, src);
+    std::fill(dst + 3, dst + 9, 0.0f);
+    return;
+  }
   Color3d in{{src[0], src[3], src[6]}, {src[1], src[4], src[7]}, {src[2], src[5], src[8]}}, out;
   if (!system_of(cs).transform(from, to, in, out)) unknown(sg, from, to);
   const lobe::shadeops::DualF* c[3] = {&out.r, &out.g, &out.b};
