@@ -12,6 +12,9 @@
 //     -group file|text        read the group from a file (or take the text itself)
 //     --center                sample pixel centres: u = (x + 0.5) / W
 //     --raytype name          the ray type (default camera)
+//     --colorspace NAME       the RGB space of shader colours (default Rec709; see
+//                             lobe::colorspace_names); an unknown name prints testshade's
+//                             `ERROR: Unknown color space "NAME"` and shades in Rec709
 //     -o var file.exr|png     write output variable `var` over the grid as an image
 //     -O0 | -O1 | -O2         optimisation (-O0 also turns specialisation off)
 //     --stats                 compile time per stage and shading time per point
@@ -134,7 +137,8 @@ void usage(FILE* f) {
                "usage: lobe shade [options] shadername [more layers]\n"
                "  -g W H  -param[:type=T][:lockgeom=0] name value  --userdata[:type=T] name value\n"
                "  -layer NAME shader  -connect A out B in\n"
-               "  -group file  --center  --raytype name  -o var file.exr|png  -O0|-O1|-O2\n"
+               "  -group file  --center  --raytype name  --colorspace NAME\n"
+               "  -o var file.exr|png  -O0|-O1|-O2\n"
                "  --stats  -I dir  -D NAME[=val]  -U NAME\n");
 }
 
