@@ -58,6 +58,7 @@ private:
 
 struct Args {
   std::string scene, output, backend = "auto", strategy = "mis", closures = "jit";
+  std::string colorspace = "Rec709";
   std::vector<int> res;
   int spp = 0, threads = 0, max_depth = 0;
   long long seed = -1;
@@ -91,6 +92,9 @@ int run_render(int argc, char** argv) {
       ->check(CLI::IsMember({"jit", "native"}));
   app.add_option("--strategy", a.strategy, "light transport: mis, bsdf or light")
       ->check(CLI::IsMember({"mis", "bsdf", "light"}));
+  app.add_option("--colorspace", a.colorspace,
+                 "RGB space of shader colours (Rec709, sRGB, NTSC, EBU, PAL, SECAM, SMPTE, HDTV, "
+                 "CIE, AdobeRGB, ACEScg): transformc, luminance, blackbody, wavelength_color");
   app.add_flag("-q,--quiet", a.quiet, "no progress or summary");
   try {
     app.parse(argc, argv);
@@ -130,6 +134,9 @@ int run_render(int argc, char** argv) {
   if (!a.scene.empty())
     shader_dirs.push_back(std::filesystem::absolute(a.scene).parent_path().string());
   lobe::render::MaterialBackend backend(a.backend, shader_dirs);
+  // An unknown colour space is reported and Rec709 used, as testshade does.
+  if (std::string e = backend.set_colorspace(a.colorspace); !e.empty())
+    std::fprintf(stderr, "ERROR: %s\n", e.c_str());
   lobe::render::RenderScene scene;
   scene.use_closure_kernels(a.closures == "jit");
   auto t0 = std::chrono::steady_clock::now();

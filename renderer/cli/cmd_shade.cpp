@@ -338,6 +338,11 @@ int Shade::run() {
   ss_.options().debug_nan = job_.debug_nan;
   ss_.options().debug_uninit = job_.debug_uninit;
   ss_.options().range_checking = job_.range_checking;
+  if (!job_.colorspace.empty()) { // an unknown name: testshade's message once, then Rec709
+    ss_.options().colorspace = job_.colorspace;
+    if (std::string e = colorspace_error(job_.colorspace); !e.empty())
+      std::fprintf(stderr, "ERROR: %s\n", e.c_str());
+  }
   for (size_t k = 0; k < job_.expressions.size(); ++k) {
     std::string name = "expr_" + std::to_string(k);
     std::string text = expression_shader(name, job_.expressions[k]);

@@ -37,6 +37,16 @@ MaterialBackend::MaterialBackend(const std::string& mode, std::vector<std::strin
 
 MaterialBackend::~MaterialBackend() = default;
 
+std::string MaterialBackend::set_colorspace(const std::string& name) {
+#ifdef LOBE_HAVE_JIT
+  if (jit_) jit_->ss.options().colorspace = name;
+  return colorspace_error(name);
+#else
+  (void)name;
+  return "";
+#endif
+}
+
 MaterialCompiler MaterialBackend::compiler() {
   return [this](const scene::MaterialDesc& m, std::string& error) { return compile(m, error); };
 }

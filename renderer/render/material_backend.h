@@ -23,6 +23,10 @@ public:
   std::string name() const; // "jit", "native" or "jit+native"
   std::vector<std::string> warnings() const;
   static bool jit_available();
+  // The RGB space of JIT materials' colours (CompileOptions::colorspace: transformc, luminance,
+  // blackbody...); set before the first compile. Native materials are Rec709. Returns OSL's
+  // message for an unknown name (`Unknown color space "X"`; Rec709 is used), else "".
+  std::string set_colorspace(const std::string& name);
 
 private:
   std::shared_ptr<const Material> compile(const scene::MaterialDesc& m, std::string& error);

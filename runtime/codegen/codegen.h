@@ -28,7 +28,8 @@ class Module;
 
 namespace lobe::shadeops {
 struct RuntimeEnv;
-}
+class ColorSystem;
+} // namespace lobe::shadeops
 
 namespace lobe::codegen {
 
@@ -59,6 +60,8 @@ struct GroupPlan {
   std::string entry_name = "group_entry";
   std::string group_name;              // for getattribute("shader:groupname")
   shadeops::RuntimeEnv* env = nullptr; // baked into the code as a constant pointer
+  // The material's colour system (CompileOptions::colorspace), baked in likewise; null: Rec709.
+  const shadeops::ColorSystem* colors = nullptr;
 };
 
 // Storage size in bytes of a symbol (all planes), as laid out in group data and allocas.

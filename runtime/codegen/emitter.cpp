@@ -59,6 +59,11 @@ llvm::Value* LayerEmitter::env_ptr() {
   return llvm::ConstantExpr::getIntToPtr(b_.getInt64(addr), ptr());
 }
 
+llvm::Value* LayerEmitter::colors_ptr() {
+  auto addr = reinterpret_cast<uintptr_t>(group_.colors);
+  return llvm::ConstantExpr::getIntToPtr(b_.getInt64(addr), ptr());
+}
+
 llvm::Value* LayerEmitter::string_const(const std::string& s) {
   const char* p = group_.env->strings.intern(s);
   return llvm::ConstantExpr::getIntToPtr(b_.getInt64(reinterpret_cast<uintptr_t>(p)), ptr());

@@ -55,6 +55,7 @@ public:
   llvm::Value* iconst(int i) { return b_.getInt32(uint32_t(i)); }
   llvm::Value* sg() { return sg_; }
   llvm::Value* env_ptr();
+  llvm::Value* colors_ptr();                       // the GroupPlan's colour system (null: Rec709)
   llvm::Value* string_const(const std::string& s); // interned, as a pointer constant
   llvm::FunctionCallee shadeop(const char* name);  // declared from the shadeop table
   llvm::Value* call(const char* name, std::vector<llvm::Value*> args);

@@ -140,7 +140,7 @@ void op_construct(LayerEmitter& e, const ir::Op& op) {
     llvm::Value* in = e.spill(values(t));
     llvm::Value* out = e.spill(values(t));
     if (dst.type.base == BaseType::Color) {
-      e.call("lobe_transformc", {e.sg(), space, e.string_const("rgb"), out, in});
+      e.call("lobe_color_from", {e.sg(), e.colors_ptr(), space, out, in});
     } else {
       llvm::Value* m = e.spill(std::vector<llvm::Value*>(16, e.fconst(0)));
       e.call("lobe_get_matrix", {e.sg(), space, e.string_const("common"), m});

@@ -1,6 +1,7 @@
 // Geometry, colour and matrix functions (dot, cross, normalize, transform, luminance,
 // blackbody, determinant, ...) and the derivative ops (Dx, Dy, Dz, filterwidth, area,
 // calculatenormal).
+#include "color_system.h"
 #include "duals.h"
 #include "op_tables.h"
 #include "shadeops.h"
@@ -156,27 +157,48 @@ void op_transformu(LayerEmitter& e, const ir::Op& op) {
   e.store(op.args[0], Val{d.mul(x[0], Dual{k})});
 }
 
+// transformc [from] to c: through the material's colour system; with derivatives when the
+// result has them (OSL differentiates the conversion formulas).
 void op_transformc(LayerEmitter& e, const ir::Op& op) {
   size_t last = op.args.size() - 1;
   llvm::Value* from = last == 3 ? e.load(op.args[1])[0].v : e.string_const("rgb");
   llvm::Value* to = e.load(op.args[last - 1])[0].v;
-  llvm::Value* in = e.spill(values(e.load_as(op, int(last), BaseType::Color, false)));
-  llvm::Value* out = e.spill({e.fconst(0), e.fconst(0), e.fconst(0)});
-  e.call("lobe_transformc", {e.sg(), from, to, out, in});
-  e.store(op.args[0], from_values(e.reload(out, 3)));
+  bool derivs = e.wants_derivs(op.args[0]);
+  Val c = e.load_as(op, int(last), BaseType::Color, derivs);
+  if (!derivs) {
+    llvm::Value* in = e.spill(values(c));
+    llvm::Value* out = e.spill({e.fconst(0), e.fconst(0), e.fconst(0)});
+    e.call("lobe_transformc", {e.sg(), e.colors_ptr(), from, to, out, in});
+    e.store(op.args[0], from_values(e.reload(out, 3)));
+    return;
+  }
+  std::vector<llvm::Value*> planes(9, e.fconst(0));
+  for (size_t k = 0; k < 3; ++k) {
+    planes[k] = c[k].v;
+    if (c[k].dx) planes[3 + k] = c[k].dx;
+    if (c[k].dy) planes[6 + k] = c[k].dy;
+  }
+  llvm::Value* in = e.spill(planes);
+  llvm::Value* out = e.spill(std::vector<llvm::Value*>(9, e.fconst(0)));
+  e.call("lobe_transformc_d", {e.sg(), e.colors_ptr(), from, to, out, in});
+  std::vector<llvm::Value*> r = e.reload(out, 9);
+  e.store(op.args[0], Val{Dual{r[0], r[3], r[6]}, Dual{r[1], r[4], r[7]}, Dual{r[2], r[5], r[8]}});
 }
 
+// luminance(c): the dot product with the colour system's weights, known when compiling.
 void op_luminance(LayerEmitter& e, const ir::Op& op) {
   DualOps d(e);
   Val c = e.load_as(op, 1, BaseType::Color, e.wants_derivs(op.args[0]));
-  Val w{d.constant(0.2126729f), d.constant(0.7151522f), d.constant(0.0721750f)};
-  e.store(op.args[0], Val{dot3(d, c, w)});
+  const shadeops::ColorSystem* cs = e.group().colors;
+  const auto& w = (cs ? *cs : shadeops::ColorSystem::rec709()).luminance_weights();
+  Val k{d.constant(w[0]), d.constant(w[1]), d.constant(w[2])};
+  e.store(op.args[0], Val{dot3(d, c, k)});
 }
 
 void op_spectral(LayerEmitter& e, const ir::Op& op) {
   llvm::Value* out = e.spill({e.fconst(0), e.fconst(0), e.fconst(0)});
   e.call(op.opcode == "blackbody" ? "lobe_blackbody" : "lobe_wavelength_color",
-         {out, e.load_as(op, 1, BaseType::Float, false)[0].v});
+         {e.colors_ptr(), out, e.load_as(op, 1, BaseType::Float, false)[0].v});
   e.store(op.args[0], from_values(e.reload(out, 3)));
 }
 

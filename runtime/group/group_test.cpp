@@ -414,3 +414,24 @@ end
 }
 
 } // namespace
+
+// CompileOptions::colorspace picks the colour system (part of the cache key); an unknown name
+// compiles as Rec709, and colorspace_error words it as OSL does. Values: OSL 1.13.12,
+// printf("%.9g\n", luminance(color(.1, .7, .2) + k)) with k = 0 under
+// `testshade -g 1 1 --colorspace NAME` (u is 0 here); the message as testshade prints it.
+TEST(ColorSpace, OptionSelectsTheSystemAndKeysTheCache) {
+  ShadingSystem ss;
+  DiagnosticList d;
+  ASSERT_TRUE(ss.add_shader_source(
+      "lum", "shader lum() { printf(\"%.9g\\n\", luminance(color(.1, .7, .2) + u)); }", "lum.osl",
+      d));
+  EXPECT_EQ(run_group(ss, "shader lum l ;", true).output, "0.536424339\n");
+  ss.options().colorspace = "ACEScg";
+  EXPECT_EQ(run_group(ss, "shader lum l ;", true).output, "0.509817958\n");
+  ss.options().colorspace = "Rec2020";
+  EXPECT_EQ(run_group(ss, "shader lum l ;", true).output, "0.536424339\n");
+  EXPECT_EQ(colorspace_error("Rec2020"), "Unknown color space \"Rec2020\"");
+  EXPECT_EQ(colorspace_error("ACEScg"), "");
+  EXPECT_EQ(colorspace_error(""), "");
+  EXPECT_EQ(colorspace_names().front(), "Rec709");
+}

@@ -4,6 +4,7 @@
 
 #include "closure_registry.h"
 #include "codegen.h"
+#include "color_system.h"
 #include "group_build.h"
 #include "group_text.h"
 #include "ir/printer.h"
@@ -41,10 +42,22 @@ struct ShadingSystem::Impl {
 
   std::optional<ir::Shader> load(const std::string& name, DiagnosticList& diags, CompileStats& st);
   std::string cache_key(const ShaderGroup& g, const std::vector<const ir::Shader*>& layers) const;
+  // The colour system options.colorspace names (Rec709 when it names none).
+  const shadeops::ColorSystem* colors() const {
+    const shadeops::ColorSystem* cs = shadeops::ColorSystem::find(options.colorspace);
+    return cs ? cs : &shadeops::ColorSystem::rec709();
+  }
   std::shared_ptr<const Material> build(const ShaderGroup& g,
                                         const std::vector<const ir::Shader*>& layers,
                                         CompileStats stats, DiagnosticList& diags);
 };
+
+const std::vector<std::string>& colorspace_names() { return shadeops::ColorSystem::names(); }
+
+std::string colorspace_error(const std::string& name) {
+  if (name.empty() || shadeops::ColorSystem::find(name)) return ""; // "": the default
+  return "Unknown color space \"" + name + "\"";
+}
 
 ShadingSystem::ShadingSystem() : impl_(std::make_unique<Impl>()) {
   impl_->env->closure_printer = &closure_to_string;
@@ -106,6 +119,10 @@ std::string ShadingSystem::Impl::cache_key(const ShaderGroup& g,
   key += options.range_checking ? "" : "r";
   key += options.debug_nan ? "N" : "";
   key += options.debug_uninit ? "U\n" : "\n";
+  key += "colorspace "; // every colour function depends on it
+  key += colors()->name();
+  key += "\n";
+
   key += "group "; // getattribute("shader:groupname") reads it
   key += g.name;
   key += "\n";
@@ -133,6 +150,7 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   auto t0 = Clock::now();
   group::GroupBuild b;
   b.plan.env = env.get();
+  b.plan.colors = colors();
   bool specialize = options.specialize && options.opt_level > 0;
   if (!group::build_group(g, layers, specialize, b, diags, options.lockgeom_default))
     return nullptr;

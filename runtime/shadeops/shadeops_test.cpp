@@ -26,9 +26,6 @@ int lobe_regex_results(const char*, const char*, int, int*, int);
 void lobe_mat_inverse(float*, const float*);
 float lobe_mat_det(const float*);
 void lobe_transform(float*, const float*, const float*, int);
-void lobe_transformc(ShaderGlobals*, const char*, const char*, float*, const float*);
-void lobe_blackbody(float*, float);
-void lobe_wavelength_color(float*, float);
 void lobe_noise(int, const float*, int, const float*, float*, int, float*);
 void lobe_range_error(ShaderGlobals*, int, int, const char*, const char*, int, const char*);
 void lobe_noise_named(ShaderGlobals*, const char*, const float*, int, const float*, float*, int,
@@ -119,71 +116,6 @@ TEST(Matrix, InverseDeterminantTransform) {
   float n[3] = {1, 0, 0};
   lobe_transform(r, m, n, 2); // normals by the inverse transpose: x scaled by 1/2
   EXPECT_FLOAT_EQ(r[0], 0.5f);
-}
-
-TEST(Color, SpacesAndSpectra) {
-  float hsv[3] = {0, 1, 1}, out[3];
-  lobe_transformc(nullptr, "hsv", "rgb", out, hsv);
-  EXPECT_FLOAT_EQ(out[0], 1);
-  EXPECT_FLOAT_EQ(out[1], 0);
-  float green[3] = {1.0f / 3, 1, 0.5f};
-  lobe_transformc(nullptr, "hsv", "rgb", out, green);
-  EXPECT_NEAR(out[0], 0, 1e-6);
-  EXPECT_NEAR(out[1], 0.5, 1e-6);
-  float white[3] = {1, 1, 1};
-  lobe_transformc(nullptr, "rgb", "XYZ", out, white);
-  EXPECT_NEAR(out[0], 0.95047, 1e-4); // D65 white point
-  EXPECT_NEAR(out[1], 1.0, 1e-4);
-  EXPECT_NEAR(out[2], 1.08883, 1e-4);
-  float c[3] = {0.2f, 0.4f, 0.6f};
-  lobe_transformc(nullptr, "rgb", "hsl", out, c);
-  float back[3];
-  lobe_transformc(nullptr, "hsl", "rgb", back, out);
-  for (int k = 0; k < 3; ++k) EXPECT_NEAR(back[k], c[k], 1e-5);
-}
-
-// wavelength_color and blackbody as OSL's opcolor.cpp computes them. Expected values were
-// computed independently in double precision (Python) from the same definitions: the 5 nm CIE
-// 1931 table linearly interpolated, XYZ -> linear Rec.709 by the matrix of rgb_to_xyz's
-// inverse, times 1/2.52, negatives clipped; blackbody = sum over 380..780 nm step 5 of
-// c1 l^-5 / expm1(c2 / (l T)) * 5e-9 * cmf(l) (c1 = 3.74183e-16, c2 = 1.4388e-2), W/m^2.
-TEST(Color, WavelengthColorAndBlackbodyAsOSL) {
-  struct W {
-    float nm, r, g, b;
-  } const lines[] = {{550, 0, 0.574172f, 0},
-                     {552.5f, 0, 0.560873f, 0},
-                     {450, 0.0585643f, 0, 0.747803f},
-                     {500, 0, 0.243058f, 0.0880705f},
-                     {600, 0.980824f, 0.061207f, 0},
-                     {700, 0.0121583f, 0, 0},
-                     {380, 0.000514358f, 0, 0.00275788f},
-                     {779, 2.57179e-05f, 0, 4.41614e-07f},
-                     {780, 0, 0, 0},
-                     {300, 0, 0, 0}};
-  float out[3];
-  for (const W& w : lines) {
-    lobe_wavelength_color(out, w.nm);
-    EXPECT_NEAR(out[0], w.r, 2e-6 + 1e-5 * w.r) << w.nm;
-    EXPECT_NEAR(out[1], w.g, 2e-6 + 1e-5 * w.g) << w.nm;
-    EXPECT_NEAR(out[2], w.b, 2e-6 + 1e-5 * w.b) << w.nm;
-  }
-  struct B {
-    float t, r, g, b;
-  } const temps[] = {{1000, 0.0568074f, 0.000481363f, 0},
-                     {2000, 5374.24f, 1379.52f, 43.5231f},
-                     {3000, 246079, 117334, 37813.1f},
-                     {6504, 1.47741e+07f, 1.3936e+07f, 1.46699e+07f},
-                     {15000, 1.2888e+08f, 1.62987e+08f, 2.79937e+08f}};
-  for (const B& b : temps) {
-    lobe_blackbody(out, b.t);
-    EXPECT_NEAR(out[0], b.r, 1e-4 * b.r) << b.t;
-    EXPECT_NEAR(out[1], b.g, 1e-4 * b.g) << b.t;
-    EXPECT_NEAR(out[2], b.b, 1e-4 * b.b) << b.t;
-  }
-  lobe_blackbody(out, 500); // below the Draper point: OSL's very dim red
-  EXPECT_EQ(out[0], 1e-6f);
-  EXPECT_EQ(out[1], 0.0f);
-  EXPECT_EQ(out[2], 0.0f);
 }
 
 TEST(Noise, LatticeRangeDerivativeCellPeriod) {

@@ -39,10 +39,11 @@ void lobe_get_matrix();
 void lobe_space_matrix();
 void lobe_transform();
 void lobe_transformc();
+void lobe_transformc_d();
+void lobe_color_from();
 void lobe_transformu_scale();
 void lobe_wavelength_color();
 void lobe_blackbody();
-void lobe_luminance();
 void lobe_noise();
 void lobe_noise_named();
 void lobe_noise_d();
@@ -99,11 +100,12 @@ const ShadeOpSymbol kTable[] = {
     {"lobe_get_matrix", addr(lobe_get_matrix), "ipppp"},
     {"lobe_space_matrix", addr(lobe_space_matrix), "vppp"},
     {"lobe_transform", addr(lobe_transform), "vpppi"},
-    {"lobe_transformc", addr(lobe_transformc), "vppppp"},
+    {"lobe_transformc", addr(lobe_transformc), "vpppppp"},
+    {"lobe_transformc_d", addr(lobe_transformc_d), "vpppppp"},
+    {"lobe_color_from", addr(lobe_color_from), "vppppp"},
     {"lobe_transformu_scale", addr(lobe_transformu_scale), "fppppi"},
-    {"lobe_wavelength_color", addr(lobe_wavelength_color), "vpf"},
-    {"lobe_blackbody", addr(lobe_blackbody), "vpf"},
-    {"lobe_luminance", addr(lobe_luminance), "fp"},
+    {"lobe_wavelength_color", addr(lobe_wavelength_color), "vppf"},
+    {"lobe_blackbody", addr(lobe_blackbody), "vppf"},
     {"lobe_noise", addr(lobe_noise), "vipippip"},
     {"lobe_noise_named", addr(lobe_noise_named), "vpppippippi"},
     {"lobe_noise_d", addr(lobe_noise_d), "vipppippppi"},

@@ -266,3 +266,24 @@ TEST(RenderCli, InterruptedSummarySaysHowManySamplesFinished) {
   EXPECT_EQ(r.out.compare(r.out.find(" ", at + head.size()), 20, " of 1000000 spp, jit"), 0)
       << r.out;
 }
+
+// --colorspace sets the JIT materials' colour space: luminance's weights here (the values are
+// OSL 1.13.12's, as tests/shade/cli_test.cpp records); an unknown name is reported as testshade
+// reports it and renders in Rec709.
+TEST(RenderCli, ColorspaceOptionReachesTheMaterials) {
+  fs::path d = temp_dir("colorspace");
+  write_file(d / "lum.osl",
+             "surface lum() { Ci = luminance(color(0.1, 0.7, 0.2)) * diffuse(N); }\n");
+  write_file(d / "s.json", furnace_json(R"({"shader": "lum"})"));
+  std::string args = "--materials jit " + (d / "s.json").string() + " -o " + (d / "o.exr").string();
+  CmdResult r = render(args);
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NEAR(mean_channel(d / "o.exr", "albedo.R"), 0.536424339, 1e-6);
+  r = render("--colorspace ACEScg " + args);
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NEAR(mean_channel(d / "o.exr", "albedo.R"), 0.509817958, 1e-6);
+  r = render("--colorspace Rec2020 " + args);
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out, "ERROR: Unknown color space \"Rec2020\"\n");
+  EXPECT_NEAR(mean_channel(d / "o.exr", "albedo.R"), 0.536424339, 1e-6);
+}

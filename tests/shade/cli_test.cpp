@@ -160,6 +160,26 @@ TEST(ShadeCli, PreprocessorOptionsFileNamesAndDiagnosticsAsLobeCompile) {
                                 "            ^~~\n");
 }
 
+// --colorspace sets the material's colour space. Expected: OSL 1.13.12,
+//   oslc csli.osl; stdbuf -oL testshade [--colorspace NAME] csli 2>&1; echo $?
+// (testshade's closing blank line included): an unknown name (names are case-sensitive) is
+// reported once before shading, which goes on in Rec709, with exit status 0.
+TEST(ShadeCli, ColorspaceOption) {
+  auto dir = scratch_dir("csli.osl", "shader csli()\n{\n    printf(\"%.9g | %.9g\\n\", "
+                                     "luminance(color(0.1, 0.7, 0.2)), transformc(\"XYZ\", "
+                                     "color(1, 0.5, 0.25)));\n}\n");
+  const std::string rec709 = "0.536424339 | 0.636061966 0.588217974 0.316401064\n\n";
+  EXPECT_EQ(run_in(dir, "csli 2>&1; echo $?"), rec709 + "0\n");
+  EXPECT_EQ(run_in(dir, "--colorspace ACEScg csli 2>&1; echo $?"),
+            "0.509817958 | 0.768503129 0.622691929 0.249040425\n\n0\n");
+  EXPECT_EQ(run_in(dir, "-colorspace NTSC -O0 csli"),
+            "0.463418633 | 0.743757248 0.620860696 0.311986387\n\n");
+  EXPECT_EQ(run_in(dir, "--colorspace Rec2020 csli 2>&1; echo $?"),
+            "ERROR: Unknown color space \"Rec2020\"\n" + rec709 + "0\n");
+  EXPECT_EQ(run_in(dir, "--colorspace rec709 csli"),
+            "ERROR: Unknown color space \"rec709\"\n" + rec709);
+}
+
 TEST(ShadeCli, ErrorsAndUsage) {
   EXPECT_NE(run("no_such_shader").find("not found"), std::string::npos);
   EXPECT_NE(run("--help").find("Usage: lobe shade"), std::string::npos);

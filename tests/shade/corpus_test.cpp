@@ -35,9 +35,11 @@ std::vector<std::string> corpus() {
 struct Directives {
   lobe::group::GridSpec grid;
   std::vector<lobe::InstanceValue> params;
+  std::vector<std::string> colorspaces; // run once per space, each output after "== NAME"
 };
 
-// `// shade: -g W H --center --raytype name -param name value` (first such line).
+// `// shade: -g W H --center --raytype name -param name value --colorspaces A,B,...` (first
+// such line).
 Directives directives(const std::string& text) {
   Directives d;
   size_t at = text.find("shade:");
@@ -56,13 +58,20 @@ Directives directives(const std::string& text) {
       lobe::InstanceValue v{"float", "", ""};
       in >> v.name >> v.value;
       d.params.push_back(v);
+    } else if (w == "--colorspaces") {
+      std::string list;
+      in >> list;
+      std::istringstream names(list);
+      for (std::string n; std::getline(names, n, ',');) d.colorspaces.push_back(n);
     }
   }
   return d;
 }
 
-std::string run(const fs::path& file, const Directives& d, int opt, std::string& error) {
+std::string run_in(const fs::path& file, const Directives& d, int opt, const std::string& space,
+                   std::string& error) {
   lobe::ShadingSystem ss;
+  if (!space.empty()) ss.options().colorspace = space;
   ss.options().opt_level = opt;
   ss.options().specialize = opt > 0;
   ss.options().include_dirs.push_back(LOBE_SHADE_CORPUS);
@@ -84,6 +93,14 @@ std::string run(const fs::path& file, const Directives& d, int opt, std::string&
   // Locations print the path the shader was found at; expectations use the file name.
   std::string out = ctx.output, dir = std::string(LOBE_SHADE_CORPUS) + "/";
   for (size_t at; (at = out.find(dir)) != std::string::npos;) out.erase(at, dir.size());
+  return out;
+}
+
+std::string run(const fs::path& file, const Directives& d, int opt, std::string& error) {
+  if (d.colorspaces.empty()) return run_in(file, d, opt, "", error);
+  std::string out;
+  for (const std::string& space : d.colorspaces)
+    out += "== " + space + "\n" + run_in(file, d, opt, space, error);
   return out;
 }
 

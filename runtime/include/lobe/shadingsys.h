@@ -98,7 +98,19 @@ struct CompileOptions {
   bool range_checking = true;
   bool debug_nan = false;
   bool debug_uninit = false;
+  // The RGB space shader colours are in (OSL's ShadingSystem "colorspace", testshade's
+  // --colorspace): it sets the XYZ matrices of transformc and color("XYZ", ...), luminance's
+  // weights, blackbody and wavelength_color, and is the identity name for transformc. One of
+  // colorspace_names(); an unknown name compiles as "Rec709" (check it with colorspace_error).
+  std::string colorspace = "Rec709";
 };
+
+// The colour spaces CompileOptions::colorspace accepts: Rec709, sRGB, NTSC, EBU, PAL, SECAM,
+// SMPTE, HDTV, CIE, AdobeRGB, ACEScg (case-sensitive, as OSL's).
+const std::vector<std::string>& colorspace_names();
+// "" when `name` is one of them (or empty: the default), else OSL's message for it: `Unknown color
+// space "NAME"` (testshade prints it once, as "ERROR: " + message, and keeps Rec709).
+std::string colorspace_error(const std::string& name);
 
 // Time spent per stage, for --stats and bench/.
 struct CompileStats {
