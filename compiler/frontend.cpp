@@ -55,6 +55,13 @@ std::unique_ptr<ast::TranslationUnit> compile_to_ast(const SourceInput& input,
     return std::nullopt;
   };
   pp::Preprocessor pp(sm, diags, ppo);
+  // `#pragma osl nowarn` silences the warnings of the next line, for this compile only.
+  diags.set_warning_filter(
+      [&](diag::SourceRange r) { return pp.warnings_off(sm.presumed(r.begin)); });
+  struct FilterReset {
+    diag::DiagnosticEngine& d;
+    ~FilterReset() { d.set_warning_filter(nullptr); }
+  } reset{diags};
   int stdlib_id = -1;
   if (options.include_stdlib) {
     stdlib_id = sm.add_file(stdlib::kStdoslName, std::string(stdlib::stdosl_source()));

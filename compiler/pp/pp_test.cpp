@@ -190,6 +190,18 @@ TEST(PP, PragmaErrorWarningOnce) {
   EXPECT_EQ(r.sm.presumed(r.diags.diagnostics()[1].range.begin).line, 2);
 }
 
+// oslc's own pragmas (`#pragma osl NAME`, "osl" in any case): an unknown NAME is a warning;
+// other pragmas are ignored. (oslc 1.13: `#pragma osl NoWarn` gives "Unknown pragma 'NoWarn'",
+// `#pragma foo nowarn` nothing.)
+TEST(PP, PragmaOslNames) {
+  PPRun r;
+  r.run("#pragma OSL nowarn\n#pragma osl nowarn x y\n#pragma foo nowarn\n#pragma osl NoWarn\n");
+  ASSERT_EQ(r.diags.diagnostics().size(), 1u);
+  EXPECT_EQ(r.diags.diagnostics()[0].id, DiagId::warn_unknown_pragma);
+  EXPECT_EQ(r.diags.diagnostics()[0].message, "unknown pragma 'NoWarn'");
+  EXPECT_EQ(r.sm.presumed(r.diags.diagnostics()[0].range.begin).line, 4);
+}
+
 TEST(PP, LineDirective) {
   PPRun r;
   r.run("a\n#line 50 \"other.osl\"\nb\nc\n");

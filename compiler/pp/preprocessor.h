@@ -1,7 +1,7 @@
 // The preprocessor: #include, #define (object-like, function-like, variadic, # and ##),
-// #undef, #if/#ifdef/#ifndef/#elif/#else/#endif, #line, #pragma error/warning/once, and the
-// predefined OSL_VERSION macros. It works on text: its output is one buffer of preprocessed text
-// added to the SourceManager, with segments that map every output byte back to the file and
+// #undef, #if/#ifdef/#ifndef/#elif/#else/#endif, #line, #pragma error/warning/once/osl nowarn,
+// and the predefined OSL_VERSION macros. It works on text: its output is one buffer of preprocessed
+// text added to the SourceManager, with segments that map every output byte back to the file and
 // line it came from (through includes and macro expansions), so later stages report errors at
 // the original location.
 //
@@ -60,6 +60,9 @@ public:
   int finish();
 
   const Macro* find_macro(const std::string& name) const;
+  // True when warnings at `loc` are silenced: it lies on the line after a `#pragma osl nowarn`
+  // (as oslc: that line of that file, as #line numbers it).
+  bool warnings_off(const diag::PresumedLoc& loc) const;
 
 private:
   struct Cursor {
@@ -115,8 +118,9 @@ private:
   std::unordered_map<std::string, std::unique_ptr<Macro>> macros_;
   std::vector<std::unique_ptr<Macro>> retired_; // redefined/undefined: tokens may point at them
   std::vector<Conditional> conds_;
-  std::vector<std::string> include_stack_; // paths of files being processed
-  std::set<std::string> once_;             // files with #pragma once
+  std::vector<std::string> include_stack_;       // paths of files being processed
+  std::set<std::string> once_;                   // files with #pragma once
+  std::set<std::pair<std::string, int>> nowarn_; // (file, line) after a #pragma osl nowarn
   int expand_depth_ = 0;
   long expansion_budget_ = 0;
 
