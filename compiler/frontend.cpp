@@ -55,13 +55,6 @@ std::unique_ptr<ast::TranslationUnit> compile_to_ast(const SourceInput& input,
     return std::nullopt;
   };
   pp::Preprocessor pp(sm, diags, ppo);
-  // `#pragma osl nowarn` silences the warnings of the next line, for this compile only.
-  diags.set_warning_filter(
-      [&](diag::SourceRange r) { return pp.warnings_off(sm.presumed(r.begin)); });
-  struct FilterReset {
-    diag::DiagnosticEngine& d;
-    ~FilterReset() { d.set_warning_filter(nullptr); }
-  } reset{diags};
   int stdlib_id = -1;
   if (options.include_stdlib) {
     stdlib_id = sm.add_file(stdlib::kStdoslName, std::string(stdlib::stdosl_source()));
@@ -73,6 +66,15 @@ std::unique_ptr<ast::TranslationUnit> compile_to_ast(const SourceInput& input,
     pp.process_file(input.path);
   int out = pp.finish();
   t.preprocess_ms = ms_since(t0);
+  // `#pragma osl nowarn` silences the parser's and type checker's warnings on the next line,
+  // for this compile only (the filter holds its own copy of the lines).
+  diags.set_warning_filter([&sm, nowarn = pp.nowarn_lines()](diag::SourceRange r) {
+    return nowarn.covers(sm.presumed(r.begin));
+  });
+  struct FilterReset {
+    diag::DiagnosticEngine& d;
+    ~FilterReset() { d.set_warning_filter(nullptr); }
+  } reset{diags};
 
   t0 = Clock::now();
   lex::TokenStream ts = lex::lex_buffer(sm, diags, out);

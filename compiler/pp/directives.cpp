@@ -199,7 +199,7 @@ void Preprocessor::do_pragma(const std::vector<PPToken>& line, bool c_style) {
     std::string name = k + 1 < line.size() ? line[k + 1].text : "";
     if (name == "nowarn") {
       diag::PresumedLoc p = sm_.presumed(line[k].loc);
-      nowarn_.insert({p.file, p.line + 1});
+      nowarn_.lines.insert({p.file, p.line + 1});
     } else {
       diags_.report(DiagId::warn_unknown_pragma, line[k].loc, {name});
     }
@@ -211,10 +211,6 @@ void Preprocessor::do_pragma(const std::vector<PPToken>& line, bool c_style) {
       rest.size() == 1 && rest[0].kind == PPKind::String ? unquote(rest[0].text) : spell(rest);
   SourceRange r(line[k].loc, SourceLoc{line.back().end_offset()});
   diags_.report(what == "error" ? DiagId::err_pragma_error : DiagId::warn_pragma_warning, r, {msg});
-}
-
-bool Preprocessor::warnings_off(const diag::PresumedLoc& loc) const {
-  return loc.valid() && nowarn_.count({loc.file, loc.line});
 }
 
 // #line N ["file"] (and the GNU form `# N "file"`): renumbers the lines that follow.

@@ -47,6 +47,15 @@ struct Macro {
 // Reads a whole file from the file system (nullopt if it is not a readable regular file).
 std::optional<std::string> read_file_from_disk(const std::string& path);
 
+// The lines after a `#pragma osl nowarn` (as oslc: that line of that file, as #line numbers
+// it), whose warnings are dropped.
+struct NowarnLines {
+  std::set<std::pair<std::string, int>> lines; // (file, line)
+  bool covers(const diag::PresumedLoc& loc) const {
+    return loc.valid() && lines.count({loc.file, loc.line}) > 0;
+  }
+};
+
 class Preprocessor {
 public:
   Preprocessor(diag::SourceManager& sm, diag::DiagnosticEngine& diags, PPOptions options);
@@ -60,9 +69,8 @@ public:
   int finish();
 
   const Macro* find_macro(const std::string& name) const;
-  // True when warnings at `loc` are silenced: it lies on the line after a `#pragma osl nowarn`
-  // (as oslc: that line of that file, as #line numbers it).
-  bool warnings_off(const diag::PresumedLoc& loc) const;
+  // The lines whose warnings `#pragma osl nowarn` silences.
+  const NowarnLines& nowarn_lines() const { return nowarn_; }
 
 private:
   struct Cursor {
@@ -118,9 +126,9 @@ private:
   std::unordered_map<std::string, std::unique_ptr<Macro>> macros_;
   std::vector<std::unique_ptr<Macro>> retired_; // redefined/undefined: tokens may point at them
   std::vector<Conditional> conds_;
-  std::vector<std::string> include_stack_;       // paths of files being processed
-  std::set<std::string> once_;                   // files with #pragma once
-  std::set<std::pair<std::string, int>> nowarn_; // (file, line) after a #pragma osl nowarn
+  std::vector<std::string> include_stack_; // paths of files being processed
+  std::set<std::string> once_;             // files with #pragma once
+  NowarnLines nowarn_;
   int expand_depth_ = 0;
   long expansion_budget_ = 0;
 
