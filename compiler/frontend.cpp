@@ -28,9 +28,11 @@ void mark_stdlib(ast::TranslationUnit& tu, const diag::SourceManager& sm, int st
 }
 
 // Runs the preprocessor over the standard header (unless turned off) and the input; returns
-// the output buffer's id and sets `stdlib_id` (-1 without the header).
+// the output buffer's id and sets `stdlib_id` (-1 without the header) and, when given,
+// `nowarn` (the lines `#pragma osl nowarn` silences).
 int run_preprocessor(const SourceInput& input, const FrontendOptions& options,
-                     diag::SourceManager& sm, diag::DiagnosticEngine& diags, int& stdlib_id) {
+                     diag::SourceManager& sm, diag::DiagnosticEngine& diags, int& stdlib_id,
+                     pp::NowarnLines* nowarn = nullptr) {
   pp::PPOptions ppo;
   ppo.include_dirs = options.include_dirs;
   ppo.defines = options.defines;
@@ -56,7 +58,9 @@ int run_preprocessor(const SourceInput& input, const FrontendOptions& options,
     pp.process_buffer(sm.add_file(input.path.empty() ? "<source>" : input.path, *input.text));
   else
     pp.process_file(input.path);
-  return pp.finish();
+  int out = pp.finish();
+  if (nowarn) *nowarn = pp.nowarn_lines();
+  return out;
 }
 
 } // namespace
@@ -72,8 +76,18 @@ std::unique_ptr<ast::TranslationUnit> compile_to_ast(const SourceInput& input,
 
   auto t0 = Clock::now();
   int stdlib_id = -1;
-  int out = run_preprocessor(input, options, sm, diags, stdlib_id);
+  pp::NowarnLines nowarn;
+  int out = run_preprocessor(input, options, sm, diags, stdlib_id, &nowarn);
   t.preprocess_ms = ms_since(t0);
+  // `#pragma osl nowarn` silences the parser's and type checker's warnings on the next line,
+  // for this compile only (the filter holds its own copy of the lines).
+  diags.set_warning_filter([&sm, nowarn = std::move(nowarn)](diag::SourceRange r) {
+    return nowarn.covers(sm.presumed(r.begin));
+  });
+  struct FilterReset {
+    diag::DiagnosticEngine& d;
+    ~FilterReset() { d.set_warning_filter(nullptr); }
+  } reset{diags};
 
   t0 = Clock::now();
   lex::TokenStream ts = lex::lex_buffer(sm, diags, out);

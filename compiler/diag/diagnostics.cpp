@@ -15,8 +15,9 @@ void DiagnosticEngine::report(DiagId id, SourceRange range, std::vector<std::str
   if (severity == Severity::Note) {
     if (last_dropped_ || diags_.empty()) return;
   } else {
-    last_dropped_ = stopped_;
-    if (stopped_) return;
+    // A warning silenced by `#pragma osl nowarn` is dropped before -Werror could promote it.
+    last_dropped_ = stopped_ || (info.severity == Severity::Warning && quiet_ && quiet_(range));
+    if (last_dropped_) return;
     if (severity >= Severity::Error && errors_ >= max_errors_) {
       stopped_ = true;
       last_dropped_ = true;

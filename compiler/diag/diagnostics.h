@@ -9,6 +9,7 @@
 #include "diag/diag_ids.h"
 #include "diag/source_location.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,10 @@ public:
     report(id, SourceRange(loc), std::move(args));
   }
 
+  // Warnings for which `quiet` returns true are dropped, with their notes (`#pragma osl
+  // nowarn`: the front end installs it for the duration of a compile). Null: keep all.
+  void set_warning_filter(std::function<bool(SourceRange)> quiet) { quiet_ = std::move(quiet); }
+
   const std::vector<Diagnostic>& diagnostics() const { return diags_; }
   int error_count() const { return errors_; }
   int warning_count() const { return warnings_; }
@@ -49,6 +54,7 @@ public:
 
 private:
   std::vector<Diagnostic> diags_;
+  std::function<bool(SourceRange)> quiet_;
   int max_errors_;
   int errors_ = 0, warnings_ = 0;
   bool stopped_ = false;

@@ -79,7 +79,7 @@ inline constexpr OpcodeInfo kOpcodes[] = {
   {"mxcompassign", 4, 4,          1, 0, kArith, "matrix a[b][c] = d; indices clamped to 0..3"},
   {"aref",         3, 3,          1, 0, kArith, "a = array b[c]; c clamped to 0..len-1, runtime error if out of range"},
   {"aassign",      3, 3,          1, 0, kArith, "array a[b] = c; b clamped (a is read and written)"},
-  {"arraycopy",    2, 2,          1, 0, kArith, "array a = array b, same element type, min(len) elements"},
+  {"arraycopy",    2, 2,          1, 0, kArith, "array a = array b, same element type or triple kinds, min(len) elements"},
   {"arraylength",  2, 2,          1, 0, kValue, "int a = number of elements of array b"},
   {"construct",    2, 18,         1, 0, kArith, "a = triple/matrix from components, optional leading space name"},
   // ---- closures ------------------------------------------------------------------------------

@@ -200,8 +200,13 @@ void Verifier::types(const Op& o) {
     expect(c == "aref" ? t(elem) == e : promotes(t(elem), e),
            "element " + name(elem) + " does not match " + name(arr));
   } else if (c == "arraycopy") {
-    expect(t(0).is_array() && t(1).is_array() && t(0).base == t(1).base,
-           "needs two arrays of one element type");
+    auto triple = [](BaseType b) {
+      return b == BaseType::Color || b == BaseType::Point || b == BaseType::Vector ||
+             b == BaseType::Normal;
+    };
+    expect(t(0).is_array() && t(1).is_array() &&
+               (t(0).base == t(1).base || (triple(t(0).base) && triple(t(1).base))),
+           "needs two arrays of one element type (or of two triple kinds)");
   } else if (c == "arraylength") {
     expect(scalar(t(0), BaseType::Int) && t(1).is_array(), "needs int = arraylength(array)");
   } else if (c == "construct") {

@@ -515,7 +515,7 @@ int Lowerer::rvalue(const ast::Expr* e, int hint) {
       break;
     }
     r = pick(hint, t);
-    emit("assign", {r, x}, 1, e);
+    emit(t.is_array() ? "arraycopy" : "assign", {r, x}, 1, e); // point[] -> vector[] for a call
     break;
   }
   case K::InitList: {

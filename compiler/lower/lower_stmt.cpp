@@ -144,14 +144,19 @@ std::vector<int> Lowerer::call_user(const ast::FunctionDecl* f,
   for (size_t i = 0; i < f->params.size() && i < args.size(); ++i) {
     const ast::VarDecl* p = f->params[i].get();
     std::vector<int> syms;
-    if (p->is_output) {
+    if (p->is_output && !args[i]->lvalue && p->type.base != ast::BaseType::Struct) {
+      syms = {scratch_copy(args[i], where)}; // oslc writes such an argument to a temporary
+    } else if (p->is_output) {
+      // Another triple kind (a point for `output color`) goes through a temporary of the
+      // parameter's type, so the body's operations see the type it declares.
+      bool retype = args[i]->type.is_triple() && args[i]->type.base != p->type.base;
       for (const LRef& r : lvalue(args[i])) {
-        if (r.whole()) {
+        if (r.whole() && !retype) {
           syms.push_back(r.sym); // alias the caller's variable
           continue;
         }
         int v = load(r, where);
-        int t = temp(sh_.symbols[v].type);
+        int t = temp(retype ? irtype(p->type, where) : sh_.symbols[v].type);
         emit("assign", {t, v}, 1, where);
         syms.push_back(t);
         copy_back.push_back({r, t});
@@ -187,6 +192,16 @@ std::vector<int> Lowerer::call_user(const ast::FunctionDecl* f,
       vars_.erase(p);
   }
   return result;
+}
+
+// A temporary holding the value of `e`, an `output` argument that is no variable (`x + 1`):
+// the callee writes it and the value is dropped.
+int Lowerer::scratch_copy(const ast::Expr* e, const ast::Node* where) {
+  int v = rvalue(e);
+  ir::Type t = sh_.symbols[size_t(v)].type;
+  int s = temp(t);
+  emit(t.is_array() ? "arraycopy" : "assign", {s, v}, 1, where);
+  return s;
 }
 
 // Builtins lowered to arithmetic instead of an opcode of their own: radians, degrees, and
@@ -277,10 +292,14 @@ int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
   std::vector<std::pair<LRef, int>> copy_back;
   for (size_t i = 0; i < npos; ++i) {
     if (!is_out[i]) continue;
+    mask |= 1u << args.size();
+    if (!c->args[i]->lvalue) { // oslc writes such an argument to a temporary
+      args.push_back(scratch_copy(c->args[i].get(), c));
+      continue;
+    }
     LRef r = lvalue(c->args[i].get())[0];
     int s = r.whole() ? r.sym : temp(irtype(c->args[i]->type, c));
     if (!r.whole()) copy_back.push_back({r, s});
-    mask |= 1u << args.size();
     args.push_back(s);
   }
   for (size_t i = 0; i < npos; ++i)

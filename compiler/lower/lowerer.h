@@ -97,6 +97,7 @@ public:
   int call_builtin(const ast::CallExpr* c, int hint);
   int call_closure(const ast::CallExpr* c, const std::string& key, int hint,
                    const char* opcode = "closure");
+  int scratch_copy(const ast::Expr* e, const ast::Node* where);
   int call_arith(const ast::CallExpr* c, int hint); // builtins lowered to arithmetic, or -2
   int floor_mod(const ast::CallExpr* c, int hint);  // OSL mod(): a - b*floor(a/b)
 

@@ -3,6 +3,7 @@
 #include "pp/preprocessor.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 
 namespace lobe::pp {
@@ -172,14 +173,36 @@ void Preprocessor::do_undef(const std::vector<PPToken>& line) {
   if (line.size() > 2) diags_.report(DiagId::warn_extra_tokens, line[2].loc, {"undef"});
 }
 
-// #pragma error "msg" / #pragma warning "msg" / #pragma once (others are ignored, as OSL
-// ignores pragmas it does not know); C-style #error / #warning take the rest of the line.
+namespace {
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+} // namespace
+
+// #pragma error "msg" / #pragma warning "msg" / #pragma once / #pragma osl nowarn (others are
+// ignored, as OSL ignores pragmas it does not know); C-style #error / #warning take the rest
+// of the line.
 void Preprocessor::do_pragma(const std::vector<PPToken>& line, bool c_style) {
   size_t k = c_style ? 0 : 1;
   if (k >= line.size()) return;
   const std::string& what = line[k].text;
   if (what == "once" && !include_stack_.empty()) {
     once_.insert(include_stack_.back());
+    return;
+  }
+  // oslc's own pragmas: `osl` in any case, then the pragma's name as written; `#pragma osl
+  // nowarn` (extra words ignored) silences the warnings of the next line only. Any other name
+  // gets oslc's warning. (oslc 1.13, `oslc -q`: `#pragma OSL nowarn` works, `#pragma nowarn`
+  // and `#pragma foo nowarn` are ignored, `#pragma osl NoWarn` warns "Unknown pragma 'NoWarn'".)
+  if (!c_style && lower(what) == "osl") {
+    std::string name = k + 1 < line.size() ? line[k + 1].text : "";
+    if (name == "nowarn") {
+      diag::PresumedLoc p = sm_.presumed(line[k].loc);
+      nowarn_.lines.insert({p.file, p.line + 1});
+    } else {
+      diags_.report(DiagId::warn_unknown_pragma, line[k].loc, {name});
+    }
     return;
   }
   if (what != "error" && what != "warning") return;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <set>
 
 using namespace lobe;
 using diag::DiagId;
@@ -17,6 +18,7 @@ struct PPRun {
   std::map<std::string, std::string> files;
   std::string out;
   int out_id = -1;
+  pp::NowarnLines nowarn;
 
   std::string run(const std::string& main, pp::PPOptions opts = {}) {
     files["main.osl"] = main;
@@ -28,6 +30,7 @@ struct PPRun {
     pp::Preprocessor pp(sm, diags, opts);
     pp.process_file("main.osl");
     out_id = pp.finish();
+    nowarn = pp.nowarn_lines();
     out = sm.buffer_text(out_id);
     return collapse(out);
   }
@@ -188,6 +191,21 @@ TEST(PP, PragmaErrorWarningOnce) {
   EXPECT_EQ(r.diags.diagnostics()[1].message, "careful");
   EXPECT_EQ(r.diags.diagnostics()[1].severity, diag::Severity::Warning);
   EXPECT_EQ(r.sm.presumed(r.diags.diagnostics()[1].range.begin).line, 2);
+}
+
+// oslc's own pragmas (`#pragma osl NAME`, "osl" in any case): an unknown NAME is a warning;
+// other pragmas are ignored. (oslc 1.13: `#pragma osl NoWarn` gives "Unknown pragma 'NoWarn'",
+// `#pragma foo nowarn` nothing.)
+TEST(PP, PragmaOslNames) {
+  PPRun r;
+  r.run("#pragma OSL nowarn\n#pragma osl nowarn x y\n#pragma foo nowarn\n#pragma osl NoWarn\n");
+  ASSERT_EQ(r.diags.diagnostics().size(), 1u);
+  EXPECT_EQ(r.diags.diagnostics()[0].id, DiagId::warn_unknown_pragma);
+  EXPECT_EQ(r.diags.diagnostics()[0].message, "unknown pragma 'NoWarn'");
+  EXPECT_EQ(r.sm.presumed(r.diags.diagnostics()[0].range.begin).line, 4);
+  // The lines after the two nowarn pragmas, as the file numbers them.
+  using Lines = std::set<std::pair<std::string, int>>;
+  EXPECT_EQ(r.nowarn.lines, (Lines{{"main.osl", 2}, {"main.osl", 3}}));
 }
 
 TEST(PP, LineDirective) {

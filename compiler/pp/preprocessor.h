@@ -1,7 +1,7 @@
 // The preprocessor: #include, #define (object-like, function-like, variadic, # and ##),
-// #undef, #if/#ifdef/#ifndef/#elif/#else/#endif, #line, #pragma error/warning/once, and the
-// predefined OSL_VERSION macros. It works on text: its output is one buffer of preprocessed text
-// added to the SourceManager, with segments that map every output byte back to the file and
+// #undef, #if/#ifdef/#ifndef/#elif/#else/#endif, #line, #pragma error/warning/once/osl nowarn,
+// and the predefined OSL_VERSION macros. It works on text: its output is one buffer of preprocessed
+// text added to the SourceManager, with segments that map every output byte back to the file and
 // line it came from (through includes and macro expansions), so later stages report errors at
 // the original location.
 //
@@ -47,6 +47,15 @@ struct Macro {
 // Reads a whole file from the file system (nullopt if it is not a readable regular file).
 std::optional<std::string> read_file_from_disk(const std::string& path);
 
+// The lines after a `#pragma osl nowarn` (as oslc: that line of that file, as #line numbers
+// it), whose warnings are dropped.
+struct NowarnLines {
+  std::set<std::pair<std::string, int>> lines; // (file, line)
+  bool covers(const diag::PresumedLoc& loc) const {
+    return loc.valid() && lines.count({loc.file, loc.line}) > 0;
+  }
+};
+
 class Preprocessor {
 public:
   Preprocessor(diag::SourceManager& sm, diag::DiagnosticEngine& diags, PPOptions options);
@@ -60,6 +69,8 @@ public:
   int finish();
 
   const Macro* find_macro(const std::string& name) const;
+  // The lines whose warnings `#pragma osl nowarn` silences.
+  const NowarnLines& nowarn_lines() const { return nowarn_; }
 
 private:
   struct Cursor {
@@ -117,6 +128,7 @@ private:
   std::vector<Conditional> conds_;
   std::vector<std::string> include_stack_; // paths of files being processed
   std::set<std::string> once_;             // files with #pragma once
+  NowarnLines nowarn_;
   int expand_depth_ = 0;
   long expansion_budget_ = 0;
 

@@ -114,9 +114,10 @@ void color(Builder& b) {
   b.add("transformc", t_color(), {t_string(), t_string(), t_color()});
 }
 
-// noise-like functions: float and triple results over 1-4 D domains.
+// noise-like functions: float, color and vector results (as OSL's; `point p = noise(P)` takes
+// the vector one) over 1-4 D domains.
 void patterns(Builder& b) {
-  const Type results[] = {t_float(), t_color(), t_vector(), t_point()};
+  const Type results[] = {t_float(), t_color(), t_vector()};
   for (const char* f : {"noise", "snoise", "cellnoise", "hashnoise"}) {
     for (Type r : results) {
       b.add(f, r, {t_float()});
@@ -168,7 +169,13 @@ void strings(Builder& b) {
   b.add("format", t_string(), {t_string()}).extra = Sig::Extra::Any;
   b.add("error", t_void(), {t_string()}).extra = Sig::Extra::Any;
   b.add("warning", t_void(), {t_string()}).extra = Sig::Extra::Any;
-  b.add("concat", t_string(), {t_string()}).extra = Sig::Extra::Any;
+  // concat of 2 to 6 strings, as OSL's (its builtin takes two, its stdosl.h the longer forms).
+  const Type str = t_string();
+  b.add("concat", str, {str, str});
+  b.add("concat", str, {str, str, str});
+  b.add("concat", str, {str, str, str, str});
+  b.add("concat", str, {str, str, str, str, str});
+  b.add("concat", str, {str, str, str, str, str, str});
   b.add("strlen", t_int(), {t_string()});
   b.add("startswith", t_int(), {t_string(), t_string()});
   b.add("endswith", t_int(), {t_string(), t_string()});
@@ -225,8 +232,9 @@ void services(Builder& b) {
 }
 
 void textures(Builder& b) {
-  // texture(filename, s, t, "keyword", value, ...) and friends: float or color.
-  for (Type r : {t_float(), t_color()}) {
+  // texture(filename, s, t, "keyword", value, ...) and friends: float, color or vector (the
+  // colour channels), as in OSL.
+  for (Type r : {t_float(), t_color(), t_vector()}) {
     b.add("texture", r, {t_string(), t_float(), t_float()}).extra = Sig::Extra::Keywords;
     b.add("texture", r,
           {t_string(), t_float(), t_float(), t_float(), t_float(), t_float(), t_float()})

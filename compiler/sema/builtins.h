@@ -3,8 +3,8 @@
 // overloads. Closures are not here: they come from the closure registry.
 //
 // Built once by code (builtins.cpp), read-only afterwards. Overloads of one name are listed in
-// OSL's preference order: when argument types and the expected return type still leave a tie
-// (`noise(P)` used as a statement), the first wins, which is the float-returning one.
+// oslc's order, which counts as newest first: it decides between builtins that tie on argument
+// scores and return rank, and orders the candidates a diagnostic lists (sema/overload.h).
 #pragma once
 
 #include "ast/ast.h"
@@ -25,8 +25,8 @@ struct BuiltinSig {
   std::string name;
   ast::Type ret;
   std::vector<BuiltinParam> params;
-  // Extra arguments after the fixed ones: any type (printf, format, error, warning, concat
-  // takes strings), or `"name", value` keyword pairs (texture).
+  // Extra arguments after the fixed ones: any type (printf, format, error, warning, fprintf),
+  // or `"name", value` keyword pairs (texture).
   enum class Extra : uint8_t { None, Any, Keywords } extra = Extra::None;
   bool any_param = false;   // the single parameter accepts any type (isconnected, isconstant)
   bool array_param = false; // the single parameter accepts any array (arraylength)

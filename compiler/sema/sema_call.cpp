@@ -1,6 +1,6 @@
-// Sema: calls. Resolution order: a struct name makes a constructor; otherwise user functions
-// (including the standard header's) and builtins of that name compete by conversion cost, then
-// by the expected return type; if none of them exists or fits, the closure registry is tried.
+// Sema: calls. Resolution order: a struct name makes a constructor; otherwise the user functions
+// (including the standard header's) and builtins of that name in sight compete as oslc ranks
+// them (overload.h); if none of them exists or fits, the closure registry is tried.
 #include "sema/sema_impl.h"
 
 #include "closure_registry.h"
@@ -48,28 +48,27 @@ std::string closure_signature(const registry::ClosureEntry& c) {
 
 constexpr size_t kMaxCandidateNotes = 12;
 
-// Preference among candidates that tie on argument cost and on the expected return type:
-// float, int, then any triple (equal: point, vector and normal, like colour, are not ordered
-// against each other, so the table order or an ambiguity decides), matrix, string, the rest.
-int return_rank(const Type& t) {
-  if (t.is_array()) return 5;
-  switch (t.base) {
-  case ast::BaseType::Float:
-    return 0;
-  case ast::BaseType::Int:
-    return 1;
-  case ast::BaseType::Color:
-  case ast::BaseType::Point:
-  case ast::BaseType::Vector:
-  case ast::BaseType::Normal:
-    return 2;
-  case ast::BaseType::Matrix:
-    return 3;
-  case ast::BaseType::String:
-    return 4;
-  default:
-    return 5;
-  }
+// A builtin's wildcard parameters (printf's `...`, texture's keyword pairs, isconnected's
+// any-type argument) match anything, each argument scoring less than any real conversion
+// (oslc's exact weights are not observable; they only rank a user function that shadows a
+// varargs builtin, and any value below 23 ranks it the same).
+constexpr int kWildcardScore = 1;
+
+bool is_literal(const ast::Expr* e) {
+  return e->kind == ast::ExprKind::IntLit || e->kind == ast::ExprKind::FloatLit ||
+         e->kind == ast::ExprKind::StringLit;
+}
+
+// An `output` argument is written back as it is: it must hold the parameter's kind of value
+// (any triple for a triple, as oslc allows), not one a conversion would reach (int -> float).
+bool same_representation(const Type& formal, const Type& actual) {
+  if (formal.is_array() != actual.is_array()) return false;
+  auto triple = [](ast::BaseType b) {
+    return b == ast::BaseType::Color || b == ast::BaseType::Point || b == ast::BaseType::Vector ||
+           b == ast::BaseType::Normal;
+  };
+  if (triple(formal.base) && triple(actual.base)) return true;
+  return formal.base == actual.base && formal.strct == actual.strct;
 }
 
 } // namespace
@@ -85,6 +84,10 @@ std::string Sema::Candidate::signature() const {
   return s + ")";
 }
 
+SourceRange Sema::Candidate::where() const {
+  return fn ? fn->name_range : SourceRange(); // builtins print without a location
+}
+
 std::string Sema::arg_types(const std::vector<ExprPtr>& args) const {
   std::string s;
   for (size_t i = 0; i < args.size(); ++i) {
@@ -94,25 +97,38 @@ std::string Sema::arg_types(const std::vector<ExprPtr>& args) const {
   return s;
 }
 
-void Sema::call(ast::CallExpr* e, const Type* expected) {
-  for (auto& a : e->args)
-    if (a->kind != ast::ExprKind::InitList) expr(a);
-  e->type = t_error();
-  e->num_positional = int(e->args.size());
-  std::vector<ast::FunctionDecl*> user = lookup_functions(e->name);
-  if (user.empty())
-    if (const ast::StructDecl* s = find_struct(e->name)) return struct_constructor(e, s);
-  auto sigs = builtins().lookup(e->name);
-  bool is_closure = std::any_of(opts_.closures.begin(), opts_.closures.end(),
-                                [&](const registry::ClosureEntry& c) { return e->name == c.name; });
-  // A [[ builtin = 1 ]] prototype of something the registry or the builtin table provides
-  // (old-style headers declare closures that way) defers to the real definition.
+// The overloads of `name` a call here can see, newest declaration first (oslc's order): the
+// user functions (lookup_functions; the standard header's are the oldest globals), then, unless
+// a nested declaration hides them, the builtin table's, in table order, less those a user
+// function redefines. A [[ builtin = 1 ]] prototype of something the table or the registry
+// provides defers to it.
+std::vector<Sema::Candidate> Sema::overloads(const std::string& name, bool is_closure) {
+  bool nested = false;
+  std::vector<ast::FunctionDecl*> user = lookup_functions(name, &nested);
+  auto sigs = nested ? std::span<const BuiltinSig>() : builtins().lookup(name);
   std::erase_if(
       user, [&](ast::FunctionDecl* f) { return f->is_builtin && (is_closure || !sigs.empty()); });
-  std::vector<Candidate> all;
-  for (auto* f : user) all.push_back({f, nullptr, 0});
-  for (const auto& s : sigs) all.push_back({nullptr, &s, 0});
-  if (all.empty()) {
+  std::vector<Candidate> chain;
+  for (auto* f : user) chain.push_back({f, nullptr, 0});
+  for (const auto& b : sigs)
+    if (std::none_of(user.begin(), user.end(), [&](auto* f) { return redefines(f, b); }))
+      chain.push_back({nullptr, &b, 0});
+  return chain;
+}
+
+void Sema::call(ast::CallExpr* e, const Type* expected) {
+  e->type = t_error();
+  e->num_positional = int(e->args.size());
+  if (lookup_functions(e->name).empty())
+    if (const ast::StructDecl* s = find_struct(e->name)) return struct_constructor(e, s);
+  // oslc types every argument with the call's own expected type, not the parameter's: it
+  // decides ties inside (`color c = g(noise(P))` takes the color noise).
+  for (auto& a : e->args)
+    if (a->kind != ast::ExprKind::InitList) expr(a, expected);
+  bool is_closure = std::any_of(opts_.closures.begin(), opts_.closures.end(),
+                                [&](const registry::ClosureEntry& c) { return e->name == c.name; });
+  std::vector<Candidate> chain = overloads(e->name, is_closure);
+  if (chain.empty()) {
     if (is_closure) {
       closure_call(e);
     } else {
@@ -123,62 +139,42 @@ void Sema::call(ast::CallExpr* e, const Type* expected) {
   }
   for (auto& a : e->args)
     if (a->type.is_error() && a->kind != ast::ExprKind::InitList) return; // already reported
-  std::vector<Candidate> viable;
-  for (auto& c : all) {
-    c.cost = candidate_cost(c, e->args);
-    if (c.cost >= 0) viable.push_back(c);
-  }
-  if (viable.empty()) {
-    if (is_closure && closure_call(e)) return;
-    report_no_match(e, all, false);
-    return;
-  }
-  int best = std::min_element(viable.begin(), viable.end(), [](auto& a, auto& b) {
-               return a.cost < b.cost;
-             })->cost;
-  std::erase_if(viable, [&](const Candidate& c) { return c.cost != best; });
-  // Ties: the return type the context expects decides (`color c = noise(P)`).
-  if (viable.size() > 1 && expected) {
-    std::vector<Candidate> exact, fits;
-    for (auto& c : viable) {
-      if (c.ret() == *expected)
-        exact.push_back(c);
-      else if (assignable(*expected, c.ret()))
-        fits.push_back(c);
-    }
-    if (!exact.empty())
-      viable = exact;
-    else if (!fits.empty())
-      viable = fits;
-  }
-  // A user function ties with a builtin of the same signature: the user's wins (it overrides).
-  if (viable.size() > 1 && std::any_of(viable.begin(), viable.end(), [](auto& c) { return c.fn; }))
-    std::erase_if(viable, [](const Candidate& c) { return c.builtin != nullptr; });
-  // Still tied (no expected type, or it did not decide): prefer float, then int, then the
-  // triples, as OSL does; the builtin table lists float results first for the same reason.
-  if (viable.size() > 1) {
-    auto rank = [](const Candidate& c) { return return_rank(c.ret()); };
-    int best_rank = rank(*std::min_element(viable.begin(), viable.end(),
-                                           [&](auto& a, auto& b) { return rank(a) < rank(b); }));
-    std::erase_if(viable, [&](const Candidate& c) { return rank(c) != best_rank; });
-  }
-  bool all_builtin = std::all_of(viable.begin(), viable.end(), [](auto& c) { return c.builtin; });
-  if (viable.size() > 1 && !all_builtin) {
-    report_no_match(e, viable, true);
-    return;
-  }
-  apply_candidate(e, viable.front()); // builtins: the table's preference order
+  resolve(e, chain, expected, is_closure);
 }
 
-// Total conversion cost of calling `c` with `args`, or -1 if it does not apply.
-int Sema::candidate_cost(const Candidate& c, const std::vector<ExprPtr>& args) const {
+// Scores the candidates and binds the one oslc would choose (overload.h), with its warning
+// or error when the choice was a tie.
+void Sema::resolve(ast::CallExpr* e, std::vector<Candidate>& chain, const Type* expected,
+                   bool is_closure) {
+  std::vector<int> scores;
+  std::vector<Type> returns;
+  for (auto& c : chain) {
+    c.score = candidate_score(c, e->args);
+    scores.push_back(c.score);
+    returns.push_back(c.ret());
+  }
+  OverloadChoice choice = choose_overload(scores, returns, expected);
+  using Kind = OverloadChoice::Kind;
+  if (choice.kind == Kind::NoMatch) {
+    if (is_closure && closure_call(e)) return;
+    report_no_match(e, chain);
+    return;
+  }
+  if (choice.kind == Kind::ByRank || choice.kind == Kind::StructTie)
+    report_ambiguous(e, chain, choice);
+  if (choice.kind != Kind::StructTie) apply_candidate(e, chain[choice.chosen]);
+}
+
+// The sum of the argument scores of calling `c` with `args` (match_score), or kNotViable.
+int Sema::candidate_score(const Candidate& c, const std::vector<ExprPtr>& args) const {
   std::vector<std::pair<Type, bool>> params; // type, output
   if (c.fn) {
     for (auto& p : c.fn->params) params.push_back({p->type, p->is_output});
   } else {
     for (auto& p : c.builtin->params) params.push_back({p.type, p.output});
-    if (c.builtin->any_param) return args.size() == 1 ? 0 : -1;
-    if (c.builtin->array_param) return args.size() == 1 && args[0]->type.is_array() ? 0 : -1;
+    if (c.builtin->any_param) return args.size() == 1 ? kWildcardScore : kNotViable;
+    if (c.builtin->array_param)
+      return args.size() == 1 && args[0]->type.is_array() ? kWildcardScore : kNotViable;
   }
   size_t n = params.size();
   using Extra = BuiltinSig::Extra;
@@ -187,30 +183,33 @@ int Sema::candidate_cost(const Candidate& c, const std::vector<ExprPtr>& args) c
   Extra extra = c.builtin                   ? c.builtin->extra
                 : is_declared_closure(c.fn) ? Extra::Keywords
                                             : Extra::None;
-  if (args.size() < n || (extra == Extra::None && args.size() != n)) return -1;
+  if (args.size() < n || (extra == Extra::None && args.size() != n)) return kNotViable;
   if (extra == Extra::Keywords) {
-    if ((args.size() - n) % 2) return -1;
+    if ((args.size() - n) % 2) return kNotViable;
     for (size_t i = n; i < args.size(); i += 2)
-      if (args[i]->kind != ast::ExprKind::StringLit) return -1;
+      if (args[i]->kind != ast::ExprKind::StringLit) return kNotViable;
   }
-  if (extra != Extra::None)
-    for (size_t i = n; i < args.size(); ++i)
-      if (args[i]->kind == ast::ExprKind::InitList) return -1;
-  int cost = 0;
+  for (size_t i = n; i < args.size(); ++i)
+    if (args[i]->kind == ast::ExprKind::InitList) return kNotViable;
+  int score = int(args.size() - n) * kWildcardScore;
   for (size_t i = 0; i < n; ++i) {
     const ast::Expr* a = args[i].get();
     const auto& [pt, output] = params[i];
-    if (a->kind == ast::ExprKind::InitList) {
-      if (!init_list_fits(a, pt) || output) return -1;
-      continue;
-    }
-    int k = conversion_cost(a->type, pt, is_zero_literal(a));
-    if (k == kNoConversion || (output && k != 0)) return -1;
-    cost += k;
+    // A `{...}` argument takes the parameter's type when it fits (an array or a struct), and
+    // is no place for an output.
+    bool fits = a->kind == ast::ExprKind::InitList && !output && init_list_fits(a, pt);
+    int s =
+        a->kind == ast::ExprKind::InitList ? (fits ? kExactMatch : 0) : match_score(pt, a->type);
+    if (s == 0) return kNotViable;
+    score += s;
   }
-  return cost;
+  return score;
 }
 
+// Binds the chosen candidate: converts the arguments to the parameter types and checks the
+// `output` ones, which are scored like the others and only then must be values of the
+// parameter's kind (as in oslc: `int x` for `output float` is an error, not a reason to pick
+// another overload).
 void Sema::apply_candidate(ast::CallExpr* e, const Candidate& c) {
   size_t n = c.fn ? c.fn->params.size() : c.builtin->params.size();
   for (size_t i = 0; i < n && i < e->args.size(); ++i) {
@@ -218,16 +217,12 @@ void Sema::apply_candidate(ast::CallExpr* e, const Candidate& c) {
     Type pt = c.fn ? c.fn->params[i]->type : c.builtin->params[i].type;
     if (c.builtin && (c.builtin->any_param || c.builtin->array_param)) break;
     ExprPtr& a = e->args[i];
-    if (a->kind == ast::ExprKind::InitList) {
+    if (a->kind == ast::ExprKind::InitList)
       init_list(a, pt);
-    } else if (output) {
-      if (!a->lvalue)
-        error(DiagId::err_output_arg_not_lvalue, a->range, {std::to_string(i + 1), e->name});
-      else
-        check_writable(a.get(), a->range, /*output_arg=*/true);
-    } else {
+    else if (output)
+      check_output_arg(e, i, pt);
+    else
       coerce(a, pt);
-    }
   }
   if (c.fn) {
     e->callee.kind = ast::CalleeKind::User;
@@ -255,6 +250,19 @@ void Sema::apply_candidate(ast::CallExpr* e, const Candidate& c) {
       add_keyword(e, name->value, -1, e->args[i + 1].get());
     }
   }
+}
+
+// Argument i of `e` for an `output` parameter of type `pt`. A value that is not a variable
+// (`x + 1`) is accepted, as oslc accepts it (the function writes a temporary); a literal is not.
+void Sema::check_output_arg(ast::CallExpr* e, size_t i, const Type& pt) {
+  ExprPtr& a = e->args[i];
+  std::string argno = std::to_string(i + 1);
+  if (is_literal(a.get()))
+    error(DiagId::err_output_arg_not_lvalue, a->range, {argno, e->name});
+  else if (!same_representation(pt, a->type))
+    error(DiagId::err_output_arg_type, a->range, {tname(a->type), argno, e->name, tname(pt)});
+  else if (a->lvalue)
+    check_writable(a.get(), a->range, /*output_arg=*/true);
 }
 
 bool Sema::is_declared_closure(const ast::FunctionDecl* f) {
@@ -415,16 +423,37 @@ void Sema::check_format_args(ast::CallExpr* e) {
           e->range, {e->name, std::to_string(needed), std::to_string(given)});
 }
 
-void Sema::report_no_match(ast::CallExpr* e, const std::vector<Candidate>& cands, bool ambiguous) {
-  error(ambiguous ? DiagId::err_ambiguous_call : DiagId::err_no_matching_call, e->name_range,
+// No candidate applies: every overload in sight, newest first.
+void Sema::report_no_match(ast::CallExpr* e, const std::vector<Candidate>& chain) {
+  error(DiagId::err_no_matching_call, e->name_range, {e->name, arg_types(e->args)});
+  std::vector<size_t> all(chain.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  note_candidates(e, chain, all, DiagId::note_candidate);
+}
+
+// A tie the return ranks decided (a warning: the chosen one, then the others), or one they
+// cannot decide because several candidates return structs (an error listing them all).
+void Sema::report_ambiguous(ast::CallExpr* e, const std::vector<Candidate>& chain,
+                            const OverloadChoice& choice) {
+  bool structs = choice.kind == OverloadChoice::Kind::StructTie;
+  error(structs ? DiagId::err_ambiguous_call : DiagId::warn_ambiguous_call, e->name_range,
         {e->name, arg_types(e->args)});
-  for (size_t i = 0; i < cands.size() && i < kMaxCandidateNotes; ++i) {
-    SourceRange where = cands[i].fn ? cands[i].fn->name_range : e->name_range;
-    error(DiagId::note_candidate, where, {cands[i].signature()});
+  if (!structs) {
+    const Candidate& c = chain[choice.chosen];
+    error(DiagId::note_chosen_candidate, c.where(), {c.signature()});
   }
-  if (cands.size() > kMaxCandidateNotes)
-    error(DiagId::note_candidate, e->name_range,
-          {"... and " + std::to_string(cands.size() - kMaxCandidateNotes) + " more"});
+  note_candidates(e, chain, choice.others,
+                  structs ? DiagId::note_candidate : DiagId::note_other_candidate);
+}
+
+// Notes for the candidates `which` (indices into `chain`), at most kMaxCandidateNotes.
+void Sema::note_candidates(ast::CallExpr* e, const std::vector<Candidate>& chain,
+                           const std::vector<size_t>& which, DiagId note) {
+  for (size_t k = 0; k < which.size() && k < kMaxCandidateNotes; ++k)
+    error(note, chain[which[k]].where(), {chain[which[k]].signature()});
+  if (which.size() > kMaxCandidateNotes)
+    error(note, e->name_range,
+          {"... and " + std::to_string(which.size() - kMaxCandidateNotes) + " more"});
 }
 
 void Sema::struct_constructor(ast::CallExpr* e, const ast::StructDecl* s) {
@@ -436,12 +465,16 @@ void Sema::struct_constructor(ast::CallExpr* e, const ast::StructDecl* s) {
           {s->name, std::to_string(s->fields.size()), std::to_string(e->args.size())});
     return;
   }
+  // Each argument is typed expecting its field's type (as oslc does: `S(f(), f())` takes the
+  // overloads of f returning the two fields' types).
   for (size_t i = 0; i < e->args.size(); ++i) {
     const Type& ft = s->fields[i]->type;
-    if (e->args[i]->kind == ast::ExprKind::InitList)
+    if (e->args[i]->kind == ast::ExprKind::InitList) {
       init_list(e->args[i], ft);
-    else
+    } else {
+      expr(e->args[i], &ft);
       convert(e->args[i], ft);
+    }
   }
 }
 

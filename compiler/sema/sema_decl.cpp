@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <ranges>
 #include <set>
 
 namespace lobe::sema {
@@ -17,6 +18,7 @@ bool check(ast::TranslationUnit& tu, diag::DiagnosticEngine& diags, const SemaOp
 bool Sema::run() {
   int errors_before = diags_.error_count();
   push_scope();
+  scopes_.back().file_level = true;
   for (auto& d : tu_.decls) {
     if (diags_.stopped()) break;
     decl(d.get());
@@ -54,24 +56,55 @@ bool same_signature(const ast::FunctionDecl* a, const ast::FunctionDecl* b) {
 }
 } // namespace
 
-// Functions overload by parameter types and return type; a definition supersedes an earlier
-// prototype of the same signature.
+// Functions overload by parameter types and by return type; a prototype is completed by the
+// definition of its signature. Defining a signature of the same overload scope again (at file
+// level, that includes the builtins) replaces it from here on, with oslc's warning.
 void Sema::declare_function(ast::FunctionDecl* f) {
   auto& set = scopes_.back().funcs[f->name];
-  for (auto& existing : set) {
-    if (!same_signature(existing, f)) continue;
-    if (existing->body && f->body) {
-      error(DiagId::err_redefinition, f->name_range, {f->name});
-      error(DiagId::note_previous_decl, existing->name_range);
-      return;
-    }
+  auto same = std::find_if(set.begin(), set.end(),
+                           [&](ast::FunctionDecl* g) { return same_signature(g, f); });
+  if (same != set.end() && (!(*same)->body || !f->body)) { // a prototype and its definition
     if (f->body) {
-      defined_by_[existing] = f;
-      existing = f;
+      defined_by_[*same] = f;
+      *same = f;
     }
     return;
   }
+  warn_redefinition(f);
+  if (same != set.end()) set.erase(same); // the new definition is the newest overload
   set.push_back(f);
+}
+
+// oslc's warning when a definition repeats a signature of its overload scope: at file level
+// (which includes the shader body and the builtins) or in the same nested scope. Not for the
+// standard header, which may restate one.
+void Sema::warn_redefinition(ast::FunctionDecl* f) {
+  if (!f->body || f->from_stdlib) return;
+  bool file_level = scopes_.back().file_level;
+  std::vector<ast::FunctionDecl*> previous =
+      file_level ? lookup_functions(f->name) : scopes_.back().funcs[f->name];
+  for (ast::FunctionDecl* g : previous) {
+    if (!g->body || !same_signature(g, f)) continue;
+    error(DiagId::warn_function_redefined, f->name_range, {Candidate{f}.signature()});
+    error(DiagId::note_previous_decl, g->name_range);
+    return;
+  }
+  for (const BuiltinSig& b : builtins().lookup(f->name)) {
+    if (!file_level || !redefines(f, b)) continue;
+    error(DiagId::warn_function_redefined, f->name_range, {Candidate{f}.signature()});
+    error(DiagId::note_previous_builtin, SourceRange(), {b.signature()});
+    return;
+  }
+}
+
+// A user function with exactly a builtin's signature (return and parameter types) replaces it.
+bool Sema::redefines(const ast::FunctionDecl* f, const BuiltinSig& b) {
+  if (f->is_builtin || b.extra != BuiltinSig::Extra::None || b.any_param || b.array_param)
+    return false;
+  if (!(f->return_type == b.ret) || f->params.size() != b.params.size()) return false;
+  for (size_t i = 0; i < b.params.size(); ++i)
+    if (!(f->params[i]->type == b.params[i].type)) return false;
+  return true;
 }
 
 ast::VarDecl* Sema::lookup_var(const std::string& name) {
@@ -82,13 +115,23 @@ ast::VarDecl* Sema::lookup_var(const std::string& name) {
   return global(name);
 }
 
-std::vector<ast::FunctionDecl*> Sema::lookup_functions(const std::string& name) {
+// The functions named `name` in sight, newest declaration first, as oslc sees them. The file
+// scope and the shader's parameter and body scopes are one overload scope, which also holds
+// the builtins; in any other scope (a function body, a block) a function declared there hides
+// every outer overload of its name, the builtins too (`*nested` is then set).
+std::vector<ast::FunctionDecl*> Sema::lookup_functions(const std::string& name, bool* nested) {
   std::vector<ast::FunctionDecl*> out;
+  if (nested) *nested = false;
   for (auto s = scopes_.rbegin(); s != scopes_.rend(); ++s) {
     auto it = s->funcs.find(name);
-    if (it == s->funcs.end()) continue;
-    for (auto* f : it->second) {
-      bool hidden = false; // an inner overload of the same signature hides an outer one
+    if (it == s->funcs.end() || it->second.empty()) continue;
+    auto newest_first = std::views::reverse(it->second);
+    if (!s->file_level) {
+      if (nested) *nested = true;
+      return {newest_first.begin(), newest_first.end()};
+    }
+    for (auto* f : newest_first) {
+      bool hidden = false; // a newer overload of the same signature replaces an older one
       for (auto* o : out) hidden |= same_signature(o, f);
       if (!hidden) out.push_back(f);
     }
@@ -221,13 +264,20 @@ void Sema::shader_decl(ast::ShaderDecl* s) {
   }
   shader_ = s;
   metadata(s->metadata);
+  // The parameters' and the body's scopes: for functions, one overload scope with the file's.
   push_scope();
+  scopes_.back().file_level = true;
   for (auto& p : s->params) {
     check_param_name(p.get(), s->from_stdlib);
     var_decl(p.get()); // a default may use globals and earlier parameters
     metadata(p->metadata);
   }
-  if (s->body) compound(s->body.get(), true);
+  if (s->body) {
+    push_scope();
+    scopes_.back().file_level = true;
+    compound(s->body.get(), false);
+    pop_scope();
+  }
   pop_scope();
 }
 

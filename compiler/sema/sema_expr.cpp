@@ -27,10 +27,10 @@ void Sema::expr(ExprPtr& e, const Type* expected) {
     ident(static_cast<ast::IdentExpr*>(e.get()));
     break;
   case K::Unary:
-    unary(static_cast<ast::UnaryExpr*>(e.get()));
+    unary(static_cast<ast::UnaryExpr*>(e.get()), expected);
     break;
   case K::Binary:
-    binary(static_cast<ast::BinaryExpr*>(e.get()));
+    binary(static_cast<ast::BinaryExpr*>(e.get()), expected);
     break;
   case K::Assign:
     assign(static_cast<ast::AssignExpr*>(e.get()));
@@ -92,7 +92,11 @@ void Sema::convert(ExprPtr& e, const Type& to) {
 }
 
 void Sema::coerce(ExprPtr& e, const Type& to) {
-  if (e->type == to || e->type.is_error() || to.is_error() || to.is_unsized_array()) return;
+  if (e->type == to || e->type.is_error() || to.is_error()) return;
+  if (to.is_unsized_array()) { // an unsized parameter: the argument's length, its element type
+    if (e->type.base == to.base || e->type.is_unsized_array()) return;
+    return coerce(e, Type(to.base, e->type.arraylen, to.strct));
+  }
   if (to.is_closure() && e->kind == ast::ExprKind::FloatLit) { // 0.0: the null closure, as 0
     auto zero = std::make_unique<ast::IntLit>();
     zero->range = e->range;
@@ -149,8 +153,10 @@ bool Sema::operator_overload(ast::Expr* e, const char* opname, std::vector<ExprP
   return true;
 }
 
-void Sema::unary(ast::UnaryExpr* e) {
-  expr(e->operand);
+// The operand inherits the expected type of the whole expression, as in oslc (`color c = -f()`
+// takes the color overload of f).
+void Sema::unary(ast::UnaryExpr* e, const Type* expected) {
+  expr(e->operand, expected);
   const Type& t = e->operand->type;
   e->type = t_error();
   if (t.is_error()) return;
@@ -197,9 +203,11 @@ bool Sema::closure_binary(ast::BinaryExpr* e) {
   return true;
 }
 
-void Sema::binary(ast::BinaryExpr* e) {
-  expr(e->lhs);
-  expr(e->rhs);
+// Both operands inherit the expected type of the whole expression, as in oslc, even for a
+// comparison (`color b = f() == 1` takes the color overload of f).
+void Sema::binary(ast::BinaryExpr* e, const Type* expected) {
+  expr(e->lhs, expected);
+  expr(e->rhs, expected);
   const Type l = e->lhs->type, r = e->rhs->type;
   e->type = t_error();
   if (l.is_error() || r.is_error()) return;
@@ -337,7 +345,7 @@ void Sema::assign(ast::AssignExpr* e) {
     }
     return;
   }
-  expr(e->rhs);
+  expr(e->rhs, &lt); // `x op= f()` expects x's type, as `x = f()` does
   const Type rt = e->rhs->type;
   if (rt.is_error()) return;
   using Op = ast::BinaryOp;
@@ -407,8 +415,11 @@ void Sema::incdec(ast::IncDecExpr* e) {
     check_writable(e->operand.get(), e->operand->range);
 }
 
+// oslc types the condition expecting an int; the branches inherit the expected type.
 void Sema::ternary(ast::TernaryExpr* e, const Type* expected) {
-  condition(e->cond, /*allow_closure=*/false);
+  const Type int_type = t_int();
+  expr(e->cond, &int_type);
+  truth(e->cond, /*allow_closure=*/false);
   expr(e->then_expr, expected);
   expr(e->else_expr, expected);
   const Type a = e->then_expr->type, b = e->else_expr->type;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "sema/builtins.h"
+#include "sema/overload.h"
 #include "sema/sema.h"
 #include "sema/types.h"
 
@@ -25,7 +26,8 @@ public:
 private:
   struct Scope {
     std::unordered_map<std::string, ast::VarDecl*> vars;
-    std::unordered_map<std::string, std::vector<ast::FunctionDecl*>> funcs;
+    std::unordered_map<std::string, std::vector<ast::FunctionDecl*>> funcs; // declaration order
+    bool file_level = false; // the file's or the shader's (see lookup_functions)
   };
   struct CallEdge {
     ast::FunctionDecl* caller;
@@ -36,9 +38,10 @@ private:
   struct Candidate {
     ast::FunctionDecl* fn = nullptr;
     const BuiltinSig* builtin = nullptr;
-    int cost = 0;
+    int score = 0;
     ast::Type ret() const { return fn ? fn->return_type : builtin->ret; }
     std::string signature() const;
+    SourceRange where() const; // the declaration (none for a builtin)
   };
 
   void error(DiagId id, SourceRange r, std::vector<std::string> args = {}) {
@@ -51,8 +54,10 @@ private:
   void declare_var(ast::VarDecl* v);
   void check_param_name(const ast::VarDecl* p, bool from_stdlib);
   void declare_function(ast::FunctionDecl* f);
+  void warn_redefinition(ast::FunctionDecl* f);
+  static bool redefines(const ast::FunctionDecl* f, const BuiltinSig& b);
   ast::VarDecl* lookup_var(const std::string& name);
-  std::vector<ast::FunctionDecl*> lookup_functions(const std::string& name);
+  std::vector<ast::FunctionDecl*> lookup_functions(const std::string& name, bool* nested = nullptr);
   ast::VarDecl* global(const std::string& name);
   const ast::StructDecl* find_struct(const std::string& name) const;
   void decl(ast::Decl* d);
@@ -79,8 +84,8 @@ private:
   void init_list(ExprPtr& e, const ast::Type& target);
   bool init_list_fits(const ast::Expr* e, const ast::Type& target) const;
   void ident(ast::IdentExpr* e);
-  void unary(ast::UnaryExpr* e);
-  void binary(ast::BinaryExpr* e);
+  void unary(ast::UnaryExpr* e, const ast::Type* expected);
+  void binary(ast::BinaryExpr* e, const ast::Type* expected);
   bool closure_binary(ast::BinaryExpr* e);
   // `exact`: index of an operand that must match its parameter without conversion (the
   // target of a compound assignment, which stays an lvalue), or -1.
@@ -93,6 +98,7 @@ private:
   void index_checked_base(ast::IndexExpr* ix);
   void member(ast::MemberExpr* e);
   void cast(ast::CastExpr* e);
+  void check_cast(ast::CastExpr* e);
   void construct(ExprPtr& e);
   bool check_writable(ast::Expr* target, SourceRange where, bool output_arg = false);
   void check_builtin_keyword(ast::CallExpr* e, const ast::StringLit* name, ExprPtr& value);
@@ -102,12 +108,20 @@ private:
   void call(ast::CallExpr* e, const ast::Type* expected);
   void struct_constructor(ast::CallExpr* e, const ast::StructDecl* s);
   bool closure_call(ast::CallExpr* e);
-  int candidate_cost(const Candidate& c, const std::vector<ExprPtr>& args) const;
+  std::vector<Candidate> overloads(const std::string& name, bool is_closure);
+  void resolve(ast::CallExpr* e, std::vector<Candidate>& chain, const ast::Type* expected,
+               bool is_closure);
+  int candidate_score(const Candidate& c, const std::vector<ExprPtr>& args) const;
   void apply_candidate(ast::CallExpr* e, const Candidate& c);
+  void check_output_arg(ast::CallExpr* e, size_t i, const ast::Type& pt);
   static bool is_declared_closure(const ast::FunctionDecl* f);
   void add_keyword(ast::CallExpr* e, const std::string& name, int param_index, ast::Expr* value);
   void check_format_args(ast::CallExpr* e);
-  void report_no_match(ast::CallExpr* e, const std::vector<Candidate>& cands, bool ambiguous);
+  void report_no_match(ast::CallExpr* e, const std::vector<Candidate>& chain);
+  void report_ambiguous(ast::CallExpr* e, const std::vector<Candidate>& chain,
+                        const OverloadChoice& choice);
+  void note_candidates(ast::CallExpr* e, const std::vector<Candidate>& chain,
+                       const std::vector<size_t>& which, DiagId note);
   std::string arg_types(const std::vector<ExprPtr>& args) const;
 
   ast::TranslationUnit& tu_;

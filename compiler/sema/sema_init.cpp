@@ -16,6 +16,10 @@ std::string tname(const Type& t) { return ast::to_string(t); }
 
 void Sema::cast(ast::CastExpr* e) {
   expr(e->operand, &e->target); // `(color) noise(P)` picks the color-returning overload
+  check_cast(e);
+}
+
+void Sema::check_cast(ast::CastExpr* e) {
   const Type& from = e->operand->type;
   const Type& to = e->target;
   e->type = to;
@@ -27,7 +31,9 @@ void Sema::cast(ast::CastExpr* e) {
   if (!ok) error(DiagId::err_bad_cast, e->range, {tname(from), tname(to)});
 }
 
-// T(x) with one non-string argument is a cast; the other forms stay constructors.
+// T(x) with one non-string argument is a cast; the other forms stay constructors. What the
+// arguments expect follows oslc: T for float(x) and the triples' T(x), nothing for int(x) and
+// the matrix forms, float for each component of a triple (not for its space name).
 void Sema::construct(ExprPtr& e) {
   auto* c = static_cast<ast::ConstructExpr*>(e.get());
   const Type t = c->target;
@@ -37,10 +43,16 @@ void Sema::construct(ExprPtr& e) {
     k->target = t;
     k->operand = std::move(c->args[0]);
     e = std::move(k);
-    cast(static_cast<ast::CastExpr*>(e.get()));
+    auto* as_cast = static_cast<ast::CastExpr*>(e.get());
+    expr(as_cast->operand, t.is_float() || t.is_triple() ? &t : nullptr);
+    check_cast(as_cast);
     return;
   }
-  for (auto& a : c->args) expr(a);
+  const Type component = t_float();
+  for (size_t i = 0; i < c->args.size(); ++i) {
+    bool is_space = c->args.size() == 4 && i == 0;
+    expr(c->args[i], t.is_triple() && !is_space ? &component : nullptr);
+  }
   c->type = t;
   size_t n = c->args.size();
   bool space = n > 0 && c->args[0]->type.is_string();

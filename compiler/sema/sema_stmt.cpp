@@ -116,7 +116,7 @@ void Sema::stmt(ast::Stmt* s) {
     std::string name = fn ? fn->name : (shader_ ? shader_->name : "shader");
     if (r->value) {
       if (ret.is_void()) {
-        expr(r->value);
+        expr(r->value, &ret); // as oslc: only a void overload fits, else the rank decides
         error(DiagId::err_return_value_in_void, r->value->range, {name});
       } else {
         expr(r->value, &ret);

@@ -1,4 +1,4 @@
-// Implicit conversion costs and operator operand types.
+// Implicit conversions, overload match scores and operator operand types.
 #include "sema/types.h"
 
 namespace lobe::sema {
@@ -17,6 +17,61 @@ int conversion_cost(const Type& from, const Type& to, bool zero_literal) {
   if ((to.is_triple() || to.is_matrix()) && from.is_int()) return 4;
   if (to.is_closure() && zero_literal) return 1;
   return kNoConversion;
+}
+
+namespace {
+bool is_spatial(BaseType b) {
+  return b == BaseType::Point || b == BaseType::Vector || b == BaseType::Normal;
+}
+bool is_triple_base(BaseType b) { return b == BaseType::Color || is_spatial(b); }
+
+// Two triple kinds (or arrays of them): 32 among point/vector/normal, else `color_score`.
+int triple_score(BaseType formal, BaseType actual, int color_score) {
+  return is_spatial(formal) && is_spatial(actual) ? 32 : color_score;
+}
+} // namespace
+
+int match_score(const Type& formal, const Type& actual) {
+  if (formal == actual) return kExactMatch;
+  if (!formal.is_array() && !actual.is_array()) {
+    if (formal.is_float() && actual.is_int()) return 77;
+    if (formal.is_triple() && actual.is_triple()) return triple_score(formal.base, actual.base, 27);
+    if ((formal.is_triple() || formal.is_matrix()) && actual.is_numeric()) return 23;
+    return 0;
+  }
+  if (!formal.is_array() || !actual.is_array()) return 0;
+  if (formal.is_unsized_array() && formal.element() == actual.element()) return 44;
+  if (!formal.is_unsized_array() && formal.arraylen != actual.arraylen) return 0;
+  if (is_triple_base(formal.base) && is_triple_base(actual.base))
+    return triple_score(formal.base, actual.base, 23);
+  return 0;
+}
+
+int return_rank(const Type& t) {
+  switch (t.base) {
+  case BaseType::Float:
+    return 0;
+  case BaseType::Int:
+    return 1;
+  case BaseType::Color:
+    return 2;
+  case BaseType::Vector:
+    return 3;
+  case BaseType::Point:
+    return 4;
+  case BaseType::Normal:
+    return 5;
+  case BaseType::Matrix:
+    return 6;
+  case BaseType::String:
+    return 7;
+  case BaseType::Closure:
+    return 8;
+  case BaseType::Struct:
+    return kStructRank;
+  default:
+    return 10; // void (and error)
+  }
 }
 
 std::optional<Type> common_type(const Type& a, const Type& b) {
