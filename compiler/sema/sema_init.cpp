@@ -68,11 +68,22 @@ void Sema::construct(ExprPtr& e) {
 }
 
 // {a, b, ...} for an array (elements) or a struct (fields). Missing trailing elements or fields
-// are zero (documented in docs/language.md).
+// are zero (documented in docs/language.md). For a triple or a matrix the list is the type's
+// constructor, as in OSL: `color c = {1, 2, 3}` is `color(1, 2, 3)`, `{x}` is `color(x)`,
+// `{"hsv", h, s, v}` and `matrix m = {"shader", 1}` take a space.
 void Sema::init_list(ExprPtr& e, const Type& target) {
   auto* l = static_cast<ast::InitListExpr*>(e.get());
   l->type = t_error();
   if (target.is_error()) return;
+  if (target.is_triple() || target.is_matrix()) {
+    auto c = std::make_unique<ast::ConstructExpr>();
+    c->range = l->range;
+    c->target = target;
+    c->args = std::move(l->elems);
+    e = std::move(c);
+    construct(e);
+    return;
+  }
   std::vector<Type> slots;
   if (target.is_array()) {
     size_t n = target.arraylen > 0 ? size_t(target.arraylen) : l->elems.size();
@@ -104,6 +115,12 @@ bool Sema::init_list_fits(const ast::Expr* e, const Type& target) const {
   if (!l) return false;
   if (target.is_array()) return target.arraylen < 0 || l->elems.size() <= size_t(target.arraylen);
   if (target.is_struct() && target.strct) return l->elems.size() <= target.strct->fields.size();
+  // The constructor forms (see init_list): values, optionally after a space name.
+  size_t n = l->elems.size();
+  bool space = n > 0 && l->elems[0]->kind == ast::ExprKind::StringLit;
+  size_t values = n - (space ? 1 : 0);
+  if (target.is_triple()) return values == 3 || (!space && values == 1);
+  if (target.is_matrix()) return values == 16 || values == 1;
   return false;
 }
 
