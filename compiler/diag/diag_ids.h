@@ -74,7 +74,8 @@ enum class DiagId : uint16_t {
   err_bad_unary,
   err_cannot_assign,
   err_not_assignable,
-  err_write_readonly_param,
+  warn_write_nonoutput_param,
+  warn_write_nonoutput_param_arg,
   err_write_readonly_global,
   err_output_arg_not_lvalue,
   err_missing_return,
@@ -107,6 +108,7 @@ enum class DiagId : uint16_t {
   err_format_struct_arg,
   warn_confusing_comma,
   warn_param_hides_function,
+  warn_library_function_redefined,
   kCount
 };
 

@@ -188,7 +188,7 @@ int Sema::candidate_cost(const Candidate& c, const std::vector<ExprPtr>& args) c
                 : is_declared_closure(c.fn) ? Extra::Keywords
                                             : Extra::None;
   if (args.size() < n || (extra == Extra::None && args.size() != n)) return -1;
-  if (extra == Extra::Keywords) {
+  if (extra == Extra::Keywords || extra == Extra::Pairs) {
     if ((args.size() - n) % 2) return -1;
     for (size_t i = n; i < args.size(); i += 2)
       if (args[i]->kind != ast::ExprKind::StringLit) return -1;
@@ -221,10 +221,18 @@ void Sema::apply_candidate(ast::CallExpr* e, const Candidate& c) {
     if (a->kind == ast::ExprKind::InitList) {
       init_list(a, pt);
     } else if (output) {
-      if (!a->lvalue)
+      if (!a->lvalue) {
         error(DiagId::err_output_arg_not_lvalue, a->range, {std::to_string(i + 1), e->name});
-      else
-        check_writable(a.get(), a->range);
+      } else {
+        // A non-output parameter as a builtin's output argument: silent, as in oslc; as a
+        // user function's, oslc's warning naming the function.
+        check_writable(a.get(), a->range, true);
+        ast::VarDecl* v = root_var(a.get());
+        if (c.fn && v && v->storage == ast::Storage::FuncParam && !v->is_output &&
+            !(v->type.is_array() && a->kind == ast::ExprKind::Index))
+          error(DiagId::warn_write_nonoutput_param_arg, a->range,
+                {v->name, e->name, std::to_string(i + 1), c.fn->params[i]->name});
+      }
     } else {
       coerce(a, pt);
     }
@@ -253,6 +261,18 @@ void Sema::apply_candidate(ast::CallExpr* e, const Candidate& c) {
       auto* name = static_cast<ast::StringLit*>(e->args[i].get());
       check_builtin_keyword(e, name, e->args[i + 1]);
       add_keyword(e, name->value, -1, e->args[i + 1].get());
+    }
+  }
+  if (c.builtin->extra == BuiltinSig::Extra::Pairs) { // any names and types, in order
+    e->num_positional = int(n);
+    for (size_t i = n; i + 1 < e->args.size(); i += 2) {
+      ExprPtr& value = e->args[i + 1];
+      if (c.builtin->pairs_written && !value->lvalue)
+        error(DiagId::err_output_arg_not_lvalue, value->range, {std::to_string(i + 2), e->name});
+      else if (c.builtin->pairs_written)
+        check_writable(value.get(), value->range, true);
+      e->keywords.push_back(
+          {static_cast<ast::StringLit*>(e->args[i].get())->value, -1, value.get()});
     }
   }
 }
@@ -333,7 +353,7 @@ void Sema::check_builtin_keyword(ast::CallExpr* e, const ast::StringLit* name, E
     if (!value->lvalue)
       error(DiagId::err_not_assignable, value->range);
     else
-      check_writable(value.get(), value->range);
+      check_writable(value.get(), value->range, true);
     return;
   }
   if (!assignable(want, value->type) || value->type.is_array()) {

@@ -55,11 +55,18 @@ bool same_signature(const ast::FunctionDecl* a, const ast::FunctionDecl* b) {
 } // namespace
 
 // Functions overload by parameter types and return type; a definition supersedes an earlier
-// prototype of the same signature.
+// prototype of the same signature. A shader's definition of a function the built-in headers
+// define replaces it with a warning, as in OSL (which warns for every redefinition).
 void Sema::declare_function(ast::FunctionDecl* f) {
   auto& set = scopes_.back().funcs[f->name];
   for (auto& existing : set) {
     if (!same_signature(existing, f)) continue;
+    if (existing->body && f->body && existing->from_stdlib && !f->from_stdlib) {
+      error(DiagId::warn_library_function_redefined, f->name_range,
+            {f->name, Candidate{existing, nullptr, 0}.signature()});
+      existing = f;
+      return;
+    }
     if (existing->body && f->body) {
       error(DiagId::err_redefinition, f->name_range, {f->name});
       error(DiagId::note_previous_decl, existing->name_range);
@@ -172,8 +179,9 @@ void Sema::struct_decl(ast::StructDecl* s) {
   }
 }
 
-// OSL warns (and carries on) when a parameter takes the name of a function declared at file
-// scope, a builtin or a closure: calls by that name inside still reach the function.
+// OSL warns (and carries on) when a shader parameter takes the name of a function declared at
+// file scope, a builtin or a closure: calls by that name inside still reach the function.
+// Function parameters may take such names silently, as in oslc.
 void Sema::check_param_name(const ast::VarDecl* p, bool from_stdlib) {
   if (p->name.empty() || from_stdlib) return;
   const ast::FunctionDecl* user = nullptr;
@@ -191,7 +199,6 @@ void Sema::function_decl(ast::FunctionDecl* f) {
     p->writable = p->is_output;
     if (p->type.base == ast::BaseType::Void)
       error(DiagId::err_void_variable, p->name_range, {p->name});
-    check_param_name(p.get(), f->from_stdlib);
   }
   if (f->name.rfind("__operator__", 0) == 0) {
     bool has_struct = false;

@@ -63,7 +63,8 @@ void Sema::expr(ExprPtr& e, const Type* expected) {
     member(static_cast<ast::MemberExpr*>(e.get()));
     break;
   case K::InitList:
-    if (expected && (expected->is_array() || expected->is_struct())) {
+    if (expected && (expected->is_array() || expected->is_struct() || expected->is_triple() ||
+                     expected->is_matrix())) {
       init_list(e, *expected);
     } else {
       error(DiagId::err_init_list_context, e->range);
@@ -283,13 +284,18 @@ ast::VarDecl* Sema::root_var(ast::Expr* e) const {
   return nullptr;
 }
 
-// Function parameters are read-only unless `output`; globals depend on the shader type.
-bool Sema::check_writable(ast::Expr* target, SourceRange where) {
+// A function parameter that is not `output` may still be written, as in OSL: the write reaches
+// the caller's variable (arguments are passed by reference), with oslc's warning, except for
+// the elements of an array parameter and an output argument of a call, which oslc takes
+// silently (`silent`). Which globals are writable depends on the shader type.
+bool Sema::check_writable(ast::Expr* target, SourceRange where, bool silent) {
   ast::VarDecl* v = root_var(target);
   if (!v) return true;
   if (v->storage == ast::Storage::FuncParam && !v->is_output) {
-    error(DiagId::err_write_readonly_param, where, {v->name});
-    return false;
+    v->written = true;
+    bool element = v->type.is_array() && target->kind == ast::ExprKind::Index;
+    if (!silent && !element) error(DiagId::warn_write_nonoutput_param, where, {v->name});
+    return true;
   }
   if (v->storage == ast::Storage::Global) {
     bool ok = v->writable;

@@ -94,7 +94,7 @@ private:
   void member(ast::MemberExpr* e);
   void cast(ast::CastExpr* e);
   void construct(ExprPtr& e);
-  bool check_writable(ast::Expr* target, SourceRange where);
+  bool check_writable(ast::Expr* target, SourceRange where, bool silent = false);
   void check_builtin_keyword(ast::CallExpr* e, const ast::StringLit* name, ExprPtr& value);
   ast::VarDecl* root_var(ast::Expr* e) const;
 
