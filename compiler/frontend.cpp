@@ -10,6 +10,7 @@
 #include "sema/sema.h"
 #include "stdlib/stdlib.h"
 
+#include <algorithm>
 #include <chrono>
 
 namespace lobe::frontend {
@@ -21,31 +22,33 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-// Marks the declarations that come from the standard header.
-void mark_stdlib(ast::TranslationUnit& tu, const diag::SourceManager& sm, int stdlib_id) {
-  if (stdlib_id < 0) return;
-  for (auto& d : tu.decls) d->from_stdlib = sm.buffer_of(sm.file_loc(d->range.begin)) == stdlib_id;
+// Marks the declarations that come from the standard header and the other built-in headers.
+void mark_stdlib(ast::TranslationUnit& tu, const diag::SourceManager& sm,
+                 const std::vector<int>& ids) {
+  if (ids.empty()) return;
+  for (auto& d : tu.decls) {
+    int b = sm.buffer_of(sm.file_loc(d->range.begin));
+    d->from_stdlib = std::find(ids.begin(), ids.end(), b) != ids.end();
+  }
 }
 
 // Runs the preprocessor over the standard header (unless turned off) and the input; returns
 // the output buffer's id and sets `stdlib_id` (-1 without the header) and, when given,
-// `nowarn` (the lines `#pragma osl nowarn` silences).
+// `nowarn` (the lines `#pragma osl nowarn` silences) and `library` (the buffers of the built-in
+// headers the input included, and the standard header's).
 int run_preprocessor(const SourceInput& input, const FrontendOptions& options,
                      diag::SourceManager& sm, diag::DiagnosticEngine& diags, int& stdlib_id,
-                     pp::NowarnLines* nowarn = nullptr) {
+                     pp::NowarnLines* nowarn = nullptr, std::vector<int>* library = nullptr) {
   pp::PPOptions ppo;
   ppo.include_dirs = options.include_dirs;
   ppo.defines = options.defines;
   ppo.undefines = options.undefines;
-  // `#include "stdosl.h"` (which most OSL shaders write) finds the embedded header when no
-  // file of that name is on the search path; its include guard makes it a no-op.
-  ppo.read_file = [user =
-                       options.read_file](const std::string& path) -> std::optional<std::string> {
-    auto text = user ? user(path) : pp::read_file_from_disk(path);
-    if (text) return text;
-    auto slash = path.find_last_of('/');
-    if (path.substr(slash == std::string::npos ? 0 : slash + 1) == stdlib::kStdoslName)
-      return std::string(stdlib::stdosl_source());
+  ppo.read_file = options.read_file;
+  // The built-in headers come last on the search path, as oslc's shader folder does: a file of
+  // the same name on the path wins. `#include "stdosl.h"` (which most OSL shaders write) then
+  // finds the header already included, and its include guard makes it a no-op.
+  ppo.builtin_header = [](const std::string& name) -> std::optional<std::string> {
+    if (auto text = stdlib::find_header(name)) return std::string(*text);
     return std::nullopt;
   };
   pp::Preprocessor pp(sm, diags, ppo);
@@ -60,6 +63,10 @@ int run_preprocessor(const SourceInput& input, const FrontendOptions& options,
     pp.process_file(input.path);
   int out = pp.finish();
   if (nowarn) *nowarn = pp.nowarn_lines();
+  if (library) {
+    *library = pp.builtin_buffers();
+    if (stdlib_id >= 0) library->push_back(stdlib_id);
+  }
   return out;
 }
 
@@ -77,7 +84,8 @@ std::unique_ptr<ast::TranslationUnit> compile_to_ast(const SourceInput& input,
   auto t0 = Clock::now();
   int stdlib_id = -1;
   pp::NowarnLines nowarn;
-  int out = run_preprocessor(input, options, sm, diags, stdlib_id, &nowarn);
+  std::vector<int> library;
+  int out = run_preprocessor(input, options, sm, diags, stdlib_id, &nowarn, &library);
   t.preprocess_ms = ms_since(t0);
   // `#pragma osl nowarn` silences the parser's and type checker's warnings on the next line,
   // for this compile only (the filter holds its own copy of the lines).
@@ -92,7 +100,7 @@ std::unique_ptr<ast::TranslationUnit> compile_to_ast(const SourceInput& input,
   t0 = Clock::now();
   lex::TokenStream ts = lex::lex_buffer(sm, diags, out);
   parse::parse(ts, diags, *tu);
-  mark_stdlib(*tu, sm, stdlib_id);
+  mark_stdlib(*tu, sm, library);
   t.parse_ms = ms_since(t0);
 
   if (!diags.has_errors()) {

@@ -3,6 +3,7 @@
 // reset it at every shading point.
 #include "lobe/context.h"
 
+#include "lobe/detail/dictionary.h"
 #include "lobe/detail/messages.h"
 #include "lobe/renderer_services.h"
 
@@ -21,6 +22,11 @@ ShadingContext& ShadingContext::operator=(ShadingContext&&) noexcept = default;
 detail::MessageStore& ShadingContext::messages() {
   if (!messages_) messages_ = std::make_unique<detail::MessageStore>();
   return *messages_;
+}
+
+detail::Dictionaries& ShadingContext::dictionaries() {
+  if (!dictionaries_) dictionaries_ = std::make_unique<detail::Dictionaries>();
+  return *dictionaries_;
 }
 
 void ShadingContext::begin_shade() {

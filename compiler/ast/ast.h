@@ -352,14 +352,14 @@ struct Decl : Node {
   const DeclKind kind;
   std::string name;
   SourceRange name_range;
-  bool from_stdlib = false; // declared by the automatically included standard header
+  bool from_stdlib = false; // declared by a header built into the compiler (stdosl.h, ...)
   explicit Decl(DeclKind k) : kind(k) {}
 };
 using DeclPtr = std::unique_ptr<Decl>;
 
 enum class Storage : uint8_t {
   Local,       // variable declared in a function or shader body
-  FuncParam,   // function parameter (by reference; writable only if `output`)
+  FuncParam,   // function parameter (by reference; written with a warning unless `output`)
   ShaderParam, // shader parameter (its default is `init`)
   Global,      // shading global (P, N, Ci, ...), declared by sema
   Field,       // struct field
@@ -372,6 +372,8 @@ struct VarDecl : Decl {
   std::unique_ptr<Expr> init; // initialiser / default value (may be null for locals, fields)
   Metadata metadata;          // shader parameters
   bool writable = true;       // sema: false for read-only globals and non-output func params
+  bool written = false;       // sema: a non-output function parameter the body writes (OSL
+                              // allows it with a warning; the caller's variable is written)
   VarDecl() : Decl(DeclKind::Var) {}
 };
 using VarDeclPtr = std::unique_ptr<VarDecl>;
@@ -498,7 +500,8 @@ struct EmptyStmt : Stmt {
 
 // ---- Translation unit -------------------------------------------------------------------------
 
-// One compiled file, with the standard header's declarations first (from_stdlib = true).
+// One compiled file, with the standard header's declarations first (from_stdlib = true, as are
+// those of the other built-in headers it includes).
 struct TranslationUnit {
   std::vector<DeclPtr> decls;                   // structs, functions, shaders, in source order
   std::vector<VarDeclPtr> globals;              // sema: the shading globals referenced by IdentExpr

@@ -84,6 +84,9 @@ const Row kTable[] = {
     ROW(err_cannot_assign, Error, "cannot assign '%0' to '%1'"),
     ROW(err_not_assignable, Error, "expression is not assignable"),
     ROW(warn_write_nonoutput_param, Warning, "cannot write to non-output parameter \"%0\""),
+    ROW(warn_write_nonoutput_param_arg, Warning,
+        "cannot write to non-output parameter \"%0\", as passed to function %1() as arg %2 "
+        "(output parameter \"%3\")"),
     ROW(err_write_readonly_global, Error, "cannot write to global '%0' in %1"),
     ROW(err_output_arg_not_lvalue, Error,
         "argument %0 of '%1' is an output parameter and needs a writable variable"),
@@ -127,6 +130,8 @@ const Row kTable[] = {
         "comma operator is very confusing here; did you mean to use a constructor: %0 = %1(...)?"),
     ROW(warn_param_hides_function, Warning,
         "'%0' already declared in this scope (parameter '%0' hides the function)"),
+    ROW(warn_library_function_redefined, Warning,
+        "'%0' redefines the standard library's '%1', which this definition replaces"),
 };
 #undef ROW
 static_assert(sizeof(kTable) / sizeof(kTable[0]) == size_t(DiagId::kCount),

@@ -81,6 +81,7 @@ enum class DiagId : uint16_t {
   err_cannot_assign,
   err_not_assignable,
   warn_write_nonoutput_param,
+  warn_write_nonoutput_param_arg,
   err_write_readonly_global,
   err_output_arg_not_lvalue,
   err_output_arg_type,
@@ -114,6 +115,7 @@ enum class DiagId : uint16_t {
   err_format_struct_arg,
   warn_confusing_comma,
   warn_param_hides_function,
+  warn_library_function_redefined,
   kCount
 };
 

@@ -144,13 +144,26 @@ std::vector<int> Lowerer::call_user(const ast::FunctionDecl* f,
   for (size_t i = 0; i < f->params.size() && i < args.size(); ++i) {
     const ast::VarDecl* p = f->params[i].get();
     std::vector<int> syms;
-    if (p->is_output && !args[i]->lvalue && p->type.base != ast::BaseType::Struct) {
-      syms = {scratch_copy(args[i], where)}; // oslc writes such an argument to a temporary
-    } else if (p->is_output) {
+    // A non-output parameter the body writes (OSL allows it, with a warning) aliases the
+    // caller's variable as an output one does (a shading global too: OSL then writes even u);
+    // a constant or an expression is copied, so that the write stays inside the call. An
+    // output argument that is no variable (`x + 1`) goes to a temporary, as oslc writes it.
+    bool by_ref = p->is_output || (p->written && p->type.base != ast::BaseType::Struct);
+    if (by_ref && !args[i]->lvalue && p->type.base != ast::BaseType::Struct) {
+      syms = {scratch_copy(args[i], where)};
+    } else if (by_ref) {
       // Another triple kind (a point for `output color`) goes through a temporary of the
       // parameter's type, so the body's operations see the type it declares.
       bool retype = args[i]->type.is_triple() && args[i]->type.base != p->type.base;
       for (const LRef& r : lvalue(args[i])) {
+        ir::SymKind k = sh_.symbols[r.sym].kind;
+        if (!p->is_output && k == ir::SymKind::Const) {
+          int v = load(r, where);
+          int t = temp(sh_.symbols[v].type);
+          emit("assign", {t, v}, 1, where);
+          syms.push_back(t);
+          continue;
+        }
         if (r.whole() && !retype) {
           syms.push_back(r.sym); // alias the caller's variable
           continue;
@@ -222,34 +235,19 @@ int Lowerer::call_arith(const ast::CallExpr* c, int hint) {
   return -2;
 }
 
-// OSL's mod(a, b) is a - b*floor(a/b) (the result has the sign of b), unlike `%` and fmod()
-// (the IR's `mod`, the sign of a). Floats and triples: from div/floor/mul/sub. Ints: the
-// remainder r = a % b, plus b where r is nonzero and its sign differs from b's.
+// OSL's mod(a, b) is a - b*floor(a/b), as its stdosl.h writes it. Floats and triples: the
+// result has the sign of b, unlike `%` and fmod() (the IR's `mod`, the sign of a). Ints: a/b
+// is integer division (truncated, 0 where b == 0), so mod(-5, 3) is -2 and mod(a, 0) is a.
 int Lowerer::floor_mod(const ast::CallExpr* c, int hint) {
   ir::Type t = irtype(c->type, c);
   int a = rvalue(c->args[0].get());
   int b = rvalue(c->args[1].get());
   int r = temp(t);
-  if (t.base != ir::BaseType::Int) {
-    emit("div", {r, a, b}, 1, c);
-    emit("floor", {r, r}, 1, c);
-    emit("mul", {r, r, b}, 1, c);
-    int out = pick(hint, t);
-    emit("sub", {out, a, r}, 1, c);
-    return out;
-  }
-  ir::Type it{ir::BaseType::Int};
-  int zero = ir::intern_int(sh_, 0);
-  int nz = temp(it), rneg = temp(it), bneg = temp(it);
-  emit("mod", {r, a, b}, 1, c);
-  emit("neq", {nz, r, zero}, 1, c);
-  emit("lt", {rneg, r, zero}, 1, c);
-  emit("lt", {bneg, b, zero}, 1, c);
-  emit("neq", {rneg, rneg, bneg}, 1, c);
-  emit("bitand", {nz, nz, rneg}, 1, c);
-  emit("mul", {nz, nz, b}, 1, c);
+  emit("div", {r, a, b}, 1, c);
+  if (t.base != ir::BaseType::Int) emit("floor", {r, r}, 1, c);
+  emit("mul", {r, r, b}, 1, c);
   int out = pick(hint, t);
-  emit("add", {out, r, nz}, 1, c);
+  emit("sub", {out, a, r}, 1, c);
   return out;
 }
 

@@ -55,13 +55,18 @@ void Preprocessor::do_include(const std::vector<PPToken>& raw, Cursor& cur) {
     diags_.report(DiagId::err_include_depth, loc, {std::to_string(opts_.max_include_depth)});
     return;
   }
+  // Search order: the including file's folder ("" only), the -I paths, the working directory
+  // (<> only), then the headers built into the compiler.
   std::vector<std::string> candidates;
   if (!angled) candidates.push_back(dirname(sm_.buffer_name(cur.buffer)) + name);
   for (const auto& d : opts_.include_dirs)
     candidates.push_back(d + (d.empty() || d.back() == '/' ? "" : "/") + name);
-  if (angled) candidates.push_back(name); // last: the working directory / built-in headers
-  for (const auto& path : candidates) {
-    auto text = read(path);
+  if (angled) candidates.push_back(name);
+  size_t on_disk = candidates.size();
+  if (opts_.builtin_header) candidates.push_back(name);
+  for (size_t c = 0; c < candidates.size(); ++c) {
+    const std::string& path = candidates[c];
+    auto text = c < on_disk ? read(path) : opts_.builtin_header(name);
     if (!text) continue;
     if (once_.count(path)) return;
     for (const auto& open : include_stack_) {
@@ -72,6 +77,7 @@ void Preprocessor::do_include(const std::vector<PPToken>& raw, Cursor& cur) {
       }
     }
     int id = sm_.add_file(path, std::move(*text), loc);
+    if (c >= on_disk) builtin_buffers_.push_back(id);
     include_stack_.push_back(path);
     process_buffer(id);
     include_stack_.pop_back();

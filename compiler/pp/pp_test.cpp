@@ -154,6 +154,36 @@ TEST(PP, IncludesWithSearchPathsAndGuards) {
   EXPECT_EQ(m.column, 1);
 }
 
+// Built-in headers come last, as oslc's shader folder does: the including file's folder and the
+// -I paths win, for "" and <> alike; built-in headers may include each other.
+TEST(PP, BuiltinHeadersAreSearchedLast) {
+  std::map<std::string, std::string> builtin = {
+      {"lib.h", "builtin_lib\n"},
+      {"shadowed.h", "builtin_shadowed\n"},
+      {"outer.h", "#pragma once\n#include \"lib.h\"\nouter\n"}};
+  pp::PPOptions o;
+  o.include_dirs = {"inc"};
+  o.builtin_header = [&](const std::string& name) -> std::optional<std::string> {
+    auto it = builtin.find(name);
+    if (it == builtin.end()) return std::nullopt;
+    return it->second;
+  };
+  PPRun r;
+  r.files["inc/shadowed.h"] = "user_shadowed\n";
+  EXPECT_EQ(r.run("#include \"lib.h\"\n#include <shadowed.h>\n#include \"outer.h\"\n"
+                  "#include <outer.h>\n",
+                  o),
+            "builtin_lib user_shadowed builtin_lib outer");
+  EXPECT_FALSE(r.diags.has_errors());
+  EXPECT_STREQ(r.where("outer").file, "outer.h");
+  PPRun local;
+  local.files["shadowed.h"] = "beside_main\n"; // the including file's folder ("" only)
+  EXPECT_EQ(local.run("#include \"shadowed.h\"\n", o), "beside_main");
+  PPRun missing;
+  missing.run("#include \"none.h\"\n", o);
+  EXPECT_TRUE(missing.has(DiagId::err_include_not_found));
+}
+
 TEST(PP, IncludeErrors) {
   PPRun r;
   r.files["a.h"] = "#include \"b.h\"\n";

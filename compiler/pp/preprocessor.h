@@ -33,6 +33,9 @@ struct PPOptions {
   int max_include_depth = 64;
   // Reads a file; null to use the file system. Tests give a virtual file system.
   std::function<std::optional<std::string>(const std::string& path)> read_file;
+  // Headers built into the compiler, asked by the name as written when no file is found on the
+  // search path (the last place searched, as oslc's own shader folder is); null for none.
+  std::function<std::optional<std::string>(const std::string& name)> builtin_header;
 };
 
 struct Macro {
@@ -71,6 +74,8 @@ public:
   const Macro* find_macro(const std::string& name) const;
   // The lines whose warnings `#pragma osl nowarn` silences.
   const NowarnLines& nowarn_lines() const { return nowarn_; }
+  // The SourceManager buffers of the built-in headers included so far (PPOptions::builtin_header).
+  const std::vector<int>& builtin_buffers() const { return builtin_buffers_; }
 
 private:
   struct Cursor {
@@ -129,6 +134,7 @@ private:
   std::vector<std::string> include_stack_; // paths of files being processed
   std::set<std::string> once_;             // files with #pragma once
   NowarnLines nowarn_;
+  std::vector<int> builtin_buffers_;
   int expand_depth_ = 0;
   long expansion_budget_ = 0;
 

@@ -42,6 +42,7 @@ void math(Builder& b) {
     b.generic(f, 1);
   b.add("abs", t_int(), {t_int()});
   b.generic("abs", 1);
+  b.add("fabs", t_int(), {t_int()});
   b.add("sign", t_int(), {t_int()});
   b.generic("sign", 1);
   for (const char* f : {"atan2", "pow", "fmod", "mod", "min", "max", "step"}) {
@@ -184,6 +185,11 @@ void strings(Builder& b) {
   b.add("substr", t_string(), {t_string(), t_int(), t_int()});
   b.add("substr", t_string(), {t_string(), t_int()});
   b.add("getchar", t_int(), {t_string(), t_int()});
+  // split(str, results[], sep = "" (whitespace), maxsplit = arraylength(results)): the count.
+  const Type strings_out(BaseType::String, -1);
+  b.add("split", t_int(), {t_string(), strings_out, t_string(), t_int()}).params[1].output = true;
+  b.add("split", t_int(), {t_string(), strings_out, t_string()}).params[1].output = true;
+  b.add("split", t_int(), {t_string(), strings_out}).params[1].output = true;
   b.add("regex_search", t_int(), {t_string(), t_string()});
   b.add("regex_match", t_int(), {t_string(), t_string()});
   // (subject, int results[], pattern): results receives (begin, end) offset pairs.
@@ -227,20 +233,51 @@ void services(Builder& b) {
       b.add("gettextureinfo", t_int(), {t_string(), t_string(), t}).params[2].output = true;
     }
   }
+  for (BaseType v : values) {
+    // gettextureinfo(file, s, t, query, dest): the UDIM tile at (s, t) of a UDIM file name.
+    for (int len : {0, -1})
+      b.add("gettextureinfo", t_int(), {t_string(), t_float(), t_float(), t_string(), Type(v, len)})
+          .params[4]
+          .output = true;
+    // XML dictionaries: dict_value(node, attribute, dest) for any non-array type.
+    b.add("dict_value", t_int(), {t_int(), t_string(), Type(v, 0)}).params[2].output = true;
+    // pointcloud_get(file, indices[], count, attribute, dest[])
+    b.add("pointcloud_get", t_int(),
+          {t_string(), Type(BaseType::Int, -1), t_int(), t_string(), Type(v, -1)})
+        .params[4]
+        .output = true;
+  }
+  b.add("dict_find", t_int(), {t_string(), t_string()});
+  b.add("dict_find", t_int(), {t_int(), t_string()});
+  b.add("dict_next", t_int(), {t_int()});
+  // pointcloud_search(file, P, radius, maxpoints, [sort,] "attribute", dest[], ...) and
+  // pointcloud_write(file, P, "attribute", value, ...).
+  for (bool sort : {false, true}) {
+    std::vector<Type> ps = {t_string(), t_point(), t_float(), t_int()};
+    if (sort) ps.push_back(t_int());
+    Sig& s = b.add("pointcloud_search", t_int(), ps);
+    s.extra = Sig::Extra::Pairs;
+    s.pairs_written = true;
+  }
+  b.add("pointcloud_write", t_int(), {t_string(), t_point()}).extra = Sig::Extra::Pairs;
   b.add("trace", t_int(), {t_point(), t_vector()}).extra = Sig::Extra::Keywords;
   b.add("fprintf", t_void(), {t_string(), t_string()}).extra = Sig::Extra::Any;
 }
 
 void textures(Builder& b) {
   // texture(filename, s, t, "keyword", value, ...) and friends: float, color or vector (the
-  // colour channels), as in OSL.
+  // first channels), each also with explicit derivatives.
   for (Type r : {t_float(), t_color(), t_vector()}) {
-    b.add("texture", r, {t_string(), t_float(), t_float()}).extra = Sig::Extra::Keywords;
-    b.add("texture", r,
-          {t_string(), t_float(), t_float(), t_float(), t_float(), t_float(), t_float()})
-        .extra = Sig::Extra::Keywords; // with explicit derivatives dsdx dtdx dsdy dtdy
-    b.add("texture3d", r, {t_string(), t_point()}).extra = Sig::Extra::Keywords;
-    b.add("environment", r, {t_string(), t_vector()}).extra = Sig::Extra::Keywords;
+    auto add = [&](const char* name, std::vector<Type> ps) {
+      b.add(name, r, std::move(ps)).extra = Sig::Extra::Keywords;
+    };
+    const Type f = t_float(), v = t_vector();
+    add("texture", {t_string(), f, f});
+    add("texture", {t_string(), f, f, f, f, f, f}); // dsdx dtdx dsdy dtdy
+    add("texture3d", {t_string(), t_point()});
+    add("texture3d", {t_string(), t_point(), v, v, v}); // dPdx dPdy dPdz
+    add("environment", {t_string(), v});
+    add("environment", {t_string(), v, v, v}); // dRdx dRdy
   }
 }
 

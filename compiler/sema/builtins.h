@@ -25,11 +25,13 @@ struct BuiltinSig {
   std::string name;
   ast::Type ret;
   std::vector<BuiltinParam> params;
-  // Extra arguments after the fixed ones: any type (printf, format, error, warning, fprintf),
-  // or `"name", value` keyword pairs (texture).
-  enum class Extra : uint8_t { None, Any, Keywords } extra = Extra::None;
-  bool any_param = false;   // the single parameter accepts any type (isconnected, isconstant)
-  bool array_param = false; // the single parameter accepts any array (arraylength)
+  // Extra arguments after the fixed ones: any type (printf, format, error, warning, concat
+  // takes strings), `"name", value` keyword pairs of known names (texture, trace), or
+  // `"name", value` pairs of any name and type (point-cloud attributes).
+  enum class Extra : uint8_t { None, Any, Keywords, Pairs } extra = Extra::None;
+  bool pairs_written = false; // Pairs: the values are written (pointcloud_search)
+  bool any_param = false;     // the single parameter accepts any type (isconnected, isconstant)
+  bool array_param = false;   // the single parameter accepts any array (arraylength)
 
   std::string signature() const; // "float noise(point, float)"
 };

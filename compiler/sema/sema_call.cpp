@@ -184,7 +184,7 @@ int Sema::candidate_score(const Candidate& c, const std::vector<ExprPtr>& args) 
                 : is_declared_closure(c.fn) ? Extra::Keywords
                                             : Extra::None;
   if (args.size() < n || (extra == Extra::None && args.size() != n)) return kNotViable;
-  if (extra == Extra::Keywords) {
+  if (extra == Extra::Keywords || extra == Extra::Pairs) {
     if ((args.size() - n) % 2) return kNotViable;
     for (size_t i = n; i < args.size(); i += 2)
       if (args[i]->kind != ast::ExprKind::StringLit) return kNotViable;
@@ -220,7 +220,7 @@ void Sema::apply_candidate(ast::CallExpr* e, const Candidate& c) {
     if (a->kind == ast::ExprKind::InitList)
       init_list(a, pt);
     else if (output)
-      check_output_arg(e, i, pt);
+      check_output_arg(e, i, pt, c.fn);
     else
       coerce(a, pt);
   }
@@ -250,19 +250,41 @@ void Sema::apply_candidate(ast::CallExpr* e, const Candidate& c) {
       add_keyword(e, name->value, -1, e->args[i + 1].get());
     }
   }
+  if (c.builtin->extra == BuiltinSig::Extra::Pairs) { // any names and types, in order
+    e->num_positional = int(n);
+    for (size_t i = n; i + 1 < e->args.size(); i += 2) {
+      ExprPtr& value = e->args[i + 1];
+      if (c.builtin->pairs_written && !value->lvalue)
+        error(DiagId::err_output_arg_not_lvalue, value->range, {std::to_string(i + 2), e->name});
+      else if (c.builtin->pairs_written)
+        check_writable(value.get(), value->range, true);
+      e->keywords.push_back(
+          {static_cast<ast::StringLit*>(e->args[i].get())->value, -1, value.get()});
+    }
+  }
 }
 
 // Argument i of `e` for an `output` parameter of type `pt`. A value that is not a variable
 // (`x + 1`) is accepted, as oslc accepts it (the function writes a temporary); a literal is not.
-void Sema::check_output_arg(ast::CallExpr* e, size_t i, const Type& pt) {
+// A non-output parameter as a builtin's output argument is silent, as in oslc; as a user
+// function's (`fn`), it is oslc's warning naming the function.
+void Sema::check_output_arg(ast::CallExpr* e, size_t i, const Type& pt,
+                            const ast::FunctionDecl* fn) {
   ExprPtr& a = e->args[i];
   std::string argno = std::to_string(i + 1);
-  if (is_literal(a.get()))
+  if (is_literal(a.get())) {
     error(DiagId::err_output_arg_not_lvalue, a->range, {argno, e->name});
-  else if (!same_representation(pt, a->type))
+  } else if (!same_representation(pt, a->type)) {
     error(DiagId::err_output_arg_type, a->range, {tname(a->type), argno, e->name, tname(pt)});
-  else if (a->lvalue)
+  } else if (a->lvalue) {
     check_writable(a.get(), a->range, /*output_arg=*/true);
+    ast::VarDecl* v = root_var(a.get());
+    auto* ix = ast::as<ast::IndexExpr>(a.get());
+    bool element = ix && ix->base->type.is_array();
+    if (fn && v && v->storage == ast::Storage::FuncParam && !v->is_output && !element)
+      error(DiagId::warn_write_nonoutput_param_arg, a->range,
+            {v->name, e->name, argno, fn->params[i]->name});
+  }
 }
 
 bool Sema::is_declared_closure(const ast::FunctionDecl* f) {

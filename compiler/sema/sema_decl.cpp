@@ -215,8 +215,9 @@ void Sema::struct_decl(ast::StructDecl* s) {
   }
 }
 
-// OSL warns (and carries on) when a parameter takes the name of a function declared at file
-// scope, a builtin or a closure: calls by that name inside still reach the function.
+// OSL warns (and carries on) when a shader parameter takes the name of a function declared at
+// file scope, a builtin or a closure: calls by that name inside still reach the function.
+// Function parameters may take such names silently, as in oslc.
 void Sema::check_param_name(const ast::VarDecl* p, bool from_stdlib) {
   if (p->name.empty() || from_stdlib) return;
   const ast::FunctionDecl* user = nullptr;
@@ -234,7 +235,6 @@ void Sema::function_decl(ast::FunctionDecl* f) {
     p->writable = p->is_output;
     if (p->type.base == ast::BaseType::Void)
       error(DiagId::err_void_variable, p->name_range, {p->name});
-    check_param_name(p.get(), f->from_stdlib);
   }
   if (f->name.rfind("__operator__", 0) == 0) {
     bool has_struct = false;

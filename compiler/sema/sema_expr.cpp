@@ -300,6 +300,7 @@ bool Sema::check_writable(ast::Expr* target, SourceRange where, bool output_arg)
   ast::VarDecl* v = root_var(target);
   if (!v) return true;
   if (v->storage == ast::Storage::FuncParam && !v->is_output) {
+    v->written = true; // lowering passes it by reference (Lowerer::call_user)
     // oslc does not warn for an array element either.
     auto* ix = ast::as<ast::IndexExpr>(target);
     bool element = ix && ix->base->type.is_array();

@@ -113,7 +113,8 @@ private:
                bool is_closure);
   int candidate_score(const Candidate& c, const std::vector<ExprPtr>& args) const;
   void apply_candidate(ast::CallExpr* e, const Candidate& c);
-  void check_output_arg(ast::CallExpr* e, size_t i, const ast::Type& pt);
+  void check_output_arg(ast::CallExpr* e, size_t i, const ast::Type& pt,
+                        const ast::FunctionDecl* fn = nullptr);
   static bool is_declared_closure(const ast::FunctionDecl* f);
   void add_keyword(ast::CallExpr* e, const std::string& name, int param_index, ast::Expr* value);
   void check_format_args(ast::CallExpr* e);

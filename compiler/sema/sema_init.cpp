@@ -79,9 +79,10 @@ void Sema::construct(ExprPtr& e) {
   for (size_t i = first; i < n; ++i) coerce(c->args[i], t_float());
 }
 
-// {a, b, ...} for an array (elements) or a struct (fields); for a triple or a matrix it is the
-// type's constructor ({x}, {x, y, z}, {"space", x, y, z}, 16 floats), as in oslc. Missing
-// trailing elements or fields are zero (documented in docs/language.md).
+// {a, b, ...} for an array (elements) or a struct (fields). Missing trailing elements or fields
+// are zero (documented in docs/language.md). For a triple or a matrix the list is the type's
+// constructor, as in OSL: `color c = {1, 2, 3}` is `color(1, 2, 3)`, `{x}` is `color(x)`,
+// `{"hsv", h, s, v}` and `matrix m = {"shader", 1}` take a space.
 void Sema::init_list(ExprPtr& e, const Type& target) {
   auto* l = static_cast<ast::InitListExpr*>(e.get());
   l->type = t_error();
@@ -138,6 +139,12 @@ bool Sema::init_list_fits(const ast::Expr* e, const Type& target) const {
   }
   if (target.is_array()) return target.arraylen < 0 || l->elems.size() <= size_t(target.arraylen);
   if (target.is_struct() && target.strct) return l->elems.size() <= target.strct->fields.size();
+  // The constructor forms (see init_list): values, optionally after a space name.
+  size_t n = l->elems.size();
+  bool space = n > 0 && l->elems[0]->kind == ast::ExprKind::StringLit;
+  size_t values = n - (space ? 1 : 0);
+  if (target.is_triple()) return values == 3 || (!space && values == 1);
+  if (target.is_matrix()) return values == 16 || values == 1;
   return false;
 }
 

@@ -5,6 +5,7 @@
 #include "diag/source_manager.h"
 #include "frontend.h"
 #include "sema/builtins.h"
+#include "stdlib/stdlib.h"
 
 #include <gtest/gtest.h>
 
@@ -797,4 +798,78 @@ TEST(Sema, BuiltinsByOslcRules) {
   Checked mix("shader s() { mix(P, N, 0.5); }");
   EXPECT_NE(mix.text().find("note: chosen: point mix(point, point, float)"), std::string::npos)
       << mix.text();
+}
+
+// Every header built into the compiler (OSL's shader folder: color2.h ... oslutil.h) is found
+// without -I and compiles without a diagnostic.
+TEST(Sema, BuiltinHeadersCompileCleanly) {
+  int n = 0;
+  for (const stdlib::Header& h : stdlib::headers()) {
+    Checked c("#include \"" + std::string(h.name) + "\"\nshader s() {}");
+    EXPECT_TRUE(c.diags.diagnostics().empty()) << h.name << "\n" << c.text();
+    ++n;
+  }
+  EXPECT_EQ(n, 7);
+  Checked use("#include <color4.h>\n#include \"vector2.h\"\n#include \"matrix33.h\"\n"
+              "shader s(color4 p = color4({0.5, 1.5, 2.5}, 3.5)) {"
+              " color4 q = 2 / p + mix(p, p, 0.5); vector2 v = normalize(vector2(3, 4)) * 2;"
+              " matrix33 m = matrix44To33(matrix(2)); point x = transform(m / 2, P); }");
+  EXPECT_TRUE(use.ok()) << use.text();
+}
+
+// A shader's own definition of a function the built-in headers define replaces it with a
+// warning, as in OSL; two definitions in the shader's file are still an error.
+TEST(Sema, RedefiningALibraryFunctionWarns) {
+  Checked c("#include \"color2.h\"\n"
+            "float hypot(float a, float b) { return a + b; }\n"
+            "color2 abs(color2 a) { return a; }\n"
+            "int iscameraray() { return 42; }\n"
+            "shader s() { float h = hypot(1, 2); color2 a = abs(color2(-1, 1));"
+            " int r = iscameraray(); }");
+  EXPECT_TRUE(c.ok()) << c.text();
+  EXPECT_EQ(c.count(DiagId::warn_function_redefined), 3) << c.text();
+  EXPECT_NE(c.body().find("hypot"), std::string::npos);
+}
+
+// {x}, {x, y, z} and {"space", x, y, z} for a triple, and the matrix forms, are the type's
+// constructor (OSL): in declarations, parameter defaults, arguments, struct fields, returns.
+TEST(Sema, InitListsForTriplesAndMatrices) {
+  Checked c("struct S { color c; float f; };\n"
+            "color twice(color x) { return 2 * x; }\n"
+            "point origin() { return {0, 0, 0}; }\n"
+            "shader s(vector d = {1, 2, 3}, matrix M = {\"shader\", 1}) {"
+            " color a = {1, 2, 3}; color g = {0.5}; point p = {\"common\", 4, 5, 6};"
+            " matrix m = {1}; matrix n = {1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1};"
+            " S st = {{1, 2, 3}, 4}; color t = twice({3, 2, 1}); color arr[2] = {{1}, {2, 3, 4}};"
+            " a = {u, v, 1}; }");
+  EXPECT_TRUE(c.ok()) << c.text();
+  EXPECT_NE(c.body().find("(var color a (construct color:color (icast float:float 1:int)"),
+            std::string::npos)
+      << c.body();
+  Checked bad("shader s() { color a = {1, 2}; vector b = {\"x\"}; }");
+  EXPECT_EQ(bad.count(DiagId::err_bad_constructor), 2) << bad.text();
+}
+
+// The standard library beyond the core set: split, dictionaries, point clouds, int fabs,
+// vector-returning textures and the explicit-derivative and UDIM forms.
+TEST(Sema, MoreStandardLibraryForms) {
+  Checked c(
+      "shader s() { string r[3]; int n = split(\"a b\", r) + split(\"a,b\", r, \",\")"
+      " + split(\"a,b\", r, \",\", 2); int d = dict_find(\"<a/>\", \"//a\");"
+      " int e = dict_find(d, \"b\") + dict_next(d); color cv; matrix mv; string sv;"
+      " int f = dict_value(d, \"x\", cv) + dict_value(d, \"y\", mv) + dict_value(d, \"\", sv);"
+      " int idx[2]; float dist[2]; point pos[2];"
+      " int g = pointcloud_search(\"p.ptc\", P, 1, 2, \"index\", idx, \"distance\", dist)"
+      " + pointcloud_search(\"p.ptc\", P, 1, 2, 1, \"position\", pos)"
+      " + pointcloud_get(\"p.ptc\", idx, 2, \"position\", pos)"
+      " + pointcloud_write(\"p.ptc\", P, \"u\", u); int h = fabs(-3);"
+      " vector tv = texture(\"t.tx\", u, v); vector ev = environment(\"e.tx\", I, I, I);"
+      " color t3 = texture3d(\"t.tx\", P, I, I, I, \"blur\", 0.1); int res[2];"
+      " int k = gettextureinfo(\"t.<UDIM>.tx\", u, v, \"resolution\", res);"
+      " matrix W; int w = getmatrix(\"world\", W); color ior, ext;"
+      " artistic_ior(color(0.9), color(0.5), ior, ext); int q = iscameraray(); }");
+  EXPECT_TRUE(c.ok()) << c.text();
+  // Point-cloud results are written: they must be variables.
+  Checked bad("shader s() { int n = pointcloud_search(\"p.ptc\", P, 1, 2, \"index\", 3); }");
+  EXPECT_EQ(bad.count(DiagId::err_output_arg_not_lvalue), 1) << bad.text();
 }

@@ -1,6 +1,7 @@
 // stdosl.h: the part of Lobe's standard library written in the shading language itself, as
 // OSL's stdosl.h does. Included automatically before every shader (embedded into the compiler
-// at build time). The functions implemented natively are in compiler/sema/builtins.cpp.
+// at build time with the other built-in headers, see CMakeLists.txt). The functions
+// implemented natively are in compiler/sema/builtins.cpp.
 
 #ifndef STDOSL_H
 #define STDOSL_H
@@ -159,5 +160,49 @@ float aastep(float edge, float s, float dedge, float ds) {
 }
 float aastep(float edge, float s, float ds) { return aastep(edge, s, filterwidth(edge), ds); }
 float aastep(float edge, float s) { return aastep(edge, s, filterwidth(edge), filterwidth(s)); }
+
+// Conductor IOR from artistic parameters (Gulbrandsen, "Artist Friendly Metallic Fresnel",
+// JCGT 3(4), 2014): the reflectivity at normal incidence r (clamped to [0, 0.99]) and the edge
+// tint g give n = mix((1 + sqrt r) / (1 - sqrt r), (1 - r) / (1 + r), g) and
+// k = sqrt(max(((n + 1)^2 r - (n - 1)^2) / (1 - r), 0)), per channel, for conductor_bsdf().
+void artistic_ior(color reflectivity, color edge_tint, output color ior, output color extinction) {
+  color r = clamp(reflectivity, 0.0, 0.99);
+  color root = sqrt(r);
+  ior = mix((1.0 + root) / (1.0 - root), (1.0 - r) / (1.0 + r), edge_tint);
+  color above = ior + 1.0, below = ior - 1.0;
+  extinction = sqrt(max((above * above * r - below * below) / (1.0 - r), 0.0));
+}
+
+// Renderer state: the ray-type tests OSL keeps for old shaders, and the matrix from a space
+// to "common".
+int iscameraray() { return raytype("camera"); }
+int isdiffuseray() { return raytype("diffuse"); }
+int isglossyray() { return raytype("glossy"); }
+int isshadowray() { return raytype("shadow"); }
+int getmatrix(string from, output matrix M) { return getmatrix(from, "common", M); }
+
+// Displacement. bump() sets N to the normal the surface would have if it were moved by
+// `offset` (common space), displace() also moves P. The new normal is that of the moved
+// positions (calculatenormal from the derivatives of P + offset), corrected by how far the
+// interpolated N was from the geometric Ng, so that smooth shading over facets stays smooth.
+// With a float, the offset is along N, `amp` units measured in common space or in `space`.
+void bump(vector offset) {
+  normal smooth = normalize(N) - normalize(Ng);
+  N = normalize(normalize(calculatenormal(P + offset)) + smooth);
+}
+void bump(float amp) { bump(amp * vector(normalize(N))); }
+void bump(string space, float amp) {
+  vector dir = vector(normalize(N));
+  bump(amp / length(transform(space, dir)) * dir);
+}
+void displace(vector offset) {
+  bump(offset);
+  P += offset;
+}
+void displace(float amp) { displace(amp * vector(normalize(N))); }
+void displace(string space, float amp) {
+  vector dir = vector(normalize(N));
+  displace(amp / length(transform(space, dir)) * dir);
+}
 
 #endif // STDOSL_H

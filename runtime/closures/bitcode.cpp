@@ -95,6 +95,7 @@ LOBE_ENTRIES(dielectric_bsdf, kDielectricId)
 LOBE_ENTRIES(generalized_schlick_bsdf, kGeneralizedSchlickId)
 LOBE_ENTRIES(sheen_bsdf, kSheenId)
 LOBE_ENTRIES(toon, kToonId)
+LOBE_ENTRIES(subsurface_bssrdf, kSubsurfaceBssrdfId)
 #undef LOBE_ENTRIES
 
 } // extern "C"

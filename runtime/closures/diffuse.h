@@ -1,7 +1,8 @@
 // Diffuse lobes: Lambert (reflection and translucency), Oren-Nayar, Fujii/EON Oren-Nayar and
 // Burley, all cosine-sampled.
 //
-//   lambert       f = rho / pi                               (diffuse, translucent*)
+//   lambert       f = rho / pi               (diffuse, translucent*, subsurface_bssrdf: Lobe
+//                 renders its medium as this diffuse lobe with the albedo, see docs/closures.md)
 //   oren_nayar    f = rho/pi (A + B max(0, s)/t),  A = 1 - 0.5 s2/(s2 + 0.33),
 //                 B = 0.45 s2/(s2 + 0.09), s2 = sigma^2, s = wi.wo - cos_i cos_o,
 //                 t = max(cos_i, cos_o)                     (Oren & Nayar 1994, qualitative)

@@ -125,6 +125,12 @@ template <class Fn> bool with_lobe(int id, const unsigned char* p, Fn&& fn) {
     fn(Sheen::make(vmax0(sanitize(q.albedo)), r), f);
     return true;
   }
+  case kSubsurfaceBssrdfId: { // Lobe has no subsurface transport: diffuse with the albedo
+    const auto& q = as<SubsurfaceBssrdfParams>(p);
+    if (!make_frame(q.N, f)) return false;
+    fn(Lambert{vmax0(sanitize(q.albedo)), false}, f);
+    return true;
+  }
   case kToonId: {
     const auto& q = as<ToonParams>(p);
     if (!make_frame(q.N, f)) return false;

@@ -118,6 +118,33 @@ struct MeasuredParams {
   Str label;
 };
 
+struct SubsurfaceParams {
+  float eta, g;
+  Color3 mfp, albedo;
+  Str label;
+};
+struct SubsurfaceBssrdfParams {
+  Vec3 N;
+  Color3 albedo;
+  float transmission_depth;
+  Color3 transmission_color;
+  float anisotropy;
+  Str label;
+};
+struct AnisotropicVdfParams {
+  Color3 albedo, extinction;
+  float anisotropy;
+  Str label;
+};
+struct MediumVdfParams {
+  Color3 albedo;
+  float transmission_depth;
+  Color3 transmission_color;
+  float anisotropy, ior;
+  int priority;
+  Str label;
+};
+
 template <class P> const P& as_params(const unsigned char* p) {
   return *reinterpret_cast<const P*>(p);
 }
@@ -150,6 +177,10 @@ LOBE_ID(kDebugId, "debug");
 LOBE_ID(kLayerId, "layer");
 LOBE_ID(kToonId, "toon");
 LOBE_ID(kMeasuredId, "measured_bsdf");
+LOBE_ID(kSubsurfaceId, "subsurface");
+LOBE_ID(kSubsurfaceBssrdfId, "subsurface_bssrdf");
+LOBE_ID(kAnisotropicVdfId, "anisotropic_vdf");
+LOBE_ID(kMediumVdfId, "medium_vdf");
 #undef LOBE_ID
 static_assert(kDiffuseId >= 0 && kOrenNayarId >= 0 && kOrenNayarDiffuseId >= 0 && kBurleyId >= 0 &&
                   kTranslucentId >= 0 && kTranslucentBsdfId >= 0 && kPhongId >= 0 &&
@@ -158,7 +189,8 @@ static_assert(kDiffuseId >= 0 && kOrenNayarId >= 0 && kOrenNayarDiffuseId >= 0 &
                   kGeneralizedSchlickId >= 0 && kSheenId >= 0 && kTransparentId >= 0 &&
                   kTransparentBsdfId >= 0 && kEmissionId >= 0 && kUniformEdfId >= 0 &&
                   kBackgroundId >= 0 && kHoldoutId >= 0 && kDebugId >= 0 && kLayerId >= 0 &&
-                  kToonId >= 0 && kMeasuredId >= 0,
+                  kToonId >= 0 && kMeasuredId >= 0 && kSubsurfaceId >= 0 &&
+                  kSubsurfaceBssrdfId >= 0 && kAnisotropicVdfId >= 0 && kMediumVdfId >= 0,
               "every implementation names a registry entry");
 
 // True if the registry entry `key` has exactly these parameter offsets and a block size that
@@ -264,6 +296,26 @@ static_assert(layout_is("measured_bsdf",
                         {O(MeasuredParams, N), O(MeasuredParams, filename), O(MeasuredParams, tint),
                          O(MeasuredParams, label)},
                         sizeof(MeasuredParams)));
+static_assert(layout_is("subsurface",
+                        {O(SubsurfaceParams, eta), O(SubsurfaceParams, g), O(SubsurfaceParams, mfp),
+                         O(SubsurfaceParams, albedo), O(SubsurfaceParams, label)},
+                        sizeof(SubsurfaceParams)));
+static_assert(layout_is("subsurface_bssrdf",
+                        {O(SubsurfaceBssrdfParams, N), O(SubsurfaceBssrdfParams, albedo),
+                         O(SubsurfaceBssrdfParams, transmission_depth),
+                         O(SubsurfaceBssrdfParams, transmission_color),
+                         O(SubsurfaceBssrdfParams, anisotropy), O(SubsurfaceBssrdfParams, label)},
+                        sizeof(SubsurfaceBssrdfParams)));
+static_assert(layout_is("anisotropic_vdf",
+                        {O(AnisotropicVdfParams, albedo), O(AnisotropicVdfParams, extinction),
+                         O(AnisotropicVdfParams, anisotropy), O(AnisotropicVdfParams, label)},
+                        sizeof(AnisotropicVdfParams)));
+static_assert(layout_is("medium_vdf",
+                        {O(MediumVdfParams, albedo), O(MediumVdfParams, transmission_depth),
+                         O(MediumVdfParams, transmission_color), O(MediumVdfParams, anisotropy),
+                         O(MediumVdfParams, ior), O(MediumVdfParams, priority),
+                         O(MediumVdfParams, label)},
+                        sizeof(MediumVdfParams)));
 #undef O
 
 } // namespace lobe::closures

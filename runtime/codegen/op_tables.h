@@ -17,5 +17,6 @@ std::span<const OpEntry> access_ops();   // ops_access.cpp
 std::span<const OpEntry> math_ops();     // ops_math.cpp
 std::span<const OpEntry> geometry_ops(); // ops_geometry.cpp
 std::span<const OpEntry> library_ops();  // ops_library.cpp
+std::span<const OpEntry> data_ops();     // ops_data.cpp
 
 } // namespace lobe::codegen

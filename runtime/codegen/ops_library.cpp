@@ -643,12 +643,16 @@ void op_trace(LayerEmitter& e, const ir::Op& op) {
   e.store(op.args[0], e.convert(Val{Dual{r}}, BaseType::Int, e.arg(op, 0).type.base));
 }
 
-// gettextureinfo r dest "file" "query"
+// gettextureinfo r dest "file" ["s" "t"] "query": with s and t, the UDIM tile there.
 void op_gettextureinfo(LayerEmitter& e, const ir::Op& op) {
   int dest = op.args[1];
+  bool udim = op.args.size() == 6;
+  llvm::Value* s = udim ? e.load_as(op, 3, BaseType::Float, false)[0].v : e.fconst(0);
+  llvm::Value* t = udim ? e.load_as(op, 4, BaseType::Float, false)[0].v : e.fconst(0);
   llvm::Value* r =
       e.call("lobe_gettextureinfo",
-             {e.sg(), e.env_ptr(), e.load(op.args[2])[0].v, e.load(op.args[3])[0].v,
+             {e.sg(), e.env_ptr(), e.load(op.args[2])[0].v, e.iconst(udim ? 1 : 0), s, t,
+              e.load(op.args[udim ? 5 : 3])[0].v,
               e.iconst(LayerEmitter::type_code(e.sym(dest).type)), e.storage_address(dest)});
   if (e.wants_derivs(dest)) // texture information is constant over the surface
     for (int k = 0; k < std::max(1, e.sym(dest).type.arraylen); ++k)
@@ -673,28 +677,40 @@ llvm::Value* texture_args(LayerEmitter& e, const ir::Op& op, size_t first) {
   auto* block =
       e.entry_alloca(llvm::ArrayType::get(B.getInt8Ty(), sizeof(TextureArgs)), 1, "texargs");
   auto at = [&](size_t off) { return B.CreateConstInBoundsGEP1_64(B.getInt8Ty(), block, off); };
-  B.CreateStore(e.fconst(0), at(offsetof(TextureArgs, blur)));
-  B.CreateStore(e.fconst(1), at(offsetof(TextureArgs, width)));
+  for (size_t k = 0; k < 3; ++k) {
+    B.CreateStore(e.fconst(0), at(offsetof(TextureArgs, blur) + 4 * k));
+    B.CreateStore(e.fconst(1), at(offsetof(TextureArgs, width) + 4 * k));
+  }
   B.CreateStore(e.fconst(0), at(offsetof(TextureArgs, fill)));
   B.CreateStore(e.iconst(0), at(offsetof(TextureArgs, firstchannel)));
-  B.CreateStore(llvm::ConstantPointerNull::get(B.getPtrTy()), at(offsetof(TextureArgs, wrap)));
+  for (size_t k = 0; k < 3; ++k)
+    B.CreateStore(llvm::ConstantPointerNull::get(B.getPtrTy()),
+                  at(offsetof(TextureArgs, wrap) + sizeof(char*) * k));
   B.CreateStore(llvm::ConstantPointerNull::get(B.getPtrTy()), at(offsetof(TextureArgs, interp)));
   B.CreateStore(e.iconst(0), at(offsetof(TextureArgs, has_missing)));
   for (size_t i = first; i + 1 < op.args.size(); i += 2) {
     std::string kw = const_string(e.arg(op, int(i)));
     int v = int(i + 1);
-    if (kw == "blur" || kw == "sblur" || kw == "tblur" || kw == "rblur")
-      B.CreateStore(e.load_as(op, v, BaseType::Float, false)[0].v, at(offsetof(TextureArgs, blur)));
-    else if (kw == "width" || kw == "swidth" || kw == "twidth" || kw == "rwidth")
-      B.CreateStore(e.load_as(op, v, BaseType::Float, false)[0].v,
-                    at(offsetof(TextureArgs, width)));
-    else if (kw == "fill")
+    // "blur", "width" and "wrap" set the s, t and r values; "sblur", "twidth", ... one.
+    std::string axis = kw.size() > 1 && (kw[0] == 's' || kw[0] == 't' || kw[0] == 'r')
+                           ? kw.substr(1)
+                           : std::string();
+    std::string what = axis == "blur" || axis == "width" || axis == "wrap" ? axis : kw;
+    if (what == "blur" || what == "width" || what == "wrap") {
+      bool text = what == "wrap";
+      llvm::Value* x =
+          text ? e.load(op.args[size_t(v)])[0].v : e.load_as(op, v, BaseType::Float, false)[0].v;
+      size_t base = what == "blur"    ? offsetof(TextureArgs, blur)
+                    : what == "width" ? offsetof(TextureArgs, width)
+                                      : offsetof(TextureArgs, wrap);
+      size_t step = text ? sizeof(char*) : sizeof(float);
+      for (size_t k = 0; k < 3; ++k)
+        if (kw == what || kw[0] == "str"[k]) B.CreateStore(x, at(base + step * k));
+    } else if (kw == "fill")
       B.CreateStore(e.load_as(op, v, BaseType::Float, false)[0].v, at(offsetof(TextureArgs, fill)));
     else if (kw == "firstchannel")
       B.CreateStore(e.load_as(op, v, BaseType::Int, false)[0].v,
                     at(offsetof(TextureArgs, firstchannel)));
-    else if (kw == "wrap" || kw == "swrap" || kw == "twrap" || kw == "rwrap")
-      B.CreateStore(e.load(op.args[size_t(v)])[0].v, at(offsetof(TextureArgs, wrap)));
     else if (kw == "interp")
       B.CreateStore(e.load(op.args[size_t(v)])[0].v, at(offsetof(TextureArgs, interp)));
     else if (kw == "missingcolor") {
@@ -749,22 +765,35 @@ void op_texture(LayerEmitter& e, const ir::Op& op) {
   e.store(op.args[0], e.convert(r, n == 1 ? BaseType::Float : BaseType::Color, d.type.base));
 }
 
-// texture3d a "file" P "kw" v...; environment a "file" R "kw" v... (no result derivatives).
+// texture3d a "file" P [dPdx dPdy dPdz] "kw" v...; environment a "file" R [dRdx dRdy]
+// "kw" v... (no result derivatives). Without explicit derivatives, those of P or R filter.
 void op_texture3d(LayerEmitter& e, const ir::Op& op) {
   const ir::Symbol& d = e.arg(op, 0);
   int n = d.type.components();
   Val p = e.load_as(op, 2, BaseType::Vector);
-  std::vector<llvm::Value*> v, dx, dy;
+  std::vector<llvm::Value*> v, dx, dy, dz(3, e.fconst(0));
   for (const Dual& c : p) {
     v.push_back(c.v);
     dx.push_back(c.dx ? c.dx : e.fconst(0));
     dy.push_back(c.dy ? c.dy : e.fconst(0));
   }
-  llvm::Value* args = texture_args(e, op, 3);
+  size_t nderivs = op.opcode == "texture3d" ? 3 : 2;
+  bool explicit_d = op.args.size() >= 3 + nderivs && e.arg(op, 3).type.base != BaseType::String;
+  if (explicit_d) {
+    auto comps = [&](int i) {
+      std::vector<llvm::Value*> c;
+      for (const Dual& x : e.load_as(op, i, BaseType::Vector, false)) c.push_back(x.v);
+      return c;
+    };
+    dx = comps(3);
+    dy = comps(4);
+    if (nderivs == 3) dz = comps(5);
+  }
+  llvm::Value* args = texture_args(e, op, explicit_d ? 3 + nderivs : 3);
   llvm::Value* out = e.spill(std::vector<llvm::Value*>(size_t(n), e.fconst(0)));
   e.call(op.opcode == "texture3d" ? "lobe_texture3d" : "lobe_environment",
          {e.sg(), e.env_ptr(), e.load(op.args[1])[0].v, e.spill(v), e.spill(dx), e.spill(dy),
-          e.iconst(n), out, args});
+          e.spill(dz), e.iconst(n), out, args});
   Val r;
   for (llvm::Value* x : e.reload(out, n)) r.push_back(Dual{x});
   e.store(op.args[0], e.convert(r, n == 1 ? BaseType::Float : BaseType::Color, d.type.base));
@@ -817,7 +846,8 @@ const OpEntry kLibraryOps[] = {
 std::span<const OpEntry> library_ops() { return kLibraryOps; }
 
 OpEmitFn find_op_emitter(const std::string& opcode) {
-  for (auto table : {core_ops(), access_ops(), math_ops(), geometry_ops(), library_ops()})
+  for (auto table :
+       {core_ops(), access_ops(), math_ops(), geometry_ops(), library_ops(), data_ops()})
     for (const OpEntry& e : table)
       if (opcode == e.name) return e.fn;
   return nullptr;

@@ -51,6 +51,8 @@ enum Flags : uint32_t {
   kHoldout = 1u << 6,     // holdout()
   kDebug = 1u << 7,       // debug(tag): an AOV, no light transport
   kLayer = 1u << 8,       // layer(top, base): a combinator over two closures
+  kMedium = 1u << 9,      // describes the medium under the surface (VDFs, subsurface()): no
+                          // surface contribution in Lobe, which renders no volumes
 };
 
 struct ClosureEntry {

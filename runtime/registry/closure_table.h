@@ -135,6 +135,37 @@ inline constexpr ClosureParam kMeasured[] = {
     {"tint", T::Color, true, "1 1 1", "multiplies the measured values"},
     LOBE_LABEL};
 
+// Media (OSL's subsurface and MaterialX's VDFs and BSSRDF): OSL's testrender prints "label"
+// for the MaterialX ones, so Lobe does too.
+inline constexpr ClosureParam kSubsurface[] = {
+    {"eta", T::Float, false, nullptr, "index of refraction of the medium"},
+    {"g", T::Float, false, nullptr, "scattering anisotropy in [-1, 1]"},
+    {"mfp", T::Color, false, nullptr, "mean free path per channel"},
+    {"albedo", T::Color, false, nullptr, "single-scattering albedo"},
+    LOBE_LABEL};
+inline constexpr ClosureParam kSubsurfaceBssrdf[] = {
+    {"N", T::Vector, false, nullptr, "shading normal"},
+    {"albedo", T::Color, false, nullptr, "single-scattering albedo of the medium"},
+    {"transmission_depth", T::Float, false, nullptr,
+     "distance at which white light has become transmission_color"},
+    {"transmission_color", T::Color, false, nullptr, "white light after transmission_depth"},
+    {"anisotropy", T::Float, false, nullptr, "scattering anisotropy in [-1, 1]"},
+    LOBE_LABEL_PRINTED};
+inline constexpr ClosureParam kAnisotropicVdf[] = {
+    {"albedo", T::Color, false, nullptr, "single-scattering albedo"},
+    {"extinction", T::Color, false, nullptr, "extinction coefficient per unit length"},
+    {"anisotropy", T::Float, false, nullptr, "Henyey-Greenstein g in [-1, 1]"},
+    LOBE_LABEL_PRINTED};
+inline constexpr ClosureParam kMediumVdf[] = {
+    {"albedo", T::Color, false, nullptr, "single-scattering albedo"},
+    {"transmission_depth", T::Float, false, nullptr,
+     "distance at which white light has become transmission_color"},
+    {"transmission_color", T::Color, false, nullptr, "white light after transmission_depth"},
+    {"anisotropy", T::Float, false, nullptr, "Henyey-Greenstein g in [-1, 1]"},
+    {"ior", T::Float, false, nullptr, "index of refraction of the medium"},
+    {"priority", T::Int, false, nullptr, "nesting priority of overlapping media"},
+    LOBE_LABEL_PRINTED};
+
 #undef LOBE_LABEL
 #undef LOBE_LABEL_PRINTED
 #undef LOBE_EC
@@ -175,6 +206,14 @@ inline constexpr ClosureEntry kClosures[] = {
      "top over base, base scaled by 1 - albedo(top)"},
     {"toon", "toon", kToon, kR, "Lobe: banded cartoon diffuse + specular"},
     {"measured_bsdf", "measured_bsdf", kMeasured, kR, "Lobe: MERL measured isotropic BRDF"},
+    {"subsurface", "subsurface", kSubsurface, registry::kMedium,
+     "OSL's BSSRDF; no surface contribution (Lobe renders no subsurface transport)"},
+    {"subsurface_bssrdf", "subsurface_bssrdf", kSubsurfaceBssrdf, kR,
+     "approximated by Lambertian reflection with the albedo"},
+    {"anisotropic_vdf", "anisotropic_vdf", kAnisotropicVdf, registry::kMedium,
+     "Henyey-Greenstein medium; no surface contribution"},
+    {"medium_vdf", "medium_vdf", kMediumVdf, registry::kMedium,
+     "dielectric medium (glass, liquids); no surface contribution"},
 };
 
 // Id of a key at compile time (-1 if absent), for the closure library's dispatch.

@@ -6,6 +6,7 @@
 
 #include "lobe/shading.h"
 
+#include <atomic>
 #include <deque>
 #include <map>
 #include <memory>
@@ -55,6 +56,8 @@ struct RuntimeEnv {
   // OpenImageIO TextureSystem, created on the first texture lookup (texture.cpp).
   void* texture_system = nullptr;
   std::once_flag texture_once;
+  // Set by the first point-cloud call, which warns that Lobe has none (ops_dict.cpp).
+  std::atomic<bool> pointcloud_warned{false};
   // Renders a closure tree for printf("%s"); null: a built-in fallback format.
   std::string (*closure_printer)(const ClosureNode*) = nullptr;
 };

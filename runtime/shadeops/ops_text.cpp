@@ -6,6 +6,8 @@
 
 #include <OpenImageIO/strutil.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -13,6 +15,7 @@
 #include <mutex>
 #include <regex>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 
 using lobe::ShaderGlobals;
@@ -141,6 +144,43 @@ int lobe_getchar(const char* s, int i) {
 // this needs OIIO's headers but not its libraries.
 int lobe_strhash(const char* s) {
   return static_cast<int>(static_cast<uint32_t>(OIIO::Strutil::strhash(std::string_view(s))));
+}
+
+// split(s, results[n], sep, maxsplit): the pieces of s, as Python's s.split(sep) with at most
+// maxsplit pieces (maxsplit clamped to [0, n]; the last piece is the unsplit rest), written to
+// results[0..count); the rest of the array is left alone. An empty sep splits at runs of
+// whitespace and drops empty pieces; an empty s has no pieces (as in OSL).
+int lobe_split(RuntimeEnv* env, const char* s, const char* sep, int maxsplit, const char** results,
+               int n) {
+  std::string_view str(s ? s : ""), by(sep ? sep : "");
+  int max = std::clamp(maxsplit, 0, n), count = 0;
+  auto emit = [&](std::string_view piece) { results[count++] = env->strings.intern(piece); };
+  if (max == 0 || str.empty()) return 0;
+  size_t i = 0, len = str.size();
+  if (by.empty()) {
+    auto space = [&](size_t k) { return std::isspace((unsigned char)str[k]) != 0; };
+    while (count < max - 1) {
+      while (i < len && space(i)) ++i;
+      if (i == len) break;
+      size_t j = i;
+      while (i < len && !space(i)) ++i;
+      emit(str.substr(j, i - j));
+    }
+    while (i < len && space(i)) ++i;
+    if (i < len) emit(str.substr(i));
+    return count;
+  }
+  size_t j = 0;
+  while (count < max - 1 && i + by.size() <= len) {
+    if (str.compare(i, by.size(), by) == 0) {
+      emit(str.substr(j, i - j));
+      i = j = i + by.size();
+    } else {
+      ++i;
+    }
+  }
+  emit(str.substr(j));
+  return count;
 }
 
 // regex_search / regex_match (ECMAScript syntax); an invalid pattern matches nothing.

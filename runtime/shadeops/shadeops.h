@@ -26,12 +26,14 @@ const ShadeOpSymbol* find_shadeop(std::string_view name);
 // struct by field offset and passes its address to lobe_texture / lobe_texture3d /
 // lobe_environment.
 struct TextureArgs {
-  float blur = 0;
-  float width = 1;
+  float blur[3] = {0, 0, 0};  // s, t, r ("blur" sets all three, "sblur" one)
+  float width[3] = {1, 1, 1}; // s, t, r ("width" sets all three, "swidth" one)
   float fill = 0;
   int32_t firstchannel = 0;
-  const char* wrap = nullptr;   // "black", "clamp", "periodic", "mirror" or null (file default)
-  const char* interp = nullptr; // "closest", "linear", "cubic", "smartcubic" or null (smartcubic)
+  // s, t, r: "black", "clamp", "periodic", "mirror" or null (the file's default); "wrap" sets
+  // all three, "swrap" one
+  const char* wrap[3] = {nullptr, nullptr, nullptr};
+  const char* interp = nullptr; // "closest", "linear", "cubic", "smartcubic"; other: smartcubic
   int32_t has_missing = 0;
   float missing[4] = {0, 0, 0,
                       0}; // "missingcolor": used (without an error) when the file is missing

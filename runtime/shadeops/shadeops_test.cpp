@@ -14,6 +14,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 using namespace lobe;
 using namespace lobe::shadeops;
@@ -34,6 +35,12 @@ void lobe_noise_d(int, const float*, const float*, const float*, int, const floa
                   float*, int);
 void lobe_gabor(const float*, const float*, const float*, int, const float*, const GaborOptions*,
                 float*, float*, float*, int);
+int lobe_split(RuntimeEnv*, const char*, const char*, int, const char**, int);
+int lobe_dict_find(ShaderGlobals*, const char*, const char*);
+int lobe_dict_find_node(ShaderGlobals*, int, const char*);
+int lobe_dict_next(ShaderGlobals*, int);
+int lobe_dict_value(ShaderGlobals*, RuntimeEnv*, int, const char*, int, int, void*);
+int lobe_pointcloud(ShaderGlobals*, RuntimeEnv*, const char*);
 }
 
 TEST(Format, TriplesIntsAndStrings) {
@@ -94,6 +101,90 @@ TEST(Strings, RegexCacheKeepsMeaning) {
     EXPECT_EQ(lobe_regex("foo", "(", 0), 0);
     EXPECT_EQ(lobe_regex("a(b", "a\\(b", 1), 1);
   }
+}
+
+// The pieces of split() in "[a][b]" form, with the count; expectations are OSL 1.13.12's
+// (testshade -O0, which leaves the unwritten entries alone).
+std::string split_of(RuntimeEnv& env, const char* s, const char* sep, int maxsplit, int n = 5) {
+  std::vector<const char*> r(size_t(n), "x");
+  int count = lobe_split(&env, s, sep, maxsplit, r.data(), n);
+  std::string out = std::to_string(count);
+  for (const char* p : r) out += std::string("[") + p + "]";
+  return out;
+}
+
+TEST(Strings, SplitAsOSL) {
+  RuntimeEnv env;
+  EXPECT_EQ(split_of(env, "a,b,,c,d,e", ",", 3), "3[a][b][,c,d,e][x][x]");
+  EXPECT_EQ(split_of(env, "a,", ",", 5), "2[a][][x][x][x]");
+  EXPECT_EQ(split_of(env, ",,", ",", 2), "2[][,][x][x][x]");
+  EXPECT_EQ(split_of(env, "aaa", "aa", 5), "2[][a][x][x][x]");
+  EXPECT_EQ(split_of(env, " a ", " ", 5), "3[][a][][x][x]");
+  EXPECT_EQ(split_of(env, "a b  ", "", 2), "2[a][b  ][x][x][x]");
+  EXPECT_EQ(split_of(env, "  a b  c  d e", "", 2), "2[a][b  c  d e][x][x][x]");
+  EXPECT_EQ(split_of(env, "a\tb\nc", "", 5), "3[a][b][c][x][x]");
+  EXPECT_EQ(split_of(env, "a,b,c,d,e,f,g", ",", 5), "5[a][b][c][d][e,f,g]");
+  EXPECT_EQ(split_of(env, "a,b,c", ",", 10, 2), "2[a][b,c]"); // maxsplit clamped to the array
+  EXPECT_EQ(split_of(env, "   ", "", 5), "0[x][x][x][x][x]");
+  EXPECT_EQ(split_of(env, "", ",", 5), "0[x][x][x][x][x]");
+  EXPECT_EQ(split_of(env, "a,b", ",", 0), "0[x][x][x][x][x]");
+  EXPECT_EQ(split_of(env, "a,b", ",", -1), "0[x][x][x][x][x]");
+}
+
+// Dictionaries: node ids in query order (a query asked again gives its first id), queries
+// relative to a node, values parsed by type, and errors reported once with OSL's wording.
+TEST(Dictionaries, FindNextValueAndErrors) {
+  RuntimeEnv env;
+  ShadingContext ctx;
+  ShaderGlobals sg{};
+  sg.context = &ctx;
+  const char* xml = "<w><s name=\"a\" v=\"3\" c=\"1, 2 3\"/><s name=\"b\"><t/></s></w>";
+  int first = lobe_dict_find(&sg, xml, "//s");
+  EXPECT_EQ(first, 1);
+  EXPECT_EQ(lobe_dict_next(&sg, 1), 2);
+  EXPECT_EQ(lobe_dict_next(&sg, 2), 0);
+  EXPECT_EQ(lobe_dict_find_node(&sg, 2, "t"), 3);
+  EXPECT_EQ(lobe_dict_find(&sg, xml, "//s"), 1);
+  EXPECT_EQ(lobe_dict_find(&sg, xml, "//none"), 0);
+  EXPECT_EQ(lobe_dict_find_node(&sg, 99, "t"), 0);
+  const char* name = nullptr;
+  EXPECT_EQ(lobe_dict_value(&sg, &env, 2, "name", int(DataType::Base::String), 0, &name), 1);
+  EXPECT_STREQ(name, "b");
+  float c[3] = {0, 0, 0}, m[16];
+  EXPECT_EQ(lobe_dict_value(&sg, &env, 1, "c", int(DataType::Base::Color), 0, c), 1);
+  EXPECT_EQ(c[0], 1.0f);
+  EXPECT_EQ(c[2], 3.0f);
+  EXPECT_EQ(lobe_dict_value(&sg, &env, 1, "v", int(DataType::Base::Matrix), 0, m), 1);
+  EXPECT_EQ(m[15], 3.0f); // no number left: the last one repeats
+  int i = -1;
+  EXPECT_EQ(lobe_dict_value(&sg, &env, 1, "missing", int(DataType::Base::Int), 0, &i), 0);
+  EXPECT_EQ(i, -1);
+  EXPECT_EQ(ctx.errors, 0);
+  EXPECT_EQ(lobe_dict_find(&sg, "<open", "//x"), -1);
+  EXPECT_EQ(lobe_dict_find(&sg, "<open", "//x"), -1);
+  EXPECT_EQ(lobe_dict_find(&sg, xml, "///[["), 0);
+  EXPECT_EQ(lobe_dict_find(&sg, "no_such_file.xml", "//x"), -1);
+  EXPECT_EQ(ctx.errors, 3);
+  EXPECT_NE(ctx.output.find("ERROR: XML parsed with errors: Error parsing start element tag, at "
+                            "offset 4\n"),
+            std::string::npos)
+      << ctx.output;
+  EXPECT_NE(ctx.output.find("ERROR: Invalid dict_find query '///[[': Unrecognized node test\n"),
+            std::string::npos)
+      << ctx.output;
+  EXPECT_NE(ctx.output.find("XML parsed with errors: File was not found, at offset 0"),
+            std::string::npos)
+      << ctx.output;
+}
+
+TEST(PointClouds, NothingFoundWarnedOnce) {
+  RuntimeEnv env;
+  ShadingContext ctx;
+  ShaderGlobals sg{};
+  sg.context = &ctx;
+  EXPECT_EQ(lobe_pointcloud(&sg, &env, "pointcloud_search"), 0);
+  EXPECT_EQ(lobe_pointcloud(&sg, &env, "pointcloud_write"), 0);
+  EXPECT_EQ(ctx.warnings, 1);
 }
 
 TEST(Matrix, InverseDeterminantTransform) {

@@ -26,6 +26,12 @@ void lobe_getchar();
 void lobe_strhash();
 void lobe_regex();
 void lobe_regex_results();
+void lobe_split();
+void lobe_dict_find();
+void lobe_dict_find_node();
+void lobe_dict_next();
+void lobe_dict_value();
+void lobe_pointcloud();
 void lobe_closure_component();
 void lobe_closure_add();
 void lobe_closure_declared();
@@ -77,6 +83,12 @@ const ShadeOpSymbol kTable[] = {
     {"lobe_error", addr(lobe_error), "vpppppp"},
     {"lobe_fprintf", addr(lobe_fprintf), "vpppppp"},
     {"lobe_range_error", addr(lobe_range_error), "vpiippip"},
+    {"lobe_split", addr(lobe_split), "ipppipi"},
+    {"lobe_dict_find", addr(lobe_dict_find), "ippp"},
+    {"lobe_dict_find_node", addr(lobe_dict_find_node), "ipip"},
+    {"lobe_dict_next", addr(lobe_dict_next), "ipi"},
+    {"lobe_dict_value", addr(lobe_dict_value), "ippipiip"},
+    {"lobe_pointcloud", addr(lobe_pointcloud), "ippp"},
     {"lobe_concat", addr(lobe_concat), "pppp"},
     {"lobe_strlen", addr(lobe_strlen), "ip"},
     {"lobe_substr", addr(lobe_substr), "pppii"},
@@ -117,10 +129,10 @@ const ShadeOpSymbol kTable[] = {
     {"lobe_get_userdata", addr(lobe_get_userdata), "ipppiip"},
     {"lobe_setmessage", addr(lobe_setmessage), "vppippii"},
     {"lobe_getmessage", addr(lobe_getmessage), "ipppiippii"},
-    {"lobe_gettextureinfo", addr(lobe_gettextureinfo), "ippppip"},
+    {"lobe_gettextureinfo", addr(lobe_gettextureinfo), "ipppiffpip"},
     {"lobe_trace", addr(lobe_trace), "ipppppppp"},
-    {"lobe_texture3d", addr(lobe_texture3d), "vppppppipp"},
-    {"lobe_environment", addr(lobe_environment), "vppppppipp"},
+    {"lobe_texture3d", addr(lobe_texture3d), "vpppppppipp"},
+    {"lobe_environment", addr(lobe_environment), "vpppppppipp"},
     {"lobe_splineinverse", addr(lobe_splineinverse), "fpfpi"},
     // libm / libc
     {"sinf", addr(F1(::sinf)), "ff"},

@@ -32,25 +32,36 @@ RuntimeEnv::~RuntimeEnv() {
 
 namespace {
 
+// "automip": an image without MIP levels gets them built on first use, so that derivatives
+// and blur filter it (as OSL's testshade and testrender set up their TextureSystem).
 OIIO::TextureSystem* texsys(RuntimeEnv* env) {
-  std::call_once(env->texture_once,
-                 [env] { env->texture_system = OIIO::TextureSystem::create(false); });
+  std::call_once(env->texture_once, [env] {
+    OIIO::TextureSystem* ts = OIIO::TextureSystem::create(false);
+    ts->attribute("automip", 1);
+    env->texture_system = ts;
+  });
   return static_cast<OIIO::TextureSystem*>(env->texture_system);
 }
 
 OIIO::TextureOpt options(const TextureArgs* a) {
   OIIO::TextureOpt opt;
-  opt.sblur = opt.tblur = opt.rblur = a->blur;
-  opt.swidth = opt.twidth = opt.rwidth = a->width;
+  opt.sblur = a->blur[0];
+  opt.tblur = a->blur[1];
+  opt.rblur = a->blur[2];
+  opt.swidth = a->width[0];
+  opt.twidth = a->width[1];
+  opt.rwidth = a->width[2];
   opt.fill = a->fill;
   opt.firstchannel = a->firstchannel;
-  if (a->wrap) opt.swrap = opt.twrap = opt.rwrap = OIIO::TextureOpt::decode_wrapmode(a->wrap);
-  if (a->interp) {
+  if (a->wrap[0]) opt.swrap = OIIO::TextureOpt::decode_wrapmode(a->wrap[0]);
+  if (a->wrap[1]) opt.twrap = OIIO::TextureOpt::decode_wrapmode(a->wrap[1]);
+  if (a->wrap[2]) opt.rwrap = OIIO::TextureOpt::decode_wrapmode(a->wrap[2]);
+  if (a->interp) { // OSL's names; any other (e.g. "bilinear") is the default, as in OSL
     std::string m = a->interp;
-    opt.interpmode = m == "closest"                     ? OIIO::TextureOpt::InterpClosest
-                     : m == "linear" || m == "bilinear" ? OIIO::TextureOpt::InterpBilinear
-                     : m == "cubic" || m == "bicubic"   ? OIIO::TextureOpt::InterpBicubic
-                                                        : OIIO::TextureOpt::InterpSmartBicubic;
+    opt.interpmode = m == "closest"  ? OIIO::TextureOpt::InterpClosest
+                     : m == "linear" ? OIIO::TextureOpt::InterpBilinear
+                     : m == "cubic"  ? OIIO::TextureOpt::InterpBicubic
+                                     : OIIO::TextureOpt::InterpSmartBicubic;
   }
   return opt;
 }
@@ -82,20 +93,23 @@ void lobe_texture(ShaderGlobals* sg, RuntimeEnv* env, const char* file, float s,
   }
 }
 
-// p, dpdx, dpdy: three floats each.
+// p, dpdx, dpdy, dpdz: three floats each.
 void lobe_texture3d(ShaderGlobals* sg, RuntimeEnv* env, const char* file, const float* p,
-                    const float* dpdx, const float* dpdy, int n, float* out, const TextureArgs* a) {
+                    const float* dpdx, const float* dpdy, const float* dpdz, int n, float* out,
+                    const TextureArgs* a) {
   OIIO::TextureSystem* ts = texsys(env);
   OIIO::TextureOpt opt = options(a);
   Imath::V3f P(p[0], p[1], p[2]), dx(dpdx[0], dpdx[1], dpdx[2]), dy(dpdy[0], dpdy[1], dpdy[2]),
-      dz(0, 0, 0);
+      dz(dpdz[0], dpdz[1], dpdz[2]);
   if (!ts->texture3d(OIIO::ustring(file), opt, P, dx, dy, dz, n, out))
     missing(sg, ts, a, file, n, out);
 }
 
+// As lobe_texture3d, for a direction r; the third derivative is unused (an environment is a
+// function of direction only).
 void lobe_environment(ShaderGlobals* sg, RuntimeEnv* env, const char* file, const float* r,
-                      const float* drdx, const float* drdy, int n, float* out,
-                      const TextureArgs* a) {
+                      const float* drdx, const float* drdy, const float* /*unused*/, int n,
+                      float* out, const TextureArgs* a) {
   OIIO::TextureSystem* ts = texsys(env);
   OIIO::TextureOpt opt = options(a);
   Imath::V3f R(r[0], r[1], r[2]), dx(drdx[0], drdx[1], drdx[2]), dy(drdy[0], drdy[1], drdy[2]);
@@ -107,12 +121,13 @@ void lobe_environment(ShaderGlobals* sg, RuntimeEnv* env, const char* file, cons
 
 extern "C" {
 
-// gettextureinfo(file, query, dest): OIIO's get_texture_info ("exists", "resolution",
+// gettextureinfo(file, [s, t,] query, dest): OIIO's get_texture_info ("exists", "resolution",
 // "channels", "type", "textureformat", "datawindow", "averagecolor", any image metadata...)
-// into `dest` of type `code` (typed_value.h). 1 when answered; a failure reports OIIO's
-// error, as OSL does.
-int lobe_gettextureinfo(ShaderGlobals* sg, RuntimeEnv* env, const char* file, const char* query,
-                        int code, void* dest) {
+// into `dest` of type `code` (typed_value.h). With `udim`, a UDIM file name (`tex.<UDIM>.tx`)
+// resolves to its tile at (s, t) first, as OSL does; other names ignore s and t. 1 when
+// answered; a failure reports OIIO's error, as OSL does.
+int lobe_gettextureinfo(ShaderGlobals* sg, RuntimeEnv* env, const char* file, int udim, float s,
+                        float t, const char* query, int code, void* dest) {
   using namespace lobe::shadeops;
   // Lobe's base types in order: int float color point vector normal matrix string.
   static const OIIO::TypeDesc kTypes[] = {
@@ -120,13 +135,19 @@ int lobe_gettextureinfo(ShaderGlobals* sg, RuntimeEnv* env, const char* file, co
       OIIO::TypeVector,    OIIO::TypeNormal,      OIIO::TypeMatrix, OIIO::TypeDesc::STRING};
   int base = code_base(code);
   if (base < 0 || base >= int(std::size(kTypes))) return 0; // closures are no texture info
-  OIIO::TypeDesc t = kTypes[base];
-  if (code_arraylen(code) > 0) t.arraylen = code_arraylen(code);
+  OIIO::TypeDesc type = kTypes[base];
+  if (code_arraylen(code) > 0) type.arraylen = code_arraylen(code);
   OIIO::TextureSystem* ts = texsys(env);
+  OIIO::ustring name(file ? file : ""), what(query ? query : "");
   return fetch_value(env, code, 0, dest, [&](void* val) {
-    if (ts->get_texture_info(OIIO::ustring(file ? file : ""), 0, OIIO::ustring(query ? query : ""),
-                             t, val))
+    if (udim) {
+      OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(name);
+      if (h && ts->is_udim(h)) h = ts->resolve_udim(h, nullptr, s, t);
+      if (h && ts->get_texture_info(h, nullptr, 0, what, type, val)) return true;
+      if (!h) return false; // no tile at (s, t): not an error, as in OSL
+    } else if (ts->get_texture_info(name, 0, what, type, val)) {
       return true;
+    }
     std::string err = ts->geterror();
     if (!err.empty() && sg && sg->context) {
       sg->context->error("[RendererServices::get_texture_info] " + err);

@@ -17,7 +17,8 @@ namespace lobe {
 
 namespace detail {
 struct MessageStore;
-}
+class Dictionaries;
+} // namespace detail
 
 class ShadingContext {
 public:
@@ -76,9 +77,13 @@ public:
   detail::MessageStore& messages();
   // Forgets the previous shade's messages and trace result (Material::shade calls it).
   void begin_shade();
+  // The XML documents dict_find has read, and the node ids it gave out: kept for the context's
+  // life (node ids stay valid across shades, as OSL's do), created on first use.
+  detail::Dictionaries& dictionaries();
 
 private:
   std::unique_ptr<detail::MessageStore> messages_;
+  std::unique_ptr<detail::Dictionaries> dictionaries_;
   std::unique_ptr<unsigned char[]> arena_;
   size_t capacity_ = 0;
   size_t used_ = 0;

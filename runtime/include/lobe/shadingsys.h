@@ -93,8 +93,8 @@ struct CompileOptions {
   // the renderer's user data (renderer_services.h), as if each said `lockgeom = 0`.
   bool lockgeom_default = true;
   // Run-time checks, as OSL's options of the same names: an out-of-range index is reported
-  // (range_checking); every float-based result of every op is checked for NaN and Inf
-  // (debug_nan); a read of a local before it is written is reported (debug_uninit).
+  // (range_checking). debug_nan (every float result checked for NaN and Inf) and debug_uninit
+  // (reads of locals before they are written) are part of the cache key but not generated yet.
   bool range_checking = true;
   bool debug_nan = false;
   bool debug_uninit = false;
