@@ -194,8 +194,9 @@ std::vector<int> Lowerer::call_user(const ast::FunctionDecl* f,
 // Returns -2 when `c` is not one of them.
 int Lowerer::call_arith(const ast::CallExpr* c, int hint) {
   if ((c->name == "radians" || c->name == "degrees") && c->args.size() == 1) {
-    constexpr double kPi = 3.14159265358979323846;
-    float k = float(c->name == "radians" ? kPi / 180.0 : 180.0 / kPi);
+    // OSL's constants, divided in float: 180 / float(pi) = 57.2957764, float(pi) / 180.
+    constexpr float kPi = float(3.14159265358979323846);
+    float k = c->name == "radians" ? kPi / 180.0f : 180.0f / kPi;
     int x = rvalue(c->args[0].get());
     int r = pick(hint, irtype(c->type, c));
     emit("mul", {r, x, ir::intern_float(sh_, k)}, 1, c);
@@ -208,33 +209,18 @@ int Lowerer::call_arith(const ast::CallExpr* c, int hint) {
 }
 
 // OSL's mod(a, b) is a - b*floor(a/b) (the result has the sign of b), unlike `%` and fmod()
-// (the IR's `mod`, the sign of a). Floats and triples: from div/floor/mul/sub. Ints: the
-// remainder r = a % b, plus b where r is nonzero and its sign differs from b's.
+// (the IR's `mod`, the sign of a), from div/floor/mul/sub. For ints OSL computes a - b*(a/b)
+// with truncating division, which is C's remainder, except that mod(a, 0) = a.
 int Lowerer::floor_mod(const ast::CallExpr* c, int hint) {
   ir::Type t = irtype(c->type, c);
   int a = rvalue(c->args[0].get());
   int b = rvalue(c->args[1].get());
   int r = temp(t);
-  if (t.base != ir::BaseType::Int) {
-    emit("div", {r, a, b}, 1, c);
-    emit("floor", {r, r}, 1, c);
-    emit("mul", {r, r, b}, 1, c);
-    int out = pick(hint, t);
-    emit("sub", {out, a, r}, 1, c);
-    return out;
-  }
-  ir::Type it{ir::BaseType::Int};
-  int zero = ir::intern_int(sh_, 0);
-  int nz = temp(it), rneg = temp(it), bneg = temp(it);
-  emit("mod", {r, a, b}, 1, c);
-  emit("neq", {nz, r, zero}, 1, c);
-  emit("lt", {rneg, r, zero}, 1, c);
-  emit("lt", {bneg, b, zero}, 1, c);
-  emit("neq", {rneg, rneg, bneg}, 1, c);
-  emit("bitand", {nz, nz, rneg}, 1, c);
-  emit("mul", {nz, nz, b}, 1, c);
+  emit("div", {r, a, b}, 1, c);
+  if (t.base != ir::BaseType::Int) emit("floor", {r, r}, 1, c);
+  emit("mul", {r, r, b}, 1, c);
   int out = pick(hint, t);
-  emit("add", {out, r, nz}, 1, c);
+  emit("sub", {out, a, r}, 1, c);
   return out;
 }
 

@@ -59,6 +59,7 @@ struct GroupPlan {
   std::string entry_name = "group_entry";
   std::string group_name;              // for getattribute("shader:groupname")
   shadeops::RuntimeEnv* env = nullptr; // baked into the code as a constant pointer
+  bool fast_math = true; // CompileOptions::fast_math: the math shadeops' math::MathMode
 };
 
 // Storage size in bytes of a symbol (all planes), as laid out in group data and allocas.

@@ -98,6 +98,11 @@ struct CompileOptions {
   bool range_checking = true;
   bool debug_nan = false;
   bool debug_uninit = false;
+  // Math builtins (sin, exp, pow, ...): true computes OSL's fast-math values (OIIO's
+  // approximations, a few ulp from libm, what OSL 1.13 prints); false the C library's
+  // (libm-accurate). Folded constants and run-time values agree in either mode
+  // (docs/language.md, "Math").
+  bool fast_math = true;
 };
 
 // Time spent per stage, for --stats and bench/.
