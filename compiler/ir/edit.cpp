@@ -2,14 +2,27 @@
 #include "ir/edit.h"
 
 #include <algorithm>
+#include <cstring>
 #include <string>
 
 namespace lobe::ir {
 
+namespace {
+// Constants are the same value when their bits are: -0 is not 0 (cos(pi/2) folds to -0, which
+// prints as such), and a NaN is a NaN.
+bool same_bits(const std::vector<ConstValue>& a, const std::vector<ConstValue>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (a[i].i != b[i].i || std::memcmp(&a[i].f, &b[i].f, sizeof(float)) != 0 || a[i].s != b[i].s)
+      return false;
+  return true;
+}
+} // namespace
+
 int intern_const(Shader& sh, const Type& t, const std::vector<ConstValue>& v) {
   for (size_t i = 0; i < sh.symbols.size(); ++i) {
     const Symbol& s = sh.symbols[i];
-    if (s.kind == SymKind::Const && s.type == t && s.init == v) return int(i);
+    if (s.kind == SymKind::Const && s.type == t && same_bits(s.init, v)) return int(i);
   }
   int n = 0;
   for (const Symbol& s : sh.symbols)

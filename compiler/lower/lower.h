@@ -20,6 +20,7 @@ namespace lobe::lower {
 
 struct LowerOptions {
   bool optimize = false; // run constant folding and dead-code elimination afterwards
+  bool fast_math = true; // how folded math builtins compute (CompileOptions::fast_math)
 };
 
 // One lowering error with the source range it concerns (invalid for internal errors), so a

@@ -159,7 +159,7 @@ LowerResult Lowerer::run() {
   }
   if (opt_.optimize) {
     for (int round = 0; round < 8; ++round) {
-      bool changed = passes::fold_constants(sh_);
+      bool changed = passes::fold_constants(sh_, {opt_.fast_math});
       changed |= passes::eliminate_dead_code(sh_);
       if (!changed) break;
     }

@@ -222,8 +222,9 @@ int Lowerer::scratch_copy(const ast::Expr* e, const ast::Node* where) {
 // Returns -2 when `c` is not one of them.
 int Lowerer::call_arith(const ast::CallExpr* c, int hint) {
   if ((c->name == "radians" || c->name == "degrees") && c->args.size() == 1) {
-    constexpr double kPi = 3.14159265358979323846;
-    float k = float(c->name == "radians" ? kPi / 180.0 : 180.0 / kPi);
+    // OSL's constants, divided in float: 180 / float(pi) = 57.2957764, float(pi) / 180.
+    constexpr float kPi = float(3.14159265358979323846);
+    float k = c->name == "radians" ? kPi / 180.0f : 180.0f / kPi;
     int x = rvalue(c->args[0].get());
     int r = pick(hint, irtype(c->type, c));
     emit("mul", {r, x, ir::intern_float(sh_, k)}, 1, c);
@@ -235,9 +236,9 @@ int Lowerer::call_arith(const ast::CallExpr* c, int hint) {
   return -2;
 }
 
-// OSL's mod(a, b) is a - b*floor(a/b), as its stdosl.h writes it. Floats and triples: the
-// result has the sign of b, unlike `%` and fmod() (the IR's `mod`, the sign of a). Ints: a/b
-// is integer division (truncated, 0 where b == 0), so mod(-5, 3) is -2 and mod(a, 0) is a.
+// OSL's mod(a, b) is a - b*floor(a/b) (the result has the sign of b), unlike `%` and fmod()
+// (the IR's `mod`, the sign of a), from div/floor/mul/sub. For ints OSL computes a - b*(a/b)
+// with truncating division, which is C's remainder, except that mod(a, 0) = a.
 int Lowerer::floor_mod(const ast::CallExpr* c, int hint) {
   ir::Type t = irtype(c->type, c);
   int a = rvalue(c->args[0].get());

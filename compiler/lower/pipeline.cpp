@@ -38,7 +38,7 @@ PipelineResult compile_osl(const frontend::SourceInput& input, const PipelineOpt
     return r;
   }
   auto t0 = std::chrono::steady_clock::now();
-  LowerResult lr = lower(*r.tu, LowerOptions{options.optimize});
+  LowerResult lr = lower(*r.tu, LowerOptions{options.optimize, options.fast_math});
   r.timings.lower_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   for (const LowerDiag& d : lr.diags) r.diagnostics += render_lower_diag(d, *r.tu->sources);

@@ -18,6 +18,7 @@ struct PipelineOptions {
   frontend::FrontendOptions frontend;
   bool lower = true;               // false: stop after sema (--emit=ast)
   bool optimize = false;           // constant folding + dead-code elimination after lowering
+  bool fast_math = true;           // how folded math builtins compute (LowerOptions)
   bool warnings_as_errors = false; // -Werror
 };
 

@@ -18,7 +18,7 @@ namespace {
 
 class Folder {
 public:
-  explicit Folder(Shader& sh) : sh_(sh) {}
+  Folder(Shader& sh, const EvalOptions& options) : sh_(sh), options_(options) {}
   bool run();
 
 private:
@@ -29,20 +29,21 @@ private:
   }
   void substitute(Op& op);
   bool fold(Op& op);
+  bool fold_pow(Op& op);
   bool fold_closure(Op& op);
   bool all_zero(int s) const;
   void make_assign(Op& op, int dst, int src);
   void record(const Op& op);
 
   Shader& sh_;
+  EvalOptions options_;
   std::unordered_map<int, int> known_; // symbol -> Const symbol with its value
   std::unordered_set<int> null_;       // closure symbols known to hold the null closure
   bool changed_ = false;
 };
 
 void Folder::substitute(Op& op) {
-  if (op.opcode == "useparam" || op.opcode == "isconnected" || op.opcode == "isconstant")
-    return;
+  if (op.opcode == "useparam" || op.opcode == "isconnected" || op.opcode == "isconstant") return;
   for (size_t i = 0; i < op.args.size(); ++i) {
     if (op.writes(int(i))) continue;
     auto it = known_.find(op.args[i]);
@@ -85,6 +86,28 @@ bool Folder::fold_closure(Op& op) {
   return false;
 }
 
+// pow(x, k) of a varying x and a constant float k, as OSL's optimizer rewrites it: k = 0.5 is
+// sqrt(x), -0.5 inversesqrt(x), 1/3 cbrt(x) (so pow(-8, 1.0/3) is -2 for a varying -8, while
+// fully constant pow folds with pow's own rules, to 0). OSL 1.13.12 prints "pw -2 0 0" for
+// printf("pw %g %g %g", pow(a, 1.0/3), pow(a, 0.5), pow(a, -0.5)) with a = -8 a lockgeom=0
+// parameter (testshade at its default -O2; at -O0 it prints "pw 0 0 0", as Lobe does unfolded).
+bool Folder::fold_pow(Op& op) {
+  if (op.opcode != "pow" || op.args.size() != 3 || is_const(op.args[1]) || !is_const(op.args[2]))
+    return false;
+  const Symbol& k = sh_.symbols[op.args[2]];
+  if (k.type != Type{BaseType::Float} || k.init.size() != 1) return false;
+  float e = k.init[0].f;
+  const char* fn = e == 0.5f               ? "sqrt"
+                   : e == -0.5f            ? "inversesqrt"
+                   : e == float(1.0 / 3.0) ? "cbrt"
+                                           : nullptr;
+  if (!fn) return false;
+  op.opcode = fn;
+  op.args.pop_back();
+  changed_ = true;
+  return true;
+}
+
 bool Folder::fold(Op& op) {
   if (op.opcode == "cbr" && !op.args.empty() && is_const(op.args[0]) && op.jumps.size() == 2) {
     const Symbol& c = sh_.symbols[op.args[0]];
@@ -100,6 +123,7 @@ bool Folder::fold(Op& op) {
   if (is_closure(op.args[0])) return fold_closure(op);
   const OpcodeInfo* info = find_opcode(op.opcode);
   if (!info || !(info->flags & kPure)) return false;
+  if (fold_pow(op)) return true;
   std::vector<ConstArg> srcs;
   for (size_t i = 1; i < op.args.size(); ++i) {
     if (!is_const(op.args[i])) return false;
@@ -107,7 +131,7 @@ bool Folder::fold(Op& op) {
     srcs.push_back({s.type, &s.init});
   }
   Type dt = sh_.symbols[op.args[0]].type;
-  auto v = evaluate(op.opcode, dt, srcs);
+  auto v = evaluate(op.opcode, dt, srcs, options_);
   if (!v) return false;
   int c = intern_const(sh_, dt, *v);
   if (op.opcode == "assign" && op.args[1] == c) return false;
@@ -153,6 +177,8 @@ bool Folder::run() {
 
 } // namespace
 
-bool fold_constants(Shader& shader) { return Folder(shader).run(); }
+bool fold_constants(Shader& shader, const EvalOptions& options) {
+  return Folder(shader, options).run();
+}
 
 } // namespace lobe::passes

@@ -11,10 +11,11 @@
 #pragma once
 
 #include "ir/ir.h"
+#include "passes/consteval.h"
 
 namespace lobe::passes {
 
-// Returns whether the shader changed.
-bool fold_constants(ir::Shader& shader);
+// Returns whether the shader changed. `options` decide how math builtins fold.
+bool fold_constants(ir::Shader& shader, const EvalOptions& options = {});
 
 } // namespace lobe::passes

@@ -2,7 +2,8 @@
 #include "passes/constfold.h"
 #include "passes/pass_test_util.h"
 
-using lobe::passes::fold_constants;
+// fold_constants with the default options (the pass helper takes a one-argument pass).
+static bool fold_constants(lobe::ir::Shader& sh) { return lobe::passes::fold_constants(sh); }
 using lobe::passes::testing::run_pass;
 
 namespace {
@@ -192,6 +193,54 @@ end
   EXPECT_NE(out.find("const int $c3 = 1"), std::string::npos) << out;
   EXPECT_NE(out.find("const int $c4 = 0"), std::string::npos) << out;
   EXPECT_EQ(main_of(out), "main\n  assign a $c3\n  assign b $c4\n  assign c $c3\nend\n");
+}
+
+} // namespace
+
+namespace {
+
+// pow of a varying base and the constant exponent 0.5, -0.5 or 1/3 becomes sqrt, inversesqrt
+// or cbrt, as OSL's optimizer does (OSL 1.13.12 prints "pw -2 0 0" for pow(a, 1.0/3),
+// pow(a, 0.5), pow(a, -0.5) with a = -8 a lockgeom=0 parameter, constfold.cpp); other
+// exponents, a triple exponent and a constant base stay pow (a constant base folds).
+TEST(ConstFold, PowOfHalfAndThirdBecomesRoots) {
+  const char* in = R"(lobe-ir 1
+surface s
+symbols
+  param float a = 2
+  param color c = 1 1 1
+  oparam float o1 = 0
+  oparam float o2 = 0
+  oparam float o3 = 0
+  oparam float o4 = 0
+  oparam color o5 = 0 0 0
+  oparam color o6 = 0 0 0
+  const float $h = 0.5
+  const float $mh = -0.5
+  const float $t = 0.333333343
+  const float $k = 1.5
+  const color $ch = 0.5 0.5 0.5
+main
+  pow o1 a $h
+  pow o2 a $mh
+  pow o3 a $t
+  pow o4 a $k
+  pow o5 c $h
+  pow o6 c $ch
+end
+)";
+  bool changed = false;
+  std::string out = run_pass(in, fold_constants, &changed);
+  EXPECT_TRUE(changed);
+  EXPECT_EQ(main_of(out), R"(main
+  sqrt o1 a
+  inversesqrt o2 a
+  cbrt o3 a
+  pow o4 a $k
+  sqrt o5 c
+  pow o6 c $ch
+end
+)");
 }
 
 } // namespace

@@ -4,7 +4,8 @@
 #include "passes/pass_test_util.h"
 
 using lobe::passes::eliminate_dead_code;
-using lobe::passes::fold_constants;
+// fold_constants with the default options (the pass helper takes a one-argument pass).
+static bool fold_constants(lobe::ir::Shader& sh) { return lobe::passes::fold_constants(sh); }
 using lobe::passes::testing::run_pass;
 
 namespace {

@@ -42,7 +42,7 @@ void math(Builder& b) {
     b.generic(f, 1);
   b.add("abs", t_int(), {t_int()});
   b.generic("abs", 1);
-  b.add("fabs", t_int(), {t_int()});
+  b.add("fabs", t_int(), {t_int()}); // OSL's fabs is abs: fabs(int) is an int
   b.add("sign", t_int(), {t_int()});
   b.generic("sign", 1);
   for (const char* f : {"atan2", "pow", "fmod", "mod", "min", "max", "step"}) {

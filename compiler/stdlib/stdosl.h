@@ -26,13 +26,14 @@
 float hypot(float a, float b) { return sqrt(a * a + b * b); }
 float hypot(float a, float b, float c) { return sqrt(a * a + b * b + c * c); }
 
-// clamp(x, lo, hi), per component for triples
-int clamp(int x, int lo, int hi) { return max(lo, min(x, hi)); }
-float clamp(float x, float lo, float hi) { return max(lo, min(x, hi)); }
-color clamp(color x, color lo, color hi) { return max(lo, min(x, hi)); }
-point clamp(point x, point lo, point hi) { return max(lo, min(x, hi)); }
-vector clamp(vector x, vector lo, vector hi) { return max(lo, min(x, hi)); }
-normal clamp(normal x, normal lo, normal hi) { return max(lo, min(x, hi)); }
+// clamp(x, lo, hi) = max(min(x, hi), lo) in this order, as OSL's (clamp(NaN, 0, 1) is NaN),
+// per component for triples
+int clamp(int x, int lo, int hi) { return max(min(x, hi), lo); }
+float clamp(float x, float lo, float hi) { return max(min(x, hi), lo); }
+color clamp(color x, color lo, color hi) { return max(min(x, hi), lo); }
+point clamp(point x, point lo, point hi) { return max(min(x, hi), lo); }
+vector clamp(vector x, vector lo, vector hi) { return max(min(x, hi), lo); }
+normal clamp(normal x, normal lo, normal hi) { return max(min(x, hi), lo); }
 color clamp(color x, float lo, float hi) { return clamp(x, color(lo), color(hi)); }
 point clamp(point x, float lo, float hi) { return clamp(x, point(lo), point(hi)); }
 vector clamp(vector x, float lo, float hi) { return clamp(x, vector(lo), vector(hi)); }

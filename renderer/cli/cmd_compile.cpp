@@ -8,6 +8,7 @@
 //   -q, -v                   no `Compiled` line / the default; the last one wins
 //   -Werror                  warnings are errors
 //   -E                       print the preprocessed source to stdout instead of compiling
+//   --no-fast-math           fold math builtins with libm (CompileOptions::fast_math = false)
 //   --emit=ast|ir|llvm|asm   print that form to stdout (or -o FILE), without oslc's lines: the
 //                            typed AST, the IR, or the shader compiled as a one-layer group the
 //                            way the ShadingSystem does, as LLVM IR after the JIT's pipeline at
@@ -43,6 +44,7 @@ struct Options {
   std::vector<std::string> includes, defines, undefines;
   int opt = 1;
   bool quiet = false, werror = false, preprocess_only = false;
+  bool fast_math = true;
 };
 
 void help() {
@@ -59,6 +61,7 @@ void help() {
               "\t-O0, -O1, -O2  Set optimization level (default=1)\n"
               "\t-E             Only preprocess the input and output to stdout\n"
               "\t-Werror        Treat all warnings as errors\n"
+              "\t--no-fast-math Fold math builtins as libm computes them\n"
               "\t--emit=FORM    Print the ast, ir, llvm or asm to stdout (or -o) instead\n");
 }
 
@@ -86,6 +89,8 @@ int parse_args(int argc, char** argv, Options& o) {
       o.opt = a[2] - '0';
     } else if (a == "-q" || a == "-v") {
       o.quiet = a == "-q";
+    } else if (a == "--no-fast-math") {
+      o.fast_math = false;
     } else if (a == "-Werror") {
       o.werror = true;
     } else if (a == "-E") {
@@ -184,6 +189,7 @@ bool compile_source(const Options& o, const std::string& path) {
   po.frontend = frontend_options(o);
   po.lower = o.emit != "ast";
   po.optimize = o.opt > 0;
+  po.fast_math = o.fast_math;
   po.warnings_as_errors = o.werror;
   lobe::lower::PipelineResult r = lobe::lower::compile_osl({path, std::nullopt}, po);
   std::fputs(r.diagnostics.c_str(), stderr);
@@ -200,6 +206,7 @@ bool emit_machine_text(const Options& o, const std::string& path) {
   co.defines = o.defines;
   co.undefines = o.undefines;
   co.opt_level = o.opt;
+  co.fast_math = o.fast_math;
   lobe::DiagnosticList diags;
   std::string text;
   bool ok = lobe::group::emit_shader_text(
@@ -222,7 +229,8 @@ bool compile_ir_text(const Options& o, const std::string& path) {
   }
   if (o.opt > 0)
     for (int round = 0; round < 8; ++round)
-      if (!(lobe::passes::fold_constants(*l.shader) | lobe::passes::eliminate_dead_code(*l.shader)))
+      if (!(lobe::passes::fold_constants(*l.shader, {o.fast_math}) |
+            lobe::passes::eliminate_dead_code(*l.shader)))
         break;
   lobe::passes::analyze_derivatives(*l.shader);
   return write_output(o, lobe::ir::print(*l.shader));

@@ -125,6 +125,8 @@ void apply_options(ShadeJob& job) {
       job.debug_nan = to_i(value) != 0;
     } else if (name == "debug_uninit") {
       job.debug_uninit = to_i(value) != 0;
+    } else if (name == "fast_math") {
+      job.compile.fast_math = to_i(value) != 0;
     } else if (name == "searchpath:shader") {
       std::stringstream dirs(value);
       for (std::string d; std::getline(dirs, d, ':');)

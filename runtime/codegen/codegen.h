@@ -62,6 +62,7 @@ struct GroupPlan {
   shadeops::RuntimeEnv* env = nullptr; // baked into the code as a constant pointer
   // The material's colour system (CompileOptions::colorspace), baked in likewise; null: Rec709.
   const shadeops::ColorSystem* colors = nullptr;
+  bool fast_math = true; // CompileOptions::fast_math: the math shadeops' math::MathMode
 };
 
 // Storage size in bytes of a symbol (all planes), as laid out in group data and allocas.

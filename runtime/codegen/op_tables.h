@@ -2,6 +2,7 @@
 #pragma once
 
 #include "emitter.h"
+#include "shadeops.h"
 
 #include <span>
 
@@ -18,5 +19,9 @@ std::span<const OpEntry> math_ops();     // ops_math.cpp
 std::span<const OpEntry> geometry_ops(); // ops_geometry.cpp
 std::span<const OpEntry> library_ops();  // ops_library.cpp
 std::span<const OpEntry> data_ops();     // ops_data.cpp
+
+// A call of math shadeop `f` in `form` with `args` and the group's math mode (ops_math.cpp).
+llvm::Value* call_math(LayerEmitter& e, math::Fn f, shadeops::MathForm form,
+                       std::vector<llvm::Value*> args);
 
 } // namespace lobe::codegen

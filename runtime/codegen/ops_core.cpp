@@ -1,6 +1,7 @@
 // Core ops: assignment and conversion, arithmetic (floats as dual numbers, ints with OSL's
 // division rules, matrices, closures), comparisons and integer bit ops.
 #include "duals.h"
+#include "mathops.h"
 #include "op_tables.h"
 
 #include <llvm/IR/Constants.h>
@@ -165,12 +166,10 @@ void arith(LayerEmitter& e, const ir::Op& op) {
       r[i] = d.mul(a[i], b[i]);
     else if (op.opcode == "div")
       r[i] = d.div(a[i], b[i]);
-    else { // fmod, 0 where b == 0; d(fmod(a,b)) = da - trunc(a/b) db
-      llvm::Value* b0 = B.CreateFCmpOEQ(b[i].v, e.fconst(0));
-      llvm::Value* m = B.CreateFRem(a[i].v, B.CreateSelect(b0, e.fconst(1), b[i].v));
+    else { // fmod (math::fmod), 0 where b == 0; d(fmod(a,b)) = da - trunc(a/b) db
       Dual q = d.div(a[i], b[i]);
       llvm::Value* tq = B.CreateUnaryIntrinsic(llvm::Intrinsic::trunc, q.v);
-      Dual res{B.CreateSelect(b0, e.fconst(0), m)};
+      Dual res{call_math(e, math::Fn::Fmod, shadeops::MathForm::Value, {a[i].v, b[i].v})};
       res.dx = d.dsub(a[i].dx, d.scale(b[i].dx, tq));
       res.dy = d.dsub(a[i].dy, d.scale(b[i].dy, tq));
       r[i] = res;
@@ -191,6 +190,8 @@ BaseType compare_type(const ir::Symbol& a, const ir::Symbol& b) {
   return rank(a.type.base) >= rank(b.type.base) ? a.type.base : b.type.base;
 }
 
+// Comparisons as OSL's JIT computes them: float predicates are unordered, so a NaN operand
+// makes every comparison true (== and != too); triples: == in all components, != in any.
 void compare(LayerEmitter& e, const ir::Op& op) {
   auto& B = e.b();
   BaseType t = compare_type(e.arg(op, 1), e.arg(op, 2));
@@ -203,10 +204,18 @@ void compare(LayerEmitter& e, const ir::Op& op) {
       if (t == BaseType::Int || t == BaseType::String || t == BaseType::Closure)
         c = B.CreateICmpEQ(a[i].v, b[i].v);
       else
-        c = B.CreateFCmpOEQ(a[i].v, b[i].v);
+        c = B.CreateFCmpUEQ(a[i].v, b[i].v);
       r = r ? B.CreateAnd(r, c) : c;
     }
-    if (o == "neq") r = B.CreateNot(r);
+    if (o == "neq" && t != BaseType::Int && t != BaseType::String && t != BaseType::Closure) {
+      r = nullptr; // any component != (unordered: a NaN makes == and != both true)
+      for (size_t i = 0; i < a.size(); ++i) {
+        llvm::Value* c = B.CreateFCmpUNE(a[i].v, b[i].v);
+        r = r ? B.CreateOr(r, c) : c;
+      }
+    } else if (o == "neq") {
+      r = B.CreateNot(r);
+    }
   } else if (t == BaseType::Int) {
     auto p = o == "lt"   ? llvm::CmpInst::ICMP_SLT
              : o == "le" ? llvm::CmpInst::ICMP_SLE
@@ -214,10 +223,10 @@ void compare(LayerEmitter& e, const ir::Op& op) {
                          : llvm::CmpInst::ICMP_SGE;
     r = B.CreateICmp(p, a[0].v, b[0].v);
   } else {
-    auto p = o == "lt"   ? llvm::CmpInst::FCMP_OLT
-             : o == "le" ? llvm::CmpInst::FCMP_OLE
-             : o == "gt" ? llvm::CmpInst::FCMP_OGT
-                         : llvm::CmpInst::FCMP_OGE;
+    auto p = o == "lt"   ? llvm::CmpInst::FCMP_ULT
+             : o == "le" ? llvm::CmpInst::FCMP_ULE
+             : o == "gt" ? llvm::CmpInst::FCMP_UGT
+                         : llvm::CmpInst::FCMP_UGE;
     r = B.CreateFCmp(p, a[0].v, b[0].v);
   }
   e.store(op.args[0],

@@ -149,20 +149,19 @@ void op_string(LayerEmitter& e, const ir::Op& op) {
                                 e.arg(op, 0).type.base));
 }
 
-// hash(string) is OIIO's ustring hash, as in OSL (shadeop); hash of numbers mixes their bits.
+// hash(string) is OIIO's ustring hash, as in OSL (shadeop); hash of numbers is OSL's lookup3
+// over the bits of every component (lobe_hash, runtime/mathlib/hashword.h).
 void op_hash(LayerEmitter& e, const ir::Op& op) {
   auto& B = e.b();
   if (e.arg(op, 1).type.base == BaseType::String) {
     e.store(op.args[0], Val{Dual{e.call("lobe_strhash", {str(e, op, 1)})}});
     return;
   }
-  llvm::Value* h = e.iconst(int(0x811c9dc5u));
+  std::vector<llvm::Value*> words;
   for (size_t i = 1; i < op.args.size(); ++i)
-    for (const Dual& d : e.load(op.args[i], nullptr, false)) {
-      llvm::Value* bits = d.v->getType()->isFloatTy() ? B.CreateBitCast(d.v, e.i32()) : d.v;
-      h = B.CreateMul(B.CreateXor(h, bits), e.iconst(0x01000193));
-      h = B.CreateXor(h, B.CreateLShr(h, e.iconst(15)));
-    }
+    for (const Dual& d : e.load(op.args[i], nullptr, false))
+      words.push_back(d.v->getType()->isFloatTy() ? B.CreateBitCast(d.v, e.i32()) : d.v);
+  llvm::Value* h = e.call("lobe_hash", {e.spill(words, e.i32()), e.iconst(int(words.size()))});
   e.store(op.args[0], Val{Dual{h}});
 }
 

@@ -139,7 +139,7 @@ bool fold_string_compares(ir::Shader& sh) {
 // Instance values -> constants; unconnected, unwritten params with known values -> Const.
 void specialize_layer(ir::Shader& sh,
                       const std::map<std::string, std::vector<ir::ConstValue>>& values,
-                      const std::set<std::string>& connected) {
+                      const std::set<std::string>& connected, const passes::EvalOptions& math) {
   // isconstant answers for the shader before specialisation (docs/language.md), as codegen
   // does without it: resolve it now, before params become constants.
   for (ir::Op& op : sh.ops) {
@@ -172,7 +172,7 @@ void specialize_layer(ir::Shader& sh,
   for (int round = 0; round < 8; ++round) {
     fold_string_compares(sh);
     hide_string_compares(sh, true);
-    bool changed = passes::fold_constants(sh);
+    bool changed = passes::fold_constants(sh, math);
     hide_string_compares(sh, false);
     changed |= fold_string_compares(sh);
     changed |= passes::eliminate_dead_code(sh);
@@ -388,7 +388,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     // User data arrives at run time: those params stay params, as connected ones do.
     std::set<std::string> runtime_valued = connected;
     runtime_valued.insert(interp[i].begin(), interp[i].end());
-    if (specialize) specialize_layer(*sh, values[i], runtime_valued);
+    if (specialize) specialize_layer(*sh, values[i], runtime_valued, {out.plan.fast_math});
     new_index[i] = int(out.shaders.size());
     out.shaders.push_back(std::move(sh));
     out.layer_names.push_back(group.layers[i].name);

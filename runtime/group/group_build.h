@@ -27,7 +27,8 @@ struct GroupBuild {
 };
 
 // `sources[i]` is the compiled IR of group.layers[i]. Returns false with diagnostics on error.
-// `lockgeom_default`: CompileOptions::lockgeom_default.
+// `lockgeom_default`: CompileOptions::lockgeom_default. The caller sets out.plan.env and
+// out.plan.fast_math (CompileOptions::fast_math, which constant folding follows too).
 bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
                  bool specialize, GroupBuild& out, DiagnosticList& diags,
                  bool lockgeom_default = true);

@@ -118,7 +118,8 @@ std::string ShadingSystem::Impl::cache_key(const ShaderGroup& g,
   key += options.lockgeom_default ? "" : "u";
   key += options.range_checking ? "" : "r";
   key += options.debug_nan ? "N" : "";
-  key += options.debug_uninit ? "U\n" : "\n";
+  key += options.debug_uninit ? "U" : "";
+  key += options.fast_math ? "\n" : "x\n";
   key += "colorspace "; // every colour function depends on it
   key += colors()->name();
   key += "\n";
@@ -151,6 +152,7 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   group::GroupBuild b;
   b.plan.env = env.get();
   b.plan.colors = colors();
+  b.plan.fast_math = options.fast_math;
   bool specialize = options.specialize && options.opt_level > 0;
   if (!group::build_group(g, layers, specialize, b, diags, options.lockgeom_default))
     return nullptr;

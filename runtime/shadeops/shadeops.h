@@ -11,6 +11,10 @@
 #include <span>
 #include <string_view>
 
+namespace lobe::math {
+enum class Fn : int32_t; // runtime/mathlib/mathops.h
+}
+
 namespace lobe::shadeops {
 
 struct ShadeOpSymbol {
@@ -21,6 +25,12 @@ struct ShadeOpSymbol {
 
 std::span<const ShadeOpSymbol> shadeop_symbols();
 const ShadeOpSymbol* find_shadeop(std::string_view name);
+
+// The math builtins' shadeops (ops_math.cpp): each math::Fn has a value function and, for
+// derivatives, a slope (unary) or dual (binary) function. Their names come from here only.
+enum class MathForm { Value = 0, Slope = 1, Dual = 2 };
+const char* math_shadeop(math::Fn f, MathForm form);
+std::span<const ShadeOpSymbol> math_shadeop_symbols(); // included in shadeop_symbols()
 
 // Texture lookup options gathered from a texture call's keyword arguments; codegen fills this
 // struct by field offset and passes its address to lobe_texture / lobe_texture3d /

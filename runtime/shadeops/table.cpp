@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <math.h>
+#include <vector>
 
 extern "C" {
 // Declarations of the shadeops defined in this folder (C linkage, one definition each).
@@ -24,6 +25,7 @@ void lobe_stoi();
 void lobe_stof();
 void lobe_getchar();
 void lobe_strhash();
+void lobe_hash();
 void lobe_regex();
 void lobe_regex_results();
 void lobe_split();
@@ -98,6 +100,7 @@ const ShadeOpSymbol kTable[] = {
     {"lobe_stof", addr(lobe_stof), "fp"},
     {"lobe_getchar", addr(lobe_getchar), "ipi"},
     {"lobe_strhash", addr(lobe_strhash), "ip"},
+    {"lobe_hash", addr(lobe_hash), "ipi"},
     {"lobe_regex", addr(lobe_regex), "ippi"},
     {"lobe_regex_results", addr(lobe_regex_results), "ippipi"},
     {"lobe_closure_component", addr(lobe_closure_component), "ppipi"},
@@ -176,10 +179,17 @@ const ShadeOpSymbol kTable[] = {
 
 } // namespace
 
-std::span<const ShadeOpSymbol> shadeop_symbols() { return kTable; }
+std::span<const ShadeOpSymbol> shadeop_symbols() {
+  static const std::vector<ShadeOpSymbol> all = [] {
+    std::vector<ShadeOpSymbol> v(std::begin(kTable), std::end(kTable));
+    for (const ShadeOpSymbol& s : math_shadeop_symbols()) v.push_back(s);
+    return v;
+  }();
+  return all;
+}
 
 const ShadeOpSymbol* find_shadeop(std::string_view name) {
-  for (const auto& s : kTable)
+  for (const auto& s : shadeop_symbols())
     if (name == s.name) return &s;
   return nullptr;
 }

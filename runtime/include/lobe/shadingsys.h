@@ -103,6 +103,11 @@ struct CompileOptions {
   // weights, blackbody and wavelength_color, and is the identity name for transformc. One of
   // colorspace_names(); an unknown name compiles as "Rec709" (check it with colorspace_error).
   std::string colorspace = "Rec709";
+  // Math builtins (sin, exp, pow, ...): true computes OSL's fast-math values (OIIO's
+  // approximations, a few ulp from libm, what OSL 1.13 prints); false the C library's
+  // (libm-accurate). Folded constants and run-time values agree in either mode
+  // (docs/language.md, "Math").
+  bool fast_math = true;
 };
 
 // The colour spaces CompileOptions::colorspace accepts: Rec709, sRGB, NTSC, EBU, PAL, SECAM,
