@@ -21,11 +21,15 @@ target_link_libraries(lobe_llvm INTERFACE LLVM)
 # OpenImageIO 2.4.7: its CMake config is unusable on a fresh bookworm machine (it lists
 # /usr/include/opencv4, which the package does not install, and imported targets for the
 # command-line tools, which live in another package). Its pkg-config file is correct; use that.
-# OpenImageIO costs ~0.25 s of process start-up: link it only where images are read or written.
+# OpenImageIO costs ~0.25 s of process start-up (it pulls in ~260 shared libraries): only the
+# module runtime/oiio loads on first use links it (lobe_oiio); lobe_oiio_headers is for code
+# that uses its header-only parts (Strutil::strhash).
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
 add_library(lobe_oiio INTERFACE)
 target_link_libraries(lobe_oiio INTERFACE PkgConfig::OIIO)
+add_library(lobe_oiio_headers INTERFACE)
+target_include_directories(lobe_oiio_headers INTERFACE ${OIIO_INCLUDE_DIRS})
 
 find_package(embree 3 CONFIG REQUIRED)
 find_package(TBB CONFIG REQUIRED)

@@ -1,7 +1,7 @@
-// Image reading and writing through OpenImageIO; see image.h for the conventions.
+// Image reading and writing through OpenImageIO (loaded on first use: runtime/oiio); see
+// image.h for the conventions.
 #include "image.h"
-
-#include <OpenImageIO/imageio.h>
+#include "oiio_module.h"
 
 #include <unistd.h>
 
@@ -43,10 +43,11 @@ std::string check_writable(const std::string& path) {
   std::string ext = lower_extension(path);
   if (ext.empty() || fs::path(path).filename().string().find('.') == std::string::npos)
     return path + ": no image extension (expected .exr, .png, .jpg, .tif or .hdr)";
-  if (!OIIO::ImageOutput::create(path)) {
-    OIIO::geterror(); // clear it
+  std::string why;
+  const oiio::Api* io = oiio::module(&why);
+  if (!io) return path + ": " + why;
+  if (!io->can_write(path))
     return path + ": cannot write ." + ext + " images (expected .exr, .png, .jpg, .tif or .hdr)";
-  }
   fs::path dir = fs::path(path).parent_path();
   if (dir.empty()) dir = ".";
   std::error_code ec;
@@ -90,97 +91,97 @@ static std::vector<uint8_t> to_display(const Image& img, const WriteOptions& opt
   return out;
 }
 
-// Writes `data`, pixels of type `buffer` (default: the file's own), converted to spec.format.
-static std::string write_with(const std::string& path, const OIIO::ImageSpec& spec,
-                              const void* data, OIIO::TypeDesc buffer = OIIO::TypeUnknown) {
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) return path + ": cannot write this format (" + OIIO::geterror() + ")";
-  if (!out->open(path, spec)) return path + ": cannot open for writing: " + out->geterror();
-  bool ok = out->write_image(buffer == OIIO::TypeUnknown ? spec.format : buffer, data);
-  std::string err = ok ? "" : path + ": write failed: " + out->geterror();
-  if (!out->close() && err.empty()) err = path + ": close failed: " + out->geterror();
-  return err;
+// A file of `img`'s size and channels (`names`) holding pixels of type `file`, from `data` of
+// type `buffer`.
+struct FileSpec {
+  int width, height;
+  const std::vector<std::string>& names;
+  oiio::Pixel file;
+  const char* compression = nullptr;
+  const char* colorspace = nullptr;
+};
+
+static std::string write_with(const std::string& path, const FileSpec& f, const void* data,
+                              oiio::Pixel buffer) {
+  std::string why;
+  const oiio::Api* io = oiio::module(&why);
+  if (!io) return path + ": " + why;
+  return io->write(path, f.width, f.height, f.names, f.file, data, buffer, f.compression,
+                   f.colorspace);
 }
 
 std::string write_image(const std::string& path, const Image& img, const WriteOptions& opt) {
   if (img.width <= 0 || img.height <= 0 || img.channels.empty()) return path + ": empty image";
   if (img.pixels.size() != size_t(img.width) * img.height * img.channels.size())
     return path + ": pixel buffer size does not match the image size";
+  static const std::vector<std::string> kRGB = {"R", "G", "B"};
   if (is_float_format(path)) {
-    if (keeps_all_channels(path)) {
-      OIIO::ImageSpec spec(img.width, img.height, img.nchannels(), OIIO::TypeDesc::FLOAT);
-      spec.channelnames = img.channels;
-      spec.attribute("compression", "zip");
-      return write_with(path, spec, img.pixels.data());
-    }
+    if (keeps_all_channels(path))
+      return write_with(path, {img.width, img.height, img.channels, oiio::Pixel::Float, "zip"},
+                        img.pixels.data(), oiio::Pixel::Float);
     // .hdr and the like: the first three channels (one repeated).
     std::vector<float> rgb(size_t(img.width) * img.height * 3);
     for (size_t p = 0; p < size_t(img.width) * img.height; ++p)
       for (int c = 0; c < 3; ++c)
         rgb[p * 3 + c] = img.pixels[p * img.nchannels() + std::min(c, img.nchannels() - 1)];
-    OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::FLOAT);
-    return write_with(path, spec, rgb.data());
+    return write_with(path, {img.width, img.height, kRGB, oiio::Pixel::Float}, rgb.data(),
+                      oiio::Pixel::Float);
   }
   std::vector<uint8_t> rgb = to_display(img, opt);
-  OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:ColorSpace", "sRGB");
-  return write_with(path, spec, rgb.data());
+  return write_with(path, {img.width, img.height, kRGB, oiio::Pixel::UInt8, nullptr, "sRGB"},
+                    rgb.data(), oiio::Pixel::UInt8);
 }
 
 std::string write_channels(const std::string& path, const Image& img, const std::string& format) {
   if (img.width <= 0 || img.height <= 0 || img.channels.empty()) return path + ": empty image";
   std::string ext = lower_extension(path);
   size_t n = img.pixels.size();
-  OIIO::ImageSpec spec(img.width, img.height, img.nchannels(), OIIO::TypeDesc::FLOAT);
-  spec.channelnames = img.channels;
+  FileSpec f{img.width, img.height, img.channels, oiio::Pixel::Float};
   if (ext == "png" || ext == "jpg" || ext == "jpeg") {
     std::vector<uint8_t> enc(n);
     for (size_t k = 0; k < n; ++k)
       enc[k] = static_cast<uint8_t>(std::lround(srgb_encode(img.pixels[k]) * 255.0f));
-    spec.set_format(OIIO::TypeDesc::UINT8);
-    spec.attribute("oiio:ColorSpace", "sRGB");
-    return write_with(path, spec, enc.data());
+    f.file = oiio::Pixel::UInt8;
+    f.colorspace = "sRGB";
+    return write_with(path, f, enc.data(), oiio::Pixel::UInt8);
   }
-  if (ext == "exr") spec.attribute("compression", "zip");
+  if (ext == "exr") f.compression = "zip";
   if (format == "int" && ext != "exr") {
     std::vector<int32_t> ints(n);
     for (size_t k = 0; k < n; ++k) ints[k] = static_cast<int32_t>(img.pixels[k]);
-    spec.set_format(OIIO::TypeDesc::INT32);
-    return write_with(path, spec, ints.data());
+    f.file = oiio::Pixel::Int32;
+    return write_with(path, f, ints.data(), oiio::Pixel::Int32);
   }
-  spec.set_format(format == "half" || format == "int" ? OIIO::TypeDesc::HALF
-                  : format == "uint8"                 ? OIIO::TypeDesc::UINT8
-                                                      : OIIO::TypeDesc::FLOAT);
-  if (spec.format == OIIO::TypeDesc::UINT8) { // linear 8 bits, as testshade's -d uint8
+  f.file = format == "half" || format == "int" ? oiio::Pixel::Half
+           : format == "uint8"                 ? oiio::Pixel::UInt8
+                                               : oiio::Pixel::Float;
+  if (f.file == oiio::Pixel::UInt8) { // linear 8 bits, as testshade's -d uint8
     std::vector<uint8_t> q(n);
     for (size_t k = 0; k < n; ++k)
       q[k] = static_cast<uint8_t>(std::lround(std::clamp(img.pixels[k], 0.0f, 1.0f) * 255.0f));
-    return write_with(path, spec, q.data());
+    return write_with(path, f, q.data(), oiio::Pixel::UInt8);
   }
-  return write_with(path, spec, img.pixels.data(), OIIO::TypeDesc::FLOAT);
+  return write_with(path, f, img.pixels.data(), oiio::Pixel::Float);
 }
 
 std::string read_image(const std::string& path, Image& out) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) return path + ": cannot read image: " + OIIO::geterror();
-  const OIIO::ImageSpec& spec = in->spec();
-  Image img(spec.width, spec.height, spec.channelnames);
-  if (img.channels.size() != size_t(spec.nchannels)) {
-    img.channels.resize(spec.nchannels);
-    img.pixels.resize(size_t(spec.width) * spec.height * spec.nchannels);
-  }
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
-    return path + ": read failed: " + in->geterror();
+  std::string why;
+  const oiio::Api* io = oiio::module(&why);
+  if (!io) return path + ": " + why;
+  oiio::ImageData d;
+  if (std::string err = io->read(path, d); !err.empty()) return err;
+  Image img;
+  img.width = d.width;
+  img.height = d.height;
+  img.channels = std::move(d.channels);
+  img.pixels = std::move(d.pixels);
   // 8- and 16-bit files hold display-encoded values unless they say they are linear.
-  std::string cs = spec.get_string_attribute("oiio:ColorSpace", "");
-  bool integer = spec.format.basetype == OIIO::TypeDesc::UINT8 ||
-                 spec.format.basetype == OIIO::TypeDesc::UINT16;
-  if (integer && cs != "Linear" && cs != "linear") {
-    for (size_t p = 0; p < size_t(spec.width) * spec.height; ++p)
-      for (int c = 0; c < std::min(spec.nchannels, 3); ++c)
-        img.pixels[p * spec.nchannels + c] = srgb_decode(img.pixels[p * spec.nchannels + c]);
+  if (d.integer_file && d.colorspace != "Linear" && d.colorspace != "linear") {
+    const int nc = img.nchannels();
+    for (size_t p = 0; p < size_t(img.width) * img.height; ++p)
+      for (int c = 0; c < std::min(nc, 3); ++c)
+        img.pixels[p * nc + c] = srgb_decode(img.pixels[p * nc + c]);
   }
-  in->close();
   out = std::move(img);
   return "";
 }

@@ -1,0 +1,163 @@
+// liblobe_oiio.so: everything Lobe asks of OpenImageIO (texture lookups, image files), behind
+// the Api of oiio_module.h. Loaded on first use by oiio_loader.cpp; nothing else links
+// OpenImageIO.
+#include "oiio_module.h"
+#include "shadeops.h"
+
+#include <Imath/ImathVec.h>
+#include <OpenImageIO/imageio.h>
+#include <OpenImageIO/texture.h>
+
+#include <iterator>
+
+namespace OIIO = OIIO_NAMESPACE;
+using lobe::shadeops::TextureArgs;
+
+namespace lobe::oiio {
+namespace {
+
+OIIO::TextureSystem* ts_of(void* ts) { return static_cast<OIIO::TextureSystem*>(ts); }
+
+void* create_texture_system() {
+  OIIO::TextureSystem* ts = OIIO::TextureSystem::create(false);
+  // An image without MIP levels gets them built on first use, so that derivatives and blur
+  // filter it (as OSL's testshade and testrender set up their TextureSystem).
+  ts->attribute("automip", 1);
+  return ts;
+}
+
+void destroy_texture_system(void* ts) { OIIO::TextureSystem::destroy(ts_of(ts)); }
+
+OIIO::TextureOpt options(const TextureArgs* a) {
+  OIIO::TextureOpt opt;
+  opt.sblur = a->blur[0];
+  opt.tblur = a->blur[1];
+  opt.rblur = a->blur[2];
+  opt.swidth = a->width[0];
+  opt.twidth = a->width[1];
+  opt.rwidth = a->width[2];
+  opt.fill = a->fill;
+  opt.firstchannel = a->firstchannel;
+  if (a->wrap[0]) opt.swrap = OIIO::TextureOpt::decode_wrapmode(a->wrap[0]);
+  if (a->wrap[1]) opt.twrap = OIIO::TextureOpt::decode_wrapmode(a->wrap[1]);
+  if (a->wrap[2]) opt.rwrap = OIIO::TextureOpt::decode_wrapmode(a->wrap[2]);
+  if (a->interp) { // OSL's names; any other (e.g. "bilinear") is the default, as in OSL
+    std::string m = a->interp;
+    opt.interpmode = m == "closest"  ? OIIO::TextureOpt::InterpClosest
+                     : m == "linear" ? OIIO::TextureOpt::InterpBilinear
+                     : m == "cubic"  ? OIIO::TextureOpt::InterpBicubic
+                                     : OIIO::TextureOpt::InterpSmartBicubic;
+  }
+  return opt;
+}
+
+bool texture(void* ts, const char* file, const TextureArgs* a, float s, float t, float dsdx,
+             float dtdx, float dsdy, float dtdy, int n, float* out, float* dds, float* ddt) {
+  OIIO::TextureOpt opt = options(a);
+  return ts_of(ts)->texture(OIIO::ustring(file), opt, s, t, dsdx, dtdx, dsdy, dtdy, n, out, dds,
+                            ddt);
+}
+
+Imath::V3f v3(const float* p) { return Imath::V3f(p[0], p[1], p[2]); }
+
+bool texture3d(void* ts, const char* file, const TextureArgs* a, const float* p, const float* dpdx,
+               const float* dpdy, const float* dpdz, int n, float* out) {
+  OIIO::TextureOpt opt = options(a);
+  return ts_of(ts)->texture3d(OIIO::ustring(file), opt, v3(p), v3(dpdx), v3(dpdy), v3(dpdz), n,
+                              out);
+}
+
+bool environment(void* ts, const char* file, const TextureArgs* a, const float* r,
+                 const float* drdx, const float* drdy, int n, float* out) {
+  OIIO::TextureOpt opt = options(a);
+  return ts_of(ts)->environment(OIIO::ustring(file), opt, v3(r), v3(drdx), v3(drdy), n, out);
+}
+
+int texture_info(void* tsv, const char* file, bool udim, float s, float t, const char* query,
+                 int base, int arraylen, void* val) {
+  // Lobe's base types in order: int float color point vector normal matrix string.
+  static const OIIO::TypeDesc kTypes[] = {
+      OIIO::TypeDesc::INT, OIIO::TypeDesc::FLOAT, OIIO::TypeColor,  OIIO::TypePoint,
+      OIIO::TypeVector,    OIIO::TypeNormal,      OIIO::TypeMatrix, OIIO::TypeDesc::STRING};
+  if (base < 0 || base >= int(std::size(kTypes))) return 0;
+  OIIO::TypeDesc type = kTypes[base];
+  if (arraylen > 0) type.arraylen = arraylen;
+  OIIO::TextureSystem* ts = ts_of(tsv);
+  OIIO::ustring name(file ? file : ""), what(query ? query : "");
+  if (udim) {
+    OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(name);
+    if (h && ts->is_udim(h)) h = ts->resolve_udim(h, nullptr, s, t);
+    if (!h) return 0; // no tile at (s, t): not an error, as in OSL
+    if (ts->get_texture_info(h, nullptr, 0, what, type, val)) return 1;
+  } else if (ts->get_texture_info(name, 0, what, type, val)) {
+    return 1;
+  }
+  return -1;
+}
+
+std::string texture_error(void* ts) { return ts_of(ts)->geterror(); }
+
+OIIO::TypeDesc type_of(Pixel p) {
+  switch (p) {
+  case Pixel::Half:
+    return OIIO::TypeDesc::HALF;
+  case Pixel::UInt8:
+    return OIIO::TypeDesc::UINT8;
+  case Pixel::Int32:
+    return OIIO::TypeDesc::INT32;
+  case Pixel::Float:
+    break;
+  }
+  return OIIO::TypeDesc::FLOAT;
+}
+
+bool can_write(const std::string& path) {
+  if (OIIO::ImageOutput::create(path)) return true;
+  OIIO::geterror(); // clear it
+  return false;
+}
+
+std::string write(const std::string& path, int width, int height,
+                  const std::vector<std::string>& channels, Pixel file_pixel, const void* data,
+                  Pixel data_pixel, const char* compression, const char* colorspace) {
+  OIIO::ImageSpec spec(width, height, int(channels.size()), type_of(file_pixel));
+  spec.channelnames = channels;
+  if (compression) spec.attribute("compression", compression);
+  if (colorspace) spec.attribute("oiio:ColorSpace", colorspace);
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) return path + ": cannot write this format (" + OIIO::geterror() + ")";
+  if (!out->open(path, spec)) return path + ": cannot open for writing: " + out->geterror();
+  bool ok = out->write_image(type_of(data_pixel), data);
+  std::string err = ok ? "" : path + ": write failed: " + out->geterror();
+  if (!out->close() && err.empty()) err = path + ": close failed: " + out->geterror();
+  return err;
+}
+
+std::string read(const std::string& path, ImageData& img) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return path + ": cannot read image: " + OIIO::geterror();
+  const OIIO::ImageSpec& spec = in->spec();
+  img.width = spec.width;
+  img.height = spec.height;
+  img.channels = spec.channelnames;
+  img.channels.resize(size_t(spec.nchannels));
+  img.pixels.assign(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels), 0.0f);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
+    return path + ": read failed: " + in->geterror();
+  img.integer_file = spec.format.basetype == OIIO::TypeDesc::UINT8 ||
+                     spec.format.basetype == OIIO::TypeDesc::UINT16;
+  img.colorspace = spec.get_string_attribute("oiio:ColorSpace", "");
+  in->close();
+  return "";
+}
+
+const Api kApi = {kAbi,        create_texture_system, destroy_texture_system, texture,   texture3d,
+                  environment, texture_info,          texture_error,          can_write, write,
+                  read};
+
+} // namespace
+} // namespace lobe::oiio
+
+extern "C" __attribute__((visibility("default"))) const lobe::oiio::Api* lobe_oiio_module_api() {
+  return &lobe::oiio::kApi;
+}
