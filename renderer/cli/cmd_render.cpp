@@ -191,12 +191,12 @@ int run_render(int argc, char** argv) {
       std::snprintf(spp, sizeof spp, "%d spp", st.spp);
     std::fprintf(stderr,
                  "%s%s: %dx%d, %s, %s materials (%d compiled in %.2fs, %d with closure "
-                 "kernels, setup %.2fs), render %.2fs, %.2f Mrays/s\n",
+                 "kernels, %d from the cache, setup %.2fs), render %.2fs, %.2f Mrays/s\n",
                  stats.cancelled ? "interrupted: wrote the finished samples to " : "wrote ",
                  out.c_str(), st.width, st.height, spp, backend.name().c_str(),
                  scene.stats().materials_compiled, scene.stats().compile_seconds,
-                 scene.stats().closure_kernels, setup_s, stats.seconds,
-                 stats.seconds > 0 ? double(rays) / stats.seconds / 1e6 : 0.0);
+                 scene.stats().closure_kernels, scene.stats().closure_kernels_cached, setup_s,
+                 stats.seconds, stats.seconds > 0 ? double(rays) / stats.seconds / 1e6 : 0.0);
   }
   return stats.cancelled ? 130 : 0;
 }

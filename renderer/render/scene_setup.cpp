@@ -156,7 +156,10 @@ std::string RenderScene::compile_materials(const MaterialCompiler& compile) {
   });
   for (int mi : todo) {
     if (!materials_[mi] || !use_kernels_) continue;
-    if (materials_[mi]->closure_kernels()) ++stats_.closure_kernels;
+    if (materials_[mi]->closure_kernels()) {
+      ++stats_.closure_kernels;
+      stats_.closure_kernels_cached += materials_[mi]->closure_kernels_cached();
+    }
     std::string ke = materials_[mi]->closure_kernels_error();
     if (!ke.empty())
       stats_.warnings.push_back("material '" + desc_.materials[mi].name +

@@ -44,6 +44,7 @@ struct SetupStats {
   int materials_compiled = 0;
   int emitters = 0;
   int closure_kernels = 0;           // materials whose closures run as JIT-compiled kernels
+  int closure_kernels_cached = 0;    // of those, kernels read from the disk cache
   std::vector<std::string> warnings; // e.g. closure kernels that failed to compile
   ShaderMessages messages;           // from shading at setup (emitter probes, background table)
 };

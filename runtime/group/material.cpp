@@ -31,8 +31,14 @@ const ClosureKernels* MaterialImpl::closure_kernels() const {
     // On failure, or with no closure the bitcode provides, kernels_ stays empty (eval null).
     jit::compile_closure_kernels(*jit_, closure_ids_, kernels_, kernels_code_, times,
                                  kernels_error_);
+    kernels_cached_ = times.from_cache;
   });
   return kernels_.eval ? &kernels_ : nullptr;
+}
+
+bool MaterialImpl::closure_kernels_cached() const {
+  closure_kernels();
+  return kernels_cached_;
 }
 
 std::string MaterialImpl::closure_kernels_error() const {

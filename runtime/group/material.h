@@ -47,6 +47,7 @@ public:
   const CompileStats& stats() const override { return stats_; }
   const ClosureKernels* closure_kernels() const override;
   std::string closure_kernels_error() const override;
+  bool closure_kernels_cached() const override;
 
 private:
   bool read_from(const unsigned char* gd, const std::string& layer, const std::string& param,
@@ -67,6 +68,7 @@ private:
   mutable ClosureKernels kernels_;
   mutable jit::CompiledGroup kernels_code_;
   mutable std::string kernels_error_;
+  mutable bool kernels_cached_ = false;
 };
 
 // A cache hit: the same compiled material, with the stats of this request.
@@ -96,6 +98,7 @@ public:
   const CompileStats& stats() const override { return stats_; }
   const ClosureKernels* closure_kernels() const override { return m_->closure_kernels(); }
   std::string closure_kernels_error() const override { return m_->closure_kernels_error(); }
+  bool closure_kernels_cached() const override { return m_->closure_kernels_cached(); }
 
 private:
   std::shared_ptr<const Material> m_;

@@ -3,6 +3,7 @@
 #include "closure_kernels.h"
 
 #include "closure_registry.h"
+#include "disk_cache.h"
 
 #include <llvm/Bitcode/BitcodeReader.h>
 #include <llvm/IR/IRBuilder.h>
@@ -11,6 +12,7 @@
 #include <llvm/Linker/Linker.h>
 #include <llvm/Support/MemoryBuffer.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <mutex>
@@ -39,6 +41,16 @@ const std::string* bitcode_bytes(std::string& error) {
     return nullptr;
   }
   return &bytes;
+}
+
+// The bitcode's identity for cache keys: its size and FNV-1a hash, computed once.
+std::string bitcode_identity(const std::string& bytes) {
+  static std::once_flag once;
+  static std::string id;
+  std::call_once(once, [&] {
+    id = "bitcode " + std::to_string(bytes.size()) + " " + std::to_string(fnv1a(bytes));
+  });
+  return id;
 }
 
 // The per-key functions a dispatcher calls, declared in `mod` with the library's types.
@@ -127,6 +139,39 @@ bool compile_closure_kernels(Jit& jit, const std::vector<int>& ids, ClosureKerne
   }
   const std::string* bytes = bitcode_bytes(error);
   if (!bytes) return false;
+
+  // The disk cache: the machine code depends on the ids asked for, the bitcode, the target
+  // and LLVM (disk_cache.h). An entry holds the ids it covers, then the object.
+  std::vector<int> wanted(ids);
+  std::sort(wanted.begin(), wanted.end());
+  wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+  std::string key = "closure kernels 1; opt 2; " + jit.target_identity() + "; " +
+                    bitcode_identity(*bytes) + "; ids";
+  for (int id : wanted) key += " " + std::to_string(id);
+  auto finish = [&](const std::string& covered, const std::string& object) {
+    ClosureKernels k;
+    std::istringstream in(covered);
+    for (int id; in >> id;) k.add(id);
+    std::vector<void*> addresses;
+    if (!jit.add_object(object, {kEntries[0], kEntries[1], kEntries[2]}, addresses, code, error))
+      return false;
+    k.eval = reinterpret_cast<ClosureKernels::EvalFn>(addresses[0]);
+    k.sample = reinterpret_cast<ClosureKernels::SampleFn>(addresses[1]);
+    k.albedo = reinterpret_cast<ClosureKernels::AlbedoFn>(addresses[2]);
+    out = k;
+    return true;
+  };
+  if (std::string entry; cache_read("kernels", key, entry)) {
+    size_t nl = entry.find('\n');
+    if (nl != std::string::npos) {
+      if (finish(entry.substr(0, nl), entry.substr(nl + 1))) {
+        times.from_cache = true;
+        return true;
+      }
+      error.clear(); // an entry that does not load is rebuilt
+    }
+  }
+
   auto ctx = std::make_unique<llvm::LLVMContext>();
   auto lib = llvm::getLazyBitcodeModule(llvm::MemoryBufferRef(*bytes, "lobe_closures.bc"), *ctx);
   if (!lib) {
@@ -170,15 +215,12 @@ bool compile_closure_kernels(Jit& jit, const std::vector<int>& ids, ClosureKerne
     return false;
   }
   internalize(*mod);
-  std::vector<void*> addresses;
-  if (!jit.add(std::move(ctx), std::move(mod), 2, {kEntries[0], kEntries[1], kEntries[2]},
-               addresses, code, times, error))
-    return false;
-  k.eval = reinterpret_cast<ClosureKernels::EvalFn>(addresses[0]);
-  k.sample = reinterpret_cast<ClosureKernels::SampleFn>(addresses[1]);
-  k.albedo = reinterpret_cast<ClosureKernels::AlbedoFn>(addresses[2]);
-  out = k;
-  return true;
+  std::string object;
+  if (!jit.compile_object(*mod, 2, object, times, error)) return false;
+  std::string covered;
+  for (const Case& c : cases) covered += std::to_string(c.id) + " ";
+  cache_write("kernels", key, covered + "\n" + object);
+  return finish(covered, object);
 }
 
 } // namespace lobe::jit

@@ -4,6 +4,7 @@
 #include "energy_dielectric.h"
 #include "shadeops.h"
 
+#include <llvm/Config/llvm-config.h>
 #include <llvm/ExecutionEngine/Orc/CompileUtils.h>
 #include <llvm/ExecutionEngine/Orc/Core.h>
 #include <llvm/ExecutionEngine/Orc/JITTargetMachineBuilder.h>
@@ -13,6 +14,7 @@
 #include <llvm/IR/LegacyPassManager.h>
 #include <llvm/IR/Module.h>
 #include <llvm/Passes/PassBuilder.h>
+#include <llvm/Support/MemoryBuffer.h>
 #include <llvm/Support/TargetSelect.h>
 #include <llvm/Support/raw_ostream.h>
 #include <llvm/Target/TargetMachine.h>
@@ -224,6 +226,67 @@ bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::
   out.entry = addresses.empty() ? nullptr : addresses.front();
   out.dylib = &*jd;
   return true;
+}
+
+bool Jit::compile_object(llvm::Module& module, int opt_level, std::string& object, JitTimes& times,
+                         std::string& error) const {
+  auto t0 = std::chrono::steady_clock::now();
+  optimize(module, opt_level);
+  times.optimize_ms = ms_since(t0);
+  auto t1 = std::chrono::steady_clock::now();
+  auto tm = s_->jtmb->createTargetMachine(); // one of its own: runs go in parallel
+  if (!tm) {
+    error = llvm::toString(tm.takeError());
+    return false;
+  }
+  llvm::SmallString<0> bytes;
+  llvm::raw_svector_ostream os(bytes);
+  llvm::legacy::PassManager pm;
+  if ((*tm)->addPassesToEmitFile(pm, os, nullptr, llvm::CodeGenFileType::ObjectFile)) {
+    error = "the target machine cannot emit objects";
+    return false;
+  }
+  pm.run(module);
+  object.assign(bytes.begin(), bytes.end());
+  times.codegen_ms = ms_since(t1);
+  return true;
+}
+
+bool Jit::add_object(const std::string& object, const std::vector<std::string>& entries,
+                     std::vector<void*>& addresses, CompiledGroup& out, std::string& error) {
+  auto& lljit = *s_->lljit;
+  std::string name = "lobe_group_" + std::to_string(s_->counter++);
+  std::unique_lock<std::mutex> dylib_lock(s_->dylib_mutex);
+  auto jd = lljit.createJITDylib(name);
+  dylib_lock.unlock();
+  if (!jd) {
+    error = llvm::toString(jd.takeError());
+    return false;
+  }
+  jd->addToLinkOrder(*s_->runtime);
+  auto fail = [&](llvm::Error err) {
+    error = llvm::toString(std::move(err));
+    llvm::consumeError(lljit.getExecutionSession().removeJITDylib(*jd));
+    return false;
+  };
+  if (auto err = lljit.addObjectFile(*jd, llvm::MemoryBuffer::getMemBufferCopy(object, name)))
+    return fail(std::move(err));
+  addresses.clear();
+  for (const std::string& entry : entries) {
+    auto addr = lljit.lookup(*jd, entry);
+    if (!addr) return fail(addr.takeError());
+    addresses.push_back(addr->toPtr<void*>());
+  }
+  out.entry = addresses.empty() ? nullptr : addresses.front();
+  out.dylib = &*jd;
+  return true;
+}
+
+std::string Jit::target_identity() const {
+  std::string id = "llvm " LLVM_VERSION_STRING "; ";
+  id += s_->jtmb->getTargetTriple().str() + "; cpu " + s_->jtmb->getCPU() + "; features " +
+        s_->jtmb->getFeatures().getString() + "; codegen O1"; // Jit::create's CodeGenOptLevel::Less
+  return id;
 }
 
 bool Jit::emit_assembly(llvm::Module& module, std::string& out, std::string& error) const {

@@ -30,6 +30,7 @@ struct CompiledGroup {
 
 struct JitTimes {
   double optimize_ms = 0, codegen_ms = 0;
+  bool from_cache = false; // the machine code came from the disk cache (closure kernels)
 };
 
 class Jit {
@@ -50,6 +51,17 @@ public:
            int opt_level, const std::vector<std::string>& entries, std::vector<void*>& addresses,
            CompiledGroup& out, JitTimes& times, std::string& error);
   void remove(CompiledGroup& group);
+
+  // Optimises `module` and compiles it to a relocatable object for this JIT's target (the
+  // code add() would produce), into `object`. Thread-safe.
+  bool compile_object(llvm::Module& module, int opt_level, std::string& object, JitTimes& times,
+                      std::string& error) const;
+  // As add(), for an object compile_object produced (now or in an earlier run).
+  bool add_object(const std::string& object, const std::vector<std::string>& entries,
+                  std::vector<void*>& addresses, CompiledGroup& out, std::string& error);
+  // What machine code depends on besides the IR: LLVM's version, the target triple, CPU and
+  // features, the code generator's optimisation level (part of every disk-cache key).
+  std::string target_identity() const;
 
   // Runs the optimisation pipeline only (used by add(), and by tests/benchmarks).
   void optimize(llvm::Module& module, int opt_level) const;

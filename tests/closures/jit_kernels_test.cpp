@@ -18,6 +18,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <thread>
 
@@ -239,3 +242,78 @@ TEST(MaterialKernels, CompileConcurrently) {
 }
 
 } // namespace
+
+// The disk cache of closure kernels (runtime/jit/disk_cache.h): a second compile of the same
+// ids is read from the cache and computes bit for bit what the compiled one does; a corrupt
+// entry is detected, rebuilt and replaced; LOBE_CACHE_DIR=off turns the cache off.
+namespace {
+struct Compiled {
+  Kernels k;
+  bool cached = false;
+};
+std::unique_ptr<Compiled> compile_ids(const std::vector<int>& ids) {
+  auto c = std::make_unique<Compiled>();
+  std::string err;
+  c->k.jit = jit::Jit::create(err);
+  EXPECT_TRUE(c->k.jit) << err;
+  jit::JitTimes t;
+  EXPECT_TRUE(jit::compile_closure_kernels(*c->k.jit, ids, c->k.k, c->k.code, t, err)) << err;
+  c->cached = t.from_cache;
+  return c;
+}
+// eval and sample of every id at a few direction pairs, as raw floats.
+std::vector<float> outputs(const ClosureKernels& k, const std::vector<int>& ids) {
+  std::vector<float> out;
+  Pcg32 rng(5);
+  for (int id : ids) {
+    closures::Params p = configs_for(id, Level::Quick).front().params;
+    for (int n = 0; n < 16; ++n) {
+      Vec3 wo = uniform_sphere(rng.next_double(), rng.next_double());
+      wo.z = std::fabs(wo.z);
+      Vec3 wi = uniform_sphere(rng.next_double(), rng.next_double()), u = rng.next_vec3();
+      closures::LobeEval e;
+      k.eval(id, p.data(), &wo, &wi, 0, &e);
+      closures::LobeSample s{};
+      int ok = k.sample(id, p.data(), &wo, &u, 0, &s);
+      out.insert(out.end(), {e.value.x, e.value.y, e.value.z, e.pdf, float(ok), s.wi.x, s.pdf});
+    }
+  }
+  return out;
+}
+} // namespace
+
+TEST(KernelCache, HitAfterMissCorruptEntriesRebuiltOffSwitch) {
+  char dir[] = "/tmp/lobe_kernel_cache_XXXXXX";
+  ASSERT_NE(mkdtemp(dir), nullptr);
+  setenv("LOBE_CACHE_DIR", dir, 1);
+  const std::vector<int> ids = {registry::id_of("diffuse"), registry::id_of("microfacet")};
+  auto first = compile_ids(ids);
+  EXPECT_FALSE(first->cached);
+  auto second = compile_ids({ids[1], ids[0], ids[1]}); // the same set, in another order
+  EXPECT_TRUE(second->cached);
+  EXPECT_TRUE(second->k.k.covers(ids[0]) && second->k.k.covers(ids[1]));
+  const std::vector<float> expected = outputs(first->k.k, ids);
+  EXPECT_EQ(outputs(second->k.k, ids), expected);
+
+  int entries = 0;
+  for (const auto& f : std::filesystem::directory_iterator(dir)) {
+    ++entries;
+    std::fstream io(f.path(), std::ios::in | std::ios::out | std::ios::binary);
+    const auto middle = std::streamoff(std::filesystem::file_size(f.path()) / 2);
+    char c = 0;
+    io.seekg(middle);
+    io.get(c);
+    io.seekp(middle);
+    io.put(char(c ^ 0x5a)); // a changed byte in the object
+  }
+  EXPECT_EQ(entries, 1);
+  auto rebuilt = compile_ids(ids);
+  EXPECT_FALSE(rebuilt->cached);
+  EXPECT_EQ(outputs(rebuilt->k.k, ids), expected);
+  EXPECT_TRUE(compile_ids(ids)->cached); // replaced by the rebuild
+
+  setenv("LOBE_CACHE_DIR", "off", 1);
+  EXPECT_FALSE(compile_ids(ids)->cached);
+  unsetenv("LOBE_CACHE_DIR");
+  std::filesystem::remove_all(dir);
+}

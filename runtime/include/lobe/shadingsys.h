@@ -178,6 +178,9 @@ public:
   // (closure_kernels_error() says why): Bsdf then uses the native library.
   virtual const ClosureKernels* closure_kernels() const { return nullptr; }
   virtual std::string closure_kernels_error() const { return {}; }
+  // True when closure_kernels() came from the disk cache of an earlier run (LOBE_CACHE_DIR,
+  // docs/runtime.md "Closure kernels") instead of being compiled.
+  virtual bool closure_kernels_cached() const { return false; }
 };
 
 class ShadingSystem {
