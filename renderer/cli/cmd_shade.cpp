@@ -404,7 +404,13 @@ int Shade::run() {
     g.renderer_outputs.push_back(o.layer.empty() ? o.var : o.layer + "." + o.var);
   for (const std::string& e : job_.entry_layers) g.entry_layers.push_back(e);
   if (job_.verbose || job_.oslquery) print_group(g);
+  // Ctrl-C from here on: compiling finishes, then nothing is shaded; shading stops promptly.
+  std::signal(SIGINT, on_shade_sigint);
   if (!compile(g, mat_)) return 1;
+  if (g_cancel.load()) {
+    std::fprintf(stderr, "lobe shade: interrupted (Ctrl-C) while compiling; nothing shaded\n");
+    return 130;
+  }
   if (!job_.entry_layers.empty()) {
     std::string line = "Entry layers:";
     for (const std::string& e : job_.entry_layers) {
@@ -424,7 +430,6 @@ int Shade::run() {
   if (!resolve_outputs()) return 1;
   double setup = seconds_since(t0);
 
-  std::signal(SIGINT, on_shade_sigint);
   auto t1 = Clock::now();
   std::shared_ptr<const Material> reparam; // --reparam's values, from the second iteration
   for (int it = 0; it < job_.iters; ++it) {

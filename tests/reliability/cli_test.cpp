@@ -59,10 +59,11 @@ std::string read_file(const fs::path& p) {
 
 std::string exe() { return LOBE_EXE; }
 
-// Runs `lobe ARGS` in `cwd` with stdout and stderr to `log`, sends SIGINT after `delay_ms`, and
-// returns the exit status (-1 if it did not exit by itself).
-int interrupt_after(const std::vector<std::string>& args, const fs::path& cwd, const fs::path& log,
-                    int delay_ms) {
+// Runs `lobe ARGS` in `cwd` with stdout and stderr to `log`, waits until the shader has written
+// `started` (it does so just before its endless loop), sends SIGINT and returns the exit status
+// (-1 if it did not exit by itself).
+int interrupt_when_started(const std::vector<std::string>& args, const fs::path& cwd,
+                           const fs::path& log, const fs::path& started) {
   std::string cmd = "cd '" + cwd.string() + "' && exec '" + exe() + "'";
   for (const std::string& a : args) cmd += " '" + a + "'";
   cmd += " > '" + log.string() + "' 2>&1";
@@ -72,11 +73,21 @@ int interrupt_after(const std::vector<std::string>& args, const fs::path& cwd, c
     execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
-  std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+  for (int i = 0; i < 6000 && !fs::exists(started); ++i) // the CTest TIMEOUT bounds it anyway
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
   kill(pid, SIGINT);
   int st = 0;
   waitpid(pid, &st, 0);
   return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+// For camera rays, an endless loop that first says it has started (fprintf appends to the file
+// at once); lobe shade's rays are camera rays, lobe render's set-up probes with shadow rays.
+std::string endless_after_notice(const char* name, const fs::path& started) {
+  return std::string("surface ") + name + "(output color Cout = 0)\n{\n  float x = 1;\n" +
+         "  if (raytype(\"camera\")) {\n    fprintf(\"" + started.string() +
+         "\", \"started\\n\");\n    while (1) { x = x * 2; }\n  }\n  Ci = diffuse(N);\n}\n";
 }
 
 // Line 3 is the loop.
@@ -131,10 +142,10 @@ TEST(ReliabilityShade, EndlessLoopIsAnErrorWithItsPlace) {
 // the finished points; exit status 130.
 TEST(ReliabilityShade, CtrlCStopsAndWritesWhatIsFinished) {
   fs::path d = temp_dir("shade_sigint");
-  write_file(d / "endless.osl", kEndless);
-  int st = interrupt_after({"shade", "--options", "max_loop_iterations=0", "-t", "1", "-g", "4",
-                            "4", "-o", "Cout", (d / "out.exr").string(), "endless"},
-                           d, d / "log", 1500);
+  write_file(d / "notice.osl", endless_after_notice("notice", d / "started"));
+  int st = interrupt_when_started({"shade", "--options", "max_loop_iterations=0", "-t", "1", "-g",
+                                   "4", "4", "-o", "Cout", (d / "out.exr").string(), "notice"},
+                                  d, d / "log", d / "started");
   std::string log = read_file(d / "log");
   EXPECT_EQ(st, 130) << log;
   EXPECT_NE(log.find("lobe shade: interrupted (Ctrl-C) after 0 of 16 points; writing the finished "
@@ -212,11 +223,11 @@ TEST(ReliabilityRender, EndlessLoopWhileRenderingIsAnError) {
 // Ctrl-C while shaders loop without a limit: rendering stops, the finished samples are written.
 TEST(ReliabilityRender, CtrlCWritesThePartialImage) {
   fs::path d = temp_dir("render_sigint");
-  write_file(d / "camloop.osl", kEndlessCamera);
-  write_file(d / "s.json", scene_json("camloop"));
-  int st = interrupt_after({"render", "-q", "--materials", "jit", "--max-loop-iterations", "0",
-                            (d / "s.json").string(), "-o", (d / "o.png").string()},
-                           d, d / "log", 2500);
+  write_file(d / "notice.osl", endless_after_notice("notice", d / "started"));
+  write_file(d / "s.json", scene_json("notice"));
+  int st = interrupt_when_started({"render", "-q", "--materials", "jit", "--max-loop-iterations",
+                                   "0", (d / "s.json").string(), "-o", (d / "o.png").string()},
+                                  d, d / "log", d / "started");
   std::string log = read_file(d / "log");
   EXPECT_EQ(st, 130) << log;
   EXPECT_NE(log.find("interrupted: wrote the finished samples to " + (d / "o.png").string()),
