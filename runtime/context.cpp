@@ -32,6 +32,7 @@ detail::Dictionaries& ShadingContext::dictionaries() {
 void ShadingContext::begin_shade() {
   if (messages_) messages_->clear(); // a material without messages never makes a store
   trace_hit = TraceHit{};
+  stopped = false;
 }
 
 namespace {

@@ -70,6 +70,14 @@ Vec3 vec(const std::vector<double>& v, size_t at) {
   return {float(v[at]), float(v[at + 1]), float(v[at + 2])};
 }
 
+// Three finite numbers from v[at] on, not all zero (a direction normalize() can take).
+bool finite_direction(const std::vector<double>& v, size_t at) {
+  Vec3 d = vec(v, at);
+  for (float c : {d.x, d.y, d.z})
+    if (!std::isfinite(c)) return false;
+  return d.x != 0 || d.y != 0 || d.z != 0;
+}
+
 void print_expr_error(const std::string& expr, const ExprError& e) {
   std::fprintf(stderr, "lobe brdf: error: %s\n  %s\n  %*s^\n", e.message.c_str(), expr.c_str(),
                static_cast<int>(e.pos), "");
@@ -114,6 +122,11 @@ int run_query(const Options& o, const LobeView& lobe, const Vec3& wo, Transport 
                      s.c_str());
         return 2;
       }
+      if (!finite_direction(v, 0) || !finite_direction(v, 3)) {
+        std::fprintf(stderr, "lobe brdf: --eval: directions must be finite and non-zero: '%s'\n",
+                     s.c_str());
+        return 1;
+      }
       Vec3 a = normalize(vec(v, 0)), b = normalize(vec(v, 3));
       BsdfEval e = lobe.eval(a, b, mode);
       t.rows.push_back(
@@ -128,6 +141,12 @@ int run_query(const Options& o, const LobeView& lobe, const Vec3& wo, Transport 
         std::fprintf(stderr, "lobe brdf: --sample wants u1,u2,u3: '%s'\n", s.c_str());
         return 2;
       }
+      for (double u : v)
+        if (!(u >= 0 && u < 1)) { // NaN included
+          std::fprintf(stderr, "lobe brdf: --sample: random numbers must lie in [0, 1): '%s'\n",
+                       s.c_str());
+          return 1;
+        }
       auto r = lobe.sample(wo, vec(v, 0), mode);
       if (!r)
         t.rows.push_back({v[0], v[1], v[2], 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
@@ -390,6 +409,21 @@ int run_brdf(int argc, char** argv) {
     std::fprintf(stderr, "lobe brdf: give a closure call or --shader NAME\n%s", app.help().c_str());
     return 2;
   }
+  // Angles and directions are checked before anything is computed from them.
+  if (!std::isfinite(o.theta) || o.theta < 0 || o.theta > 180) {
+    std::fprintf(stderr, "lobe brdf: --theta must be an angle in [0, 180] degrees, not %g\n",
+                 o.theta);
+    return 1;
+  }
+  for (double th : o.albedo_angles)
+    if (!std::isfinite(th) || th < 0 || th > 180) {
+      std::fprintf(stderr, "lobe brdf: --albedo angles must lie in [0, 180] degrees, not %g\n", th);
+      return 1;
+    }
+  if (o.samples == 0) {
+    std::fprintf(stderr, "lobe brdf: --samples must be at least 1\n");
+    return 1;
+  }
   std::unique_ptr<LobeView> owned;
   Subject subject;
   if (!o.shader.empty()) {
@@ -428,6 +462,11 @@ int run_brdf(int argc, char** argv) {
     if (v.size() != 3) {
       std::fprintf(stderr, "lobe brdf: --wo wants x,y,z\n");
       return 2;
+    }
+    if (!finite_direction(v, 0)) {
+      std::fprintf(stderr, "lobe brdf: --wo must be finite and non-zero: '%s'\n",
+                   o.wo_text.c_str());
+      return 1;
     }
     wo = normalize(vec(v, 0));
   }

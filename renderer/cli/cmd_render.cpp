@@ -7,6 +7,7 @@
 #include "default_scene.h"
 #include "image.h"
 #include "material_backend.h"
+#include "memory_check.h"
 #include "renderer.h"
 #include "scene.h"
 
@@ -62,6 +63,7 @@ struct Args {
   std::vector<int> res;
   int spp = 0, threads = 0, max_depth = 0;
   long long seed = -1;
+  long long max_loop_iterations = 100000000;
   float exposure = 0;
   bool quiet = false;
 };
@@ -95,6 +97,10 @@ int run_render(int argc, char** argv) {
   app.add_option("--colorspace", a.colorspace,
                  "RGB space of shader colours (Rec709, sRGB, NTSC, EBU, PAL, SECAM, SMPTE, HDTV, "
                  "CIE, AdobeRGB, ACEScg): transformc, luminance, blackbody, wavelength_color");
+  app.add_option("--max-loop-iterations", a.max_loop_iterations,
+                 "stop a shade whose loops run more than this many iterations, with an error "
+                 "(0: unlimited, -1: no checks)")
+      ->check(CLI::Range(-1LL, 1LL << 62));
   app.add_flag("-q,--quiet", a.quiet, "no progress or summary");
   try {
     app.parse(argc, argv);
@@ -128,6 +134,20 @@ int run_render(int argc, char** argv) {
     return 1;
   }
 
+  // The image's cost, checked before anything is allocated: per pixel the accumulator (44
+  // bytes), the resolved image and the writer's copy (4 bytes a channel each).
+  {
+    double channels = lobe::image::keeps_all_channels(out) ? 10 : 3;
+    double bytes = double(st.width) * double(st.height) * (44 + 2 * 4 * channels);
+    std::string setting = (a.res.size() == 2 ? "--res " : "resolution ") +
+                          std::to_string(st.width) + " " + std::to_string(st.height);
+    if (std::string e = lobe::cli::check_memory(setting, bytes, "the image and its samples");
+        !e.empty()) {
+      std::fprintf(stderr, "lobe render: %s\n", e.c_str());
+      return 1;
+    }
+  }
+
   // Shaders are found next to the scene file (whatever the working directory), then in
   // stdlib_shaders/.
   std::vector<std::string> shader_dirs;
@@ -137,12 +157,17 @@ int run_render(int argc, char** argv) {
   // An unknown colour space is reported and Rec709 used, as testshade does.
   if (std::string e = backend.set_colorspace(a.colorspace); !e.empty())
     std::fprintf(stderr, "ERROR: %s\n", e.c_str());
+  backend.set_max_loop_iterations(a.max_loop_iterations);
   lobe::render::RenderScene scene;
   scene.use_closure_kernels(a.closures == "jit");
+  scene.set_cancel(&g_cancel);
+  // Ctrl-C from here on stops at the next stage (or loop check) and says where.
+  std::signal(SIGINT, on_sigint);
   auto t0 = std::chrono::steady_clock::now();
   if (std::string e = scene.setup(desc, backend.compiler(), st.width, st.height); !e.empty()) {
+    std::signal(SIGINT, SIG_DFL);
     std::fprintf(stderr, "lobe render: %s\n", e.c_str());
-    return 1;
+    return g_cancel.load() ? 130 : 1;
   }
   double setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const std::string& w : backend.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -157,7 +182,6 @@ int run_render(int argc, char** argv) {
   opt.strategy = parse_strategy(a.strategy);
   opt.aovs = lobe::image::keeps_all_channels(out); // AOV channels only where they are kept
   ProgressBar bar(!a.quiet && isatty(STDERR_FILENO));
-  std::signal(SIGINT, on_sigint);
   lobe::render::RenderStats stats;
   lobe::image::Image img = lobe::render::render_image(
       scene, st.width, st.height, opt, &g_cancel, [&](uint64_t d, uint64_t t) { bar.update(d, t); },
@@ -171,6 +195,11 @@ int run_render(int argc, char** argv) {
   lobe::render::merge_messages(stats.counters.messages, messages);
   for (const std::string& m : scene.describe(messages))
     std::fprintf(stderr, "warning: %s\n", m.c_str());
+  if (!stats.stopped.empty()) { // a runaway shader: an error, no image
+    std::fprintf(stderr, "lobe render: %s; rendering stopped, no image written\n",
+                 stats.stopped.c_str());
+    return 1;
+  }
 
   lobe::image::WriteOptions wo;
   wo.exposure = st.exposure;
@@ -179,7 +208,7 @@ int run_render(int argc, char** argv) {
     std::fprintf(stderr, "lobe render: %s\n", e.c_str());
     return 1;
   }
-  if (!a.quiet) {
+  if (!a.quiet || stats.cancelled) { // an interrupted render always says so
     uint64_t rays = stats.counters.rays + stats.counters.shadow_rays;
     // Interrupted: how many samples per pixel finished (pixels of the last, partial pass have
     // one more), e.g. "8.4 of 32 spp".

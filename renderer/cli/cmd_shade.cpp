@@ -15,6 +15,7 @@
 #include "grid.h"
 #include "image.h"
 #include "lobe/shadingsys.h"
+#include "memory_check.h"
 #include "shade_args.h"
 #include "shade_services.h"
 #include "shader_source.h"
@@ -23,8 +24,10 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <deque>
@@ -37,6 +40,12 @@ namespace lobe::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// Stops the grid: set by Ctrl-C (the signal handler may touch nothing else) or by a shade
+// stopped in a loop. Shading stops at the next point, and running shaders at their next loop
+// check (it is every ShadingContext's `cancel`).
+std::atomic<bool> g_cancel{false};
+extern "C" void on_shade_sigint(int) { g_cancel.store(true); }
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
@@ -177,6 +186,10 @@ private:
   std::vector<Output> outputs_;
   std::vector<std::vector<Said>> said_;   // per iteration and point, in order
   std::vector<std::string> pixel_blocks_; // --print, per point of the last iteration
+  // Bounded execution: `stopped_`: a shade was stopped in a loop (its error is in its point's
+  // messages; g_cancel is set too); `shaded_` counts the points that finished.
+  std::atomic<bool> stopped_{false};
+  std::atomic<size_t> shaded_{0};
 };
 
 bool Shade::compile(const ShaderGroup& g, std::shared_ptr<const Material>& out) {
@@ -201,11 +214,26 @@ bool Shade::resolve_outputs() {
       }
     }
     if (out.layer.empty()) continue;
-    if (!out.closure && out.type.base != DataType::Base::String)
-      out.img = image::Image(job_.xres, job_.yres,
-                             channel_names(out.type.elements() * out.type.components()));
     outputs_.push_back(std::move(out));
   }
+  // What the grid will cost, checked before any of it is allocated: per point its messages
+  // (per iteration), its --print block, and each output's pixel (image and written copy).
+  double points = double(job_.xres) * double(job_.yres);
+  double per_point = double(sizeof(std::vector<Said>)) * std::max(1, job_.iters);
+  if (job_.print) per_point += sizeof(std::string) + 64;
+  for (const Output& o : outputs_)
+    if (!o.closure && o.type.base != DataType::Base::String)
+      per_point += 2.0 * 4 * o.type.elements() * o.type.components();
+  std::string setting = "-g " + std::to_string(job_.xres) + " " + std::to_string(job_.yres);
+  if (std::string e = check_memory(setting, points * per_point, "the grid's outputs and messages");
+      !e.empty()) {
+    std::fprintf(stderr, "lobe shade: %s\n", e.c_str());
+    return false;
+  }
+  for (Output& o : outputs_)
+    if (!o.closure && o.type.base != DataType::Base::String)
+      o.img = image::Image(job_.xres, job_.yres,
+                           channel_names(o.type.elements() * o.type.components()));
   for (const Output& o : outputs_)
     if (o.spec.file != "null")
       std::printf("Output %s to %s\n", o.spec.var.c_str(), o.spec.file.c_str());
@@ -249,7 +277,9 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
     ShadingContext& ctx = contexts.local();
     std::vector<unsigned char>& bytes = scratch.local();
     ctx.renderer = &services;
+    ctx.cancel = &g_cancel;
     for (int x = 0; x < job_.xres; ++x) {
+      if (g_cancel.load(std::memory_order_relaxed)) return;
       size_t p = size_t(y) * size_t(job_.xres) + size_t(x);
       std::vector<Said>& said = said_[first + p];
       ctx.report = [&said](ShadingContext::MessageKind k, const std::string& t) {
@@ -258,6 +288,13 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
       ctx.reset();
       ShaderGlobals sg = group::grid_globals(grid, x, y, &ctx);
       m.shade(sg);
+      if (ctx.stopped) {
+        // Past max_loop_iterations (the error is in this point's messages), or cancelled.
+        if (ctx.errors) stopped_.store(true);
+        g_cancel.store(true);
+        return;
+      }
+      shaded_.fetch_add(1, std::memory_order_relaxed);
       if (!last_iteration) continue;
       std::string block;
       if (job_.print) block = "Pixel (" + std::to_string(x) + ", " + std::to_string(y) + "):\n";
@@ -367,7 +404,13 @@ int Shade::run() {
     g.renderer_outputs.push_back(o.layer.empty() ? o.var : o.layer + "." + o.var);
   for (const std::string& e : job_.entry_layers) g.entry_layers.push_back(e);
   if (job_.verbose || job_.oslquery) print_group(g);
+  // Ctrl-C from here on: compiling finishes, then nothing is shaded; shading stops promptly.
+  std::signal(SIGINT, on_shade_sigint);
   if (!compile(g, mat_)) return 1;
+  if (g_cancel.load()) {
+    std::fprintf(stderr, "lobe shade: interrupted (Ctrl-C) while compiling; nothing shaded\n");
+    return 130;
+  }
   if (!job_.entry_layers.empty()) {
     std::string line = "Entry layers:";
     for (const std::string& e : job_.entry_layers) {
@@ -404,7 +447,9 @@ int Shade::run() {
       if (any && !compile(changed, reparam)) return 1;
     }
     shade_grid(reparam ? *reparam : *mat_, it + 1 == job_.iters);
+    if (g_cancel.load()) break;
   }
+  std::signal(SIGINT, SIG_DFL);
   double run = seconds_since(t1);
   std::fflush(stdout);
   for (const std::string& b : pixel_blocks_) std::fputs(b.c_str(), stdout);
@@ -413,8 +458,22 @@ int Shade::run() {
     for (const Said& s : point) journal.print(s);
   std::fflush(stdout);
   if (job_.outputs.size() == 1 && job_.outputs[0].file == "null") std::printf("\n");
+  size_t total = size_t(job_.xres) * size_t(job_.yres) * size_t(std::max(1, job_.iters));
+  std::fflush(stdout);
+  if (stopped_.load()) { // a shader ran away: the error above names it; nothing is written
+    std::fprintf(stderr, "lobe shade: stopped after %zu of %zu points; no output written\n",
+                 shaded_.load(), total);
+    return 1;
+  }
+  bool interrupted = g_cancel.load();
+  if (interrupted)
+    std::fprintf(stderr,
+                 "lobe shade: interrupted (Ctrl-C) after %zu of %zu points; writing the finished "
+                 "points\n",
+                 shaded_.load(), total);
   auto t2 = Clock::now();
   int status = write_outputs();
+  if (interrupted) return 130;
   if (job_.print_groupdata) std::printf("Groupdata size: %zu\n", mat_->groupdata_bytes());
   if (job_.runstats) print_stats(setup, run, seconds_since(t2));
   return status;

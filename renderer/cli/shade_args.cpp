@@ -127,6 +127,8 @@ void apply_options(ShadeJob& job) {
       job.debug_uninit = to_i(value) != 0;
     } else if (name == "fast_math") {
       job.compile.fast_math = to_i(value) != 0;
+    } else if (name == "max_loop_iterations") { // Lobe's: 0 unlimited (CompileOptions)
+      job.compile.max_loop_iterations = std::max(-1LL, std::atoll(value.c_str()));
     } else if (name == "searchpath:shader") {
       std::stringstream dirs(value);
       for (std::string d; std::getline(dirs, d, ':');)
@@ -167,13 +169,15 @@ const std::vector<Option>& options() {
       {"warmup", 0, none},
       {"res", 2,
        [](Parser& p, const Use& u) {
-         p.job.xres = to_i(u.args[0]);
-         p.job.yres = to_i(u.args[1]);
+         // A negative size shades nothing, as in testshade.
+         p.job.xres = std::max(0, to_i(u.args[0]));
+         p.job.yres = std::max(0, to_i(u.args[1]));
        }},
       {"g", 2,
        [](Parser& p, const Use& u) {
-         p.job.xres = to_i(u.args[0]);
-         p.job.yres = to_i(u.args[1]);
+         // A negative size shades nothing, as in testshade.
+         p.job.xres = std::max(0, to_i(u.args[0]));
+         p.job.yres = std::max(0, to_i(u.args[1]));
        }},
       {"options", 1,
        [](Parser& p, const Use& u) {

@@ -41,6 +41,8 @@ static void shade_into(const RenderScene& scene, const SurfaceHit& hit, const Ve
   ctx.reset();
   auto t0 = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   scene.material(hit.shape).shade(sg);
+  if (ctx.stopped && ctx.errors && c.stopped.empty())
+    c.stopped = scene.stop_reason(ctx, scene.material_index(hit.shape), "rendering");
   // Messages from shader code (a missing texture...), collected per thread, reported after.
   if (!ctx.output.empty()) collect_messages(ctx, scene.material_index(hit.shape), c.messages);
   bsdf.build(sg.Ci, -dir, hit.Ng, scene.closure_kernels(hit.shape));

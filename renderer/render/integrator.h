@@ -32,6 +32,9 @@ struct TraceCounters {
   uint64_t shades = 0;      // Material::shade calls
   double shade_seconds = 0; // time inside Material::shade + Bsdf::build (when timed)
   ShaderMessages messages;  // what shader code reported (texture errors, error(), printf)
+  // The first shade stopped in a loop (ShadingContext::stopped) past max_loop_iterations:
+  // RenderScene::stop_reason's text; the renderer then stops.
+  std::string stopped;
 };
 
 class PathTracer {

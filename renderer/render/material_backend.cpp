@@ -37,6 +37,14 @@ MaterialBackend::MaterialBackend(const std::string& mode, std::vector<std::strin
 
 MaterialBackend::~MaterialBackend() = default;
 
+void MaterialBackend::set_max_loop_iterations(int64_t n) {
+#ifdef LOBE_HAVE_JIT
+  if (jit_) jit_->ss.options().max_loop_iterations = n;
+#else
+  (void)n;
+#endif
+}
+
 std::string MaterialBackend::set_colorspace(const std::string& name) {
 #ifdef LOBE_HAVE_JIT
   if (jit_) jit_->ss.options().colorspace = name;

@@ -27,6 +27,8 @@ public:
   // blackbody...); set before the first compile. Native materials are Rec709. Returns OSL's
   // message for an unknown name (`Unknown color space "X"`; Rec709 is used), else "".
   std::string set_colorspace(const std::string& name);
+  // CompileOptions::max_loop_iterations of JIT materials (0: unlimited); before the first compile.
+  void set_max_loop_iterations(int64_t n);
 
 private:
   std::shared_ptr<const Material> compile(const scene::MaterialDesc& m, std::string& error);

@@ -32,12 +32,14 @@ struct ThreadState {
 // Renders samples [s0, s1) of every pixel in tile `t`.
 void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int height, int t,
                  int s0, int s1, const RenderOptions& opt, const std::atomic<bool>* cancel,
-                 std::vector<Accum>& acc, ThreadState& ts) {
+                 std::atomic<bool>& halt, std::vector<Accum>& acc, ThreadState& ts) {
+  ts.ctx.cancel = ts.light_ctx.cancel = cancel; // Ctrl-C reaches shaders in their loops
   int tiles_x = (width + kTile - 1) / kTile;
   int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
   for (int y = y0; y < std::min(y0 + kTile, height); ++y) {
     for (int x = x0; x < std::min(x0 + kTile, width); ++x) {
       if (cancel && cancel->load(std::memory_order_relaxed)) return;
+      if (halt.load(std::memory_order_relaxed)) return;
       uint64_t pixel = uint64_t(y) * width + x;
       Accum& a = acc[pixel];
       for (int s = s0; s < s1; ++s) {
@@ -45,6 +47,12 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
         float jx = sampler.next(), jy = sampler.next(), l1 = sampler.next(), l2 = sampler.next();
         Ray ray = scene.camera().generate(x + jx, y + jy, l1, l2);
         PathResult r = pt.trace(ray, sampler, ts.ctx, ts.light_ctx, ts.counters);
+        if (!ts.counters.stopped.empty()) { // a runaway shader: the render stops (not counted)
+          halt.store(true);
+          return;
+        }
+        // Cancelled meanwhile: a shader may have been stopped in this sample (not counted).
+        if (cancel && cancel->load(std::memory_order_relaxed)) return;
         // A rare invalid sample must not poison the pixel (counted, then dropped).
         if (!is_finite(r.L)) r.L = {};
         a.L += r.L;
@@ -86,6 +94,7 @@ image::Image render_image(const RenderScene& scene, int width, int height, const
   int tiles = ((width + kTile - 1) / kTile) * ((height + kTile - 1) / kTile);
   uint64_t total = uint64_t(width) * height * opt.spp;
   std::atomic<uint64_t> done{0};
+  std::atomic<bool> halt{false}; // a shade was stopped in a loop
   int threads = opt.threads > 0 ? opt.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
   // Passes of 1, 1, 2, 4, ... 16 samples: early passes give a full (noisy) image quickly.
@@ -94,14 +103,14 @@ image::Image render_image(const RenderScene& scene, int width, int height, const
     int s1 = std::min(opt.spp, s0 + pass);
     arena.execute([&] {
       tbb::parallel_for(0, tiles, [&](int t) {
-        render_tile(scene, pt, width, height, t, s0, s1, opt, cancel, acc, states.local());
+        render_tile(scene, pt, width, height, t, s0, s1, opt, cancel, halt, acc, states.local());
         int tw = std::min(kTile, width - (t % ((width + kTile - 1) / kTile)) * kTile);
         int th = std::min(kTile, height - (t / ((width + kTile - 1) / kTile)) * kTile);
         uint64_t d = done.fetch_add(uint64_t(tw) * th * (s1 - s0)) + uint64_t(tw) * th * (s1 - s0);
         if (progress) progress(std::min(d, total), total);
       });
     });
-    if (cancel && cancel->load()) break;
+    if ((cancel && cancel->load()) || halt.load()) break;
   }
   if (stats) {
     *stats = RenderStats{};
@@ -113,6 +122,7 @@ image::Image render_image(const RenderScene& scene, int width, int height, const
       stats->counters.shades += ts.counters.shades;
       stats->counters.shade_seconds += ts.counters.shade_seconds;
       merge_messages(ts.counters.messages, stats->counters.messages);
+      if (stats->stopped.empty()) stats->stopped = ts.counters.stopped;
     }
     stats->cancelled = cancel && cancel->load();
   }

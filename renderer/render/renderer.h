@@ -31,6 +31,9 @@ struct RenderStats {
   uint64_t samples = 0; // pixel samples finished
   TraceCounters counters;
   bool cancelled = false;
+  // A shade was stopped in a loop (CompileOptions::max_loop_iterations): why (the material,
+  // shader and loop); rendering stopped there.
+  std::string stopped;
 };
 
 // Called from worker threads after each tile (thread-safe receivers only): pixel samples done

@@ -32,7 +32,18 @@ void collect_messages(ShadingContext& ctx, int material, ShaderMessages& out) {
   while (start < t.size()) {
     size_t end = t.find('\n', start);
     if (end == std::string::npos) end = t.size();
-    if (end > start) ++out[{material, t.substr(start, end - start)}];
+    if (end > start) {
+      // Distinct lines are kept up to kMaxDistinctMessages per thread (a printf of varying
+      // values at every point would otherwise keep them all); the rest are counted under "".
+      std::pair<int, std::string> key{material, t.substr(start, end - start)};
+      auto it = out.find(key);
+      if (it != out.end())
+        ++it->second;
+      else if (out.size() < kMaxDistinctMessages)
+        out.emplace(std::move(key), 1);
+      else
+        ++out[{material, ""}];
+    }
     start = end + 1;
   }
   ctx.output.clear();
@@ -65,17 +76,53 @@ std::vector<std::string> RenderScene::describe(const ShaderMessages& all) const 
     }
     ++it;
   }
+  // Per material: the first kMaxMessageLines distinct lines (each with its count), then one
+  // summary line for the rest.
   std::vector<std::string> lines;
+  std::map<int, std::pair<uint64_t, uint64_t>> more; // material -> (distinct lines, lines)
+  std::map<int, int> shown;
   for (const auto& [key, n] : messages) {
-    std::string where = key.first >= 0 ? desc_.materials[size_t(key.first)].where + ": material '" +
-                                             desc_.materials[size_t(key.first)].name + "'"
-                                       : desc_.path + ": the default material";
+    if (key.second.empty() || shown[key.first] >= kMaxMessageLines) {
+      more[key.first].first += key.second.empty() ? 0 : 1;
+      more[key.first].second += n;
+      continue;
+    }
+    ++shown[key.first];
+    std::string where = material_place(key.first);
     std::string text = key.second;
     for (const char* p : {"ERROR: ", "WARNING: "})
       if (text.rfind(p, 0) == 0) text = text.substr(std::strlen(p));
     lines.push_back(where + ": " + text + (n > 1 ? " (" + std::to_string(n) + " times)" : ""));
   }
+  for (const auto& [m, count] : more)
+    lines.push_back(material_place(m) + ": ... and " + std::to_string(count.second) +
+                    " more message line" + (count.second == 1 ? "" : "s") +
+                    (count.first ? " (" + std::to_string(count.first) + "+ different)" : "") +
+                    " not shown");
   return lines;
+}
+
+std::string RenderScene::material_place(int m) const {
+  return m >= 0 ? desc_.materials[size_t(m)].where + ": material '" +
+                      desc_.materials[size_t(m)].name + "'"
+                : desc_.path + ": the default material";
+}
+
+std::string RenderScene::stop_reason(const ShadingContext& ctx, int material,
+                                     const char* stage) const {
+  // The loop's error is the "ERROR: shader ..." line the shade sent last.
+  std::string found;
+  size_t start = 0;
+  while (ctx.errors && start < ctx.output.size()) {
+    size_t end = ctx.output.find('\n', start);
+    if (end == std::string::npos) end = ctx.output.size();
+    std::string line = ctx.output.substr(start, end - start);
+    if (line.rfind("ERROR: shader ", 0) == 0 && line.find("max_loop_iterations") != line.npos)
+      found = line.substr(7);
+    start = end + 1;
+  }
+  if (!found.empty()) return material_place(material) + ": " + found + " (while " + stage + ")";
+  return std::string("interrupted (Ctrl-C) while ") + stage;
 }
 
 // Constants computed once (name lookups are too slow for every shading point).
@@ -221,21 +268,25 @@ std::string RenderScene::build_environment() {
     const Material& m = *materials_[e.material];
     ShadingContext ctx;
     ctx.renderer = &services_;
+    ctx.cancel = cancel_;
+    std::string stopped;
     env_ = EnvironmentLight::from_function(
         [&](const Vec3& d) {
+          if (!stopped.empty()) return Color3{};
           SurfaceHit h;
           h.N = h.Ng = -d;
           ShaderGlobals sg;
           fill_globals(sg, h, d, kRayCamera, ctx);
           ctx.reset();
           m.shade(sg);
+          if (ctx.stopped) stopped = stop_reason(ctx, e.material, "tabulating the background");
           if (!ctx.output.empty()) collect_messages(ctx, e.material, stats_.messages);
           Bsdf b;
           b.build(sg.Ci, -d, h.Ng);
           return b.background * k;
         },
         2 * res, res, e.rotation);
-    return "";
+    return stopped;
   }
   }
   return "";
@@ -243,10 +294,11 @@ std::string RenderScene::build_environment() {
 
 // An emitter is a shape whose material emits at a probe point; its power estimate
 // (pi * area * luminance of the probe's emission) decides how often it is sampled.
-void RenderScene::find_emitters(std::vector<LightSet::Emitter>& out,
-                                ShaderMessages& messages) const {
+std::string RenderScene::find_emitters(std::vector<LightSet::Emitter>& out,
+                                       ShaderMessages& messages) const {
   ShadingContext ctx;
   ctx.renderer = &services_;
+  ctx.cancel = cancel_;
   for (size_t i = 0; i < desc_.shapes.size(); ++i) {
     const scene::Shape& s = desc_.shapes[i];
     SurfaceHit h;
@@ -267,12 +319,14 @@ void RenderScene::find_emitters(std::vector<LightSet::Emitter>& out,
     sg.renderstate = renderstate(int(i));
     ctx.reset();
     material(int(i)).shade(sg);
+    if (ctx.stopped) return stop_reason(ctx, material_index(int(i)), "finding emitters");
     if (!ctx.output.empty()) collect_messages(ctx, material_index(int(i)), messages);
     Bsdf b;
     b.build(sg.Ci, h.Ng, h.Ng);
     float lum = luminance(b.emission);
     if (lum > 0) out.push_back({int(i), kPi * area * lum});
   }
+  return "";
 }
 
 // Embree traces in single precision and asserts that ray origins lie within about 1.8e18; far
@@ -335,9 +389,11 @@ std::string RenderScene::setup(const scene::SceneDesc& desc, const MaterialCompi
   services_ = SceneServices(desc_.camera, width, height, &geo_);
   if (std::string e = geo_.build(desc_.shapes); !e.empty()) return desc_.path + ": " + e;
   if (std::string e = compile_materials(compile); !e.empty()) return e;
+  if (cancelled()) return "interrupted (Ctrl-C) after compiling the materials";
   if (std::string e = build_environment(); !e.empty()) return e;
+  if (cancelled()) return "interrupted (Ctrl-C) after tabulating the background";
   std::vector<LightSet::Emitter> emitters;
-  find_emitters(emitters, stats_.messages);
+  if (std::string e = find_emitters(emitters, stats_.messages); !e.empty()) return e;
   stats_.emitters = static_cast<int>(emitters.size());
   lights_.build(geo_, desc_.lights, emitters, env_.valid() ? &env_ : nullptr);
   return "";

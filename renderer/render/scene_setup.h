@@ -3,6 +3,8 @@
 // environment table and the light set with emissive shapes found by probing each material.
 #pragma once
 
+#include <atomic>
+
 #include "camera.h"
 #include "environment.h"
 #include "geometry.h"
@@ -35,6 +37,10 @@ MaterialCompiler native_compiler();
 // What shader code sent to a ShadingContext while shading (texture errors, error(),
 // warning(), printf): each line counted per scene material (-1: the default material).
 using ShaderMessages = std::map<std::pair<int, std::string>, uint64_t>;
+// Caps: distinct lines kept per thread (the rest counted under the text ""), and distinct lines
+// RenderScene::describe shows per material before its summary line.
+constexpr size_t kMaxDistinctMessages = 1000;
+constexpr int kMaxMessageLines = 10;
 // Moves the lines of ctx.output into `out` under `material` and clears ctx.output.
 void collect_messages(ShadingContext& ctx, int material, ShaderMessages& out);
 void merge_messages(const ShaderMessages& from, ShaderMessages& into);
@@ -55,9 +61,19 @@ public:
   // (Material::closure_kernels(), compiled in parallel at setup) or the native library.
   // Set before setup(); on by default.
   void use_closure_kernels(bool on) { use_kernels_ = on; }
+  // Set (by a Ctrl-C handler) to stop setup between stages and shaders in their loops; setup()
+  // then returns "interrupted (Ctrl-C) while <stage>". Set before setup(); null: never.
+  void set_cancel(const std::atomic<bool>* cancel) { cancel_ = cancel; }
   // "" on success, else an error naming the scene element.
+  // A shader stopped in a loop at setup (CompileOptions::max_loop_iterations) is an error
+  // naming the material, the shader and the loop.
   std::string setup(const scene::SceneDesc& desc, const MaterialCompiler& compile, int width,
                     int height);
+  // "<material's place>: material 'name'" (-1: "<scene>: the default material").
+  std::string material_place(int material) const;
+  // Why a shade stopped (ctx.stopped): the loop error with the material's place, or the stage
+  // that was interrupted.
+  std::string stop_reason(const ShadingContext& ctx, int material, const char* stage) const;
 
   const scene::SceneDesc& desc() const { return desc_; }
   const Geometry& geometry() const { return geo_; }
@@ -81,13 +97,15 @@ public:
     return const_cast<scene::Shape*>(&desc_.shapes[size_t(shape)]);
   }
   // One line per message: "<material's place>: material 'name': <text>[ (N times)]", the
-  // shader's "ERROR: "/"WARNING: " prefix dropped.
+  // shader's "ERROR: "/"WARNING: " prefix dropped; at most kMaxMessageLines per material, then
+  // "<place>: ... and K more message lines (D+ different) not shown".
   std::vector<std::string> describe(const ShaderMessages& messages) const;
 
 private:
   std::string compile_materials(const MaterialCompiler& compile);
   std::string build_environment();
-  void find_emitters(std::vector<LightSet::Emitter>& out, ShaderMessages& messages) const;
+  std::string find_emitters(std::vector<LightSet::Emitter>& out, ShaderMessages& messages) const;
+  bool cancelled() const { return cancel_ && cancel_->load(); }
 
   scene::SceneDesc desc_;
   SceneServices services_;
@@ -100,6 +118,7 @@ private:
   std::vector<uint64_t> shape_reads_;
   std::vector<const ClosureKernels*> shape_kernels_;
   bool use_kernels_ = true;
+  const std::atomic<bool>* cancel_ = nullptr;
   std::shared_ptr<const Material> default_material_;
   SetupStats stats_;
 };

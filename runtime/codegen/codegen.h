@@ -17,6 +17,7 @@
 
 #include "ir/ir.h"
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -63,7 +64,19 @@ struct GroupPlan {
   // The material's colour system (CompileOptions::colorspace), baked in likewise; null: Rec709.
   const shadeops::ColorSystem* colors = nullptr;
   bool fast_math = true; // CompileOptions::fast_math: the math shadeops' math::MathMode
+  // Bounded loops (CompileOptions::max_loop_iterations): with loop_count_offset >= 0, every
+  // backward jump (a loop's back edge) counts down a per-layer-run counter of
+  // kLoopChunk iterations; when it runs out the layer calls lobe_loop_check, which adds the
+  // chunk to the shade's total (8 bytes of group data at loop_count_offset, zeroed per
+  // shade), and either grants another chunk or, past max_loop_iterations (0: unlimited) or
+  // when the ShadingContext is cancelled, reports the loop (ShadingContext::stopped) and the
+  // layer returns at once (its outputs as they are). max_loop_iterations < 0: no checks.
+  int loop_count_offset = -1;
+  int64_t max_loop_iterations = 0;
 };
+
+// Iterations a layer runs between two calls of lobe_loop_check (fewer when the limit is lower).
+constexpr int64_t kLoopChunk = 1 << 16;
 
 // Storage size in bytes of a symbol (all planes), as laid out in group data and allocas.
 size_t storage_bytes(const ir::Symbol& s);

@@ -102,6 +102,7 @@ private:
   void fetch_connection(const ConnectionPlan& c);
   void emit_region(int begin, int end, llvm::BasicBlock* after);
   void emit_op(int index);
+  void emit_loop_check(const ir::Op& op); // counts a back edge (GroupPlan::loop_count_offset)
   void finish_exit_block();
   llvm::BasicBlock* block_at(int op_index);
   bool is_leader(int op_index) const;
@@ -117,6 +118,7 @@ private:
   llvm::Value* gd_ = nullptr;
   llvm::BasicBlock* alloca_block_ = nullptr;
   llvm::BasicBlock* exit_block_ = nullptr;
+  llvm::Value* loop_budget_ = nullptr;      // i64 alloca: back edges left before lobe_loop_check
   std::vector<llvm::Value*> storage_;       // per symbol: alloca (null for scalar consts)
   std::vector<llvm::Value*> fetched_flag_;  // per symbol: i1 alloca "connection fetched"
   std::vector<char> leader_;                // per op: starts a basic block

@@ -6,6 +6,7 @@
 #include "lobe/shading.h"
 
 #include <llvm/IR/Constants.h>
+#include <llvm/IR/MDBuilder.h>
 #include <llvm/IR/Verifier.h>
 #include <llvm/Support/raw_ostream.h>
 
@@ -215,6 +216,12 @@ void LayerEmitter::emit_region(int begin, int end, llvm::BasicBlock* after) {
 void LayerEmitter::emit_op(int index) {
   const ir::Op& op = shader().ops[size_t(index)];
   if (op.opcode == "nop") return;
+  if (loop_budget_ && is_jump(op.opcode))
+    for (int t : op.jumps)
+      if (t >= 0 && t <= index) {
+        emit_loop_check(op);
+        break;
+      }
   if (op.opcode == "br") {
     b_.CreateBr(block_at(op.jumps.at(0)));
   } else if (op.opcode == "cbr") {
@@ -232,6 +239,36 @@ void LayerEmitter::emit_op(int index) {
   // Code after a terminator (an op following `exit` in the same block) goes to a dead block.
   if (b_.GetInsertBlock()->getTerminator() && !is_leader(index + 1))
     b_.SetInsertPoint(llvm::BasicBlock::Create(ctx(), "dead", fn_));
+}
+
+// One more iteration of a loop: the budget counts down; at zero lobe_loop_check says whether
+// the shade may go on (a new chunk) or must stop (0: the layer returns now).
+void LayerEmitter::emit_loop_check(const ir::Op& op) {
+  llvm::Type* i64 = b_.getInt64Ty();
+  llvm::Value* left = b_.CreateSub(b_.CreateLoad(i64, loop_budget_), b_.getInt64(1));
+  b_.CreateStore(left, loop_budget_);
+  auto* check = llvm::BasicBlock::Create(ctx(), "loop_check", fn_);
+  auto* stop = llvm::BasicBlock::Create(ctx(), "loop_stop", fn_);
+  auto* go = llvm::BasicBlock::Create(ctx(), "loop_go", fn_);
+  llvm::MDBuilder md(ctx());
+  b_.CreateCondBr(b_.CreateICmpSLE(left, b_.getInt64(0)), check, go,
+                  md.createBranchWeights(1, 1 << 20));
+  b_.SetInsertPoint(check);
+  std::string where = "layer " + std::to_string(plan().group_index) + " " + plan().layer_name;
+  if (!group_.group_name.empty()) where = "group " + group_.group_name + ", " + where;
+  llvm::Value* more = call(
+      "lobe_loop_check",
+      {sg_, b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), gd_, size_t(group_.loop_count_offset)),
+       b_.getInt64(uint64_t(std::min(
+           kLoopChunk, group_.max_loop_iterations > 0 ? group_.max_loop_iterations : kLoopChunk))),
+       b_.getInt64(uint64_t(group_.max_loop_iterations)), string_const(shader().name),
+       string_const(where), string_const(op.loc.file.empty() ? shader().name : op.loc.file),
+       iconst(op.loc.line)});
+  b_.CreateStore(more, loop_budget_);
+  b_.CreateCondBr(b_.CreateICmpSGT(more, b_.getInt64(0)), go, stop);
+  b_.SetInsertPoint(stop);
+  b_.CreateBr(exit_block_);
+  b_.SetInsertPoint(go);
 }
 
 // Stores output params (and every param another layer reads) to group data and the written
@@ -281,6 +318,19 @@ bool LayerEmitter::emit() {
   }
   b_.SetInsertPoint(start);
   create_storage();
+  if (group_.loop_count_offset >= 0 && group_.max_loop_iterations >= 0) {
+    bool loops = false;
+    for (size_t i = 0; i < ops.size(); ++i)
+      if (is_jump(ops[i].opcode))
+        for (int t : ops[i].jumps) loops |= t >= 0 && size_t(t) <= i;
+    if (loops) {
+      loop_budget_ = entry_alloca(b_.getInt64Ty(), 1, "loop_budget");
+      int64_t chunk = group_.max_loop_iterations > 0
+                          ? std::min(kLoopChunk, group_.max_loop_iterations)
+                          : kLoopChunk;
+      b_.CreateStore(b_.getInt64(uint64_t(chunk)), loop_budget_);
+    }
+  }
   b_.CreateStore(iconst(1),
                  b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), gd_, size_t(plan().ran_offset)));
   init_symbols();

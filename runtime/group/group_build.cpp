@@ -431,6 +431,8 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     }
     out.plan.layers.push_back(lp);
   }
+  out.plan.loop_count_offset = int(off); // the shade's loop iterations (codegen.h)
+  off += 8;
   out.groupdata.assign(off, 0);
   out.plan.group_name = group.name;
   for (size_t i = 0; i < n; ++i) {

@@ -60,6 +60,7 @@ void MaterialImpl::shade(ShaderGlobals& sg) const {
   ctx->begin_shade();
   last_context_.store(ctx, std::memory_order_relaxed);
   entry_(&sg, ctx->groupdata.data());
+  if (ctx->stopped) sg.Ci = nullptr; // a stopped shade leaves no closure (context.h)
 }
 
 bool MaterialImpl::read_output(const std::string& layer, const std::string& param,

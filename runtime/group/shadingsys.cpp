@@ -119,7 +119,10 @@ std::string ShadingSystem::Impl::cache_key(const ShaderGroup& g,
   key += options.range_checking ? "" : "r";
   key += options.debug_nan ? "N" : "";
   key += options.debug_uninit ? "U" : "";
-  key += options.fast_math ? "\n" : "x\n";
+  key += options.fast_math ? "" : "x";
+  key += "L"; // the loop limit is baked into the code
+  key += std::to_string(options.max_loop_iterations);
+  key += "\n";
   key += "colorspace "; // every colour function depends on it
   key += colors()->name();
   key += "\n";
@@ -153,6 +156,7 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   b.plan.env = env.get();
   b.plan.colors = colors();
   b.plan.fast_math = options.fast_math;
+  b.plan.max_loop_iterations = options.max_loop_iterations;
   bool specialize = options.specialize && options.opt_level > 0;
   if (!group::build_group(g, layers, specialize, b, diags, options.lockgeom_default))
     return nullptr;

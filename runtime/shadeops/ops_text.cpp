@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -104,6 +105,28 @@ void lobe_range_error(ShaderGlobals* sg, int index, int length, const char* what
     sg->context->error("Index [" + std::to_string(index) + "] out of range " + what + "[0.." +
                        std::to_string(length - 1) + "]: " + file + ":" + std::to_string(line) +
                        " " + where);
+}
+
+// A loop's back edges ran out of their chunk (codegen.h, GroupPlan::loop_count_offset): adds
+// the chunk to the shade's count and returns the next chunk, or 0 to stop the shade: past
+// `limit` (0: none), with an error naming the shader and the loop; when the context is
+// cancelled, or the shade was stopped already, silently.
+int64_t lobe_loop_check(ShaderGlobals* sg, int64_t* count, int64_t chunk, int64_t limit,
+                        const char* shader, const char* where, const char* file, int line) {
+  *count += chunk;
+  lobe::ShadingContext* ctx = sg ? sg->context : nullptr;
+  if (ctx && ctx->stopped) return 0;
+  bool cancelled = ctx && ctx->cancel && ctx->cancel->load(std::memory_order_relaxed);
+  bool over = limit > 0 && *count >= limit;
+  if (!cancelled && !over) return chunk;
+  if (ctx) {
+    ctx->stopped = true;
+    if (over)
+      ctx->error("shader " + std::string(shader) + " (" + where + "): loop at " + file + ":" +
+                 std::to_string(line) + " ran more than " + std::to_string(limit) +
+                 " iterations (max_loop_iterations); stopped");
+  }
+  return 0;
 }
 
 const char* lobe_concat(RuntimeEnv* env, const char* a, const char* b) {

@@ -4,8 +4,10 @@
 #include "closure_registry.h"
 
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <string_view>
 #include <vector>
 
 namespace lobe::verify {
@@ -83,6 +85,9 @@ private:
     char* end = nullptr;
     out = std::strtod(tail.c_str(), &end);
     if (end == tail.c_str()) return ExprError{i_, "expected a number"};
+    // NaN, infinities and numbers a float cannot hold would reach the closure as NaN or Inf.
+    if (!std::isfinite(out) || std::fabs(out) > 3.4028234663852886e38)
+      return ExprError{i_, "not a finite number (a float)"};
     i_ += static_cast<size_t>(end - tail.c_str());
     return std::nullopt;
   }
@@ -180,6 +185,9 @@ std::optional<ExprError> bind(const registry::ClosureParam& p, const Arg& a, Par
     return std::nullopt;
   case ArgType::String:
     if (a.kind != Arg::String) return mismatch();
+    // The library reads a distribution by its first letter: anything but these is a mistake.
+    if (std::string_view(p.name) == "distribution" && a.text != "ggx" && a.text != "beckmann")
+      return ExprError{a.pos, "unknown distribution \"" + a.text + "\" (\"ggx\" or \"beckmann\")"};
     pc.strings->push_back(a.text);
     pc.params.set(p.name, pc.strings->back().c_str());
     return std::nullopt;

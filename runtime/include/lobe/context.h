@@ -6,6 +6,7 @@
 #include "lobe/renderer_services.h"
 #include "lobe/shading.h"
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -66,6 +67,16 @@ public:
   int errors = 0;
   int warnings = 0;
   uint64_t closures_dropped = 0;
+
+  // Bounded execution (CompileOptions::max_loop_iterations). `stopped`: the current shade was
+  // stopped in a loop, because it ran past the material's limit (an error was reported, naming
+  // the shader and the loop's place) or because `cancel` was set (no error); the shade then
+  // returned at once, sg.Ci is null (black) and output parameters are as the loop left them.
+  // begin_shade() clears it. `cancel`: set by another thread (a Ctrl-C handler, a renderer
+  // abandoning a frame) to stop running shaders at their next loop check, within about 65536
+  // iterations; null: never.
+  bool stopped = false;
+  const std::atomic<bool>* cancel = nullptr;
 
   // The renderer's answers to user data, getattribute and trace (renderer_services.h);
   // null: none.

@@ -108,6 +108,13 @@ struct CompileOptions {
   // (libm-accurate). Folded constants and run-time values agree in either mode
   // (docs/language.md, "Math").
   bool fast_math = true;
+  // Bounded execution: a shade whose loops run more than this many iterations in all (every
+  // pass through a loop's back edge counts, in chunks of 65536) is stopped: the running layer
+  // returns at once, an error names the shader and the loop ("shader S (layer 0 l): loop at
+  // f.osl:3 ran more than N iterations (max_loop_iterations); stopped"), ShadingContext::stopped
+  // is set and sg.Ci is null. 0: unlimited (ShadingContext::cancel still stops loops); -1: no
+  // checks are generated at all (neither limit nor cancel; what they cost: docs/cli.md).
+  int64_t max_loop_iterations = 100000000;
 };
 
 // The colour spaces CompileOptions::colorspace accepts: Rec709, sRGB, NTSC, EBU, PAL, SECAM,

@@ -1,0 +1,296 @@
+// Reliability of the commands end to end (runs the built executable): endless shader loops are
+// stopped with an error and exit status 1 (lobe shade; lobe render at set-up and while
+// rendering), Ctrl-C stops and keeps what is finished, shader messages are capped, sizes are
+// checked against the memory before allocating, and lobe brdf refuses bad arguments.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CmdResult {
+  int status = -1;
+  std::string out; // stdout and stderr
+};
+
+CmdResult run_cmd(const std::string& cmd) {
+  CmdResult r;
+  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+fs::path temp_dir(const std::string& name) {
+  fs::path d =
+      fs::temp_directory_path() / ("lobe_reliability_" + name + "_" + std::to_string(getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+void write_file(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+std::string read_file(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+std::string exe() { return LOBE_EXE; }
+
+// Runs `lobe ARGS` in `cwd` with stdout and stderr to `log`, waits until the shader has written
+// `started` (it does so just before its endless loop), sends SIGINT and returns the exit status
+// (-1 if it did not exit by itself).
+int interrupt_when_started(const std::vector<std::string>& args, const fs::path& cwd,
+                           const fs::path& log, const fs::path& started) {
+  std::string cmd = "cd '" + cwd.string() + "' && exec '" + exe() + "'";
+  for (const std::string& a : args) cmd += " '" + a + "'";
+  cmd += " > '" + log.string() + "' 2>&1";
+  pid_t pid = fork();
+  if (pid == 0) {
+    signal(SIGINT, SIG_DFL);
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  for (int i = 0; i < 6000 && !fs::exists(started); ++i) // the CTest TIMEOUT bounds it anyway
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  kill(pid, SIGINT);
+  int st = 0;
+  waitpid(pid, &st, 0);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+// For camera rays, an endless loop that first says it has started (fprintf appends to the file
+// at once); lobe shade's rays are camera rays, lobe render's set-up probes with shadow rays.
+std::string endless_after_notice(const char* name, const fs::path& started) {
+  return std::string("surface ") + name + "(output color Cout = 0)\n{\n  float x = 1;\n" +
+         "  if (raytype(\"camera\")) {\n    fprintf(\"" + started.string() +
+         "\", \"started\\n\");\n    while (1) { x = x * 2; }\n  }\n  Ci = diffuse(N);\n}\n";
+}
+
+// Line 3 is the loop.
+const char* kEndless = "surface endless(output color Cout = 0)\n"
+                       "{\n"
+                       "  float x = 1; while (1) { x = x * 2; }\n"
+                       "  Cout = color(x); Ci = diffuse(N);\n"
+                       "}\n";
+
+// Loops only for camera rays: set-up (which probes with shadow rays) passes, rendering stops.
+const char* kEndlessCamera = "surface camloop()\n"
+                             "{\n"
+                             "  float x = 1;\n"
+                             "  if (raytype(\"camera\")) while (1) { x = x * 2; }\n"
+                             "  Ci = diffuse(N);\n"
+                             "}\n";
+
+std::string scene_json(const std::string& shader, int res = 8) {
+  return R"({"camera": {"eye": [0, 0, 4], "look_at": [0, 0, 0], "fov": 12},
+  "settings": {"resolution": [)" +
+         std::to_string(res) + ", " + std::to_string(res) + R"(], "spp": 4},
+  "materials": {"m": {"shader": ")" +
+         shader + R"("}},
+  "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}],
+  "environment": {"type": "constant", "color": 1}})";
+}
+
+} // namespace
+
+TEST(ReliabilityShade, EndlessLoopIsAnErrorWithItsPlace) {
+  fs::path d = temp_dir("shade_loop");
+  write_file(d / "endless.osl", kEndless);
+  CmdResult r = run_cmd("cd '" + d.string() + "' && " + exe() +
+                        " shade --options max_loop_iterations=100000 endless");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_EQ(r.out, "ERROR: shader endless (group unnamed_group_1, layer 0 endless_0): loop at "
+                   "endless.osl:3 ran more than "
+                   "100000 iterations (max_loop_iterations); stopped\n\n"
+                   "lobe shade: stopped after 0 of 1 points; no output written\n");
+  // The default limit, on a grid: the first stopped point stops the grid.
+  r = run_cmd("cd '" + d.string() + "' && " + exe() + " shade -g 32 32 -o Cout " +
+              (d / "out.exr").string() + " endless");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("loop at endless.osl:3 ran more than 100000000 iterations"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("no output written"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(d / "out.exr"));
+}
+
+// Ctrl-C while a shader runs without a limit: the loop stops, the command says so and writes
+// the finished points; exit status 130.
+TEST(ReliabilityShade, CtrlCStopsAndWritesWhatIsFinished) {
+  fs::path d = temp_dir("shade_sigint");
+  write_file(d / "notice.osl", endless_after_notice("notice", d / "started"));
+  int st = interrupt_when_started({"shade", "--options", "max_loop_iterations=0", "-t", "1", "-g",
+                                   "4", "4", "-o", "Cout", (d / "out.exr").string(), "notice"},
+                                  d, d / "log", d / "started");
+  std::string log = read_file(d / "log");
+  EXPECT_EQ(st, 130) << log;
+  EXPECT_NE(log.find("lobe shade: interrupted (Ctrl-C) after 0 of 16 points; writing the finished "
+                     "points"),
+            std::string::npos)
+      << log;
+  EXPECT_TRUE(fs::exists(d / "out.exr")) << log;
+}
+
+// error() from a shader: reported, and the exit status stays 0, as testshade's does
+// (OSL 1.13.12: `testshade err` prints "ERROR: Shader error [err]: bad thing 3" and exits 0).
+TEST(ReliabilityShade, ShaderErrorIsReportedWithTestshadesStatus) {
+  fs::path d = temp_dir("shade_error");
+  write_file(d / "err.osl",
+             "shader err(output color Cout = 0) { error(\"bad thing %d\\n\", 3); Cout = 1; }\n");
+  CmdResult r = run_cmd("cd '" + d.string() + "' && " + exe() + " shade err");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out, "ERROR: Shader error [err]: bad thing 3\n\n\n");
+}
+
+// Under a 6 GB address-space limit a 10^10-point grid is refused before anything is allocated,
+// with the setting and the figure.
+TEST(ReliabilityShade, HugeGridIsRefusedWithTheFigure) {
+  fs::path d = temp_dir("shade_big");
+  write_file(d / "c.osl", "shader c(output color Cout = 0) { Cout = u; }\n");
+  CmdResult r = run_cmd("cd '" + d.string() + "' && ulimit -v 6000000 && " + exe() +
+                        " shade -g 100000 100000 c -o Cout " + (d / "big.exr").string());
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("lobe shade: -g 100000 100000 needs about 480.0 GB of memory"),
+            std::string::npos)
+      << r.out;
+  EXPECT_FALSE(fs::exists(d / "big.exr"));
+  // An output that cannot be written is found before shading (no messages from the shader).
+  write_file(d / "p.osl", "shader p(output color Cout = 0) { printf(\"shaded\\n\"); }\n");
+  r = run_cmd("cd '" + d.string() + "' && " + exe() + " shade p -o Cout /nonexistent/dir/x.exr");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_EQ(r.out.find("shaded"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("lobe shade: "), std::string::npos) << r.out;
+}
+
+TEST(ReliabilityRender, EndlessLoopAtSetupIsAnError) {
+  fs::path d = temp_dir("render_setup_loop");
+  write_file(d / "endless.osl", kEndless);
+  write_file(d / "s.json", scene_json("endless"));
+  CmdResult r = run_cmd(exe() + " render -q --materials jit --max-loop-iterations 100000 " +
+                        (d / "s.json").string() + " -o " + (d / "o.png").string());
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_EQ(r.out,
+            "lobe render: " + (d / "s.json").string() +
+                ": /materials/m: material 'm': shader endless (group m, layer 0 m): loop at " +
+                (d / "endless.osl").string() +
+                ":3 ran more than 100000 iterations (max_loop_iterations); stopped (while "
+                "finding emitters)\n");
+  EXPECT_FALSE(fs::exists(d / "o.png"));
+}
+
+TEST(ReliabilityRender, EndlessLoopWhileRenderingIsAnError) {
+  fs::path d = temp_dir("render_loop");
+  write_file(d / "camloop.osl", kEndlessCamera);
+  write_file(d / "s.json", scene_json("camloop"));
+  CmdResult r = run_cmd(exe() + " render -q --materials jit " + (d / "s.json").string() + " -o " +
+                        (d / "o.png").string());
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(
+      r.out.find("lobe render: " + (d / "s.json").string() +
+                 ": /materials/m: material 'm': shader camloop (group m, layer 0 m): loop at " +
+                 (d / "camloop.osl").string() +
+                 ":4 ran more than 100000000 iterations (max_loop_iterations); stopped (while "
+                 "rendering); rendering stopped, no image written\n"),
+      std::string::npos)
+      << r.out;
+  EXPECT_FALSE(fs::exists(d / "o.png"));
+}
+
+// Ctrl-C while shaders loop without a limit: rendering stops, the finished samples are written.
+TEST(ReliabilityRender, CtrlCWritesThePartialImage) {
+  fs::path d = temp_dir("render_sigint");
+  write_file(d / "notice.osl", endless_after_notice("notice", d / "started"));
+  write_file(d / "s.json", scene_json("notice"));
+  int st = interrupt_when_started({"render", "-q", "--materials", "jit", "--max-loop-iterations",
+                                   "0", (d / "s.json").string(), "-o", (d / "o.png").string()},
+                                  d, d / "log", d / "started");
+  std::string log = read_file(d / "log");
+  EXPECT_EQ(st, 130) << log;
+  EXPECT_NE(log.find("interrupted: wrote the finished samples to " + (d / "o.png").string()),
+            std::string::npos)
+      << log;
+  EXPECT_TRUE(fs::exists(d / "o.png"));
+}
+
+// A printf of a different line at every shade: at most 10 lines per material, then a summary.
+TEST(ReliabilityRender, ShaderMessagesAreCapped) {
+  fs::path d = temp_dir("render_printf");
+  write_file(d / "chatty.osl",
+             "surface chatty() { printf(\"at %g %g\\n\", u, v); Ci = diffuse(N); }\n");
+  write_file(d / "s.json", scene_json("chatty", 16));
+  CmdResult r = run_cmd(exe() + " render -q --materials jit " + (d / "s.json").string() + " -o " +
+                        (d / "o.png").string());
+  EXPECT_EQ(r.status, 0) << r.out;
+  int lines = 0, summaries = 0;
+  std::stringstream s(r.out);
+  for (std::string line; std::getline(s, line);) {
+    ++lines;
+    if (line.find(": ... and ") != std::string::npos &&
+        line.find(" more message lines") != std::string::npos)
+      ++summaries;
+  }
+  EXPECT_EQ(lines, 11) << r.out;
+  EXPECT_EQ(summaries, 1) << r.out;
+}
+
+TEST(ReliabilityRender, HugeResolutionIsRefusedWithTheFigure) {
+  fs::path d = temp_dir("render_big");
+  CmdResult r = run_cmd("ulimit -v 6000000 && " + exe() + " render -q --res 16384 16384 -o " +
+                        (d / "big.exr").string());
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("lobe render: --res 16384 16384 needs about 33.3 GB of memory"),
+            std::string::npos)
+      << r.out;
+  EXPECT_FALSE(fs::exists(d / "big.exr"));
+}
+
+TEST(ReliabilityBrdf, InvalidArgumentsAreRefused) {
+  struct Case {
+    std::string args, message;
+  } cases[] = {
+      {"'microfacet(\"beckman\", N, 0.2, 1.5, 0)'", "unknown distribution \"beckman\""},
+      {"'conductor_bsdf(N, U, 0.2, 0.2, color(0.2,0.9,1.1), color(3.9,2.4,2.2), \"GGX\")'",
+       "unknown distribution \"GGX\""},
+      {"'diffuse(normal(0, 0, nan))'", "not a finite number"},
+      {"'oren_nayar(N, 1e999)'", "not a finite number"},
+      {"'diffuse(N)' --sample 0.5,1,0.2", "--sample: random numbers must lie in [0, 1)"},
+      {"'diffuse(N)' --sample 0.5,-0.1,0.2", "--sample: random numbers must lie in [0, 1)"},
+      {"'diffuse(N)' --sample 0.5,nan,0.2", "--sample: random numbers must lie in [0, 1)"},
+      {"'diffuse(N)' --theta nan --sample 0.5,0.5,0.5", "--theta must be an angle"},
+      {"'diffuse(N)' --albedo nan", "--albedo angles must lie in [0, 180]"},
+      {"'diffuse(N)' --wo nan,0,1 --sample 0.5,0.5,0.5", "--wo must be finite and non-zero"},
+      {"'diffuse(N)' --eval 0,0,1,0,0,0", "--eval: directions must be finite and non-zero"},
+  };
+  for (const Case& c : cases) {
+    CmdResult r = run_cmd(exe() + " brdf " + c.args);
+    EXPECT_EQ(r.status, 1) << c.args << "\n" << r.out;
+    EXPECT_NE(r.out.find(c.message), std::string::npos) << c.args << "\n" << r.out;
+  }
+  // The names it knows still work.
+  CmdResult r = run_cmd(exe() + " brdf 'microfacet(\"beckmann\", N, 0.2, 1.5, 0)' --albedo 0");
+  EXPECT_EQ(r.status, 0) << r.out;
+}
