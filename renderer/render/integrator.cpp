@@ -37,6 +37,7 @@ static void shade_into(const RenderScene& scene, const SurfaceHit& hit, const Ve
   fp.up = scene.camera().up();
   fill_globals(sg, hit, dir, raytype, ctx, scene.globals_read(hit.shape), fp);
   sg.renderstate = scene.renderstate(hit.shape);
+  sg.surfacearea = scene.surface_area(hit.shape);
   ctx.renderer = &scene.services();
   ctx.reset();
   auto t0 = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};

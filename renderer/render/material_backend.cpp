@@ -89,13 +89,20 @@ std::shared_ptr<const Material> MaterialBackend::compile(const scene::MaterialDe
       return nullptr;
     }
     // The JIT ignores an instance value for a parameter the shader lacks (with a warning, as
-    // OSL does); in a scene that is a mistake (a misspelt parameter), so it is an error.
+    // OSL does); in a JSON scene that is a mistake (a misspelt parameter), so it is an error;
+    // a testrender XML scene warns and renders, as testrender does.
+    std::vector<std::string> ignored;
     for (const Diagnostic& d : diags)
       if (d.severity == Diagnostic::Severity::Note && d.id == "nonexistent_param") {
-        error = d.text.substr(d.text.rfind("note: ", 0) == 0 ? 6 : 0);
-        return nullptr;
+        std::string text = d.text.substr(d.text.rfind("note: ", 0) == 0 ? 6 : 0);
+        if (!m.unknown_params_warn) {
+          error = text;
+          return nullptr;
+        }
+        ignored.push_back(m.where + ": material '" + m.name + "': " + text + " (ignored)");
       }
     std::lock_guard<std::mutex> lock(mu_);
+    warnings_.insert(warnings_.end(), ignored.begin(), ignored.end());
     used_jit_ = true;
     return mat;
   }

@@ -302,21 +302,17 @@ std::string RenderScene::find_emitters(std::vector<LightSet::Emitter>& out,
   for (size_t i = 0; i < desc_.shapes.size(); ++i) {
     const scene::Shape& s = desc_.shapes[i];
     SurfaceHit h;
-    float area = 0;
     if (s.kind == scene::Shape::Kind::Sphere) {
       h.P = s.center + Vec3{0, s.radius, 0};
       geo_.surface(int(i), 0, 0, 0, h);
-      area = 4 * kPi * s.radius * s.radius;
     } else {
       geo_.surface(int(i), 0, 1.0f / 3, 1.0f / 3, h);
-      const scene::Mesh& m = geo_.mesh(int(i));
-      for (size_t t = 0; t + 2 < m.indices.size(); t += 3)
-        area += 0.5f * length(cross(m.positions[m.indices[t + 1]] - m.positions[m.indices[t]],
-                                    m.positions[m.indices[t + 2]] - m.positions[m.indices[t]]));
     }
+    const float area = surface_area(int(i));
     ShaderGlobals sg;
     fill_globals(sg, h, -h.Ng, kRayShadow, ctx, globals_read(int(i)));
     sg.renderstate = renderstate(int(i));
+    sg.surfacearea = area;
     ctx.reset();
     material(int(i)).shade(sg);
     if (ctx.stopped) return stop_reason(ctx, material_index(int(i)), "finding emitters");
@@ -324,6 +320,8 @@ std::string RenderScene::find_emitters(std::vector<LightSet::Emitter>& out,
     Bsdf b;
     b.build(sg.Ci, h.Ng, h.Ng);
     float lum = luminance(b.emission);
+    // is_light (testrender XML): sampled as a light even if the probe point does not emit.
+    if (!(lum > 0) && s.is_light) lum = 1;
     if (lum > 0) out.push_back({int(i), kPi * area * lum});
   }
   return "";
@@ -388,6 +386,20 @@ std::string RenderScene::setup(const scene::SceneDesc& desc, const MaterialCompi
   camera_ = Camera(desc_.camera, width, height);
   services_ = SceneServices(desc_.camera, width, height, &geo_);
   if (std::string e = geo_.build(desc_.shapes); !e.empty()) return desc_.path + ": " + e;
+  shape_area_.clear();
+  for (size_t i = 0; i < desc_.shapes.size(); ++i) {
+    const scene::Shape& s = desc_.shapes[i];
+    float area = 0;
+    if (s.kind == scene::Shape::Kind::Sphere) {
+      area = 4 * kPi * s.radius * s.radius;
+    } else {
+      const scene::Mesh& m = geo_.mesh(int(i));
+      for (size_t t = 0; t + 2 < m.indices.size(); t += 3)
+        area += 0.5f * length(cross(m.positions[m.indices[t + 1]] - m.positions[m.indices[t]],
+                                    m.positions[m.indices[t + 2]] - m.positions[m.indices[t]]));
+    }
+    shape_area_.push_back(area);
+  }
   if (std::string e = compile_materials(compile); !e.empty()) return e;
   if (cancelled()) return "interrupted (Ctrl-C) after compiling the materials";
   if (std::string e = build_environment(); !e.empty()) return e;

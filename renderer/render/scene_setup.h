@@ -82,6 +82,9 @@ public:
   const EnvironmentLight& environment() const { return env_; }
   // Material of a shape (a grey matte for shapes without one).
   const Material& material(int shape) const { return *shape_material_[shape]; }
+  // Area of a shape (surfacearea() in its shaders, as testrender gives: sphere 4 pi r^2, quad
+  // |edge_x x edge_y|, a mesh the sum of its triangles).
+  float surface_area(int shape) const { return shape_area_[size_t(shape)]; }
   // What the shape's material reads (Material::globals_read bits, kGlobalFields order).
   uint64_t globals_read(int shape) const { return shape_reads_[shape]; }
   // The closure kernels of a shape's material (null: the native closure library).
@@ -116,6 +119,7 @@ private:
   std::vector<std::shared_ptr<const Material>> materials_; // per scene material (null: unused)
   std::vector<const Material*> shape_material_;
   std::vector<uint64_t> shape_reads_;
+  std::vector<float> shape_area_;
   std::vector<const ClosureKernels*> shape_kernels_;
   bool use_kernels_ = true;
   const std::atomic<bool>* cancel_ = nullptr;

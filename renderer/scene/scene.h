@@ -30,6 +30,9 @@ struct MaterialDesc {
   std::string name;
   std::string where;
   ShaderGroup group;
+  // An instance value for a parameter the shader lacks: a warning (testrender XML, as OSL's
+  // testrender) rather than an error (JSON, where it is most likely a misspelt name).
+  bool unknown_params_warn = false;
 };
 
 // Triangle mesh in world space (transforms are applied at load).
@@ -58,6 +61,7 @@ struct Shape {
   float radius = 1;
   Vec3 corner, edge_x, edge_y; // Kind::Quad: corner + s*edge_x + t*edge_y, s,t in [0,1]
   int material = -1;           // index into SceneDesc::materials; -1 = default grey matte
+  bool is_light = false; // sampled as a light even when a probe of its material finds no emission
   std::vector<UserValue> userdata;
   std::string where;
 };
@@ -88,7 +92,7 @@ struct Environment {
 struct Settings {
   int width = 640, height = 360;
   int spp = 16;
-  int max_depth = 8;
+  int max_depth = 8; // scattering events; 0: only what the camera sees (emission, background)
   uint64_t seed = 0;
   float exposure = 0;
   std::string output;

@@ -1,26 +1,33 @@
-// The XML scene form of OSL's test renderer (testrender), read with pugixml:
+// The XML scene form of OSL's test renderer (testrender 1.13), read with pugixml and read as
+// testrender reads it (docs/scene-format.md lists every element and attribute):
 //
 //   <World>
+//     <Option max_bounces="int 4" aa="int 4"/>
 //     <Camera eye="0, 0, 5" look_at="0 0 0" up="0 1 0" fov="40" />
 //     <ShaderGroup> color Cs 0.8 0.2 0.2; shader matte m; </ShaderGroup>
 //     <Sphere center="0,0,0" radius="1" />
-//     <Quad corner="-1,-1,-1" edge_x="2,0,0" edge_y="0,0,2" />
+//     <Quad corner="-1,-1,-1" edge_x="2,0,0" edge_y="0,0,2" is_light="1" />
 //     <ShaderGroup> shader envmap bg; </ShaderGroup>
 //     <Background resolution="512" />
 //   </World>
 //
 // A ShaderGroup applies to the shapes after it; the one right before <Background> is the
 // background shader (its Ci holds background()). Group text takes `param` lines or bare
-// `type name value;` lines. Lobe adds <Settings resolution="W H" spp max_depth seed
-// exposure/> and <PointLight position intensity/>. Unknown attributes become warnings;
+// `type name value;` lines, or <Parameter>/<Shader>/<ConnectShaders> children. testrender's
+// camera: defaults eye 0, dir (0,0,1), up +Y, fov 90; `look_at` overrides `dir`; the image
+// plane spans tan(fov/2) in height at distance 2 (so Lobe's vertical field of view is
+// 2 atan(tan(fov/2) / 2)). Lobe adds <Settings resolution="W H" spp max_depth seed exposure/>
+// and <PointLight position intensity/>. Unknown attributes and options become warnings;
 // unknown elements are errors. Every message names the file and line.
 #include "scene.h"
 #include "scene_group.h"
 
 #include <pugixml.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -33,6 +40,15 @@ public:
 
   bool load(const pugi::xml_node& world, SceneDesc& s) {
     s.path = path_;
+    // testrender's defaults: a camera at the origin looking down +Z with fov 90, 640x480,
+    // -aa 1 (one sample per pixel), max_bounces unlimited (Lobe: 1024, Russian roulette ends
+    // paths long before).
+    s.camera = Camera{};
+    s.camera.eye = {0, 0, 0};
+    s.camera.look_at = {0, 0, 1};
+    s.camera.fov = testrender_fov(90);
+    s.settings.width = 640, s.settings.height = 480, s.settings.spp = 1;
+    s.settings.max_depth = 1024;
     for (pugi::xml_node n : world.children()) {
       if (n.type() != pugi::node_element) continue;
       std::string name = n.name();
@@ -41,14 +57,22 @@ public:
                 : name == "Sphere"      ? sphere(n, s)
                 : name == "Quad"        ? quad(n, s)
                 : name == "Background"  ? background(n, s)
+                : name == "Option"      ? option(n, s.settings)
                 : name == "Settings"    ? settings(n, s.settings)
                 : name == "PointLight"  ? point_light(n, s)
                                         : fail(n, "unknown element <" + name +
-                                                      "> (expected Camera, ShaderGroup, Sphere, "
-                                                       "Quad, Background, Settings, PointLight)");
+                                                      "> (expected Option, Camera, ShaderGroup, "
+                                                       "Sphere, Quad, Background, Settings, "
+                                                       "PointLight)");
       if (!ok) return false;
     }
     return true;
+  }
+  // testrender spans tan(fov/2) across the image height at distance 2 from the eye (its
+  // screen runs from -0.5 to 0.5 times tan(fov/2)); Lobe's fov is the full vertical angle.
+  static float testrender_fov(float fov) {
+    const double pi = 3.14159265358979323846;
+    return float(2 * std::atan(0.5 * std::tan(0.5 * fov * pi / 180)) * 180 / pi);
   }
   std::string error;
   std::vector<std::string> warnings;
@@ -101,60 +125,189 @@ private:
   }
 
   bool camera(const pugi::xml_node& n, Camera& c) {
-    check_attrs(n, {"eye", "look_at", "up", "fov", "aperture", "focus_distance"});
-    if (!vec(n, "eye", c.eye, false) || !vec(n, "look_at", c.look_at, false) ||
-        !vec(n, "up", c.up, false) || !floats(n, "fov", &c.fov, 1, false) ||
-        !floats(n, "aperture", &c.aperture, 1, false) ||
+    check_attrs(n, {"eye", "dir", "look_at", "up", "fov", "aperture", "focus_distance"});
+    // testrender's defaults for what the element leaves out.
+    c.eye = {0, 0, 0};
+    c.up = {0, 1, 0};
+    Vec3 dir{0, 0, 1};
+    float fov = 90;
+    if (!vec(n, "eye", c.eye, false) || !vec(n, "dir", dir, false) || !vec(n, "up", c.up, false) ||
+        !floats(n, "fov", &fov, 1, false) || !floats(n, "aperture", &c.aperture, 1, false) ||
         !floats(n, "focus_distance", &c.focus_distance, 1, false))
       return false;
-    if (!(c.fov > 0 && c.fov < 180)) return fail(n, "fov expects degrees in (0, 180)");
-    if (is_zero(cross(c.look_at - c.eye, c.up)))
-      return fail(n, "eye, look_at and up must not be collinear");
+    if (n.attribute("look_at")) { // look_at overrides dir, as in testrender
+      Vec3 at;
+      if (!vec(n, "look_at", at, true)) return false;
+      dir = at - c.eye;
+    }
+    if (is_zero(dir)) return fail(n, "the camera direction (dir, or look_at - eye) is zero");
+    if (!(fov > 0 && fov < 180)) return fail(n, "fov expects degrees in (0, 180)");
+    if (is_zero(cross(dir, c.up))) return fail(n, "the view direction and up must not be parallel");
+    c.look_at = c.eye + dir;
+    c.fov = testrender_fov(fov);
+    return true;
+  }
+  // <Option name="int 4"/>-style values: testrender's "int N", "float X" or "string S"
+  // (a bare number is read as a number too).
+  bool option(const pugi::xml_node& n, Settings& st) {
+    for (pugi::xml_attribute a : n.attributes()) {
+      std::string name = a.name(), v = a.value();
+      for (const char* p : {"int ", "float ", "string "})
+        if (v.rfind(p, 0) == 0) v = v.substr(std::strlen(p));
+      char* end = nullptr;
+      double x = std::strtod(v.c_str(), &end);
+      bool number = end != v.c_str() && std::isfinite(x);
+      auto need = [&](double lo, double hi) {
+        if (number && x >= lo && x <= hi && x == std::floor(x)) return true;
+        error = at(n) + ": <Option> " + name + " expects an integer in [" +
+                std::to_string(int64_t(lo)) + ", " + std::to_string(int64_t(hi)) + "], found \"" +
+                a.value() + "\"";
+        return false;
+      };
+      if (name == "aa") { // -aa N: N x N samples per pixel
+        if (!need(1, 1024)) return false;
+        st.spp = int(x) * int(x);
+      } else if (name == "max_bounces") {
+        if (!need(0, 1e9)) return false;
+        st.max_depth = int(std::min(x, 1024.0));
+      } else if (name == "rr_depth") {
+        // Russian roulette depth: Lobe's own roulette (from the fourth vertex) stands in; the
+        // image's expectation is the same.
+        if (!need(0, 1e9)) return false;
+      } else if (name == "show_albedo_scale") {
+        if (number && x > 0)
+          return fail(n, "<Option> show_albedo_scale (testrender's -albedo view) is not "
+                         "supported by lobe render; write an .exr for its albedo AOV");
+      } else {
+        warnings.push_back(at(n) + ": <Option> '" + name + "' ignored");
+      }
+    }
     return true;
   }
   bool group(const pugi::xml_node& n, SceneDesc& s) {
-    check_attrs(n, {"name"});
+    check_attrs(n, {"name", "type", "commands"});
     MaterialDesc m;
     m.where = at(n);
+    m.unknown_params_warn = true; // testrender warns and renders
     m.name = n.attribute("name") ? n.attribute("name").value()
                                  : "group" + std::to_string(s.materials.size());
-    std::string err;
-    // Errors carry the file line of the mistake: the group text starts on the line of its
-    // first text node (right after <ShaderGroup>).
-    pugi::xml_node text = n.first_child();
-    int first =
-        line_of(text && text.type() == pugi::node_pcdata ? text.offset_debug() : n.offset_debug());
-    auto g = parse_group_text(n.child_value(), path_, true, err, first);
-    if (!g) {
-      error = err;
-      return false;
+    if (pugi::xml_attribute t = n.attribute("type");
+        t && std::string(t.value()) != "surface" && std::string(t.value()) != "shader")
+      return fail(n, std::string("<ShaderGroup> type '") + t.value() +
+                         "' is not supported (lobe render shades surfaces)");
+    // The commands: the `commands` attribute, else the element's text, else <Parameter>,
+    // <Shader> and <ConnectShaders> children.
+    std::string text;
+    int first = line_of(n.offset_debug());
+    if (pugi::xml_attribute c = n.attribute("commands")) {
+      text = c.value();
+    } else {
+      // Errors carry the file line of the mistake: the group text starts on the line of its
+      // first text node (right after <ShaderGroup>).
+      pugi::xml_node t = n.first_child();
+      if (t && t.type() == pugi::node_pcdata) first = line_of(t.offset_debug());
+      text = n.child_value();
     }
-    m.group = std::move(*g);
+    bool children = false;
+    for (pugi::xml_node c : n.children()) children |= c.type() == pugi::node_element;
+    if (text.find_first_not_of(" \t\r\n") == std::string::npos && children) {
+      if (!group_children(n, m.group)) return false;
+    } else {
+      std::string err;
+      auto g = parse_group_text(text, path_, true, err, first);
+      if (!g) {
+        error = err;
+        return false;
+      }
+      m.group = std::move(*g);
+    }
+    if (m.group.layers.empty()) return fail(n, "<ShaderGroup> has no shader");
     m.group.name = m.name;
     current_ = static_cast<int>(s.materials.size());
     s.materials.push_back(std::move(m));
     return true;
   }
+  // testrender's element form of a group: <Parameter name="float 0.5"/> (prefix int, float,
+  // vector, point or color; anything else is a string) before the <Shader type name layer/>
+  // it applies to, and <ConnectShaders srclayer srcparam dstlayer dstparam/>.
+  bool group_children(const pugi::xml_node& g, ShaderGroup& out) {
+    std::vector<InstanceValue> pending;
+    for (pugi::xml_node c : g.children()) {
+      if (c.type() != pugi::node_element) continue;
+      std::string name = c.name();
+      if (name == "Parameter") {
+        for (pugi::xml_attribute a : c.attributes()) {
+          InstanceValue v;
+          v.name = a.name();
+          std::string val = a.value();
+          v.type = "string";
+          v.value = val;
+          for (const char* p : {"int ", "float ", "vector ", "point ", "color "})
+            if (val.rfind(p, 0) == 0) {
+              v.type = std::string(p, std::strlen(p) - 1);
+              v.value = val.substr(std::strlen(p));
+              for (char& ch : v.value) ch = ch == ',' ? ' ' : ch;
+            }
+          pending.push_back(std::move(v));
+        }
+      } else if (name == "Shader") {
+        check_attrs(c, {"type", "name", "layer"});
+        if (!c.attribute("name") || !c.attribute("layer"))
+          return fail(c, "<Shader> needs attributes 'name' and 'layer'");
+        out.layers.push_back(
+            {c.attribute("name").value(), c.attribute("layer").value(), std::move(pending)});
+        pending.clear();
+      } else if (name == "ConnectShaders") {
+        check_attrs(c, {"srclayer", "srcparam", "dstlayer", "dstparam"});
+        Connection k;
+        for (auto [attr, field] : {std::pair{"srclayer", &k.src_layer},
+                                   {"srcparam", &k.src_param},
+                                   {"dstlayer", &k.dst_layer},
+                                   {"dstparam", &k.dst_param}}) {
+          if (!c.attribute(attr))
+            return fail(c, std::string("<ConnectShaders> needs attribute '") + attr + "'");
+          *field = c.attribute(attr).value();
+        }
+        out.connections.push_back(std::move(k));
+      } else {
+        return fail(c, "unknown element <" + name +
+                           "> in <ShaderGroup> (expected Parameter, Shader, ConnectShaders)");
+      }
+    }
+    if (!pending.empty()) return fail(g, "<Parameter> after the last <Shader>");
+    return true;
+  }
+  // is_light="1" (or "yes"): the shape is sampled as a light (testrender's light list).
+  bool light_flag(const pugi::xml_node& n, Shape& sh) {
+    pugi::xml_attribute a = n.attribute("is_light");
+    if (!a) return true;
+    std::string v = a.value();
+    sh.is_light = v == "1" || v == "yes";
+    if (!sh.is_light && v != "0" && v != "no")
+      warnings.push_back(at(n) + ": is_light \"" + v + "\" read as 0 (testrender takes 1 or yes)");
+    return true;
+  }
   bool sphere(const pugi::xml_node& n, SceneDesc& s) {
-    check_attrs(n, {"center", "radius"});
+    check_attrs(n, {"center", "radius", "is_light"});
     Shape sh;
     sh.kind = Shape::Kind::Sphere;
     sh.where = at(n);
     sh.material = current_;
-    if (!vec(n, "center", sh.center, true) || !floats(n, "radius", &sh.radius, 1, true))
+    if (!vec(n, "center", sh.center, true) || !floats(n, "radius", &sh.radius, 1, true) ||
+        !light_flag(n, sh))
       return false;
     if (!(sh.radius > 0)) return fail(n, "radius expects a number > 0");
     s.shapes.push_back(sh);
     return true;
   }
   bool quad(const pugi::xml_node& n, SceneDesc& s) {
-    check_attrs(n, {"corner", "edge_x", "edge_y"});
+    check_attrs(n, {"corner", "edge_x", "edge_y", "is_light"});
     Shape sh;
     sh.kind = Shape::Kind::Quad;
     sh.where = at(n);
     sh.material = current_;
     if (!vec(n, "corner", sh.corner, true) || !vec(n, "edge_x", sh.edge_x, true) ||
-        !vec(n, "edge_y", sh.edge_y, true))
+        !vec(n, "edge_y", sh.edge_y, true) || !light_flag(n, sh))
       return false;
     if (is_zero(cross(sh.edge_x, sh.edge_y))) return fail(n, "quad edges are parallel or zero");
     s.shapes.push_back(sh);
@@ -164,10 +317,13 @@ private:
     check_attrs(n, {"resolution"});
     Environment& e = s.environment;
     e.where = at(n);
+    // testrender's resolution sizes its importance-sampling table (it shades camera rays that
+    // miss directly); Lobe looks every escaped ray up in its table, so the table keeps at
+    // least 256 rows whatever is asked (OSL's own scenes say 1).
     float res = 256;
     if (!floats(n, "resolution", &res, 1, false)) return false;
-    if (!(res >= 4 && res <= 8192)) return fail(n, "resolution expects a number in [4, 8192]");
-    e.resolution = int(res);
+    if (!(res >= 0 && res <= 8192)) return fail(n, "resolution expects a number in [0, 8192]");
+    e.resolution = std::max(int(res), 256);
     if (current_ < 0)
       return fail(n, "<Background> needs a <ShaderGroup> before it (the background shader)");
     e.kind = Environment::Kind::Shader;
@@ -184,8 +340,8 @@ private:
       return false;
     if (!(res[0] >= 1 && res[1] >= 1 && res[0] <= 16384 && res[1] <= 16384))
       return fail(n, "resolution expects two sizes in [1, 16384]");
-    if (!(spp >= 1 && depth >= 1 && seed >= 0))
-      return fail(n, "spp and max_depth expect >= 1, seed >= 0");
+    if (!(spp >= 1 && depth >= 0 && depth <= 1024 && seed >= 0))
+      return fail(n, "spp expects >= 1, max_depth [0, 1024], seed >= 0");
     st.width = int(res[0]), st.height = int(res[1]), st.spp = int(spp), st.max_depth = int(depth);
     st.seed = uint64_t(seed);
     if (pugi::xml_attribute a = n.attribute("seed")) { // exactly (a float loses digits > 2^24)

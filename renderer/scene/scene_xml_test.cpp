@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using namespace lobe;
 using namespace lobe::scene;
 
@@ -23,7 +25,8 @@ TEST(SceneXml, TestrenderSceneLoads) {
   std::string err;
   auto s = parse_xml_scene(xml, "t.xml", err);
   ASSERT_TRUE(s) << err;
-  EXPECT_FLOAT_EQ(s->camera.fov, 30.0f);
+  // testrender's fov 30 spans half of what Lobe's fov 30 does: tan(lobe/2) = tan(15 deg) / 2.
+  EXPECT_NEAR(s->camera.fov, 2 * std::atan(0.5 * std::tan(15 * M_PI / 180)) * 180 / M_PI, 1e-4);
   EXPECT_FLOAT_EQ(s->camera.look_at.y, 0.5f);
   ASSERT_EQ(s->materials.size(), 2u);
   ASSERT_EQ(s->materials[0].group.layers.size(), 1u);
@@ -37,7 +40,90 @@ TEST(SceneXml, TestrenderSceneLoads) {
   EXPECT_FLOAT_EQ(s->shapes[1].edge_y.z, 6.0f);
   EXPECT_EQ(s->environment.kind, Environment::Kind::Shader);
   EXPECT_EQ(s->environment.material, 1);
-  EXPECT_EQ(s->environment.resolution, 128);
+  EXPECT_EQ(s->environment.resolution, 256); // Lobe's table keeps at least 256 rows
+  EXPECT_TRUE(s->materials[0].unknown_params_warn);
+}
+
+// testrender 1.13's camera: eye/dir/up/fov with defaults eye 0, dir +Z, up +Y, fov 90;
+// look_at overrides dir.
+TEST(SceneXml, CameraAsTestrender) {
+  std::string err;
+  auto s = parse_xml_scene("<World><Camera eye=\"1 2 3\" dir=\"0 0 -2\"/></World>", "t.xml", err);
+  ASSERT_TRUE(s) << err;
+  EXPECT_FLOAT_EQ(s->camera.look_at.x, 1);
+  EXPECT_FLOAT_EQ(s->camera.look_at.y, 2);
+  EXPECT_FLOAT_EQ(s->camera.look_at.z, 1);
+  EXPECT_NEAR(s->camera.fov, 2 * std::atan(0.5) * 180 / M_PI, 1e-4); // fov 90: tan(45) / 2
+  s = parse_xml_scene("<World><Camera dir=\"1 0 0\" look_at=\"0 0 -5\"/></World>", "t.xml", err);
+  ASSERT_TRUE(s) << err;
+  EXPECT_FLOAT_EQ(s->camera.look_at.z, -5);
+  s = parse_xml_scene("<World/>", "t.xml", err); // no camera: testrender's defaults
+  ASSERT_TRUE(s) << err;
+  EXPECT_FLOAT_EQ(s->camera.look_at.z, 1);
+  EXPECT_FLOAT_EQ(s->camera.eye.z, 0);
+  EXPECT_EQ(s->settings.width, 640);
+  EXPECT_EQ(s->settings.height, 480);
+  EXPECT_EQ(s->settings.spp, 1);
+  EXPECT_FALSE(parse_xml_scene("<World><Camera dir=\"0 1 0\"/></World>", "t.xml", err));
+  EXPECT_EQ(err, "t.xml:1: the view direction and up must not be parallel");
+}
+
+// <Option>: aa N is N x N samples, max_bounces the path depth; other names are warnings,
+// the -albedo view an error naming it.
+TEST(SceneXml, Options) {
+  std::string err;
+  auto s =
+      parse_xml_scene("<World>\n<Option aa=\"int 3\" max_bounces=\"int 0\" rr_depth=\"int 2\"/>"
+                      "\n<Option lockgeom=\"int 0\"/></World>",
+                      "t.xml", err);
+  ASSERT_TRUE(s) << err;
+  EXPECT_EQ(s->settings.spp, 9);
+  EXPECT_EQ(s->settings.max_depth, 0);
+  ASSERT_EQ(s->warnings.size(), 1u);
+  EXPECT_EQ(s->warnings[0], "t.xml:3: <Option> 'lockgeom' ignored");
+  EXPECT_FALSE(parse_xml_scene("<World><Option aa=\"int x\"/></World>", "t.xml", err));
+  EXPECT_EQ(err, "t.xml:1: <Option> aa expects an integer in [1, 1024], found \"int x\"");
+  EXPECT_FALSE(
+      parse_xml_scene("<World><Option show_albedo_scale=\"float 1\"/></World>", "t.xml", err));
+  EXPECT_NE(err.find("show_albedo_scale"), std::string::npos) << err;
+}
+
+TEST(SceneXml, LightsGroupsAndBackground) {
+  std::string err;
+  auto s = parse_xml_scene(R"(<World>
+  <ShaderGroup name="e" type="surface" commands="float power 2; shader emitter e;"/>
+  <Quad corner="0 0 0" edge_x="1 0 0" edge_y="0 1 0" is_light="1"/>
+  <Sphere center="0 0 0" radius="1" is_light="yes"/>
+  <Sphere center="0 0 0" radius="1"/>
+  <ShaderGroup>
+    <Parameter Cs="color 1, 0.5, 0.25" Kd="float 0.5" name="tex.png"/>
+    <Shader type="surface" name="tex" layer="t"/>
+    <Shader name="matte" layer="m"/>
+    <ConnectShaders srclayer="t" srcparam="Cout" dstlayer="m" dstparam="Cs"/>
+  </ShaderGroup>
+  <Background resolution="1"/>
+</World>)",
+                           "t.xml", err);
+  ASSERT_TRUE(s) << err;
+  EXPECT_TRUE(s->shapes[0].is_light);
+  EXPECT_TRUE(s->shapes[1].is_light);
+  EXPECT_FALSE(s->shapes[2].is_light);
+  ASSERT_EQ(s->materials.size(), 2u);
+  EXPECT_EQ(s->materials[0].name, "e");
+  EXPECT_EQ(s->materials[0].group.layers[0].values[0].value, "2");
+  const ShaderGroup& g = s->materials[1].group;
+  ASSERT_EQ(g.layers.size(), 2u);
+  EXPECT_EQ(g.layers[0].shader, "tex");
+  ASSERT_EQ(g.layers[0].values.size(), 3u);
+  EXPECT_EQ(g.layers[0].values[0].type, "color");
+  EXPECT_EQ(g.layers[0].values[0].value, "1  0.5  0.25");
+  EXPECT_EQ(g.layers[0].values[1].type, "float");
+  EXPECT_EQ(g.layers[0].values[2].type, "string");
+  EXPECT_EQ(g.layers[0].values[2].value, "tex.png");
+  ASSERT_EQ(g.connections.size(), 1u);
+  EXPECT_EQ(g.connections[0].dst_param, "Cs");
+  EXPECT_EQ(s->environment.material, 1);
+  EXPECT_EQ(s->environment.resolution, 256);
 }
 
 TEST(SceneXml, ErrorsCarryLines) {

@@ -2,11 +2,15 @@
 // group text, instance values, every kind of connection, lazy layers, specialisation on/off
 // giving identical output, the cache, read_output and globals_read.
 #include "lobe/shadingsys.h"
+#include "shader_source.h"
 
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <thread>
+#include <unistd.h>
 
 using namespace lobe;
 
@@ -434,4 +438,32 @@ TEST(ColorSpace, OptionSelectsTheSystemAndKeysTheCache) {
   EXPECT_EQ(colorspace_error("ACEScg"), "");
   EXPECT_EQ(colorspace_error(""), "");
   EXPECT_EQ(colorspace_names().front(), "Rec709");
+}
+
+// A shader is found by the name its source declares when no file has that name (oslc names its
+// .oso so: raytype-envmap.osl declaring raytype_envmap is raytype_envmap.oso to OSL).
+TEST(ShaderLookup, ByDeclaredName) {
+  EXPECT_EQ(group::declared_shader_name("// surface wrong()\n/* shader no() */ #define X \"a\"\n"
+                                        "surface\n  raytype_envmap [[ string help = \"x\" ]] ()"
+                                        " { Ci = 0; }"),
+            "raytype_envmap");
+  EXPECT_EQ(group::declared_shader_name("float f(float shader) { return shader; }"), "");
+  namespace fs = std::filesystem;
+  fs::path d = fs::temp_directory_path() / ("lobe_lookup_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  std::ofstream(d / "raytype-envmap.osl") << "surface raytype_envmap() { Ci = 0; }\n";
+  std::ofstream(d / "other.osl") << "shader other_name() {}\n";
+  CompileOptions o;
+  o.include_dirs = {d.string()};
+  EXPECT_EQ(group::find_shader_file("raytype_envmap", o), (d / "raytype-envmap.osl").string());
+  EXPECT_EQ(group::find_shader_file("other", o), (d / "other.osl").string()); // file name first
+  EXPECT_EQ(group::find_shader_file("nothing_declares_this", o), "");
+  ShadingSystem ss;
+  ss.options().include_dirs = {d.string()};
+  ShaderGroup g;
+  g.layers.push_back({"raytype_envmap", "l", {}});
+  DiagnosticList diags;
+  EXPECT_TRUE(ss.compile(g, diags)) << (diags.empty() ? "" : diags[0].text);
+  fs::remove_all(d);
 }

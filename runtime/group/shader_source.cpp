@@ -6,6 +6,8 @@
 #include "ir/verifier.h"
 #include "lower/lower.h"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -55,6 +57,53 @@ std::optional<ir::Shader> compile_osl_source(const std::string& path, const std:
   return std::move(lr.shader);
 }
 
+// The name an OSL source declares for its shader (`surface raytype_envmap (...)`), or "":
+// comments and strings skipped, the first shader-type keyword followed by a name and `(` or
+// `[[` taken.
+std::string declared_shader_name(const std::string& text) {
+  std::string code; // comments and string contents blanked
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text.compare(i, 2, "//") == 0) {
+      while (i < text.size() && text[i] != '\n') ++i;
+      code += '\n';
+    } else if (text.compare(i, 2, "/*") == 0) {
+      size_t e = text.find("*/", i + 2);
+      i = e == std::string::npos ? text.size() : e + 1;
+      code += ' ';
+    } else if (text[i] == '"') {
+      while (++i < text.size() && text[i] != '"') i += text[i] == '\\';
+      code += "\"\"";
+    } else if (text[i] == '#') { // preprocessor line
+      while (i < text.size() && text[i] != '\n') i += text[i] == '\\' ? 2 : 1;
+      code += '\n';
+    } else {
+      code += text[i];
+    }
+  }
+  auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  for (size_t i = 0; i < code.size();) {
+    if (!ident(code[i])) {
+      ++i;
+      continue;
+    }
+    size_t b = i;
+    while (i < code.size() && ident(code[i])) ++i;
+    std::string word = code.substr(b, i - b);
+    if (word != "surface" && word != "shader" && word != "displacement" && word != "volume" &&
+        word != "light")
+      continue;
+    size_t j = i;
+    while (j < code.size() && std::isspace(static_cast<unsigned char>(code[j]))) ++j;
+    size_t nb = j;
+    while (j < code.size() && ident(code[j])) ++j;
+    if (j == nb) continue;
+    std::string name = code.substr(nb, j - nb);
+    while (j < code.size() && std::isspace(static_cast<unsigned char>(code[j]))) ++j;
+    if (j < code.size() && (code[j] == '(' || code.compare(j, 2, "[[") == 0)) return name;
+  }
+  return "";
+}
+
 std::string find_shader_file(const std::string& name, const CompileOptions& options) {
   fs::path p(name);
   if ((p.extension() == ".osl" || p.extension() == ".lir" || p.has_parent_path()) && is_file(p))
@@ -66,6 +115,21 @@ std::string find_shader_file(const std::string& name, const CompileOptions& opti
       fs::path f = fs::path(d) / (name + ext);
       if (is_file(f)) return f.string();
     }
+  // As OSL finds name.oso, which oslc names after the shader the source declares (a file
+  // raytype-envmap.osl declaring raytype_envmap): an .osl in the same places that declares
+  // `name` (files in name order, the first found).
+  for (const std::string& d : dirs) {
+    std::error_code ec;
+    std::vector<fs::path> files;
+    for (fs::directory_iterator it(d.empty() ? "." : d, ec), end; !ec && it != end;
+         it.increment(ec))
+      if (it->path().extension() == ".osl" && is_file(it->path())) files.push_back(it->path());
+    std::sort(files.begin(), files.end());
+    for (const fs::path& f : files) {
+      std::string text;
+      if (read_file(f.string(), text) && declared_shader_name(text) == name) return f.string();
+    }
+  }
   return "";
 }
 

@@ -11,8 +11,11 @@
 
 namespace lobe::group {
 
-// The path of shader `name` on the search path, or "" if not found.
+// Finds shader `name`: name.osl or name.lir in options.include_dirs then ".", else an .osl
+// there that declares a shader called `name` (oslc names its .oso so). "" if none.
 std::string find_shader_file(const std::string& name, const CompileOptions& options);
+// The shader name an OSL source declares ("" if none is found).
+std::string declared_shader_name(const std::string& text);
 
 // Compiles the file (.osl through the front end, .lir through the IR parser); stage times go
 // to `stats`. Nullopt with diagnostics on failure.

@@ -1,0 +1,186 @@
+// OSL testrender scenes (tests/render/testrender/*.xml, with their own shaders) rendered by
+// `lobe render` and compared with OSL 1.13's testrender: the image mean of each channel must
+// lie within 3% of testrender's at the same resolution and samples (the scene's
+// <Option aa="int 4"/>: 16 per pixel). testrender is not run here: its means are recorded
+// below with the command that made them. Every reference was also rendered with aa 24-32;
+// those converged means differ from the ones below by under 0.7%, so the 3% is for real
+// differences in the picture, not testrender's noise.
+//
+// References (from a folder holding the scene and the shaders compiled with OSL's oslc
+// (`oslc -o tr_sky_bg.oso tr-sky-bg.osl`, as the name each file declares), one line each):
+//   testrender --res 80 60 cornell.xml cornell.exr && oiiotool cornell.exr --printstats
+//   testrender --res 80 60 sky.xml sky.exr && oiiotool sky.exr --printstats
+//   sed 's/"diffuse"/"FAMILY"/' furnace.xml > f.xml && testrender --res 32 32 f.xml f.exr
+//       && oiiotool f.exr --printstats
+#include "image.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CmdResult {
+  int status = -1;
+  std::string out; // stdout and stderr
+};
+
+CmdResult run_cmd(const std::string& cmd) {
+  CmdResult r;
+  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+const fs::path kScenes = LOBE_TESTRENDER_SCENES;
+
+// A fresh folder holding copies of the scenes' shaders.
+fs::path temp_dir(const std::string& name) {
+  fs::path d =
+      fs::temp_directory_path() / ("lobe_testrender_" + name + "_" + std::to_string(getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  for (const auto& e : fs::directory_iterator(kScenes))
+    if (e.path().extension() == ".osl") fs::copy_file(e.path(), d / e.path().filename());
+  return d;
+}
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct Means {
+  double r = -1, g = -1, b = -1;
+};
+
+// Renders `scene` with `lobe render -q ARGS` to an EXR and returns the mean of R, G, B.
+Means render_means(const fs::path& scene, const std::string& args, const fs::path& dir,
+                   std::string* output = nullptr) {
+  fs::path out = dir / (scene.stem().string() + ".exr");
+  CmdResult r = run_cmd(std::string(LOBE_EXE) + " render -q " + scene.string() + " " + args +
+                        " -o " + out.string());
+  if (output) *output = r.out;
+  EXPECT_EQ(r.status, 0) << r.out;
+  Means m;
+  lobe::image::Image img;
+  if (!lobe::image::read_image(out.string(), img).empty()) return m;
+  double sum[3] = {0, 0, 0};
+  int ch[3] = {img.channel("R"), img.channel("G"), img.channel("B")};
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int c = 0; c < 3; ++c) sum[c] += img.pixel(x, y)[ch[c]];
+  double n = double(img.width) * img.height;
+  return {sum[0] / n, sum[1] / n, sum[2] / n};
+}
+
+void expect_within(const Means& got, const Means& want, double rel, const std::string& what) {
+  EXPECT_NEAR(got.r, want.r, rel * want.r) << what << " R";
+  EXPECT_NEAR(got.g, want.g, rel * want.g) << what << " G";
+  EXPECT_NEAR(got.b, want.b, rel * want.b) << what << " B";
+}
+
+} // namespace
+
+// Camera by eye + dir with testrender's field of view, the light a quad sampled through
+// is_light, bounces and samples from <Option>.
+TEST(TestrenderScenes, CornellBox) {
+  fs::path d = temp_dir("cornell");
+  Means m = render_means(kScenes / "cornell.xml", "--res 80 60", d);
+  expect_within(m, {0.131775, 0.101094, 0.061567}, 0.03, "cornell");
+}
+
+// A background shader found by the name its file declares, at resolution 1; the sky lights a
+// floor and a ball.
+TEST(TestrenderScenes, SkyBackgroundByDeclaredName) {
+  fs::path d = temp_dir("sky");
+  Means m = render_means(kScenes / "sky.xml", "--res 80 60", d);
+  expect_within(m, {0.535226, 0.520969, 0.528236}, 0.03, "sky");
+}
+
+namespace {
+struct FurnaceCase {
+  const char* family;
+  double mean; // testrender's (grey: R = G = B)
+};
+
+// Renders furnace.xml with `family` in place of diffuse and compares with testrender's mean.
+void expect_furnace(const FurnaceCase* cases, size_t count, const std::string& dir_name) {
+  fs::path d = temp_dir(dir_name);
+  std::string text = read_file(kScenes / "furnace.xml");
+  ASSERT_NE(text.find("\"diffuse\""), std::string::npos);
+  for (size_t i = 0; i < count; ++i) {
+    const FurnaceCase& c = cases[i];
+    std::string t = text;
+    t.replace(t.find("\"diffuse\""), 9, std::string("\"") + c.family + "\"");
+    fs::path scene = d / (std::string("furnace_") + c.family + ".xml");
+    std::ofstream(scene) << t;
+    Means m = render_means(scene, "--res 32 32", d);
+    expect_within(m, {c.mean, c.mean, c.mean}, 0.03, c.family);
+  }
+}
+} // namespace
+
+// White furnace, one closure family at a time (grey 0.9 tint, roughness 0.3, ior 1.5).
+TEST(TestrenderScenes, FurnacePerClosureFamily) {
+  const FurnaceCase cases[] = {
+      {"diffuse", 0.899076},        {"oren_nayar", 0.814881},          {"translucent", 0.810122},
+      {"microfacet_ggx", 0.032474}, {"microfacet_beckmann", 0.036773}, {"reflection", 0.036173},
+      {"refraction", 0.746368},     {"dielectric", 0.810559},          {"transparent", 0.810059},
+  };
+  expect_furnace(cases, std::size(cases), "furnace");
+}
+
+// Two closures that do not yet render as testrender's (closure code, not the scene reader):
+// measured on this scene, Lobe's ward gives 0.814 (testrender loses about a quarter of the
+// energy at roughness 0.3) and Lobe's rough refraction (microfacet ggx, refract 1) 0.641
+// where testrender gives 0.734. Run with --gtest_also_run_disabled_tests.
+TEST(TestrenderScenes, DISABLED_FurnaceClosuresThatDiffer) {
+  const FurnaceCase cases[] = {
+      {"ward", 0.685419},
+      {"microfacet_ggx_refract", 0.733544},
+  };
+  expect_furnace(cases, std::size(cases), "furnace_differ");
+}
+
+// What testrender accepts with a warning renders here too: an instance value for a parameter
+// the shader lacks, an attribute nobody reads, an option Lobe does not use.
+TEST(TestrenderScenes, WarningsDoNotStopTheRender) {
+  fs::path d = temp_dir("warnings");
+  fs::path scene = d / "w.xml";
+  std::ofstream(scene) << R"(<World>
+  <Option aa="int 2" texture_cache="int 1"/>
+  <Camera eye="0 0 0" dir="0 0 1" fov="20" shutter="0 1"/>
+  <ShaderGroup>color Cs 0.5 0.5 0.5; float shininess 3; shader tr_matte m;</ShaderGroup>
+  <Sphere center="0 0 4" radius="1"/>
+  <ShaderGroup>shader tr_constant_bg bg;</ShaderGroup>
+  <Background resolution="1"/>
+</World>)";
+  std::string out;
+  Means m = render_means(scene, "--res 16 16", d, &out);
+  EXPECT_NEAR(m.r, 0.5, 0.02) << out; // a grey 0.5 sphere filling the view in a furnace
+  EXPECT_NE(out.find(scene.string() + ":2: <Option> 'texture_cache' ignored"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find(scene.string() + ":3: <Camera> attribute 'shutter' ignored"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("shininess"), std::string::npos) << out;
+  EXPECT_NE(out.find("(ignored)"), std::string::npos) << out;
+}
