@@ -63,6 +63,13 @@ struct GroupPlan {
   // The material's colour system (CompileOptions::colorspace), baked in likewise; null: Rec709.
   const shadeops::ColorSystem* colors = nullptr;
   bool fast_math = true; // CompileOptions::fast_math: the math shadeops' math::MathMode
+  // CompileOptions::debug_nan: after each op, its float-based results are checked for NaN and
+  // Inf (reported as OSL's "Detected inf value in x at f.osl:3 (op mul)").
+  bool debug_nan = false;
+  // CompileOptions::debug_uninit: locals and temps start as NaN / INT_MIN / a marker string
+  // instead of zero, and before each op the values it reads are checked for them (and for any
+  // non-finite float, as OSL does); each found is reported and set to zero.
+  bool debug_uninit = false;
 };
 
 // Storage size in bytes of a symbol (all planes), as laid out in group data and allocas.
