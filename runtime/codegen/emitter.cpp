@@ -390,6 +390,10 @@ void LayerEmitter::check_uninit_reads(int index) {
     const ir::Symbol& s = sym(si);
     if (s.kind == SymKind::Const || s.kind == SymKind::Global || !storage_[size_t(si)]) continue;
     if (s.type.base == BaseType::Closure) continue;
+    // The value after an attribute name of pointcloud_search/get is where it is written.
+    if ((op.opcode == "pointcloud_search" || op.opcode == "pointcloud_get") && a > 0 &&
+        sym(op.args[a - 1]).type.base == BaseType::String)
+      continue;
     int comps = s.type.components();
     llvm::Value* first = iconst(0);
     llvm::Value* count = iconst(elements_of(s) * comps);
