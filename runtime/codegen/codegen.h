@@ -73,6 +73,13 @@ struct GroupPlan {
   // layer returns at once (its outputs as they are). max_loop_iterations < 0: no checks.
   int loop_count_offset = -1;
   int64_t max_loop_iterations = 0;
+  // CompileOptions::debug_nan: after each op, its float-based results are checked for NaN and
+  // Inf (reported as OSL's "Detected inf value in x at f.osl:3 (op mul)").
+  bool debug_nan = false;
+  // CompileOptions::debug_uninit: locals and temps start as NaN / INT_MIN / a marker string
+  // instead of zero, and before each op the values it reads are checked for them (and for any
+  // non-finite float, as OSL does); each found is reported and set to zero.
+  bool debug_uninit = false;
 };
 
 // Iterations a layer runs between two calls of lobe_loop_check (fewer when the limit is lower).

@@ -286,6 +286,23 @@ llvm::Value* LayerEmitter::truthy(const Val& v, BaseType t) {
   return any;
 }
 
+std::string LayerEmitter::layer_description() const {
+  return "group " + (group_.group_name.empty() ? "unnamed_group" : group_.group_name) + ", layer " +
+         std::to_string(plan().group_index) + " " + plan().layer_name + ", shader " + shader().name;
+}
+
+llvm::Value* LayerEmitter::clamped_index(const ir::Op& op, int index_arg, int length) {
+  const ir::Symbol& is = arg(op, index_arg);
+  if (is.kind == SymKind::Const && !is.type.is_array()) {
+    int i =
+        is.init.empty() ? 0 : (is.type.base == BaseType::Int ? is.init[0].i : int(is.init[0].f));
+    return iconst(std::clamp(i, 0, std::max(0, length - 1)));
+  }
+  llvm::Value* idx = load_as(op, index_arg, BaseType::Int)[0].v;
+  llvm::Value* lo = b_.CreateSelect(b_.CreateICmpSLT(idx, iconst(0)), iconst(0), idx);
+  return b_.CreateSelect(b_.CreateICmpSGT(lo, iconst(length - 1)), iconst(length - 1), lo);
+}
+
 llvm::Value* LayerEmitter::checked_index(const ir::Op& op, int index_arg, int length) {
   const ir::Symbol& is = arg(op, index_arg);
   if (is.kind == SymKind::Const && !is.type.is_array()) {
@@ -303,10 +320,7 @@ llvm::Value* LayerEmitter::checked_index(const ir::Op& op, int index_arg, int le
   const ir::Symbol& what = arg(
       op,
       op.opcode.size() > 6 && op.opcode.compare(op.opcode.size() - 6, 6, "assign") == 0 ? 0 : 1);
-  std::string where = "(group " +
-                      (group_.group_name.empty() ? "unnamed_group" : group_.group_name) +
-                      ", layer " + std::to_string(plan().group_index) + " " + plan().layer_name +
-                      ", shader " + shader().name + ")";
+  std::string where = "(" + layer_description() + ")";
   call("lobe_range_error", {sg_, idx, iconst(length), string_const(what.name),
                             string_const(op.loc.file.empty() ? shader().name : op.loc.file),
                             iconst(op.loc.line), string_const(where)});
@@ -314,6 +328,127 @@ llvm::Value* LayerEmitter::checked_index(const ir::Op& op, int index_arg, int le
   b_.SetInsertPoint(ok);
   llvm::Value* lo = b_.CreateSelect(b_.CreateICmpSLT(idx, iconst(0)), iconst(0), idx);
   return b_.CreateSelect(b_.CreateICmpSGT(lo, iconst(length - 1)), iconst(length - 1), lo);
+}
+
+} // namespace lobe::codegen
+
+namespace lobe::codegen {
+
+namespace {
+// The op's name as OSL's run-time checks print it: Lobe's `construct` is OSL's type-named
+// constructor op (`color`, `point`, ...), a conditional branch OSL's `if`.
+std::string osl_opname(const ir::Op& op, const ir::Shader& sh) {
+  if (op.opcode == "construct" && !op.args.empty())
+    return to_string(sh.symbols[size_t(op.args[0])].type.base);
+  if (op.opcode == "cbr") return "if";
+  if (op.opcode == "declared_closure") return "closure";
+  return op.opcode;
+}
+} // namespace
+
+// The op numbers OSL's debug_uninit messages give, for a shader as oslc compiles it: Lobe's
+// `br` ops (the jump back of a loop, over an else) are part of OSL's `for`/`if` ops, and OSL
+// inserts its own `useparam` ops: before an op, one for each input parameter the op reads
+// that no earlier op outside a conditional read (Lobe's useparam ops are not counted).
+void LayerEmitter::number_ops_as_osl() {
+  const auto& ops = shader().ops;
+  osl_opnum_.assign(ops.size(), 0);
+  int furthest = -1;
+  std::vector<bool> used(shader().symbols.size(), false);
+  int n = 0;
+  for (size_t i = 0; i < ops.size(); ++i) {
+    const ir::Op& op = ops[i];
+    bool conditional = furthest > int(i);
+    if (op.opcode != "useparam" && op.opcode != "br") {
+      std::vector<int> fresh;
+      for (size_t a = 0; a < op.args.size(); ++a) {
+        int si = op.args[a];
+        if (op.writes(int(a)) || sym(si).kind != SymKind::Param || used[size_t(si)]) continue;
+        if (std::find(fresh.begin(), fresh.end(), si) == fresh.end()) fresh.push_back(si);
+      }
+      n += int(fresh.size());
+      if (!conditional)
+        for (int si : fresh) used[size_t(si)] = true;
+      osl_opnum_[i] = n++;
+    } else {
+      osl_opnum_[i] = n;
+    }
+    if (op.opcode == "cbr")
+      for (int t : op.jumps) furthest = std::max(furthest, t);
+  }
+}
+
+// OSL's debug_uninit: each operand the op reads (but no constant or global, closure or struct
+// of them) is checked as a whole, except an aref/compref/mxcompref source, of which only the
+// element or component read is.
+void LayerEmitter::check_uninit_reads(int index) {
+  const ir::Op& op = shader().ops[size_t(index)];
+  std::string opname = osl_opname(op, shader());
+  for (size_t a = 0; a < op.args.size(); ++a) {
+    if (op.writes(int(a))) continue;
+    int si = op.args[a];
+    const ir::Symbol& s = sym(si);
+    if (s.kind == SymKind::Const || s.kind == SymKind::Global || !storage_[size_t(si)]) continue;
+    if (s.type.base == BaseType::Closure) continue;
+    // The value after an attribute name of pointcloud_search/get is where it is written.
+    if ((op.opcode == "pointcloud_search" || op.opcode == "pointcloud_get") && a > 0 &&
+        sym(op.args[a - 1]).type.base == BaseType::String)
+      continue;
+    int comps = s.type.components();
+    llvm::Value* first = iconst(0);
+    llvm::Value* count = iconst(elements_of(s) * comps);
+    if (a == 1 && op.opcode == "aref" && op.args.size() > 2 && s.type.is_array()) {
+      first = b_.CreateMul(clamped_index(op, 2, elements_of(s)), iconst(comps));
+      count = iconst(comps);
+    } else if (a == 1 && op.opcode == "compref" && op.args.size() > 2 && !s.type.is_array()) {
+      first = clamped_index(op, 2, comps);
+      count = iconst(1);
+    } else if (a == 1 && op.opcode == "mxcompref" && op.args.size() > 3 && !s.type.is_array()) {
+      first =
+          b_.CreateAdd(b_.CreateMul(clamped_index(op, 2, 4), iconst(4)), clamped_index(op, 3, 4));
+      count = iconst(1);
+    }
+    int kind = s.type.base == BaseType::Int ? 1 : s.type.base == BaseType::String ? 2 : 0;
+    call("lobe_uninit_check",
+         {sg_, env_ptr(), address(si, 0, nullptr, 0), iconst(kind), first, count,
+          string_const(to_string(s.type)), string_const(s.name),
+          string_const(op.loc.file.empty() ? shader().name : op.loc.file), iconst(op.loc.line),
+          string_const(layer_description()),
+          iconst(size_t(index) < osl_opnum_.size() ? osl_opnum_[size_t(index)] : index),
+          string_const(opname), iconst(int(a))});
+  }
+}
+
+// OSL's debug_nan: each float-based operand the op wrote is checked, values and derivatives;
+// of an aassign/compassign/mxcompassign destination only the element or component written.
+void LayerEmitter::check_nan_writes(int index) {
+  const ir::Op& op = shader().ops[size_t(index)];
+  std::string opname = osl_opname(op, shader());
+  for (size_t a = 0; a < op.args.size(); ++a) {
+    if (!op.writes(int(a))) continue;
+    int si = op.args[a];
+    const ir::Symbol& s = sym(si);
+    if (s.kind == SymKind::Const || !storage_[size_t(si)] || !is_float_based(s.type.base)) continue;
+    int comps = s.type.components();
+    int all = elements_of(s) * comps;
+    llvm::Value* first = iconst(0);
+    llvm::Value* count = iconst(all);
+    if (a == 0 && op.opcode == "aassign" && op.args.size() > 2 && s.type.is_array()) {
+      first = b_.CreateMul(clamped_index(op, 1, elements_of(s)), iconst(comps));
+      count = iconst(comps);
+    } else if (a == 0 && op.opcode == "compassign" && op.args.size() > 2 && !s.type.is_array()) {
+      first = clamped_index(op, 1, comps);
+      count = iconst(1);
+    } else if (a == 0 && op.opcode == "mxcompassign" && op.args.size() > 3 && !s.type.is_array()) {
+      first =
+          b_.CreateAdd(b_.CreateMul(clamped_index(op, 1, 4), iconst(4)), clamped_index(op, 2, 4));
+      count = iconst(1);
+    }
+    call("lobe_naninf_check",
+         {sg_, address(si, 0, nullptr, 0), iconst(all), iconst(s.derivs ? 1 : 0), first, count,
+          string_const(s.name), string_const(op.loc.file.empty() ? shader().name : op.loc.file),
+          iconst(op.loc.line), string_const(opname)});
+  }
 }
 
 } // namespace lobe::codegen

@@ -82,6 +82,10 @@ public:
   // An in-range index: constant indices are checked at compile time, others clamped at run
   // time with a range error reported through the ShadingContext.
   llvm::Value* checked_index(const ir::Op& op, int index_arg, int length);
+  // An index operand as an int clamped to [0, length) (no report: checked_index reports).
+  llvm::Value* clamped_index(const ir::Op& op, int index_arg, int length);
+  // "group g, layer 0 l, shader s", as OSL's run-time errors name the layer.
+  std::string layer_description() const;
   llvm::Value* truthy(const Val& v, ir::BaseType t); // i1: v != 0
   void emit_exit();                                  // branch to the layer's exit block
   void run_useparam(int symbol);                     // fetch a connected param once
@@ -103,6 +107,9 @@ private:
   void emit_region(int begin, int end, llvm::BasicBlock* after);
   void emit_op(int index);
   void emit_loop_check(const ir::Op& op); // counts a back edge (GroupPlan::loop_count_offset)
+  void check_uninit_reads(int index); // GroupPlan::debug_uninit, before the op
+  void check_nan_writes(int index);   // GroupPlan::debug_nan, after the op
+  void number_ops_as_osl();
   void finish_exit_block();
   llvm::BasicBlock* block_at(int op_index);
   bool is_leader(int op_index) const;
@@ -122,6 +129,7 @@ private:
   std::vector<llvm::Value*> storage_;       // per symbol: alloca (null for scalar consts)
   std::vector<llvm::Value*> fetched_flag_;  // per symbol: i1 alloca "connection fetched"
   std::vector<char> leader_;                // per op: starts a basic block
+  std::vector<int> osl_opnum_;              // per op: its number as OSL counts (debug_uninit)
   std::map<int, llvm::BasicBlock*> blocks_; // op index -> block
   int region_end_ = 0;
   llvm::BasicBlock* region_after_ = nullptr;

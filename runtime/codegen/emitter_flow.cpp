@@ -3,12 +3,16 @@
 // emit_group, which creates one function per layer plus the group entry.
 #include "emitter.h"
 
+#include "env.h"
+#include "ir/edit.h"
 #include "lobe/shading.h"
 
 #include <llvm/IR/Constants.h>
 #include <llvm/IR/MDBuilder.h>
 #include <llvm/IR/Verifier.h>
 #include <llvm/Support/raw_ostream.h>
+
+#include <limits>
 
 namespace lobe::codegen {
 
@@ -41,7 +45,9 @@ llvm::BasicBlock* LayerEmitter::block_at(int i) {
 
 void LayerEmitter::emit_exit() { b_.CreateBr(exit_block_); }
 
-// Locals and temps start zeroed (strings ""), globals are read from ShaderGlobals.
+// Locals and temps start zeroed (strings ""), globals are read from ShaderGlobals. With
+// debug_uninit the values of locals and temps start as OSL's markers instead: NaN, INT_MIN and
+// the marker string (their derivatives zero).
 void LayerEmitter::init_symbols() {
   const auto& syms = shader().symbols;
   for (size_t i = 0; i < syms.size(); ++i) {
@@ -49,12 +55,19 @@ void LayerEmitter::init_symbols() {
     int si = int(i);
     if (s.kind == SymKind::Local || s.kind == SymKind::Temp) {
       b_.CreateMemSet(storage_[i], b_.getInt8(0), storage_bytes(s), llvm::MaybeAlign(8));
-      if (s.type.base == BaseType::String) {
-        int n = int(storage_bytes(s) / 8);
+      bool mark = group_.debug_uninit && s.type.base != BaseType::Closure;
+      if (s.type.base == BaseType::String || mark) {
+        // The value plane only: [elements][components] scalars at the start of the storage.
+        int n = int(storage_bytes(s) / (s.type.base == BaseType::String ? 8 : 4));
+        if (s.derivs) n /= 3;
+        llvm::Type* st = scalar_type(s);
+        llvm::Value* v = s.type.base == BaseType::String
+                             ? string_const(mark ? shadeops::kUninitializedString : "")
+                         : s.type.base == BaseType::Int ? iconst(std::numeric_limits<int>::min())
+                                                        : llvm::ConstantFP::getNaN(f32());
         for (int k = 0; k < n; ++k)
-          b_.CreateStore(string_const(""),
-                         b_.CreateConstInBoundsGEP2_32(llvm::ArrayType::get(ptr(), unsigned(n)),
-                                                       storage_[i], 0, unsigned(k)));
+          b_.CreateStore(v, b_.CreateConstInBoundsGEP2_32(llvm::ArrayType::get(st, unsigned(n)),
+                                                          storage_[i], 0, unsigned(k)));
       }
     } else if (s.kind == SymKind::Global) {
       const GlobalField* g = find_global(s.name);
@@ -120,10 +133,22 @@ void LayerEmitter::init_params() {
       b_.SetInsertPoint(after);
     }
   }
+  // Without useparam ops (IR written by hand) the connections are fetched here, but only
+  // those of params something reads (an op, or a downstream layer through a connection from
+  // the param): as OSL, an upstream layer whose value nothing reads does not run.
   bool lazy = false;
-  for (const ir::Op& op : shader().ops) lazy |= op.opcode == "useparam";
+  std::vector<bool> read(syms.size(), false);
+  for (const ir::Op& op : shader().ops) {
+    lazy |= op.opcode == "useparam";
+    for (size_t a = 0; a < op.args.size(); ++a)
+      if (ir::op_reads(op, int(a))) read[size_t(op.args[a])] = true;
+  }
+  for (const LayerPlan& lp : group_.layers)
+    for (const ConnectionPlan& c : lp.connections)
+      if (c.src_layer == layer_) read[size_t(c.src_symbol)] = true;
   if (!lazy)
-    for (const ConnectionPlan& c : plan().connections) run_useparam(c.dst_symbol);
+    for (const ConnectionPlan& c : plan().connections)
+      if (read[size_t(c.dst_symbol)]) run_useparam(c.dst_symbol);
 }
 
 // Runs the upstream layer if it has not run yet and copies the connected value, once.
@@ -225,6 +250,7 @@ void LayerEmitter::emit_op(int index) {
   if (op.opcode == "br") {
     b_.CreateBr(block_at(op.jumps.at(0)));
   } else if (op.opcode == "cbr") {
+    if (group_.debug_uninit) check_uninit_reads(index);
     llvm::Value* c = truthy(load(op.args[0], nullptr, false), arg(op, 0).type.base);
     b_.CreateCondBr(c, block_at(op.jumps.at(0)), block_at(op.jumps.at(1)));
   } else if (op.opcode == "exit") {
@@ -232,7 +258,9 @@ void LayerEmitter::emit_op(int index) {
   } else if (op.opcode == "useparam") {
     for (int a : op.args) run_useparam(a);
   } else if (OpEmitFn fn = find_op_emitter(op.opcode)) {
+    if (group_.debug_uninit) check_uninit_reads(index);
     fn(*this, op);
+    if (group_.debug_nan && !b_.GetInsertBlock()->getTerminator()) check_nan_writes(index);
   } else {
     fail(op, "not supported by codegen");
   }
@@ -316,6 +344,7 @@ bool LayerEmitter::emit() {
         if (t >= 0 && size_t(t) <= ops.size()) leader_[size_t(t)] = 1;
     }
   }
+  if (group_.debug_uninit) number_ops_as_osl();
   b_.SetInsertPoint(start);
   create_storage();
   if (group_.loop_count_offset >= 0 && group_.max_loop_iterations >= 0) {

@@ -31,6 +31,8 @@ bool emit_shader_text(const std::string& path, const CompileOptions& options, Em
   b.plan.env = &env;
   b.plan.fast_math = options.fast_math;
   b.plan.max_loop_iterations = options.max_loop_iterations;
+  b.plan.debug_nan = options.debug_nan;
+  b.plan.debug_uninit = options.debug_uninit;
   bool specialize = options.specialize && options.opt_level > 0;
   if (!build_group(g, {&*shader}, specialize, b, diags)) return false;
 

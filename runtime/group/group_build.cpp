@@ -62,6 +62,7 @@ std::map<std::string, Endpoint> resolve(const ir::Shader& sh, const std::string&
 struct Link { // a resolved connection, by names
   int src_layer, dst_layer;
   Endpoint src, dst;
+  bool dead = false; // replaced by the source's known value (elide_known_outputs)
 };
 
 bool is_param(const ir::Symbol& s) {
@@ -256,10 +257,77 @@ void write_value(unsigned char* p, const ir::Symbol& s, const std::vector<ir::Co
   }
 }
 
+// A constant converted as an assignment converts it: equal types (any triple to any triple),
+// int to float, int or float to a triple. Empty: not one of those.
+std::vector<ir::ConstValue> convert_const(const std::vector<ir::ConstValue>& v,
+                                          const ir::Type& from, const ir::Type& to) {
+  using ir::BaseType;
+  if (from.arraylen != to.arraylen) return {};
+  bool same = from.base == to.base || (from.is_triple() && to.is_triple());
+  if (same) return v;
+  if (from.is_array() || v.size() != 1) return {};
+  float f = from.base == BaseType::Int ? float(v[0].i) : v[0].f;
+  if (from.base != BaseType::Int && from.base != BaseType::Float) return {};
+  if (to.base == BaseType::Float) return {ir::ConstValue::of_float(f)};
+  if (to.is_triple()) return std::vector<ir::ConstValue>(3, ir::ConstValue::of_float(f));
+  return {};
+}
+
+// What OSL's -O2 knows of an upstream layer's output param at the end of the layer: written by
+// one `assign` of a constant or of a shading global (that the layer never writes), with no
+// jump before it, or never written and holding a constant default. `global` names the global
+// of a copy; else `value` is the constant (in the param's type). Neither: not known.
+struct KnownOutput {
+  std::vector<ir::ConstValue> value;
+  std::string global;
+};
+KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool runtime_valued) {
+  KnownOutput k;
+  int si = sh.find_symbol(name);
+  if (si < 0) return k;
+  const ir::Symbol& s = sh.symbols[size_t(si)];
+  if (s.kind != SymKind::OutputParam || s.type.base == ir::BaseType::Closure) return k;
+  int writer = -1, writes = 0;
+  bool jump_before = false;
+  std::set<int> written_globals;
+  for (size_t i = size_t(sh.main_begin); i < sh.ops.size(); ++i) {
+    const ir::Op& op = sh.ops[i];
+    for (size_t a = 0; a < op.args.size(); ++a) {
+      if (!op.writes(int(a))) continue;
+      if (op.args[a] == si) {
+        ++writes;
+        if (writer < 0) writer = int(i);
+      }
+      if (sh.symbols[size_t(op.args[a])].kind == SymKind::Global)
+        written_globals.insert(op.args[a]);
+    }
+    bool jump = op.opcode == "br" || op.opcode == "cbr" || op.opcode == "exit";
+    if (jump && writer < 0) jump_before = true;
+  }
+  if (writes == 0) {
+    if (!runtime_valued && s.init_begin < 0 && !s.init.empty()) k.value = s.init;
+    return k;
+  }
+  if (writes > 1 || jump_before) return k;
+  const ir::Op& op = sh.ops[size_t(writer)];
+  if (op.opcode != "assign" || op.args.size() != 2 || op.args[0] != si) return k;
+  const ir::Symbol& src = sh.symbols[size_t(op.args[1])];
+  if (src.kind == SymKind::Const) {
+    k.value = convert_const(src.init, src.type, s.type);
+  } else if (src.kind == SymKind::Global && !written_globals.count(op.args[1]) &&
+             !src.type.is_array() && !s.type.is_array() &&
+             src.type.components() == s.type.components() &&
+             (src.type.base == s.type.base || (src.type.is_triple() && s.type.is_triple()))) {
+    k.global = src.name;
+  }
+  return k;
+}
+
 } // namespace
 
 bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
-                 bool specialize, GroupBuild& out, DiagnosticList& diags, bool lockgeom_default) {
+                 bool specialize, GroupBuild& out, DiagnosticList& diags, bool lockgeom_default,
+                 bool elide_known_outputs) {
   size_t n = group.layers.size();
   std::map<std::string, int> layer_index;
   for (size_t i = 0; i < n; ++i) layer_index[group.layers[i].name] = int(i);
@@ -382,9 +450,56 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         len[l.dst.symbol] = src.symbols[size_t(ss)].type.arraylen;
     }
     size_unsized_params(*sh, len);
+    // OSL -O2: whole connections from outputs of known value become that value.
+    if (specialize && elide_known_outputs)
+      for (Link& l : links) {
+        if (l.dst_layer != int(i) || l.dead || l.src.elem >= 0 || l.src.comp >= 0 ||
+            l.dst.elem >= 0 || l.dst.comp >= 0)
+          continue;
+        const ir::Shader& src = *out.shaders[size_t(new_index[size_t(l.src_layer)])];
+        bool src_runtime = interp[size_t(l.src_layer)].count(l.src.symbol) > 0;
+        for (const Link& up : links)
+          src_runtime |= up.dst_layer == l.src_layer && up.dst.symbol == l.src.symbol;
+        KnownOutput k = known_output(src, l.src.symbol, src_runtime);
+        int ds = sh->find_symbol(l.dst.symbol);
+        if (ds < 0 || (k.value.empty() && k.global.empty())) continue;
+        ir::Symbol& dsym = sh->symbols[size_t(ds)];
+        if (dsym.kind != SymKind::Param) continue;
+        // isconnected() still answers for the connection as made: keep those.
+        auto asks = [](const ir::Shader& x, int symbol) {
+          for (const ir::Op& op : x.ops)
+            if (op.opcode == "isconnected" && op.args.size() > 1 && op.args[1] == symbol)
+              return true;
+          return false;
+        };
+        if (asks(*sh, ds) || asks(src, src.find_symbol(l.src.symbol))) continue;
+        if (!k.value.empty()) {
+          const ir::Symbol& ssym = src.symbols[size_t(src.find_symbol(l.src.symbol))];
+          std::vector<ir::ConstValue> v = convert_const(k.value, ssym.type, dsym.type);
+          if (v.empty()) continue;
+          values[i][l.dst.symbol] = v;
+          interp[i].erase(l.dst.symbol);
+        } else {
+          const ir::Symbol& g = src.symbols[size_t(src.find_symbol(k.global))];
+          if (g.type.components() != dsym.type.components() || dsym.type.is_array() ||
+              !(g.type.base == dsym.type.base || (g.type.is_triple() && dsym.type.is_triple())))
+            continue;
+          dsym.kind = SymKind::Global;
+          dsym.name = k.global;
+          dsym.init.clear();
+          dsym.init_begin = dsym.init_end = -1;
+          dsym.metadata.clear();
+          for (ir::Op& op : sh->ops) // its reads need no fetch now
+            if (op.opcode == "useparam") {
+              op.args.erase(std::remove(op.args.begin(), op.args.end(), ds), op.args.end());
+              if (op.args.empty()) op.opcode = "nop";
+            }
+        }
+        l.dead = true;
+      }
     std::set<std::string> connected;
     for (const Link& l : links)
-      if (l.dst_layer == int(i)) connected.insert(l.dst.symbol);
+      if (l.dst_layer == int(i) && !l.dead) connected.insert(l.dst.symbol);
     // User data arrives at run time: those params stay params, as connected ones do.
     std::set<std::string> runtime_valued = connected;
     runtime_valued.insert(interp[i].begin(), interp[i].end());
@@ -392,6 +507,36 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     new_index[i] = int(out.shaders.size());
     out.shaders.push_back(std::move(sh));
     out.layer_names.push_back(group.layers[i].name);
+  }
+
+  // Upstream layers that no remaining connection reads are dropped (OSL -O2's unused layers).
+  if (std::any_of(links.begin(), links.end(), [](const Link& l) { return l.dead; })) {
+    links.erase(std::remove_if(links.begin(), links.end(), [](const Link& l) { return l.dead; }),
+                links.end());
+    std::vector<bool> alive(n, false);
+    for (size_t i = 0; i < n; ++i) alive[i] = needed[i] && (entry[i] || i + 1 == n);
+    for (size_t i = n; i-- > 0;)
+      for (const Link& l : links)
+        if (l.dst_layer == int(i) && alive[i]) alive[size_t(l.src_layer)] = true;
+    std::vector<std::unique_ptr<ir::Shader>> kept;
+    std::vector<std::string> kept_names;
+    for (size_t i = 0; i < n; ++i) {
+      if (!needed[i]) continue;
+      if (!alive[i]) {
+        needed[i] = false;
+        new_index[i] = -1;
+        continue;
+      }
+      size_t at = size_t(new_index[i]);
+      new_index[i] = int(kept.size());
+      kept.push_back(std::move(out.shaders[at]));
+      kept_names.push_back(out.layer_names[at]);
+    }
+    out.shaders = std::move(kept);
+    out.layer_names = std::move(kept_names);
+    links.erase(std::remove_if(links.begin(), links.end(),
+                               [&](const Link& l) { return !needed[size_t(l.dst_layer)]; }),
+                links.end());
   }
 
   // Derivatives, then across connections from the last layer back.

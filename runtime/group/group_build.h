@@ -29,9 +29,13 @@ struct GroupBuild {
 // `sources[i]` is the compiled IR of group.layers[i]. Returns false with diagnostics on error.
 // `lockgeom_default`: CompileOptions::lockgeom_default. The caller sets out.plan.env and
 // out.plan.fast_math (CompileOptions::fast_math, which constant folding follows too).
+// `elide_known_outputs` (OSL's -O2, with `specialize`): a whole connection from an upstream
+// output whose value at the end of its layer is known (a constant, or a copy of a shading
+// global) is replaced by that value, and an upstream layer no remaining connection reads is
+// not compiled and does not run, its printf output then disappearing as in OSL (docs/language.md).
 bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
                  bool specialize, GroupBuild& out, DiagnosticList& diags,
-                 bool lockgeom_default = true);
+                 bool lockgeom_default = true, bool elide_known_outputs = false);
 
 // An instance value for a parameter of type `param` (the rules are InstanceValue's). `ok`:
 // use `values` (`arraylen` sizes an unsized array); else `warning` (OSL's: the value is ignored

@@ -332,11 +332,17 @@ surface down(float in = 0) {
 }
 )");
   lobe::ShaderGroup g = chain(up, down);
-  // The upstream layer runs lazily, when `in` is first read: after the first query.
+  // The upstream layer runs lazily, when `in` is first read: after the first query. At -O2 its
+  // output is a known constant, so it does not run at all, and its setmessage does not happen
+  // (as OSL 1.13.12: `testshade -O2 -layer A up -layer B down -connect A out B in` prints no
+  // error, -O0 prints it).
   EXPECT_EQ(shade(g, 1, nullptr),
-            "ERROR: message \"m\" was queried before being set (queried here: down.osl:4) "
-            "setting it now (up.osl:1) would lead to inconsistent results\n"
-            "0 0 -1 1\n");
+            std::string(GetParam() >= 2
+                            ? ""
+                            : "ERROR: message \"m\" was queried before being set (queried here: "
+                              "down.osl:4) setting it now (up.osl:1) would lead to inconsistent "
+                              "results\n") +
+                "0 0 -1 1\n");
 }
 
 INSTANTIATE_TEST_SUITE_P(Opt, Services, ::testing::Values(0, 2),
@@ -426,9 +432,11 @@ surface down(float in = 0) {
   lobe::ShaderGroup g = chain(up, down);
   std::string out = shade(g, 1, nullptr);
   EXPECT_NE(out.find("ERROR: [RendererServices::get_texture_info] "), std::string::npos) << out;
-  EXPECT_NE(out.find("ERROR: message \"m\" was queried before being set (queried here: "
-                     "down.osl:4) setting it now (up.osl:1)"),
-            std::string::npos)
+  // At -O2 the upstream layer (a constant output) does not run, so nothing sets the message
+  // (OSL 1.13.12's testshade -O2 likewise reports only the texture error).
+  EXPECT_EQ(out.find("ERROR: message \"m\" was queried before being set (queried here: "
+                     "down.osl:4) setting it now (up.osl:1)") != std::string::npos,
+            GetParam() < 2)
       << out;
 }
 
@@ -449,10 +457,14 @@ surface down(float in = 0) {
 }
 )");
   lobe::ShaderGroup g = chain(up, down);
+  // At -O2 the upstream layer (a constant output) does not run at all, as in OSL 1.13.12
+  // (`testshade -O2` of the same group prints nothing).
   EXPECT_EQ(shade(g, 1, nullptr),
-            "ERROR: message \"m\" was set by layer #1 (down.osl:3) but is being queried by layer "
-            "#0 (up.osl:4) - messages may only be transferred from nodes that appear earlier in "
-            "the shading network\nupstream got 0 -1\n");
+            GetParam() >= 2 ? ""
+                            : "ERROR: message \"m\" was set by layer #1 (down.osl:3) but is being "
+                              "queried by layer #0 (up.osl:4) - messages may only be transferred "
+                              "from nodes that appear earlier in the shading network\nupstream "
+                              "got 0 -1\n");
 }
 
 // An index the shader gives is an element number: a negative one finds nothing (and is not

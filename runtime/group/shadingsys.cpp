@@ -157,8 +157,11 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   b.plan.colors = colors();
   b.plan.fast_math = options.fast_math;
   b.plan.max_loop_iterations = options.max_loop_iterations;
+  b.plan.debug_nan = options.debug_nan;
+  b.plan.debug_uninit = options.debug_uninit;
   bool specialize = options.specialize && options.opt_level > 0;
-  if (!group::build_group(g, layers, specialize, b, diags, options.lockgeom_default))
+  if (!group::build_group(g, layers, specialize, b, diags, options.lockgeom_default,
+                          options.opt_level >= 2))
     return nullptr;
   stats.specialize_ms = ms_since(t0);
 

@@ -18,6 +18,9 @@
 
 namespace lobe::shadeops {
 
+// What debug_uninit fills string locals with before they are written (OSL's marker text).
+inline constexpr const char* kUninitializedString = "!!!uninitialized!!!";
+
 // Thread-safe string interner: equal strings give the same pointer, valid for the table's life.
 class StringTable {
 public:

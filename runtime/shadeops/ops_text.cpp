@@ -9,9 +9,11 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <regex>
@@ -127,6 +129,57 @@ int64_t lobe_loop_check(ShaderGlobals* sg, int64_t* count, int64_t chunk, int64_
                  " iterations (max_loop_iterations); stopped");
   }
   return 0;
+}
+
+// debug_nan: `vals` is a float-based symbol's storage, `ncomps` floats per plane (all elements'
+// components), three planes if `derivs`. Components [first, first + count) of each plane are
+// checked; the first NaN or Inf found is reported as OSL words it, "Detected inf value in x at
+// f.osl:3 (op mul)" ("the derivatives of x" for a derivative plane), and the check stops.
+void lobe_naninf_check(ShaderGlobals* sg, const float* vals, int ncomps, int derivs, int first,
+                       int count, const char* symbol, const char* file, int line,
+                       const char* opname) {
+  for (int d = 0; d < (derivs ? 3 : 1); ++d)
+    for (int c = first; c < first + count; ++c) {
+      float v = vals[d * ncomps + c];
+      if (std::isfinite(v)) continue;
+      const char* text =
+          std::isnan(v) ? (std::signbit(v) ? "-nan" : "nan") : (v < 0 ? "-inf" : "inf");
+      if (sg && sg->context)
+        sg->context->error(std::string("Detected ") + text + " value in " +
+                           (d ? "the derivatives of " : "") + symbol + " at " + file + ":" +
+                           std::to_string(line) + " (op " + opname + ")");
+      return;
+    }
+}
+
+// debug_uninit: before an op reads components [first, first + count) of a symbol's value
+// (`kind` 0: floats, 1: ints, 2: strings), those still holding the "uninitialised" marker
+// (a non-finite float, INT_MIN, the marker string) are set to zero ("") and the read is
+// reported as OSL words it: "Detected possible use of uninitialized value in float x at
+// f.osl:5 (group g, layer 0 l, shader s, op 3 'add', arg 1)". `where` is "group g, layer 0 l,
+// shader s".
+void lobe_uninit_check(ShaderGlobals* sg, RuntimeEnv* env, void* vals, int kind, int first,
+                       int count, const char* type, const char* symbol, const char* file, int line,
+                       const char* where, int opnum, const char* opname, int argnum) {
+  bool found = false;
+  for (int c = first; c < first + count; ++c) {
+    if (kind == 0) {
+      float* f = static_cast<float*>(vals) + c;
+      if (!std::isfinite(*f)) *f = 0.0f, found = true;
+    } else if (kind == 1) {
+      int* i = static_cast<int*>(vals) + c;
+      if (*i == std::numeric_limits<int>::min()) *i = 0, found = true;
+    } else {
+      const char** s = static_cast<const char**>(vals) + c;
+      if (*s && std::strcmp(*s, lobe::shadeops::kUninitializedString) == 0)
+        *s = env->strings.intern(""), found = true;
+    }
+  }
+  if (found && sg && sg->context)
+    sg->context->error(std::string("Detected possible use of uninitialized value in ") + type +
+                       " " + symbol + " at " + file + ":" + std::to_string(line) + " (" + where +
+                       ", op " + std::to_string(opnum) + " '" + opname + "', arg " +
+                       std::to_string(argnum) + ")");
 }
 
 const char* lobe_concat(RuntimeEnv* env, const char* a, const char* b) {

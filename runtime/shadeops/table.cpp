@@ -16,6 +16,8 @@ void lobe_warning();
 void lobe_error();
 void lobe_range_error();
 void lobe_loop_check();
+void lobe_naninf_check();
+void lobe_uninit_check();
 void lobe_fprintf();
 void lobe_concat();
 void lobe_strlen();
@@ -87,6 +89,8 @@ const ShadeOpSymbol kTable[] = {
     {"lobe_fprintf", addr(lobe_fprintf), "vpppppp"},
     {"lobe_range_error", addr(lobe_range_error), "vpiippip"},
     {"lobe_loop_check", addr(lobe_loop_check), "lppllpppi"},
+    {"lobe_naninf_check", addr(lobe_naninf_check), "vppiiiippip"},
+    {"lobe_uninit_check", addr(lobe_uninit_check), "vpppiiipppipipi"},
     {"lobe_split", addr(lobe_split), "ipppipi"},
     {"lobe_dict_find", addr(lobe_dict_find), "ippp"},
     {"lobe_dict_find_node", addr(lobe_dict_find_node), "ipip"},

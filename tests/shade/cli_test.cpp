@@ -26,6 +26,13 @@ std::string run(const std::string& args) {
                  " 2>&1");
 }
 
+// Runs in tests/shade/layers, so that a shader's file name is "x.osl" in messages (as oslc,
+// run there, records it), not the path the search found.
+std::string run_here(const std::string& args) {
+  return run_cmd(std::string("cd ") + LOBE_SHADE_CORPUS + "/layers && " + LOBE_EXE + " shade " +
+                 args + " 2>&1");
+}
+
 // Runs at -O0 and -O2 (specialisation off and on); both must print the same.
 std::string both(const std::string& args) {
   std::string a = run("-O0 " + args), b = run("-O2 " + args);
@@ -191,6 +198,114 @@ TEST(ShadeCli, ErrorsAndUsage) {
             "Did you mistakenly put --param after the shader declaration?\n");
   EXPECT_EQ(run(""), "ERROR: No shader or group was specified.\n\n"
                      "Try `lobe shade --help` for an explanation of all arguments\n");
+}
+
+// --debugnan at -O0, as `testshade -t 1 -O0 --debugnan -g 2 1 debug_nan` (OSL 1.13.12) prints
+// it: the same lines, OSL's stderr apart from its stdout where Lobe prints each point's errors
+// before its printf. Each message once (an identical one is not repeated); exit status 0.
+TEST(ShadeCli, DebugNanReportsNonFiniteResults) {
+  auto run = run_here;
+  const std::string point0 =
+      "ERROR: Detected inf value in big at debug_nan.osl:5 (op mul)\n"
+      "ERROR: Detected inf value in inf at debug_nan.osl:6 (op mul)\n"
+      "ERROR: Detected inf value in arr at debug_nan.osl:8 (op aassign)\n"
+      "ERROR: Detected -nan value in n at debug_nan.osl:11 (op sub)\n"
+      "ERROR: Detected -nan value in cc at debug_nan.osl:12 (op compassign)\n"
+      "ERROR: Detected -nan value in w at debug_nan.osl:14 (op mul)\n"
+      "ERROR: Detected -nan value in dv at debug_nan.osl:15 (op vector)\n"
+      "ERROR: Detected -inf value in ninf at debug_nan.osl:16 (op neg)\n"
+      "ERROR: Detected -inf value in m at debug_nan.osl:18 (op mxcompassign)\n"
+      "ERROR: Detected inf value in the derivatives of y at debug_nan.osl:20 (op mul)\n"
+      "ERROR: Detected inf value in d at debug_nan.osl:21 (op Dx)\n"
+      "ERROR: Detected inf value in r at debug_nan.osl:23 (op assign)\n"
+      "ERROR: Detected -nan value in c at debug_nan.osl:24 (op assign)\n"
+      "r inf c 2 1 -nan q -87.3365\n";
+  const std::string point1 = "ERROR: Detected inf value in w at debug_nan.osl:14 (op mul)\n"
+                             "ERROR: Detected inf value in dv at debug_nan.osl:15 (op vector)\n"
+                             "ERROR: Detected inf value in y at debug_nan.osl:20 (op mul)\n"
+                             "r inf c 2 1 -nan q 1\n\n";
+  EXPECT_EQ(run("-t 1 -O0 --debugnan -g 2 1 debug_nan"), point0 + point1);
+  EXPECT_EQ(run("-O0 --options debug_nan=1 -g 2 1 debug_nan"), point0 + point1);
+  // Without the option nothing is checked.
+  EXPECT_EQ(run("-O0 -g 2 1 debug_nan"), "r inf c 2 1 -nan q -87.3365\nr inf c 2 1 -nan q 1\n\n");
+  // -O2 checks what remains after optimisation; OSL's optimiser removes more (it also keeps
+  // only big and inf here), so only those two are asserted.
+  std::string o2 = run("-O2 --debugnan -g 2 1 debug_nan");
+  EXPECT_NE(o2.find("ERROR: Detected inf value in big at debug_nan.osl:5 (op mul)\n"),
+            std::string::npos)
+      << o2;
+  EXPECT_NE(o2.find("ERROR: Detected inf value in inf at debug_nan.osl:6 (op mul)\n"),
+            std::string::npos)
+      << o2;
+}
+
+// --debuguninit at -O0, as `testshade -t 1 -O0 --debuguninit -g 2 1 debug_uninit` (OSL
+// 1.13.12) prints it (the same lines; Lobe prints each point's errors before its printf). A
+// value found uninitialised is set to 0 (x prints 0 at the first point, i + 1 is 1); an
+// element or component read checks only that one (arr[1] and cc[0] were written); a
+// non-finite float read counts too (big). At u = 1 x is written, the rest repeats.
+TEST(ShadeCli, DebugUninitReportsReadsBeforeWrites) {
+  auto run = run_here;
+  auto at = [](const std::string& what, int line, int op, const std::string& name, int arg) {
+    return "ERROR: Detected possible use of uninitialized value in " + what +
+           " at debug_uninit.osl:" + std::to_string(line) +
+           " (group unnamed_group_1, layer 0 debug_uninit_0, shader debug_uninit, op " +
+           std::to_string(op) + " '" + name + "', arg " + std::to_string(arg) + ")\n";
+  };
+  const std::string expected =
+      at("float[4] arr", 14, 4, "aref", 1) + at("float x", 14, 5, "add", 1) +
+      at("int i", 15, 8, "add", 1) + at("color cc", 16, 9, "compref", 1) +
+      at("matrix m", 18, 13, "mxcompref", 1) + at("float big", 20, 18, "add", 2) +
+      at("float[4] arr", 21, 19, "aref", 1) + at("string s", 21, 20, "printf", 3) +
+      "x 0 i 1 s '' arr 0 r 3 big 0\n"
+      "x 1 i 1 s '' arr 0 r 4 big 0\n\n";
+  EXPECT_EQ(run("-t 1 -O0 --debuguninit -g 2 1 debug_uninit"), expected);
+  EXPECT_EQ(run("-O0 --options debug_uninit=1 -g 2 1 debug_uninit"), expected);
+  // Op numbers as OSL counts them, with its useparam ops (`testshade -O0 --debuguninit
+  // debug_uninit_params`, OSL 1.13.12).
+  auto in = [](const std::string& var, int line, int op) {
+    return "ERROR: Detected possible use of uninitialized value in float " + var +
+           " at debug_uninit_params.osl:" + std::to_string(line) +
+           " (group unnamed_group_1, layer 0 debug_uninit_params_0, shader debug_uninit_params, "
+           "op " +
+           std::to_string(op) + " 'assign', arg 1)\n";
+  };
+  EXPECT_EQ(run("-O0 --debuguninit debug_uninit_params"),
+            in("x1", 5, 0) + in("x2", 7, 3) + in("x3", 9, 6) + in("x4", 11, 10) + "\n");
+  // Without the option Lobe's locals start at zero (and big is inf); OSL's hold garbage.
+  EXPECT_EQ(run("-O0 -g 2 1 debug_uninit"),
+            "x 0 i 1 s '' arr 0 r inf big inf\nx 1 i 1 s '' arr 0 r inf big inf\n\n");
+}
+
+// Layers as OSL 1.13.12's testshade runs them (`testshade -O<n> -g 2 1 -layer A <up> -layer B
+// elide_reader -connect A o B i`): an upstream layer runs only when its connected value is
+// read, and at -O2 not at all when that value is known (a constant, or a copy of a global),
+// so its printf disappears.
+TEST(ShadeCli, UpstreamLayersOfKnownValueAreElidedAtO2) {
+  auto group = [](const std::string& up, const std::string& out) {
+    return "-g 2 1 -layer A " + up + " -layer B elide_reader -connect A " + out + " B i";
+  };
+  for (const char* o : {"-O0 ", "-O1 "}) {
+    EXPECT_EQ(run(o + group("elide_const", "o")),
+              "Connect A.o to B.i\nelide_const ran\nreader i 3\nelide_const ran\nreader i 3\n\n");
+    EXPECT_EQ(run(o + group("elide_global", "o")), "Connect A.o to B.i\nelide_global ran\n"
+                                                   "reader i 0\nelide_global ran\nreader i 1\n\n");
+  }
+  EXPECT_EQ(run("-O2 " + group("elide_const", "o")),
+            "Connect A.o to B.i\nreader i 3\nreader i 3\n\n");
+  EXPECT_EQ(run("-O2 " + group("elide_global", "o")),
+            "Connect A.o to B.i\nreader i 0\nreader i 1\n\n");
+  // A computed value, or one assigned in a branch, keeps the layer at every level.
+  EXPECT_EQ(both(group("elide_computed", "o")), "Connect A.o to B.i\nelide_computed ran\n"
+                                                "reader i 1\nelide_computed ran\nreader i 3\n\n");
+  EXPECT_EQ(both(group("elide_computed", "o2")), "Connect A.o2 to B.i\nelide_computed ran\n"
+                                                 "reader i 1\nelide_computed ran\nreader i 1\n\n");
+  // Nothing reads the value: the upstream layer does not run, at any level.
+  EXPECT_EQ(both("-g 1 1 -layer A elide_computed -param:type=int use 0 -layer B elide_reader "
+                 "-connect A o B i"),
+            "Connect A.o to B.i\nreader ignores i\n\n");
+  EXPECT_EQ(both("-g 1 1 -layer A elide_computed -layer B elide_ignorer -connect A o B i"),
+            "Connect A.o to B.i\nignorer ran\n\n");
 }
 
 } // namespace

@@ -92,9 +92,11 @@ struct CompileOptions {
   // OSL's "lockgeom" option: false lets every parameter without `[[ int lockgeom = 1 ]]` take
   // the renderer's user data (renderer_services.h), as if each said `lockgeom = 0`.
   bool lockgeom_default = true;
-  // Run-time checks, as OSL's options of the same names: an out-of-range index is reported
-  // (range_checking). debug_nan (every float result checked for NaN and Inf) and debug_uninit
-  // (reads of locals before they are written) are part of the cache key but not generated yet.
+  // Run-time checks, as OSL's options of the same names, reported as OSL's errors through the
+  // ShadingContext: an out-of-range index (range_checking); a NaN or Inf among the float
+  // results of an op (debug_nan); a read of a local or temporary before it is written, or of
+  // any non-finite float (debug_uninit: locals start as NaN / INT_MIN / a marker string, and a
+  // value found so is set to zero). All three are part of the material cache key.
   bool range_checking = true;
   bool debug_nan = false;
   bool debug_uninit = false;
