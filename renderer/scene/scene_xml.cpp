@@ -184,10 +184,10 @@ private:
       return false;
     if (!(res[0] >= 1 && res[1] >= 1 && res[0] <= 16384 && res[1] <= 16384))
       return fail(n, "resolution expects two sizes in [1, 16384]");
-    if (!(spp >= 1 && depth >= 1 && seed >= 0))
-      return fail(n, "spp and max_depth expect >= 1, seed >= 0");
+    // The JSON scene's ranges; beyond them int(spp) would be undefined (found by fuzz_scene_xml).
+    if (!(spp >= 1 && spp <= float(1 << 20) && depth >= 1 && depth <= 1024 && seed >= 0))
+      return fail(n, "spp expects [1, 1048576], max_depth [1, 1024], seed >= 0");
     st.width = int(res[0]), st.height = int(res[1]), st.spp = int(spp), st.max_depth = int(depth);
-    st.seed = uint64_t(seed);
     if (pugi::xml_attribute a = n.attribute("seed")) { // exactly (a float loses digits > 2^24)
       char* end = nullptr;
       long long v = std::strtoll(a.value(), &end, 10);
