@@ -5,6 +5,7 @@ set -euo pipefail
 PKGS=(
   cmake ninja-build g++ pkg-config
   llvm-19-dev clang-19                 # JIT backend; clang-19 compiles closures to bitcode
+  libclang-rt-19-dev                   # libFuzzer and clang sanitizer runtimes (fuzz/)
   libembree-dev libtbb-dev             # ray queries; parallel tiles
   libopenimageio-dev                   # images and textures
   nlohmann-json3-dev libcli11-dev libfmt-dev libtinyobjloader-dev

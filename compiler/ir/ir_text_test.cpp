@@ -168,6 +168,30 @@ TEST(IrText, StringEscapesRoundTrip) {
   EXPECT_EQ(r.shader->symbols[0].init[0].s, nasty);
 }
 
+// Found by fuzz_ir: a struct name that needs quotes was printed glued to `struct=` (read back
+// as a plain word, quotes and escapes included), and a source file name with a comma or a
+// control character was printed bare (the comma split it).
+TEST(IrText, QuotedStructNamesAndOddFileNamesRoundTrip) {
+  Shader sh;
+  sh.name = "s";
+  Symbol a;
+  a.kind = SymKind::OutputParam;
+  a.type.base = BaseType::Float;
+  a.name = "pr.b";
+  a.struct_name = std::string("P\0\x01 q", 5);
+  a.init.push_back(ConstValue::of_float(0));
+  a.loc = SourceLoc{"dir,with comma/\x02x.osl", 5, 2};
+  sh.symbols.push_back(a);
+  std::string once = print(sh);
+  EXPECT_NE(once.find("struct= \"P\\x00\\x01 q\""), std::string::npos) << once;
+  EXPECT_NE(once.find("@\"dir,with comma/\\x02x.osl\":5:2"), std::string::npos) << once;
+  ParseResult r = parse(once);
+  ASSERT_TRUE(r.shader) << r.error.to_string() << "\n" << once;
+  EXPECT_EQ(r.shader->symbols[0].struct_name, a.struct_name);
+  EXPECT_EQ(r.shader->symbols[0].loc.file, a.loc.file);
+  EXPECT_EQ(print(*r.shader), once);
+}
+
 // Hand-written programs: comments, any label names, labels used before definition.
 const char* kPrograms[] = {
     R"(lobe-ir 1

@@ -96,7 +96,11 @@ std::string format_metadata(const std::vector<Metadata>& md) {
 std::string format_loc(const SourceLoc& loc) {
   if (loc.file.empty() && loc.line == 0 && loc.column == 0) return "";
   std::string file = loc.file;
-  bool plain = file.find_first_of(" \t\"\\") == std::string::npos;
+  // Plain only if the tokenizer reads it back as one word: printable, no quote, backslash or
+  // comma (a comma is a token of its own).
+  bool plain = true;
+  for (unsigned char c : file)
+    plain = plain && c > ' ' && c < 0x7f && c != '"' && c != '\\' && c != ',';
   return "@" + (plain ? file : quote(file)) + ":" + std::to_string(loc.line) + ":" +
          std::to_string(loc.column);
 }
@@ -117,7 +121,10 @@ static std::string print_symbol(const Symbol& s) {
   if (s.init_begin >= 0)
     line += " init=" + std::to_string(s.init_begin) + ":" + std::to_string(s.init_end);
   if (s.default_len > 0) line += " len=" + std::to_string(s.default_len);
-  if (!s.struct_name.empty()) line += " struct=" + format_name(s.struct_name);
+  if (!s.struct_name.empty()) { // a quoted name is its own token: `struct= "a b"`
+    std::string n = format_name(s.struct_name);
+    line += " struct=" + (n[0] == '"' ? " " + n : n);
+  }
   append(line, format_metadata(s.metadata));
   append(line, format_loc(s.loc));
   return line;

@@ -53,12 +53,18 @@ private:
   long long ternary() {
     long long c = binary(1);
     if (!accept("?")) return c;
+    // `1 ? 1 : 1 ? 1 : ...` nests here without passing unary()'s depth check on the way down.
+    if (++depth_ > 200) {
+      fail("expression nested too deeply");
+      return 0;
+    }
     long long a = ternary();
     if (!accept(":")) {
       fail("expected ':' in conditional expression");
       return 0;
     }
     long long b = ternary();
+    --depth_;
     return c ? a : b;
   }
 

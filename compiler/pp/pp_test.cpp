@@ -133,6 +133,18 @@ TEST(PP, ConditionalErrors) {
   EXPECT_TRUE(r.has(DiagId::err_unterminated_conditional));
 }
 
+// A chain of conditional operators used to recurse once per `?` without a depth limit, so a
+// long chain overflowed the stack; now it is an error like deep parentheses.
+TEST(PP, LongConditionalChainIsAnErrorNotAStackOverflow) {
+  PPRun r;
+  std::string chain;
+  for (int i = 0; i < 100000; ++i) chain += "1 ? 1 : ";
+  r.run("#if " + chain + "1\nyes\n#endif\n#if 1 ? 2 : 1 ? 0 : 1\nok\n#endif\n");
+  EXPECT_TRUE(r.has(DiagId::err_pp_expr));
+  ASSERT_EQ(r.diags.diagnostics().size(), 1u);
+  EXPECT_EQ(r.collapse(r.out), "ok");
+}
+
 TEST(PP, IncludesWithSearchPathsAndGuards) {
   PPRun r;
   r.files["main.osl"] = "";

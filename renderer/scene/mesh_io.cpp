@@ -40,8 +40,20 @@ std::string load_obj(const std::string& path, Mesh& mesh) {
   bool has_n = !a.normals.empty(), has_uv = !a.texcoords.empty();
   std::map<std::tuple<int, int, int>, uint32_t> remap;
   mesh = Mesh{};
+  // tinyobjloader resolves relative (negative) indices but does not check the range.
+  const size_t nv = a.vertices.size() / 3, nn = a.normals.size() / 3, nt = a.texcoords.size() / 2;
+  auto bad = [&](const char* what, int i, size_t n, const char* plural) {
+    return path + ": face " + what + " index " + std::to_string(i < 0 ? i : i + 1) +
+           " out of range (" + std::to_string(n) + " " + plural + ")";
+  };
   for (const auto& shape : reader.GetShapes()) {
     for (const auto& idx : shape.mesh.indices) {
+      if (idx.vertex_index < 0 || size_t(idx.vertex_index) >= nv)
+        return bad("vertex", idx.vertex_index, nv, "vertices");
+      if (has_n && idx.normal_index >= 0 && size_t(idx.normal_index) >= nn)
+        return bad("normal", idx.normal_index, nn, "normals");
+      if (has_uv && idx.texcoord_index >= 0 && size_t(idx.texcoord_index) >= nt)
+        return bad("texcoord", idx.texcoord_index, nt, "texcoords");
       auto key = std::make_tuple(idx.vertex_index, has_n ? idx.normal_index : -1,
                                  has_uv ? idx.texcoord_index : -1);
       auto it = remap.find(key);

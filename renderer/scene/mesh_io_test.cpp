@@ -96,3 +96,47 @@ TEST(MeshIo, TransformRotatesNormals) {
   EXPECT_NEAR(m.normals[0].y, 1.0f / std::sqrt(1.25f), 1e-6);
   EXPECT_FLOAT_EQ(m.positions[0].x, 2.0f);
 }
+
+// Inputs the fuzz targets (fuzz/) and their review turned up: each read out of bounds, hit
+// undefined behaviour or never finished before the checks.
+TEST(MeshIo, ObjIndicesOutOfRangeAreErrors) {
+  Mesh m;
+  std::string e = load_mesh(write_file("oob.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), m);
+  EXPECT_NE(e.find("face vertex index 9 out of range (3 vertices)"), std::string::npos) << e;
+  e = load_mesh(write_file("oobn.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//4\n"),
+                m);
+  EXPECT_NE(e.find("face normal index 4 out of range (1 normals)"), std::string::npos) << e;
+  e = load_mesh(write_file("oobt.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/2\n"), m);
+  EXPECT_NE(e.find("face texcoord index 2 out of range (1 texcoords)"), std::string::npos) << e;
+  // Relative indices reaching before the first vertex.
+  e = load_mesh(write_file("oobrel.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n"), m);
+  EXPECT_NE(e.find("out of range"), std::string::npos) << e;
+}
+
+TEST(MeshIo, PlyBadListsAndEmptyElementsAreErrors) {
+  const std::string head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                           "property float y\nproperty float z\n";
+  Mesh m;
+  std::string e = load_mesh(
+      write_file("neg.ply", head + "element face 1\nproperty list char int vertex_indices\n"
+                                   "end_header\n0 0 0\n1 0 0\n0 1 0\n-1 0 1 2\n"),
+      m);
+  EXPECT_NE(e.find("list length -1.000000 is not a count"), std::string::npos) << e;
+  e = load_mesh(
+      write_file("negidx.ply", head + "element face 1\nproperty list uchar int vertex_indices\n"
+                                      "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n"),
+      m);
+  EXPECT_NE(e.find("value -1.000000 out of range for an index"), std::string::npos) << e;
+  e = load_mesh(
+      write_file("fidx.ply", head + "element face 1\nproperty list float float vertex_indices\n"
+                                    "end_header\n0 0 0\n1 0 0\n0 1 0\n2.5 0 1 2\n"),
+      m);
+  EXPECT_NE(e.find("list length 2.500000 is not a count"), std::string::npos) << e;
+  // No properties: 10^15 items would take days (and, as vertices, all memory).
+  e = load_mesh(write_file("noprop.ply", "ply\nformat ascii 1.0\nelement junk 1000000000000000\n"
+                                         "end_header\n"),
+                m);
+  EXPECT_NE(e.find("element 'junk' has 1000000000000000 items but no properties"),
+            std::string::npos)
+      << e;
+}

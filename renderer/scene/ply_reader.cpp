@@ -5,6 +5,7 @@
 #include "mesh_io.h"
 
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -146,6 +147,11 @@ std::string load_ply(const std::string& path, Mesh& mesh) {
       has_n |= is_vertex && s >= 3 && s <= 5;
       has_uv |= is_vertex && s >= 6;
     }
+    // An element without properties has no data to run out of: a huge count would spin (or,
+    // for vertices, fill memory with (0, 0, 0)) without ever reaching the end of the file.
+    if (el.props.empty() && el.count > 0)
+      return path + ": element '" + el.name + "' has " + std::to_string(el.count) +
+             " items but no properties";
     for (size_t i = 0; i < el.count; ++i) {
       double slot[8] = {0, 0, 0, 0, 0, 0, 0, 0};
       for (const Property& p : el.props) {
@@ -160,9 +166,13 @@ std::string load_ply(const std::string& path, Mesh& mesh) {
         }
         double count;
         if (!rd.read(p.count_type, count)) return at + "unexpected end of data";
+        if (!(count >= 0 && count <= 4294967295.0) || count != std::floor(count))
+          return at + "list length " + std::to_string(count) + " is not a count";
         std::vector<uint32_t> poly;
         for (size_t k = 0; k < size_t(count); ++k) {
           if (!rd.read(p.type, v)) return at + "unexpected end of data";
+          if (!(v >= 0 && v <= 4294967295.0)) // also NaN (a float list)
+            return at + "value " + std::to_string(v) + " out of range for an index";
           poly.push_back(static_cast<uint32_t>(v));
         }
         if (!is_face || (p.name != "vertex_indices" && p.name != "vertex_index")) continue;

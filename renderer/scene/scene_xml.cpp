@@ -340,10 +340,11 @@ private:
       return false;
     if (!(res[0] >= 1 && res[1] >= 1 && res[0] <= 16384 && res[1] <= 16384))
       return fail(n, "resolution expects two sizes in [1, 16384]");
-    if (!(spp >= 1 && depth >= 0 && depth <= 1024 && seed >= 0))
-      return fail(n, "spp expects >= 1, max_depth [0, 1024], seed >= 0");
+    // The JSON scene's spp range (beyond it int(spp) would be undefined: found by
+    // fuzz_scene_xml); max_depth 0 shows only emission and background, as testrender's.
+    if (!(spp >= 1 && spp <= float(1 << 20) && depth >= 0 && depth <= 1024 && seed >= 0))
+      return fail(n, "spp expects [1, 1048576], max_depth [0, 1024], seed >= 0");
     st.width = int(res[0]), st.height = int(res[1]), st.spp = int(spp), st.max_depth = int(depth);
-    st.seed = uint64_t(seed);
     if (pugi::xml_attribute a = n.attribute("seed")) { // exactly (a float loses digits > 2^24)
       char* end = nullptr;
       long long v = std::strtoll(a.value(), &end, 10);

@@ -180,3 +180,25 @@ TEST(GroupText, ParamsShadersAndConnections) {
   EXPECT_FALSE(parse_group_text("shader m l;\nparam float Kd 1;", "x", false, err));
   EXPECT_EQ(err, "x:2: error: parameter values after the last `shader`");
 }
+
+// Found by fuzz_scene_xml: spp="3.7e36" passed the `>= 1` check and int(spp) was undefined.
+TEST(SceneXml, HugeSettingsAreErrors) {
+  std::string err;
+  for (const char* a : {"spp=\"3666666666666666666666666666666666662\"", "spp=\"1048577\"",
+                        "max_depth=\"1e30\"", "max_depth=\"1025\""}) {
+    EXPECT_FALSE(
+        parse_xml_scene(std::string("<World>\n<Settings ") + a + "/>\n</World>", "t.xml", err))
+        << a;
+    EXPECT_NE(err.find("t.xml:2: "), std::string::npos) << err;
+    EXPECT_NE(err.find("spp expects [1, 1048576], max_depth [0, 1024], seed >= 0"),
+              std::string::npos)
+        << err;
+  }
+  auto s = parse_xml_scene("<World>\n<Settings spp=\"1048576\" max_depth=\"1024\" seed=\"7\"/>\n"
+                           "</World>",
+                           "t.xml", err);
+  ASSERT_TRUE(s) << err;
+  EXPECT_EQ(s->settings.spp, 1 << 20);
+  EXPECT_EQ(s->settings.max_depth, 1024);
+  EXPECT_EQ(s->settings.seed, 7u);
+}
