@@ -107,8 +107,8 @@ private:
   void emit_region(int begin, int end, llvm::BasicBlock* after);
   void emit_op(int index);
   void emit_loop_check(const ir::Op& op); // counts a back edge (GroupPlan::loop_count_offset)
-  void check_uninit_reads(int index); // GroupPlan::debug_uninit, before the op
-  void check_nan_writes(int index);   // GroupPlan::debug_nan, after the op
+  void check_uninit_reads(int index);     // GroupPlan::debug_uninit, before the op
+  void check_nan_writes(int index);       // GroupPlan::debug_nan, after the op
   void number_ops_as_osl();
   void finish_exit_block();
   llvm::BasicBlock* block_at(int op_index);

@@ -24,6 +24,7 @@
 //
 // Interface (Lobe shadeop style): lobe_gabor(x[nin], dx[nin], dy[nin], nin, period or null,
 // options, out[nout], odx[nout], ody[nout], nout) with nin 1..4 and nout 1 or 3.
+#include "hashword.h"
 #include "shadeops.h"
 
 #include <cmath>
@@ -33,55 +34,8 @@
 
 namespace gabor_impl {
 
-// ---- lookup3 (OSL's inthash) ----
-inline uint32_t rot(uint32_t x, int k) { return (x << k) | (x >> (32 - k)); }
-inline void bjmix(uint32_t& a, uint32_t& b, uint32_t& c) {
-  a -= c;
-  a ^= rot(c, 4);
-  c += b;
-  b -= a;
-  b ^= rot(a, 6);
-  a += c;
-  c -= b;
-  c ^= rot(b, 8);
-  b += a;
-  a -= c;
-  a ^= rot(c, 16);
-  c += b;
-  b -= a;
-  b ^= rot(a, 19);
-  a += c;
-  c -= b;
-  c ^= rot(b, 4);
-  b += a;
-}
-inline uint32_t bjfinal(uint32_t a, uint32_t b, uint32_t c) {
-  c ^= b;
-  c -= rot(b, 14);
-  a ^= c;
-  a -= rot(c, 11);
-  b ^= a;
-  b -= rot(a, 25);
-  c ^= b;
-  c -= rot(b, 16);
-  a ^= c;
-  a -= rot(c, 4);
-  b ^= a;
-  b -= rot(a, 14);
-  c ^= b;
-  c -= rot(b, 24);
-  return c;
-}
-inline uint32_t inthash4(const uint32_t k[4]) {
-  uint32_t a, b, c;
-  a = b = c = 0xdeadbeefu + (4u << 2) + 13u;
-  a += k[0];
-  b += k[1];
-  c += k[2];
-  bjmix(a, b, c);
-  a += k[3];
-  return bjfinal(a, b, c);
-}
+// ---- OSL's inthash of four words: lookup3 hashword with initval 13 (runtime/mathlib) ----
+inline uint32_t inthash4(const uint32_t k[4]) { return lobe::math::hashword(k, 4, 13); }
 
 // int(floor(x)), with x86's result (INT_MIN) for a NaN or out-of-range value.
 inline int to_int(float f) {

@@ -3,12 +3,13 @@
 // cell), "hash" (per exact input) and their periodic variants, and from
 // src/liboslnoise/simplexnoise.cpp "simplex" (signed; "usimplex" = 0.5 * (simplex + 1)); 1 to 4
 // input dimensions and 1 or 3 output channels. The lattice hash is Bob Jenkins' lookup3
-// (bjmix/bjfinal) as OSL's inthash and scramble; gradients, fade, interpolation order, corner
-// order and scale constants are OSL's, evaluated in float in the same operation order. Gradient
-// and simplex noise also return their analytic derivative (for perlin, carried through the same
-// formulas as OSL's Dual2 evaluation) so that Dx(noise(P)) follows the chain rule.
+// (runtime/mathlib/hashword.h) as OSL's inthash and scramble; gradients, fade, interpolation order,
+// corner order and scale constants are OSL's, evaluated in float in the same operation order.
+// Gradient and simplex noise also return their analytic derivative (for perlin, carried through the
+// same formulas as OSL's Dual2 evaluation) so that Dx(noise(P)) follows the chain rule.
 // runtime/shadeops/noise_reference.py is an independent Python transcription used to derive the
 // expected values in the tests.
+#include "hashword.h"
 #include "shadeops.h"
 
 #include "lobe/context.h"
@@ -22,51 +23,10 @@
 
 namespace {
 
-// ---- Bob Jenkins lookup3 (OIIO bjhash), OSL's inthash ----
-
-inline uint32_t rot(uint32_t x, int k) { return (x << k) | (x >> (32 - k)); }
-
-inline void bjmix(uint32_t& a, uint32_t& b, uint32_t& c) {
-  a -= c;
-  a ^= rot(c, 4);
-  c += b;
-  b -= a;
-  b ^= rot(a, 6);
-  a += c;
-  c -= b;
-  c ^= rot(b, 8);
-  b += a;
-  a -= c;
-  a ^= rot(c, 16);
-  c += b;
-  b -= a;
-  b ^= rot(a, 19);
-  a += c;
-  c -= b;
-  c ^= rot(b, 4);
-  b += a;
-}
-
-inline uint32_t bjfinal(uint32_t a, uint32_t b, uint32_t c) {
-  c ^= b;
-  c -= rot(b, 14);
-  a ^= c;
-  a -= rot(c, 11);
-  b ^= a;
-  b -= rot(a, 25);
-  c ^= b;
-  c -= rot(b, 16);
-  a ^= c;
-  a -= rot(c, 4);
-  b ^= a;
-  b -= rot(a, 14);
-  c ^= b;
-  c -= rot(b, 24);
-  return c;
-}
+// ---- OSL's inthash: Bob Jenkins' lookup3 hashword with initval 13 (runtime/mathlib) ----
 
 // inthash<N>(k) for N in 1..5, with N known at compile time (the gradient-noise corners: the
-// hash inlines and the corner loop unrolls).
+// hash inlines and the corner loop unrolls). The same words as math::hashword(k, N, 13).
 template <int N> inline uint32_t inthash_n(const uint32_t* k) {
   constexpr uint32_t start = 0xdeadbeefu + (uint32_t(N) << 2) + 13u;
   uint32_t a = start, b = start, c = start;
@@ -74,27 +34,15 @@ template <int N> inline uint32_t inthash_n(const uint32_t* k) {
   if constexpr (N > 1) b += k[1];
   if constexpr (N > 2) c += k[2];
   if constexpr (N > 3) {
-    bjmix(a, b, c);
+    lobe::math::lookup3_mix(a, b, c);
     a += k[3];
     if constexpr (N > 4) b += k[4];
   }
-  return bjfinal(a, b, c);
+  return lobe::math::lookup3_final(a, b, c);
 }
 
 // inthash<N>(k) for N in 1..5.
-uint32_t inthash(const uint32_t* k, int n) {
-  uint32_t start = 0xdeadbeefu + (uint32_t(n) << 2) + 13u;
-  uint32_t a = start, b = start, c = start;
-  a += k[0];
-  if (n > 1) b += k[1];
-  if (n > 2) c += k[2];
-  if (n > 3) {
-    bjmix(a, b, c);
-    a += k[3];
-    if (n > 4) b += k[4];
-  }
-  return bjfinal(a, b, c);
-}
+inline uint32_t inthash(const uint32_t* k, int n) { return lobe::math::hashword(k, n, 13); }
 
 // OSL's bits_to_01: bits * (1 / UINT_MAX), in float (so the top of the range rounds to 1).
 inline float bits_to_01(uint32_t bits) {
@@ -307,7 +255,7 @@ inline D dconst(float v) { return D{v, {0, 0, 0, 0}}; }
 
 // OSL's scramble: one lookup3 final mix in place of Gustavson's permutation table.
 inline uint32_t scramble(uint32_t v0, uint32_t v1 = 0, uint32_t v2 = 0) {
-  return bjfinal(v0, v1, v2 ^ 0xdeadbeefu);
+  return lobe::math::lookup3_final(v0, v1, v2 ^ 0xdeadbeefu);
 }
 
 // Corner gradients, one row per hash value: 2-D, 8 directions; 3-D, the 12 cube edges, then 4
