@@ -31,6 +31,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <utility>
 
 namespace lobe::jit {
@@ -196,6 +197,19 @@ bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::
   optimize(*module, opt_level);
   times.optimize_ms = ms_since(t0);
   auto t1 = std::chrono::steady_clock::now();
+  llvm::orc::ThreadSafeModule tsm(std::move(module), std::move(context));
+  bool ok =
+      load([&](llvm::orc::JITDylib& jd) { return s_->lljit->addIRModule(jd, std::move(tsm)); },
+           entries, addresses, out, error);
+  times.codegen_ms = ms_since(t1);
+  return ok;
+}
+
+// A fresh JITDylib linked against the runtime, filled by `fill`, its `entries` looked up (which
+// compiles or links them); on failure the dylib is removed again.
+bool Jit::load(const std::function<llvm::Error(llvm::orc::JITDylib&)>& fill,
+               const std::vector<std::string>& entries, std::vector<void*>& addresses,
+               CompiledGroup& out, std::string& error) {
   auto& lljit = *s_->lljit;
   std::string name = "lobe_group_" + std::to_string(s_->counter++);
   std::unique_lock<std::mutex> dylib_lock(s_->dylib_mutex);
@@ -206,23 +220,18 @@ bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::
     return false;
   }
   jd->addToLinkOrder(*s_->runtime);
-  llvm::orc::ThreadSafeModule tsm(std::move(module), std::move(context));
-  if (auto err = lljit.addIRModule(*jd, std::move(tsm))) {
+  auto fail = [&](llvm::Error err) {
     error = llvm::toString(std::move(err));
     llvm::consumeError(lljit.getExecutionSession().removeJITDylib(*jd));
     return false;
-  }
+  };
+  if (auto err = fill(*jd)) return fail(std::move(err));
   addresses.clear();
   for (const std::string& entry : entries) {
     auto addr = lljit.lookup(*jd, entry);
-    if (!addr) {
-      error = llvm::toString(addr.takeError());
-      llvm::consumeError(lljit.getExecutionSession().removeJITDylib(*jd));
-      return false;
-    }
+    if (!addr) return fail(addr.takeError());
     addresses.push_back(addr->toPtr<void*>());
   }
-  times.codegen_ms = ms_since(t1);
   out.entry = addresses.empty() ? nullptr : addresses.front();
   out.dylib = &*jd;
   return true;
@@ -254,32 +263,12 @@ bool Jit::compile_object(llvm::Module& module, int opt_level, std::string& objec
 
 bool Jit::add_object(const std::string& object, const std::vector<std::string>& entries,
                      std::vector<void*>& addresses, CompiledGroup& out, std::string& error) {
-  auto& lljit = *s_->lljit;
-  std::string name = "lobe_group_" + std::to_string(s_->counter++);
-  std::unique_lock<std::mutex> dylib_lock(s_->dylib_mutex);
-  auto jd = lljit.createJITDylib(name);
-  dylib_lock.unlock();
-  if (!jd) {
-    error = llvm::toString(jd.takeError());
-    return false;
-  }
-  jd->addToLinkOrder(*s_->runtime);
-  auto fail = [&](llvm::Error err) {
-    error = llvm::toString(std::move(err));
-    llvm::consumeError(lljit.getExecutionSession().removeJITDylib(*jd));
-    return false;
-  };
-  if (auto err = lljit.addObjectFile(*jd, llvm::MemoryBuffer::getMemBufferCopy(object, name)))
-    return fail(std::move(err));
-  addresses.clear();
-  for (const std::string& entry : entries) {
-    auto addr = lljit.lookup(*jd, entry);
-    if (!addr) return fail(addr.takeError());
-    addresses.push_back(addr->toPtr<void*>());
-  }
-  out.entry = addresses.empty() ? nullptr : addresses.front();
-  out.dylib = &*jd;
-  return true;
+  return load(
+      [&](llvm::orc::JITDylib& jd) {
+        return s_->lljit->addObjectFile(jd,
+                                        llvm::MemoryBuffer::getMemBufferCopy(object, "kernels"));
+      },
+      entries, addresses, out, error);
 }
 
 std::string Jit::target_identity() const {

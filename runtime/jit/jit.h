@@ -6,6 +6,7 @@
 // LLVM errors never abort the process: every failure is returned as text.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -14,6 +15,7 @@
 namespace llvm {
 class LLVMContext;
 class Module;
+class Error;
 namespace orc {
 class LLJIT;
 class JITDylib;
@@ -71,6 +73,9 @@ public:
 
 private:
   Jit() = default;
+  bool load(const std::function<llvm::Error(llvm::orc::JITDylib&)>& fill,
+            const std::vector<std::string>& entries, std::vector<void*>& addresses,
+            CompiledGroup& out, std::string& error);
   struct State;
   std::unique_ptr<State> s_;
 };

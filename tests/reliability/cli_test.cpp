@@ -2,6 +2,8 @@
 // stopped with an error and exit status 1 (lobe shade; lobe render at set-up and while
 // rendering), Ctrl-C stops and keeps what is finished, shader messages are capped, sizes are
 // checked against the memory before allocating, and lobe brdf refuses bad arguments.
+#include "run_command.h"
+
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -23,32 +25,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct CmdResult {
-  int status = -1;
-  std::string out; // stdout and stderr
-};
+using lobe::testing::CmdResult;
+using lobe::testing::run_cmd;
+using lobe::testing::write_file;
 
-CmdResult run_cmd(const std::string& cmd) {
-  CmdResult r;
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
-
-fs::path temp_dir(const std::string& name) {
-  fs::path d =
-      fs::temp_directory_path() / ("lobe_reliability_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-void write_file(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+// A fresh folder for one test's files.
+fs::path temp_dir(const std::string& name) { return lobe::testing::temp_dir("reliability", name); }
 
 std::string read_file(const fs::path& p) {
   std::ifstream f(p);

@@ -1,6 +1,8 @@
 // `lobe render` end to end (runs the built executable): where shaders are found, how scene
 // and material errors are reported (exit status, located message), shader run-time messages
 // after the render, and output checks before rendering.
+#include "run_command.h"
+
 #include "image.h"
 
 #include <gtest/gtest.h>
@@ -19,33 +21,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct CmdResult {
-  int status = -1;
-  std::string out; // stdout and stderr
-};
-
-CmdResult run_cmd(const std::string& cmd) {
-  CmdResult r;
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
+using lobe::testing::CmdResult;
+using lobe::testing::run_cmd;
+using lobe::testing::write_file;
 
 // A fresh folder for one test's files.
-fs::path temp_dir(const std::string& name) {
-  fs::path d =
-      fs::temp_directory_path() / ("lobe_render_cli_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-void write_file(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+fs::path temp_dir(const std::string& name) { return lobe::testing::temp_dir("render_cli", name); }
 
 // `lobe render -q ARGS`, run from `cwd`.
 CmdResult render(const std::string& args, const fs::path& cwd = "/") {

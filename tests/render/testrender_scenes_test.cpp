@@ -12,6 +12,8 @@
 //   testrender --res 80 60 sky.xml sky.exr && oiiotool sky.exr --printstats
 //   sed 's/"diffuse"/"FAMILY"/' furnace.xml > f.xml && testrender --res 32 32 f.xml f.exr
 //       && oiiotool f.exr --printstats
+#include "run_command.h"
+
 #include "image.h"
 
 #include <gtest/gtest.h>
@@ -30,31 +32,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct CmdResult {
-  int status = -1;
-  std::string out; // stdout and stderr
-};
-
-CmdResult run_cmd(const std::string& cmd) {
-  CmdResult r;
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
+using lobe::testing::CmdResult;
+using lobe::testing::run_cmd;
 
 const fs::path kScenes = LOBE_TESTRENDER_SCENES;
 
 // A fresh folder holding copies of the scenes' shaders.
 fs::path temp_dir(const std::string& name) {
-  fs::path d =
-      fs::temp_directory_path() / ("lobe_testrender_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
+  fs::path d = lobe::testing::temp_dir("testrender", name);
   for (const auto& e : fs::directory_iterator(kScenes))
     if (e.path().extension() == ".osl") fs::copy_file(e.path(), d / e.path().filename());
   return d;
