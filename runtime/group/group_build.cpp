@@ -5,9 +5,8 @@
 #include "ir/edit.h"
 #include "ir/opcodes.h"
 #include "lobe/shading.h"
-#include "passes/constfold.h"
-#include "passes/dce.h"
 #include "passes/derivs.h"
+#include "passes/optimize.h"
 
 #include <algorithm>
 #include <cstring>
@@ -170,15 +169,17 @@ void specialize_layer(ir::Shader& sh,
     s.init_begin = s.init_end = -1;
     s.derivs = false;
   }
-  for (int round = 0; round < 8; ++round) {
-    fold_string_compares(sh);
-    hide_string_compares(sh, true);
-    bool changed = passes::fold_constants(sh, math);
-    hide_string_compares(sh, false);
-    changed |= fold_string_compares(sh);
-    changed |= passes::eliminate_dead_code(sh);
-    if (!changed) break;
-  }
+  passes::OptimizeOptions opt;
+  opt.math = math;
+  opt.before_fold = [](ir::Shader& s) {
+    fold_string_compares(s);
+    hide_string_compares(s, true);
+  };
+  opt.after_fold = [](ir::Shader& s) {
+    hide_string_compares(s, false);
+    return fold_string_compares(s);
+  };
+  passes::optimize(sh, opt);
 }
 
 // Closes existing derivative flags backwards through kPropagates ops (after a downstream
