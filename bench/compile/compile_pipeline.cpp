@@ -44,7 +44,7 @@ void Lower(benchmark::State& state, bool optimize) {
   }
   size_t ops = 0;
   for (auto _ : state) {
-    lobe::lower::LowerResult r = lobe::lower::lower(*tu, {optimize});
+    lobe::lower::LowerResult r = lobe::lower::lower(*tu, diags, {optimize});
     if (!r.shader)
       state.SkipWithError("lowering failed");
     else

@@ -18,6 +18,10 @@ struct Row {
 const Row kTable[] = {
     ROW(err_file_not_found, Error, "cannot open file '%0'"),
     ROW(fatal_too_many_errors, Fatal, "too many errors emitted, stopping now"),
+    ROW(err_file_unreadable, Error, "cannot read '%0'"),
+    ROW(err_shader_not_found, Error, "shader '%0' not found"),
+    ROW(err_ir_parse, Error, "%0"),
+    ROW(err_ir_invalid, Error, "invalid IR: %0"),
     // lexer
     ROW(err_invalid_char, Error, "invalid character '%0' in source"),
     ROW(err_binary_input, Error, "source contains a NUL byte (binary input?)"),
@@ -132,6 +136,16 @@ const Row kTable[] = {
         "'%0' already declared in this scope (parameter '%0' hides the function)"),
     ROW(warn_library_function_redefined, Warning,
         "'%0' redefines the standard library's '%1', which this definition replaces"),
+    // lowering
+    ROW(err_lower_no_shader, Error, "no shader declared"),
+    ROW(err_lower_unsized_struct_array, Error,
+        "unsized arrays of structs with array fields are not supported"),
+    ROW(err_lower_metadata_not_const, Error, "metadata '%0' is not a constant"),
+    ROW(err_lower_break_outside_loop, Error, "break or continue outside a loop"),
+    ROW(err_lower_no_body, Error, "call to a function without a body"),
+    ROW(err_lower_no_opcode, Error, "no IR opcode for the builtin '%0'"),
+    ROW(err_lower_internal, Error, "internal: %0"),
+    ROW(err_lower_invalid_ir, Error, "internal error: invalid IR: %0"),
 };
 #undef ROW
 static_assert(sizeof(kTable) / sizeof(kTable[0]) == size_t(DiagId::kCount),

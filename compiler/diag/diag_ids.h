@@ -1,4 +1,5 @@
-// The one table of named diagnostics: every message the front end can report.
+// The one table of named diagnostics: every message the compiler can report (front end,
+// lowering, and the driver that finds and loads shaders).
 //
 // Each entry has an id (the enum), a default severity and a message template where %0, %1, ...
 // are replaced by the arguments given when the diagnostic is reported. Naming the messages in
@@ -14,9 +15,13 @@ namespace lobe::diag {
 enum class Severity : uint8_t { Note, Warning, Error, Fatal };
 
 enum class DiagId : uint16_t {
-  // driver / files
+  // driver / files (compiler/driver)
   err_file_not_found,
   fatal_too_many_errors,
+  err_file_unreadable,
+  err_shader_not_found,
+  err_ir_parse,
+  err_ir_invalid,
   // lexer
   err_invalid_char,
   err_binary_input,
@@ -116,6 +121,15 @@ enum class DiagId : uint16_t {
   warn_confusing_comma,
   warn_param_hides_function,
   warn_library_function_redefined,
+  // lowering (compiler/lower): constructs the type checker accepts that have no IR form
+  err_lower_no_shader,
+  err_lower_unsized_struct_array,
+  err_lower_metadata_not_const,
+  err_lower_break_outside_loop,
+  err_lower_no_body,
+  err_lower_no_opcode,
+  err_lower_internal,
+  err_lower_invalid_ir,
   kCount
 };
 

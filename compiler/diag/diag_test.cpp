@@ -1,7 +1,6 @@
 // Tests for the diagnostics table, the SourceManager's location mapping and the rendering.
 #include "diag/diagnostics.h"
 #include "diag/source_manager.h"
-#include "lobe/shadingsys.h"
 
 #include <gtest/gtest.h>
 
@@ -139,15 +138,37 @@ TEST(Engine, WarningsAsErrors) {
   EXPECT_EQ(render(de.diagnostics()[0], sm).rfind("t.osl:1:1: error: careful\n", 0), 0u);
 }
 
-TEST(Engine, RuntimeConversion) {
+// resolve_all: what the runtime hands a plugin (one entry per diagnostic, notes included),
+// located without the SourceManager.
+TEST(Engine, ResolvedReports) {
   SourceManager sm;
-  int f = sm.add_file("t.osl", "x\n");
+  int f = sm.add_file("t.osl", "float a;\n  x = 1;\n");
   DiagnosticEngine de;
-  de.report(DiagId::err_undeclared, sm.buffer_start(f), {"x"});
+  SourceLoc x{sm.buffer_start(f).offset + 11}; // line 2, column 3
+  de.report(DiagId::err_undeclared, x, {"x"});
   de.report(DiagId::note_previous_decl, sm.buffer_start(f));
-  auto rt = to_runtime(de, sm);
-  ASSERT_EQ(rt.size(), 2u);
-  EXPECT_EQ(rt[0].severity, lobe::Diagnostic::Severity::Error);
-  EXPECT_EQ(rt[1].severity, lobe::Diagnostic::Severity::Note);
-  EXPECT_EQ(rt[0].text.rfind("t.osl:1:1: error: use of undeclared identifier 'x'", 0), 0u);
+  de.report(DiagId::err_lower_no_shader, SourceRange());
+  auto rt = resolve_all(de, sm);
+  ASSERT_EQ(rt.size(), 3u);
+  EXPECT_EQ(rt[0].severity, Severity::Error);
+  EXPECT_EQ(rt[0].id, DiagId::err_undeclared);
+  EXPECT_EQ(rt[0].file, "t.osl");
+  EXPECT_EQ(rt[0].line, 2);
+  EXPECT_EQ(rt[0].column, 3);
+  EXPECT_EQ(rt[0].message, "use of undeclared identifier 'x'");
+  EXPECT_EQ(rt[0].text, "t.osl:2:3: error: use of undeclared identifier 'x'\n  x = 1;\n  ^\n");
+  EXPECT_EQ(rt[1].severity, Severity::Note);
+  EXPECT_EQ(rt[1].line, 1);
+  EXPECT_EQ(rt[2].file, "");
+  EXPECT_EQ(rt[2].line, 0);
+  EXPECT_EQ(rt[2].text, "error: no shader declared\n");
+}
+
+TEST(Engine, FileReports) {
+  Report r = file_report(DiagId::err_ir_invalid, "x.lir", {"op 3 reads nothing"});
+  EXPECT_EQ(r.text, "x.lir: error: invalid IR: op 3 reads nothing\n");
+  EXPECT_EQ(r.file, "x.lir");
+  EXPECT_EQ(r.line, 0);
+  EXPECT_EQ(file_report(DiagId::err_shader_not_found, "", {"m"}).text,
+            "error: shader 'm' not found\n");
 }

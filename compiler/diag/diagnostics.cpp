@@ -2,7 +2,6 @@
 #include "diag/diagnostics.h"
 
 #include "diag/source_manager.h"
-#include "lobe/shadingsys.h"
 
 #include <algorithm>
 
@@ -115,17 +114,25 @@ std::string render_all(const DiagnosticEngine& engine, const SourceManager& sm) 
   return out;
 }
 
-std::vector<lobe::Diagnostic> to_runtime(const DiagnosticEngine& engine, const SourceManager& sm) {
-  std::vector<lobe::Diagnostic> out;
+std::vector<Report> resolve_all(const DiagnosticEngine& engine, const SourceManager& sm) {
+  std::vector<Report> out;
   for (const auto& d : engine.diagnostics()) {
-    lobe::Diagnostic r;
-    r.severity = d.severity == Severity::Note      ? lobe::Diagnostic::Severity::Note
-                 : d.severity == Severity::Warning ? lobe::Diagnostic::Severity::Warning
-                                                   : lobe::Diagnostic::Severity::Error;
-    r.text = render(d, sm);
+    Report r{d.id, d.severity, "", 0, 0, d.message, render(d, sm)};
+    if (PresumedLoc p = sm.presumed(d.range.begin); p.valid()) {
+      r.file = p.file;
+      r.line = p.line;
+      r.column = p.column;
+    }
     out.push_back(std::move(r));
   }
   return out;
+}
+
+Report file_report(DiagId id, const std::string& file, const std::vector<std::string>& args) {
+  const DiagInfo& info = diag_info(id);
+  Report r{id, info.severity, file, 0, 0, format_message(info.format, args), ""};
+  r.text = (file.empty() ? "" : file + ": ") + severity_word(r.severity) + ": " + r.message + "\n";
+  return r;
 }
 
 } // namespace lobe::diag

@@ -1,9 +1,12 @@
-// DiagnosticEngine: collects the diagnostics every front-end stage reports, and renders them.
+// DiagnosticEngine: collects the diagnostics every compiler stage reports (front end, lowering,
+// the driver), and renders them.
 //
-// The library never prints. Stages call report(); the CLI (or a renderer plugin) asks for the
-// rendered text: `file:line:col: error: message`, the source line, a caret `^~~~` under the
-// range, then `note:` lines. An error cap stops collection after too many errors (the stages
-// check stopped() and bail out early, which also bounds the time spent on garbage input).
+// The library never prints. Stages call report(); the CLI asks for the rendered text (render,
+// render_all): `file:line:col: error: message`, the source line, a caret `^~~~` under the
+// range, then `note:` lines. A caller without the SourceManager (the runtime, and through it a
+// renderer plugin) gets resolve_all(): each diagnostic with its id, severity, file, line,
+// column, message and rendered text. An error cap stops collection after too many errors (the
+// stages check stopped() and bail out early, which also bounds the time spent on garbage input).
 #pragma once
 
 #include "diag/diag_ids.h"
@@ -12,10 +15,6 @@
 #include <functional>
 #include <string>
 #include <vector>
-
-namespace lobe {
-struct Diagnostic; // lobe/shadingsys.h
-}
 
 namespace lobe::diag {
 
@@ -67,7 +66,21 @@ private:
 std::string render(const Diagnostic& d, const SourceManager& sm);
 // All diagnostics of the engine, in order.
 std::string render_all(const DiagnosticEngine& engine, const SourceManager& sm);
-// The runtime API's form (one entry per diagnostic, notes as Severity::Note entries).
-std::vector<lobe::Diagnostic> to_runtime(const DiagnosticEngine& engine, const SourceManager& sm);
+// A diagnostic resolved for a caller that does not hold the SourceManager: where it is as a
+// person reads it (the presumed file, 1-based line and column, after #line; "" and 0 when it
+// has no location), the message alone, and render()'s text.
+struct Report {
+  DiagId id = DiagId::err_file_not_found;
+  Severity severity = Severity::Error;
+  std::string file;
+  int line = 0, column = 0;
+  std::string message;
+  std::string text; // rendered, ending in '\n'
+};
+// One Report per diagnostic of the engine, in order (notes are Severity::Note entries).
+std::vector<Report> resolve_all(const DiagnosticEngine& engine, const SourceManager& sm);
+// A Report about a whole file (no line), rendered `file: error: message`; `file` "" renders
+// as render() renders a diagnostic without a location.
+Report file_report(DiagId id, const std::string& file, const std::vector<std::string>& args = {});
 
 } // namespace lobe::diag

@@ -27,14 +27,12 @@ ir::SourceLoc Lowerer::loc(const ast::Node* where) const {
   return l;
 }
 
-void Lowerer::error(const ast::Node* where, const std::string& msg) {
+void Lowerer::error(const ast::Node* where, diag::DiagId id, std::vector<std::string> args) {
   const ast::Node* at_node = where ? where : where_;
-  diags_.push_back(LowerDiag{msg, at_node ? at_node->range : diag::SourceRange()});
-  ir::SourceLoc l = loc(at_node);
-  std::string at =
-      l.line ? l.file + ":" + std::to_string(l.line) + ":" + std::to_string(l.column) + ": "
-             : std::string();
-  errors_.push_back(at + "error: " + msg);
+  // One caret, at the start of the construct (as lowering errors have always been shown).
+  diags_.report(id, at_node ? diag::SourceRange(at_node->range.begin) : diag::SourceRange(),
+                std::move(args));
+  ++errors_;
 }
 
 ir::Type Lowerer::irtype(const ast::Type& t, const ast::Node* where) {
@@ -70,7 +68,7 @@ ir::Type Lowerer::irtype(const ast::Type& t, const ast::Node* where) {
     r.base = ir::BaseType::Closure;
     break;
   default:
-    error(where, "internal: no IR type for this value");
+    error(where, diag::DiagId::err_lower_internal, {"no IR type for this value"});
     break;
   }
   return r;
@@ -87,8 +85,7 @@ std::vector<Leaf> Lowerer::leaves(const ast::Type& t, const ast::Node* where) {
       if (t.arraylen > 0)
         l.type.arraylen = t.arraylen * std::max(1, l.type.arraylen);
       else if (t.arraylen < 0) {
-        if (l.type.arraylen != 0)
-          error(where, "unsized arrays of structs with array fields are not supported");
+        if (l.type.arraylen != 0) error(where, diag::DiagId::err_lower_unsized_struct_array);
         l.type.arraylen = -1;
       }
       out.push_back(Leaf{"." + f->name + l.suffix, l.type});

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "ast/ast.h"
+#include "diag/diagnostics.h"
 #include "ir/ir.h"
 
 #include <optional>
@@ -23,20 +24,14 @@ struct LowerOptions {
   bool fast_math = true; // how folded math builtins compute (CompileOptions::fast_math)
 };
 
-// One lowering error with the source range it concerns (invalid for internal errors), so a
-// caller holding the SourceManager can show the source line and a caret.
-struct LowerDiag {
-  std::string message; // without location or "error: "
-  diag::SourceRange range;
-};
-
 struct LowerResult {
   std::optional<ir::Shader> shader; // set on success
-  std::vector<std::string> errors;  // "file:line:col: error: message" (constructs not lowered)
-  std::vector<LowerDiag> diags;     // the same errors, unformatted, with their source ranges
 };
 
 // Lowers the translation unit's shader. Derivative flags are computed (passes/derivs.h).
-LowerResult lower(const ast::TranslationUnit& tu, const LowerOptions& options = {});
+// Constructs that have no IR form are reported to `diags` (err_lower_*, with the source range
+// of the construct; rendered with the front end's diagnostics and tu.sources).
+LowerResult lower(const ast::TranslationUnit& tu, diag::DiagnosticEngine& diags,
+                  const LowerOptions& options = {});
 
 } // namespace lobe::lower

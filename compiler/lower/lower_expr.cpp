@@ -175,7 +175,7 @@ std::vector<LRef> Lowerer::lvalue(const ast::Expr* e) {
     if (id->decl && id->decl->storage == ast::Storage::Global) return {LRef{global(id->decl)}};
     auto it = vars_.find(id->decl);
     if (it == vars_.end()) {
-      error(e, "internal: unbound variable '" + id->name + "'");
+      error(e, diag::DiagId::err_lower_internal, {"unbound variable '" + id->name + "'"});
       return {LRef{temp(irtype(e->type, e))}};
     }
     std::vector<LRef> out;

@@ -4,9 +4,8 @@
 #include "lower/lowerer.h"
 
 #include "ir/verifier.h"
-#include "passes/constfold.h"
-#include "passes/dce.h"
 #include "passes/derivs.h"
+#include "passes/optimize.h"
 
 #include <algorithm>
 #include <optional>
@@ -94,8 +93,7 @@ LowerResult Lowerer::run() {
   LowerResult res;
   const ast::ShaderDecl* sd = tu_.shader();
   if (!sd) {
-    res.errors.push_back("error: no shader declared");
-    res.diags.push_back(LowerDiag{"no shader declared", {}});
+    error(nullptr, diag::DiagId::err_lower_no_shader);
     return res;
   }
   sh_.type = shader_type(sd->shader_type);
@@ -105,7 +103,7 @@ LowerResult Lowerer::run() {
     for (const ast::MetadataItem& m : md) {
       ir::Metadata x{irtype(m.type, nullptr), m.name, {}};
       if (!m.value || !const_values(m.value.get(), x.type, x.value))
-        error(m.value.get(), "metadata '" + m.name + "' is not a constant");
+        error(m.value.get(), diag::DiagId::err_lower_metadata_not_const, {m.name});
       out.push_back(std::move(x));
     }
     return out;
@@ -152,29 +150,20 @@ LowerResult Lowerer::run() {
   }
   sh_.main_begin = here();
   stmt(sd->body.get());
-  if (!errors_.empty()) {
-    res.errors = std::move(errors_);
-    res.diags = std::move(diags_);
-    return res;
-  }
-  if (opt_.optimize) {
-    for (int round = 0; round < 8; ++round) {
-      bool changed = passes::fold_constants(sh_, {opt_.fast_math});
-      changed |= passes::eliminate_dead_code(sh_);
-      if (!changed) break;
-    }
-  }
+  if (errors_ > 0) return res;
+  if (opt_.optimize) passes::optimize(sh_, {.math = {opt_.fast_math}});
   passes::analyze_derivatives(sh_);
   for (const std::string& e : ir::verify(sh_)) {
-    res.errors.push_back("internal error: invalid IR: " + e);
-    res.diags.push_back(LowerDiag{"internal error: invalid IR: " + e, {}});
+    where_ = nullptr;
+    error(nullptr, diag::DiagId::err_lower_invalid_ir, {e});
   }
-  if (res.errors.empty()) res.shader = std::move(sh_);
+  if (errors_ == 0) res.shader = std::move(sh_);
   return res;
 }
 
-LowerResult lower(const ast::TranslationUnit& tu, const LowerOptions& options) {
-  return Lowerer(tu, options).run();
+LowerResult lower(const ast::TranslationUnit& tu, diag::DiagnosticEngine& diags,
+                  const LowerOptions& options) {
+  return Lowerer(tu, diags, options).run();
 }
 
 } // namespace lobe::lower

@@ -102,7 +102,7 @@ void Lowerer::stmt(const ast::Stmt* s) {
   case S::Break:
   case S::Continue:
     if (loops_.empty()) {
-      error(s, "break or continue outside a loop");
+      error(s, diag::DiagId::err_lower_break_outside_loop);
       break;
     }
     (s->kind == S::Break ? loops_.back().breaks : loops_.back().continues)
@@ -135,7 +135,7 @@ std::vector<int> Lowerer::call_user(const ast::FunctionDecl* f,
                                     const std::vector<const ast::Expr*>& args,
                                     const ast::Node* where) {
   if (!f || !f->body) {
-    error(where, "call to a function without a body");
+    error(where, diag::DiagId::err_lower_no_body);
     return {};
   }
   // Evaluate the arguments first, then bind them (an argument may call the same function).
@@ -266,7 +266,7 @@ int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
   if (arith != -2) return arith;
   const ir::OpcodeInfo* info = ir::find_opcode(c->name);
   if (!info) {
-    error(c, "no IR opcode for the builtin '" + c->name + "'");
+    error(c, diag::DiagId::err_lower_no_opcode, {c->name});
     return -1;
   }
   bool returns = !c->type.is_void();
@@ -349,7 +349,7 @@ int Lowerer::call(const ast::CallExpr* c, int hint) {
     return r.empty() ? -1 : r[0];
   }
   default:
-    error(c, "internal: unresolved call to '" + c->name + "'");
+    error(c, diag::DiagId::err_lower_internal, {"unresolved call to '" + c->name + "'"});
     return -1;
   }
 }

@@ -106,8 +106,9 @@ struct Builder {
   }
   void add(StmtPtr s) { shader->body->stmts.push_back(std::move(s)); }
   std::string lower_text() {
-    lower::LowerResult r = lower::lower(tu);
-    for (const std::string& e : r.errors) ADD_FAILURE() << e;
+    diag::DiagnosticEngine diags;
+    lower::LowerResult r = lower::lower(tu, diags);
+    for (const diag::Diagnostic& d : diags.diagnostics()) ADD_FAILURE() << d.message;
     return r.shader ? ir::print(*r.shader) : "";
   }
 };

@@ -43,7 +43,8 @@ const char* binop_opcode(ast::BinaryOp op);
 
 class Lowerer {
 public:
-  Lowerer(const ast::TranslationUnit& tu, const LowerOptions& opt) : tu_(tu), opt_(opt) {}
+  Lowerer(const ast::TranslationUnit& tu, diag::DiagnosticEngine& diags, const LowerOptions& opt)
+      : tu_(tu), diags_(diags), opt_(opt) {}
   LowerResult run();
 
   // ---- lower.cpp: symbols, emission, errors
@@ -54,7 +55,8 @@ public:
   int emit(const std::string& opcode, std::vector<int> args, uint32_t written,
            const ast::Node* where, std::vector<int> jumps = {});
   int here(); // the index the next op gets; a jump target (resets useparam tracking)
-  void error(const ast::Node* where, const std::string& msg);
+  // Reports `id` at `where` (null: the statement being lowered).
+  void error(const ast::Node* where, diag::DiagId id, std::vector<std::string> args = {});
   ir::SourceLoc loc(const ast::Node* where) const;
   std::vector<int> declare(const ast::VarDecl* v, ir::SymKind k); // symbols of a variable
   int global(const ast::VarDecl* v);
@@ -108,8 +110,8 @@ public:
   const ast::TranslationUnit& tu_;
   LowerOptions opt_;
   ir::Shader sh_;
-  std::vector<std::string> errors_;
-  std::vector<LowerDiag> diags_;
+  diag::DiagnosticEngine& diags_;
+  int errors_ = 0; // reported by lowering
   std::unordered_map<const ast::VarDecl*, std::vector<int>> vars_;
   std::map<std::string, int> name_counts_;
   std::multimap<std::string, int> free_temps_; // keyed by type string

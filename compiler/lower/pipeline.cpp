@@ -7,20 +7,16 @@
 
 namespace lobe::lower {
 
-std::string render_lower_diag(const LowerDiag& d, const diag::SourceManager& sm) {
-  if (!d.range.valid()) return "error: " + d.message + "\n";
-  diag::PresumedLoc p = sm.presumed(d.range.begin);
-  if (!p.valid()) return "error: " + d.message + "\n";
-  std::string out = std::string(p.file) + ":" + std::to_string(p.line) + ":" +
-                    std::to_string(p.column) + ": error: " + d.message + "\n";
-  std::string_view line = sm.line_text(d.range.begin);
-  if (line.empty()) return out;
-  out += std::string(line) + "\n";
-  std::string caret;
-  for (int i = 1; i < p.column && size_t(i - 1) < line.size(); ++i)
-    caret += line[size_t(i - 1)] == '\t' ? '\t' : ' ';
-  return out + caret + "^\n";
+namespace {
+
+// Every stage's diagnostics, resolved and rendered once.
+void collect(PipelineResult& r, const diag::DiagnosticEngine& diags) {
+  if (!r.tu->sources) return;
+  r.reports = diag::resolve_all(diags, *r.tu->sources);
+  for (const diag::Report& d : r.reports) r.diagnostics += d.text;
 }
+
+} // namespace
 
 PipelineResult compile_osl(const frontend::SourceInput& input, const PipelineOptions& options) {
   PipelineResult r;
@@ -31,17 +27,16 @@ PipelineResult compile_osl(const frontend::SourceInput& input, const PipelineOpt
   r.timings.preprocess_ms = ft.preprocess_ms;
   r.timings.parse_ms = ft.parse_ms;
   r.timings.sema_ms = ft.sema_ms;
-  if (r.tu->sources) r.diagnostics = diag::render_all(diags, *r.tu->sources);
-  if (diags.has_errors()) return r;
-  if (!options.lower) {
-    r.ok = true;
+  if (diags.has_errors() || !options.lower) {
+    collect(r, diags);
+    r.ok = !diags.has_errors();
     return r;
   }
   auto t0 = std::chrono::steady_clock::now();
-  LowerResult lr = lower(*r.tu, LowerOptions{options.optimize, options.fast_math});
+  LowerResult lr = lower(*r.tu, diags, LowerOptions{options.optimize, options.fast_math});
   r.timings.lower_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  for (const LowerDiag& d : lr.diags) r.diagnostics += render_lower_diag(d, *r.tu->sources);
+  collect(r, diags);
   if (!lr.shader) return r;
   r.shader = std::move(lr.shader);
   r.ok = true;

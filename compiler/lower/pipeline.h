@@ -1,8 +1,9 @@
 // The whole compiler as one call: OSL source -> front end (preprocess, parse, sema) -> lowering
-// -> optional optimisation (constant folding + dead-code elimination) -> verified Lobe IR, with
-// every diagnostic rendered as text (`file:line:col: error: message`, the source line, a caret)
-// and the time each stage took. Used by `lobe compile` / `lobe info`, the lowering corpus
-// (tests/lower) and the compile-pipeline benchmark.
+// -> optional optimisation (passes/optimize.h) -> verified Lobe IR, with every stage's
+// diagnostics in one engine, resolved (diag::Report: id, severity, file, line, column) and
+// rendered (`file:line:col: error: message`, the source line, a caret), and the time each stage
+// took. The compile driver (compiler/driver/driver.h) runs it for OSL source; the lowering
+// corpus (tests/lower) and the compile-pipeline benchmark call it directly.
 #pragma once
 
 #include "frontend.h"
@@ -29,14 +30,12 @@ struct PipelineTimings {
 struct PipelineResult {
   std::unique_ptr<ast::TranslationUnit> tu; // the typed AST (always set)
   std::optional<ir::Shader> shader;         // set when every stage succeeded (and lower was asked)
-  std::string diagnostics;                  // rendered errors and warnings, "" if none
+  std::vector<diag::Report> reports;        // every diagnostic of every stage, in order
+  std::string diagnostics;                  // the same, rendered; "" if none
   bool ok = false;                          // no error in any stage
   PipelineTimings timings;
 };
 
 PipelineResult compile_osl(const frontend::SourceInput& input, const PipelineOptions& options);
-
-// Renders a lowering error like the front end's diagnostics (location, source line, caret).
-std::string render_lower_diag(const LowerDiag& d, const diag::SourceManager& sm);
 
 } // namespace lobe::lower

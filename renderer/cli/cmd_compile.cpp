@@ -15,20 +15,18 @@
 //                            the -O level or host assembly (runtime/group/emit_text.h)
 // oslc's -d, -embed-source and -buffer are accepted and do nothing; other unknown options are
 // ignored with a warning (oslc ignores them silently). The input is a path or a shader name
-// (`x` finds x.osl, then x.lir, in the current directory and the -I dirs); Lobe IR text (.lir)
-// is parsed, verified and re-optimised. Diagnostics go to stderr in Clang's form (file:line:col,
-// the source line, a caret; oslc prints file:line). Exit status 1 on errors in the input, 2 on
-// usage errors.
+// found by the one search order (compiler/driver/search.h) in the current directory, then the
+// -I dirs (`x` finds x.osl, then x.lir); it is loaded by the compile driver
+// (compiler/driver/driver.h): Lobe IR text (.lir) is parsed, verified and re-optimised. Diagnostics
+// go to stderr in Clang's form (file:line:col, the source line, a caret; oslc prints file:line).
+// Exit status 1 on errors in the input, 2 on usage errors.
 #include "command.h"
-#include "load_shader.h"
 
 #include "ast/ast_dump.h"
 #include "diag/source_manager.h"
+#include "driver/driver.h"
 #include "emit_text.h"
 #include "ir/printer.h"
-#include "passes/constfold.h"
-#include "passes/dce.h"
-#include "passes/derivs.h"
 
 #include <cstdio>
 #include <cstring>
@@ -183,20 +181,22 @@ bool preprocess(const Options& o, const std::string& path) {
   return true;
 }
 
-// OSL source: the typed AST (--emit=ast) or the verified IR, optimised at -O1 and -O2.
-bool compile_source(const Options& o, const std::string& path) {
-  lobe::lower::PipelineOptions po;
-  po.frontend = frontend_options(o);
-  po.lower = o.emit != "ast";
-  po.optimize = o.opt > 0;
-  po.fast_math = o.fast_math;
-  po.warnings_as_errors = o.werror;
-  lobe::lower::PipelineResult r = lobe::lower::compile_osl({path, std::nullopt}, po);
-  std::fputs(r.diagnostics.c_str(), stderr);
-  if (!r.ok) return false;
+// OSL source: the typed AST (--emit=ast) or the verified IR, optimised at -O1 and -O2; Lobe IR
+// text: parsed, verified, re-optimised above -O0, its derivative flags recomputed.
+bool compile_file(const Options& o, const std::string& path) {
+  lobe::driver::Options d;
+  d.frontend = frontend_options(o);
+  d.lower = o.emit != "ast";
+  d.optimize = o.opt > 0;
+  d.fast_math = o.fast_math;
+  d.warnings_as_errors = o.werror;
+  d.reanalyze_ir = true;
+  lobe::driver::Loaded l = lobe::driver::load_file(path, d);
+  std::fputs(l.rendered().c_str(), stderr);
+  if (!l.ok) return false;
   if (o.emit == "ast")
-    return write_output(o, lobe::ast::dump(*r.tu, {.types = true, .stdlib = false}));
-  return write_output(o, lobe::ir::print(*r.shader));
+    return write_output(o, lobe::ast::dump(*l.tu, {.types = true, .stdlib = false}));
+  return write_output(o, lobe::ir::print(*l.shader));
 }
 
 // --emit=llvm|asm (OSL or IR text) through the runtime.
@@ -220,37 +220,22 @@ bool emit_machine_text(const Options& o, const std::string& path) {
   return ok && write_output(o, text);
 }
 
-// Lobe IR text: parsed, verified, re-optimised above -O0.
-bool compile_ir_text(const Options& o, const std::string& path) {
-  lobe::cli::Loaded l = lobe::cli::load_ir_text(path);
-  if (!l.shader) {
-    std::fputs(l.errors.c_str(), stderr);
-    return false;
-  }
-  if (o.opt > 0)
-    for (int round = 0; round < 8; ++round)
-      if (!(lobe::passes::fold_constants(*l.shader, {o.fast_math}) |
-            lobe::passes::eliminate_dead_code(*l.shader)))
-        break;
-  lobe::passes::analyze_derivatives(*l.shader);
-  return write_output(o, lobe::ir::print(*l.shader));
-}
-
 int run_compile(int argc, char** argv) {
   Options o;
   int st = parse_args(argc, argv, o);
   if (st >= 0) return st;
   bool oslc_lines = o.emit.empty(); // FAILED on stdout, as oslc prints it
   std::error_code ec;
-  std::string path = fs::is_regular_file(o.file, ec) ? o.file : lobe::cli::find_shader(o.file, [&] {
-    std::vector<std::string> dirs = {"."};
-    dirs.insert(dirs.end(), o.includes.begin(), o.includes.end());
-    return dirs;
-  }());
+  std::string path =
+      fs::is_regular_file(o.file, ec) ? o.file : lobe::driver::find_shader(o.file, [&] {
+        std::vector<std::string> dirs = {"."};
+        dirs.insert(dirs.end(), o.includes.begin(), o.includes.end());
+        return dirs;
+      }());
   bool ok = false;
   if (path.empty()) {
     std::fprintf(stderr, "error: Input file \"%s\" not found\n", o.file.c_str());
-  } else if (lobe::cli::is_ir_text(path) && (o.preprocess_only || o.emit == "ast")) {
+  } else if (lobe::driver::is_ir_path(path) && (o.preprocess_only || o.emit == "ast")) {
     std::fprintf(stderr, "lobe compile: %s needs OSL source\n",
                  o.preprocess_only ? "-E" : "--emit=ast");
     return 2;
@@ -259,7 +244,7 @@ int run_compile(int argc, char** argv) {
   } else if (o.emit == "llvm" || o.emit == "asm") {
     ok = emit_machine_text(o, path);
   } else {
-    ok = lobe::cli::is_ir_text(path) ? compile_ir_text(o, path) : compile_source(o, path);
+    ok = compile_file(o, path);
   }
   if (!ok && oslc_lines) std::printf("FAILED %s\n", o.file.c_str());
   return ok ? 0 : 1;

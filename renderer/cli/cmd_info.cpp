@@ -6,12 +6,13 @@
 //   --runstats     print only the time each shader took to load
 //   -I DIR         #include directory, also searched for shaders (a Lobe extension)
 // A shader is `x`, `x.osl`, `x.lir`, `x.oso` (oslc's compiled form, which stands for x.osl) or a
-// path, found in the current directory, the -p and -I directories, then stdlib_shaders/ (as
-// `lobe render` finds materials). Output follows oslinfo, with one deliberate difference: a
+// path, found by the one search order (compiler/driver/search.h) in the current directory, the
+// -p and -I directories, then stdlib_shaders/ (as `lobe render` finds materials), and loaded by
+// the compile driver. Output follows oslinfo, with one deliberate difference: a
 // shader that is missing or does not compile gives exit status 1 (oslinfo exits 0).
 #include "command.h"
-#include "load_shader.h"
 
+#include "driver/driver.h"
 #include "ir/query.h"
 
 #include <chrono>
@@ -104,7 +105,7 @@ bool info(const std::string& name, const Options& o) {
   dirs.insert(dirs.end(), o.search.begin(), o.search.end());
   dirs.insert(dirs.end(), o.includes.begin(), o.includes.end());
   dirs.push_back(LOBE_STDLIB_SHADER_DIR);
-  std::string path = lobe::cli::find_shader(name, dirs);
+  std::string path = lobe::driver::find_shader(name, dirs);
   if (path.empty()) {
     std::string base =
         name.size() > 4 && name.ends_with(".oso") ? name.substr(0, name.size() - 4) : name;
@@ -113,13 +114,12 @@ bool info(const std::string& name, const Options& o) {
     std::fprintf(stderr, "ERROR: File %s not found\n", (has_ext ? base : base + ".osl").c_str());
     return false;
   }
-  lobe::lower::PipelineOptions po;
-  po.frontend.include_dirs = o.includes;
-  lobe::cli::Loaded l =
-      lobe::cli::is_ir_text(path) ? lobe::cli::load_ir_text(path) : lobe::cli::load_osl(path, po);
+  lobe::driver::Options d;
+  d.frontend.include_dirs = o.includes;
+  lobe::driver::Loaded l = lobe::driver::load_file(path, d);
   if (!l.shader) { // warnings of a shader that compiles are not shown: oslinfo shows none
     std::printf(" \"\"\n");
-    std::fputs(l.errors.c_str(), stderr);
+    std::fputs(l.rendered().c_str(), stderr);
     std::fprintf(stderr, "ERROR: Failed to compile %s\n", path.c_str());
     return false;
   }

@@ -1,6 +1,7 @@
 // Shader groups through the public API, on layers given as IR text (ShadingSystem::add_shader_ir):
 // group text, instance values, every kind of connection, lazy layers, specialisation on/off
 // giving identical output, the cache, read_output and globals_read.
+#include "driver/search.h"
 #include "lobe/shadingsys.h"
 #include "shader_source.h"
 
@@ -426,6 +427,34 @@ end
 
 } // namespace
 
+// A renderer plugin gets the compiler's diagnostics structured, through the public API: severity,
+// id, file, line, column and message, besides the caret form a command line prints.
+TEST(GroupErrors, CompilerDiagnosticsAreStructured) {
+  ShadingSystem ss;
+  DiagnosticList d;
+  EXPECT_FALSE(
+      ss.add_shader_source("bad", "surface bad() {\n  Ci = nope * diffuse(N);\n}\n", "bad.osl", d));
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].severity, Diagnostic::Severity::Error);
+  EXPECT_EQ(d[0].id, "err_undeclared");
+  EXPECT_EQ(d[0].file, "bad.osl");
+  EXPECT_EQ(d[0].line, 2);
+  EXPECT_EQ(d[0].column, 8);
+  EXPECT_EQ(d[0].message, "use of undeclared identifier 'nope'");
+  EXPECT_EQ(d[0].text, "bad.osl:2:8: error: use of undeclared identifier 'nope'\n"
+                       "  Ci = nope * diffuse(N);\n"
+                       "       ^~~~\n");
+  // A shader the search does not find: one line, with its id.
+  auto g = ss.parse_group("shader no_such_shader_anywhere layer ;", "t", d);
+  ASSERT_TRUE(g);
+  DiagnosticList missing;
+  EXPECT_EQ(ss.compile(*g, missing), nullptr);
+  ASSERT_FALSE(missing.empty());
+  EXPECT_EQ(missing[0].id, "err_shader_not_found");
+  EXPECT_EQ(missing[0].text, "error: shader 'no_such_shader_anywhere' not found");
+  EXPECT_EQ(missing[0].line, 0);
+}
+
 // CompileOptions::colorspace picks the colour system (part of the cache key); an unknown name
 // compiles as Rec709, and colorspace_error words it as OSL does. Values: OSL 1.13.12,
 // printf("%.9g\n", luminance(color(.1, .7, .2) + k)) with k = 0 under
@@ -450,11 +479,11 @@ TEST(ColorSpace, OptionSelectsTheSystemAndKeysTheCache) {
 // A shader is found by the name its source declares when no file has that name (oslc names its
 // .oso so: raytype-envmap.osl declaring raytype_envmap is raytype_envmap.oso to OSL).
 TEST(ShaderLookup, ByDeclaredName) {
-  EXPECT_EQ(group::declared_shader_name("// surface wrong()\n/* shader no() */ #define X \"a\"\n"
-                                        "surface\n  raytype_envmap [[ string help = \"x\" ]] ()"
-                                        " { Ci = 0; }"),
+  EXPECT_EQ(driver::declared_shader_name("// surface wrong()\n/* shader no() */ #define X \"a\"\n"
+                                         "surface\n  raytype_envmap [[ string help = \"x\" ]] ()"
+                                         " { Ci = 0; }"),
             "raytype_envmap");
-  EXPECT_EQ(group::declared_shader_name("float f(float shader) { return shader; }"), "");
+  EXPECT_EQ(driver::declared_shader_name("float f(float shader) { return shader; }"), "");
   namespace fs = std::filesystem;
   fs::path d = fs::temp_directory_path() / ("lobe_lookup_" + std::to_string(::getpid()));
   fs::remove_all(d);

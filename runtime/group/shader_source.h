@@ -1,21 +1,22 @@
-// Finding a shader by name and turning it into IR: an in-memory IR registration
-// (ShadingSystem::add_shader_ir), else a file on the search path: `name` itself, or
-// `name.osl` / `name.lir` (IR text) in each include dir, then the current directory.
+// The runtime's side of the compile driver (compiler/driver/driver.h): finding a shader on the
+// ShadingSystem's search path, loading it as IR, and the compiler's diagnostics turned into the
+// public lobe::Diagnostic (the compiler knows nothing of the runtime's API).
 #pragma once
 
+#include "diag/diagnostics.h"
 #include "ir/ir.h"
 #include "lobe/shadingsys.h"
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace lobe::group {
 
-// Finds shader `name`: name.osl or name.lir in options.include_dirs then ".", else an .osl
-// there that declares a shader called `name` (oslc names its .oso so). "" if none.
+// The ShadingSystem's search path: options.include_dirs in order, then the current directory.
+std::vector<std::string> search_dirs(const CompileOptions& options);
+// Finds shader `name` on that path (the one search order, compiler/driver/search.h). "" if none.
 std::string find_shader_file(const std::string& name, const CompileOptions& options);
-// The shader name an OSL source declares ("" if none is found).
-std::string declared_shader_name(const std::string& text);
 
 // Compiles the file (.osl through the front end, .lir through the IR parser); stage times go
 // to `stats`. Nullopt with diagnostics on failure.
@@ -30,5 +31,8 @@ std::optional<ir::Shader> compile_osl_source(const std::string& path, const std:
 
 std::optional<ir::Shader> parse_ir_text(const std::string& text, const std::string& where,
                                         DiagnosticList& diags);
+
+// The compiler's diagnostic as the public API gives it (shadingsys.h, Diagnostic).
+Diagnostic to_public(const diag::Report& r);
 
 } // namespace lobe::group

@@ -103,7 +103,8 @@ std::optional<ir::Shader> ShadingSystem::Impl::load(const std::string& name, Dia
   }
   std::string path = group::find_shader_file(name, options);
   if (path.empty()) {
-    diags.push_back({Diagnostic::Severity::Error, "error: shader '" + name + "' not found"});
+    diags.push_back(
+        group::to_public(diag::file_report(diag::DiagId::err_shader_not_found, "", {name})));
     return std::nullopt;
   }
   return group::compile_shader_file(path, options, diags, st);

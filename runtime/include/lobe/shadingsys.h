@@ -22,12 +22,21 @@
 
 namespace lobe {
 
-// One diagnostic, already located and formatted (`file:line:col: error: msg` + source + caret).
-// `id` names the kind for callers that act on it ("nonexistent_param", "param_type"), else "".
+// One diagnostic. `text` is the rendered form, what a command-line tool prints: for the
+// compiler's diagnostics Clang's `file:line:col: error: message`, the source line and a caret
+// (ending in '\n'); a one-line diagnostic (the runtime's own: group text, instance values,
+// code generation) has no trailing newline. `id` names the kind for callers that act on it:
+// the compiler's table name ("err_undeclared", docs/diagnostics.md) or the runtime's
+// ("nonexistent_param", "param_type"), else "". `file`, `line` and `column` (1-based) locate
+// it when known ("" and 0 otherwise), and `message` is the text without location, severity,
+// source line or caret (the compiler's diagnostics; else "").
 struct Diagnostic {
   enum class Severity : uint8_t { Note, Warning, Error } severity = Severity::Error;
   std::string text;
   std::string id;
+  std::string file;
+  int line = 0, column = 0;
+  std::string message;
 };
 using DiagnosticList = std::vector<Diagnostic>;
 
