@@ -18,7 +18,7 @@ namespace lobe::group {
 bool emit_shader_text(const std::string& path, const CompileOptions& options, EmitForm form,
                       std::string& out, DiagnosticList& diags) {
   auto error = [&](const std::string& text) {
-    diags.push_back({Diagnostic::Severity::Error, "error: " + text});
+    diags.push_back({Diagnostic::Severity::Error, "error: " + text, "jit"});
     return false;
   };
   CompileStats stats;
@@ -45,7 +45,7 @@ bool emit_shader_text(const std::string& path, const CompileOptions& options, Em
   err = codegen::emit_group(b.plan, mod);
   if (!err.empty()) {
     if (err.find(": error: ") == std::string::npos) return error(err);
-    diags.push_back({Diagnostic::Severity::Error, err}); // located: `file:line:col: error: ...`
+    diags.push_back({Diagnostic::Severity::Error, err, "codegen"}); // located: `f:l:c: error: ...`
     return false;
   }
   jit->optimize(mod, options.opt_level);

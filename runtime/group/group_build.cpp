@@ -18,9 +18,12 @@ namespace {
 
 using ir::SymKind;
 
-Diagnostic err(const std::string& msg) { return {Diagnostic::Severity::Error, "error: " + msg}; }
-Diagnostic warn(const std::string& msg) {
-  return {Diagnostic::Severity::Warning, "warning: " + msg};
+// The group's own diagnostics, with their ids (docs/diagnostics.md, "The runtime's ids").
+Diagnostic err(const std::string& msg, const char* id) {
+  return {Diagnostic::Severity::Error, "error: " + msg, id};
+}
+Diagnostic warn(const std::string& msg, const char* id) {
+  return {Diagnostic::Severity::Warning, "warning: " + msg, id};
 }
 
 // One resolved end of a connection: a symbol name and an optional element/component.
@@ -347,9 +350,8 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
           if (is_param(ps)) names += (names.empty() ? "" : ", ") + ps.name;
         // OSL's warning, then Lobe's hint as a note (a scene reader turns the pair into an
         // error: a misspelt parameter in a scene is a mistake).
-        Diagnostic w = warn("attempting to set nonexistent parameter: " + v.name);
-        w.id = "nonexistent_param";
-        diags.push_back(w);
+        diags.push_back(
+            warn("attempting to set nonexistent parameter: " + v.name, "nonexistent_param"));
         diags.push_back({Diagnostic::Severity::Note,
                          "note: layer '" + group.layers[i].name + "': shader '" + sources[i]->name +
                              "' has no parameter '" + v.name + "' (its parameters: " + names + ")",
@@ -358,15 +360,13 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       }
       ValueFit fit = fit_instance_value(v, sources[i]->symbols[size_t(s)].type);
       if (!fit.error.empty()) {
-        diags.push_back(err("layer '" + group.layers[i].name + "': " + fit.error));
+        diags.push_back(err("layer '" + group.layers[i].name + "': " + fit.error, "param_value"));
         return false;
       }
       if (!fit.note.empty())
-        diags.push_back(warn("layer '" + group.layers[i].name + "': " + fit.note));
+        diags.push_back(warn("layer '" + group.layers[i].name + "': " + fit.note, "param_value"));
       if (!fit.ok) {
-        Diagnostic w = warn(fit.warning);
-        w.id = "param_type";
-        diags.push_back(w);
+        diags.push_back(warn(fit.warning, "param_type"));
         continue;
       }
       std::vector<ir::ConstValue>& cv = fit.values;
@@ -390,25 +390,29 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     auto si = layer_index.find(c.src_layer), di = layer_index.find(c.dst_layer);
     if (si == layer_index.end() || di == layer_index.end()) {
       diags.push_back(err("connect " + c.src_layer + "." + c.src_param + " " + c.dst_layer + "." +
-                          c.dst_param + ": no such layer"));
+                              c.dst_param + ": no such layer",
+                          "connect_layer"));
       return false;
     }
     if (si->second >= di->second) {
       diags.push_back(err("connect " + c.src_layer + " -> " + c.dst_layer +
-                          ": the source layer must come first"));
+                              ": the source layer must come first",
+                          "connect_order"));
       return false;
     }
     auto src = resolve(*sources[size_t(si->second)], c.src_param);
     auto dst = resolve(*sources[size_t(di->second)], c.dst_param);
     if (src.empty() || dst.empty() || src.size() != dst.size()) {
       diags.push_back(err("connect " + c.src_layer + "." + c.src_param + " " + c.dst_layer + "." +
-                          c.dst_param + ": no such parameter (or mismatched structs)"));
+                              c.dst_param + ": no such parameter (or mismatched structs)",
+                          "connect_param"));
       return false;
     }
     for (auto& [suffix, e] : src) {
       auto d = dst.find(suffix);
       if (d == dst.end()) {
-        diags.push_back(err("connect: struct field '" + suffix + "' missing in " + c.dst_param));
+        diags.push_back(err("connect: struct field '" + suffix + "' missing in " + c.dst_param,
+                            "connect_param"));
         return false;
       }
       links.push_back({si->second, di->second, e, d->second});

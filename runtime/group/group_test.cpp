@@ -453,6 +453,15 @@ TEST(GroupErrors, CompilerDiagnosticsAreStructured) {
   EXPECT_EQ(missing[0].id, "err_shader_not_found");
   EXPECT_EQ(missing[0].text, "error: shader 'no_such_shader_anywhere' not found");
   EXPECT_EQ(missing[0].line, 0);
+  // The runtime's own diagnostics carry ids too (docs/diagnostics.md): group text.
+  DiagnosticList syntax;
+  EXPECT_FALSE(ss.parse_group("shader m l ;\nbogus x ;", "g.txt", syntax));
+  ASSERT_EQ(syntax.size(), 1u);
+  EXPECT_EQ(syntax[0].id, "group_syntax");
+  EXPECT_EQ(syntax[0].file, "g.txt");
+  EXPECT_EQ(syntax[0].line, 2);
+  EXPECT_EQ(syntax[0].message, "expected `param`, `shader` or `connect`, found `bogus`");
+  EXPECT_EQ(syntax[0].text, "g.txt:2: error: " + syntax[0].message);
 }
 
 // CompileOptions::colorspace picks the colour system (part of the cache key); an unknown name

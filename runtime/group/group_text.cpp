@@ -86,13 +86,17 @@ bool is_param_type(const std::string& word) {
 std::unique_ptr<ShaderGroup> parse_group_text(const std::string& text, const std::string& where,
                                               DiagnosticList& diags,
                                               const GroupTextOptions& options) {
-  auto at = [&](int line) {
-    return where + ":" +
-           std::to_string(options.first_line > 0 ? options.first_line + line - 1 : line);
+  auto line_of = [&](int line) {
+    return options.first_line > 0 ? options.first_line + line - 1 : line;
   };
   size_t errors = 0;
   auto error = [&](int line, const std::string& msg) {
-    diags.push_back({Diagnostic::Severity::Error, at(line) + ": error: " + msg});
+    Diagnostic d{Diagnostic::Severity::Error,
+                 where + ":" + std::to_string(line_of(line)) + ": error: " + msg, "group_syntax"};
+    d.file = where;
+    d.line = line_of(line);
+    d.message = msg;
+    diags.push_back(std::move(d));
     ++errors;
   };
   std::vector<Token> toks;
@@ -161,7 +165,11 @@ std::unique_ptr<ShaderGroup> parse_group_text(const std::string& text, const std
   if (!pending.empty() && !errors)
     error(toks.back().line, "parameter values after the last `shader`");
   if (group->layers.empty() && !errors) {
-    diags.push_back({Diagnostic::Severity::Error, where + ": error: the group has no `shader`"});
+    Diagnostic d{Diagnostic::Severity::Error, where + ": error: the group has no `shader`",
+                 "group_no_shader"};
+    d.file = where;
+    d.message = "the group has no `shader`";
+    diags.push_back(std::move(d));
     ++errors;
   }
   return errors ? nullptr : std::move(group);

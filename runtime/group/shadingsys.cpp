@@ -174,7 +174,7 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   if (!err.empty()) {
     // Codegen errors name their place already (`file:line:col: error: ...`).
     bool located = err.find(": error: ") != std::string::npos;
-    diags.push_back({Diagnostic::Severity::Error, located ? err : "error: " + err});
+    diags.push_back({Diagnostic::Severity::Error, located ? err : "error: " + err, "codegen"});
     return nullptr;
   }
   stats.llvm_ir_ms = ms_since(t1);
@@ -183,7 +183,7 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   jit::JitTimes times;
   if (!jit->add(std::move(ctx), std::move(mod), options.opt_level, b.plan.entry_name, code, times,
                 err)) {
-    diags.push_back({Diagnostic::Severity::Error, "error: JIT: " + err});
+    diags.push_back({Diagnostic::Severity::Error, "error: JIT: " + err, "jit"});
     return nullptr;
   }
   stats.optimize_ms = times.optimize_ms;
@@ -218,11 +218,11 @@ std::shared_ptr<const Material> ShadingSystem::compile(const ShaderGroup& group,
                                                        DiagnosticList& diags) {
   Impl& m = *impl_;
   if (!m.jit) {
-    diags.push_back({Diagnostic::Severity::Error, "error: JIT unavailable: " + m.jit_error});
+    diags.push_back({Diagnostic::Severity::Error, "error: JIT unavailable: " + m.jit_error, "jit"});
     return nullptr;
   }
   if (group.layers.empty()) {
-    diags.push_back({Diagnostic::Severity::Error, "error: the group has no layers"});
+    diags.push_back({Diagnostic::Severity::Error, "error: the group has no layers", "group_empty"});
     return nullptr;
   }
   CompileStats stats;
