@@ -200,5 +200,23 @@ TEST(Diagnostics, LoweringErrorHasAnId) {
   EXPECT_EQ(l.diagnostics[0].text, "error: no shader declared\n");
 }
 
+// A located lowering error: the same fields and the same caret form as the front end's (a
+// function declared without a body passes the type checker, and has nothing to inline).
+TEST(Diagnostics, LoweringErrorIsLocated) {
+  Loaded l = compile_source(
+      "p.osl", "float f(float x);\nsurface s() {\n  float y = f(1);\n  Ci = y * diffuse(N);\n}\n",
+      {});
+  EXPECT_FALSE(l.ok);
+  ASSERT_EQ(l.diagnostics.size(), 1u) << l.rendered();
+  const diag::Report& d = l.diagnostics[0];
+  EXPECT_EQ(d.id, diag::DiagId::err_lower_no_opcode);
+  EXPECT_EQ(d.file, "p.osl");
+  EXPECT_EQ(d.line, 3);
+  EXPECT_EQ(d.column, 13);
+  EXPECT_EQ(d.text, "p.osl:3:13: error: no IR opcode for the builtin 'f'\n"
+                    "  float y = f(1);\n"
+                    "            ^\n");
+}
+
 } // namespace
 } // namespace lobe::driver
