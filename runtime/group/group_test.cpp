@@ -427,6 +427,33 @@ end
 
 } // namespace
 
+// The ShadingSystem's search path is include_dirs in order (then the current directory): the
+// folder given first wins over a later one (a scene's folder over stdlib_shaders/), and an .osl
+// over an .lir in the same folder.
+TEST(ShaderLookup, IncludeDirsInOrder) {
+  namespace fs = std::filesystem;
+  fs::path root = fs::temp_directory_path() / ("lobe_order_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  fs::create_directories(root / "mine");
+  fs::create_directories(root / "lib");
+  std::ofstream(root / "mine" / "m.osl") << "surface m(output float mine = 1) { Ci = 0; }\n";
+  std::ofstream(root / "lib" / "m.osl") << "surface m(output float lib = 1) { Ci = 0; }\n";
+  std::ofstream(root / "mine" / "m.lir") << "not IR at all\n";
+  for (bool mine_first : {true, false}) {
+    ShadingSystem ss;
+    ss.options().include_dirs = {(root / (mine_first ? "mine" : "lib")).string(),
+                                 (root / (mine_first ? "lib" : "mine")).string()};
+    ShaderGroup g;
+    g.layers.push_back({"m", "l", {}});
+    DiagnosticList diags;
+    auto mat = ss.compile(g, diags);
+    ASSERT_TRUE(mat) << (diags.empty() ? "" : diags[0].text);
+    EXPECT_EQ(mat->output_info("l", "mine").has_value(), mine_first);
+    EXPECT_EQ(mat->output_info("l", "lib").has_value(), !mine_first);
+  }
+  fs::remove_all(root);
+}
+
 // A renderer plugin gets the compiler's diagnostics structured, through the public API: severity,
 // id, file, line, column and message, besides the caret form a command line prints.
 TEST(GroupErrors, CompilerDiagnosticsAreStructured) {
