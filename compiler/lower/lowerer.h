@@ -44,7 +44,7 @@ const char* binop_opcode(ast::BinaryOp op);
 class Lowerer {
 public:
   Lowerer(const ast::TranslationUnit& tu, diag::DiagnosticEngine& diags, const LowerOptions& opt)
-      : tu_(tu), diags_(diags), opt_(opt) {}
+      : tu_(tu), opt_(opt), diags_(diags) {}
   LowerResult run();
 
   // ---- lower.cpp: symbols, emission, errors
