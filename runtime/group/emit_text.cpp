@@ -44,8 +44,7 @@ bool emit_shader_text(const std::string& path, const CompileOptions& options, Em
   jit->configure(mod);
   err = codegen::emit_group(b.plan, mod);
   if (!err.empty()) {
-    if (err.find(": error: ") == std::string::npos) return error(err);
-    diags.push_back({Diagnostic::Severity::Error, err, "codegen"}); // located: `f:l:c: error: ...`
+    diags.push_back(located_error(err, "codegen")); // `file:line:col: error: ...` when located
     return false;
   }
   jit->optimize(mod, options.opt_level);

@@ -422,6 +422,12 @@ end
     ASSERT_EQ(diags.size(), 1u);
     EXPECT_EQ(diags[0].text, located ? "bad.osl:3:8: error: closure: unknown closure 'nosuch'"
                                      : "bad: error: closure: unknown closure 'nosuch'");
+    // The same, structured.
+    EXPECT_EQ(diags[0].id, "codegen");
+    EXPECT_EQ(diags[0].file, located ? "bad.osl" : "bad");
+    EXPECT_EQ(diags[0].line, located ? 3 : 0);
+    EXPECT_EQ(diags[0].column, located ? 8 : 0);
+    EXPECT_EQ(diags[0].message, "closure: unknown closure 'nosuch'");
   }
 }
 

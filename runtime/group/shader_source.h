@@ -34,5 +34,9 @@ std::optional<ir::Shader> parse_ir_text(const std::string& text, const std::stri
 
 // The compiler's diagnostic as the public API gives it (shadingsys.h, Diagnostic).
 Diagnostic to_public(const diag::Report& r);
+// An error of a later stage (code generation) as text, `file:line:col: error: message` when it
+// names its place (file, line, column and message then filled in), else `message` (the text
+// gets "error: ").
+Diagnostic located_error(const std::string& text, const char* id);
 
 } // namespace lobe::group

@@ -173,8 +173,7 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   std::string err = codegen::emit_group(b.plan, *mod);
   if (!err.empty()) {
     // Codegen errors name their place already (`file:line:col: error: ...`).
-    bool located = err.find(": error: ") != std::string::npos;
-    diags.push_back({Diagnostic::Severity::Error, located ? err : "error: " + err, "codegen"});
+    diags.push_back(group::located_error(err, "codegen"));
     return nullptr;
   }
   stats.llvm_ir_ms = ms_since(t1);
