@@ -1,5 +1,6 @@
 // Closure entry points compiled with clang-19 to LLVM bitcode (lobe_closures.bc) for the JIT
-// to link and inline into materials. Each registry BSDF key K gets, with C linkage:
+// to link and inline into materials. Each registry key K gets (symbol names from
+// LOBE_KERNEL_SYMBOL, closure_registry.h; only BSDF keys with bitcode are ever linked):
 //   void  lobe_closure_K_eval(const unsigned char* params, const Vec3* wo, const Vec3* wi,
 //                             int mode, LobeEval* out)        mode: 0 radiance, 1 importance
 //   int   lobe_closure_K_sample(const unsigned char* params, const Vec3* wo, const Vec3* u,
@@ -59,43 +60,37 @@ void lobe_closure_albedo(int id, const unsigned char* p, const Vec3* wo, Vec3* o
   albedo_id(id, p, wo, out);
 }
 
-// One set of four entries per BSDF key (the names are the registry keys).
-#define LOBE_ENTRIES(key, ID)                                                                      \
-  void lobe_closure_##key##_eval(const unsigned char* p, const Vec3* wo, const Vec3* wi, int mode, \
-                                 LobeEval* out) {                                                  \
-    eval_id(ID, p, wo, wi, mode, out);                                                             \
+} // extern "C"
+
+// One set of four entries per registry key, generated from the registry's table; the symbol
+// names are LOBE_KERNEL_SYMBOL's, the ones the JIT asks for (registry::kernel_symbol). Entries
+// with no lobe here (non-BSDF, native-only) evaluate to nothing and are never linked.
+namespace lobe_closure_kernels {
+#define LOBE_ENTRIES(key, ...)                                                                     \
+  void key##_eval(const unsigned char* p, const Vec3* wo, const Vec3* wi, int mode,                \
+                  LobeEval* out) __asm__(LOBE_KERNEL_SYMBOL(key, eval));                           \
+  void key##_eval(const unsigned char* p, const Vec3* wo, const Vec3* wi, int mode,                \
+                  LobeEval* out) {                                                                 \
+    eval_id(closure_id::key, p, wo, wi, mode, out);                                                \
   }                                                                                                \
-  int lobe_closure_##key##_sample(const unsigned char* p, const Vec3* wo, const Vec3* u, int mode, \
-                                  LobeSample* out) {                                               \
-    return sample_id(ID, p, wo, u, mode, out);                                                     \
+  int key##_sample(const unsigned char* p, const Vec3* wo, const Vec3* u, int mode,                \
+                   LobeSample* out) __asm__(LOBE_KERNEL_SYMBOL(key, sample));                      \
+  int key##_sample(const unsigned char* p, const Vec3* wo, const Vec3* u, int mode,                \
+                   LobeSample* out) {                                                              \
+    return sample_id(closure_id::key, p, wo, u, mode, out);                                        \
   }                                                                                                \
-  float lobe_closure_##key##_pdf(const unsigned char* p, const Vec3* wo, const Vec3* wi) {         \
+  float key##_pdf(const unsigned char* p, const Vec3* wo,                                          \
+                  const Vec3* wi) __asm__(LOBE_KERNEL_SYMBOL(key, pdf));                           \
+  float key##_pdf(const unsigned char* p, const Vec3* wo, const Vec3* wi) {                        \
     LobeEval e;                                                                                    \
-    eval_id(ID, p, wo, wi, 0, &e);                                                                 \
+    eval_id(closure_id::key, p, wo, wi, 0, &e);                                                    \
     return e.pdf;                                                                                  \
   }                                                                                                \
-  void lobe_closure_##key##_albedo(const unsigned char* p, const Vec3* wo, Vec3* out) {            \
-    albedo_id(ID, p, wo, out);                                                                     \
+  void key##_albedo(const unsigned char* p, const Vec3* wo,                                        \
+                    Vec3* out) __asm__(LOBE_KERNEL_SYMBOL(key, albedo));                           \
+  void key##_albedo(const unsigned char* p, const Vec3* wo, Vec3* out) {                           \
+    albedo_id(closure_id::key, p, wo, out);                                                        \
   }
-
-LOBE_ENTRIES(diffuse, kDiffuseId)
-LOBE_ENTRIES(oren_nayar, kOrenNayarId)
-LOBE_ENTRIES(oren_nayar_diffuse_bsdf, kOrenNayarDiffuseId)
-LOBE_ENTRIES(burley_diffuse_bsdf, kBurleyId)
-LOBE_ENTRIES(translucent, kTranslucentId)
-LOBE_ENTRIES(translucent_bsdf, kTranslucentBsdfId)
-LOBE_ENTRIES(phong, kPhongId)
-LOBE_ENTRIES(blinn_phong, kBlinnPhongId)
-LOBE_ENTRIES(ward, kWardId)
-LOBE_ENTRIES(microfacet, kMicrofacetId)
-LOBE_ENTRIES(reflection, kReflectionId)
-LOBE_ENTRIES(refraction, kRefractionId)
-LOBE_ENTRIES(conductor_bsdf, kConductorId)
-LOBE_ENTRIES(dielectric_bsdf, kDielectricId)
-LOBE_ENTRIES(generalized_schlick_bsdf, kGeneralizedSchlickId)
-LOBE_ENTRIES(sheen_bsdf, kSheenId)
-LOBE_ENTRIES(toon, kToonId)
-LOBE_ENTRIES(subsurface_bssrdf, kSubsurfaceBssrdfId)
+LOBE_CLOSURE_TABLE(LOBE_ENTRIES)
 #undef LOBE_ENTRIES
-
-} // extern "C"
+} // namespace lobe_closure_kernels

@@ -13,7 +13,7 @@
 #include "closure_registry.h"
 #include "closures.h"
 #include "common.h"
-#include "params.h"
+#include "components.h"
 
 namespace lobe {
 namespace {
@@ -78,7 +78,7 @@ struct Flattener {
     if (!usable_weight(w)) return;
     if (fl & registry::kEmission) {
       Color3 e =
-          id == closures::kUniformEdfId
+          id == closures::closure_id::uniform_edf
               ? closures::sanitize(closures::as_params<closures::EmittanceParams>(p).emittance)
               : Color3{1, 1, 1};
       bsdf.emission += w * e;

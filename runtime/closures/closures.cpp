@@ -171,16 +171,18 @@ bool has_implementation(int id) {
   if (id < 0 || id >= static_cast<int>(registry::closures().size())) return false;
   uint32_t fl = registry::closures()[id].flags;
   if (!(fl & (registry::kReflect | registry::kTransmit))) return true; // handled by Bsdf::build
-  if (id == kMeasuredId) return true; // its default block names no file, so it cannot be probed
+  if (id == closure_id::measured_bsdf)
+    return true; // its default block names no file, so it cannot be probed
   Params p(registry::closures()[id].key);
   return with_lobe(id, p.data(), [](const auto&, const Frame&) {});
 }
 
 const char* param_warning(int id, const unsigned char* params) {
   float thickness = 0.0f;
-  if (id == kConductorId) thickness = as<ConductorParams>(params).thinfilm_thickness;
-  if (id == kDielectricId) thickness = as<DielectricParams>(params).thinfilm_thickness;
-  if (id == kGeneralizedSchlickId)
+  if (id == closure_id::conductor_bsdf) thickness = as<ConductorParams>(params).thinfilm_thickness;
+  if (id == closure_id::dielectric_bsdf)
+    thickness = as<DielectricParams>(params).thinfilm_thickness;
+  if (id == closure_id::generalized_schlick_bsdf)
     thickness = as<GeneralizedSchlickParams>(params).thinfilm_thickness;
   return thickness < 0.0f || thickness != thickness
              ? "thinfilm_thickness is negative or NaN: no thin film"

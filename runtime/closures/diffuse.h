@@ -26,6 +26,7 @@
 #pragma once
 
 #include "common.h"
+#include "params.h"
 
 namespace lobe::closures {
 
@@ -172,6 +173,119 @@ struct Burley {
     return wo.z > 0.0f ? sample_cosine(*this, wo, u, false) : LobeSample{};
   }
   Vec3 albedo(const Vec3& wo) const { return wo.z > 0.0f ? rho : Vec3{}; }
+};
+
+// ---- registry entries (params.h) ------------------------------------------------------------
+
+struct DiffuseParams {
+  Vec3 N;
+  Str label;
+}; // diffuse, translucent
+struct AlbedoParams {
+  Vec3 N;
+  Color3 albedo;
+  Str label;
+}; // translucent_bsdf
+struct OrenNayarParams {
+  Vec3 N;
+  float sigma;
+  Str label;
+};
+struct OrenNayarDiffuseParams {
+  Vec3 N;
+  Color3 albedo;
+  float roughness;
+  int energy_compensation;
+  Str label;
+};
+struct SubsurfaceBssrdfParams {
+  Vec3 N;
+  Color3 albedo;
+  float transmission_depth;
+  Color3 transmission_color;
+  float anisotropy;
+  Str label;
+};
+
+// diffuse(N) and translucent(N): white Lambert reflection / transmission.
+template <bool kTransmit> struct LambertClosure {
+  using Params = DiffuseParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N), offsetof(Params, label)};
+  using Lobe = Lambert;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    l = Lambert{splat(1.0f), kTransmit};
+    return true;
+  }
+};
+template <> struct Closure<closure_id::diffuse> : LambertClosure<false> {};
+template <> struct Closure<closure_id::translucent> : LambertClosure<true> {};
+
+template <> struct Closure<closure_id::translucent_bsdf> {
+  using Params = AlbedoParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N), offsetof(Params, albedo),
+                                        offsetof(Params, label)};
+  using Lobe = Lambert;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    l = Lambert{vmax0(q.albedo), true};
+    return true;
+  }
+};
+
+template <> struct Closure<closure_id::oren_nayar> {
+  using Params = OrenNayarParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N), offsetof(Params, sigma),
+                                        offsetof(Params, label)};
+  using Lobe = OrenNayar;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    l = OrenNayar::make(splat(1.0f), q.sigma);
+    return true;
+  }
+};
+
+template <> struct Closure<closure_id::oren_nayar_diffuse_bsdf> {
+  using Params = OrenNayarDiffuseParams;
+  static constexpr size_t kOffsets[] = {
+      offsetof(Params, N), offsetof(Params, albedo), offsetof(Params, roughness),
+      offsetof(Params, energy_compensation), offsetof(Params, label)};
+  using Lobe = FujiiOrenNayar;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    float r = clampf(q.roughness, 0.0f, 1.0f);
+    l = FujiiOrenNayar{vmax0(q.albedo), r == r ? r : 0.0f, q.energy_compensation != 0};
+    return true;
+  }
+};
+
+template <> struct Closure<closure_id::burley_diffuse_bsdf> {
+  using Params = AlbedoRoughnessParams;
+  static constexpr size_t kOffsets[] = LOBE_ALBEDO_ROUGHNESS_OFFSETS;
+  using Lobe = Burley;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    float r = clampf(q.roughness, 0.0f, 1.0f);
+    l = Burley{vmax0(q.albedo), r == r ? r : 0.0f};
+    return true;
+  }
+};
+
+// Lobe has no subsurface transport: subsurface_bssrdf is diffuse with the medium's albedo.
+template <> struct Closure<closure_id::subsurface_bssrdf> {
+  using Params = SubsurfaceBssrdfParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N),
+                                        offsetof(Params, albedo),
+                                        offsetof(Params, transmission_depth),
+                                        offsetof(Params, transmission_color),
+                                        offsetof(Params, anisotropy),
+                                        offsetof(Params, label)};
+  using Lobe = Lambert;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    l = Lambert{vmax0(sanitize(q.albedo)), false};
+    return true;
+  }
 };
 
 } // namespace lobe::closures

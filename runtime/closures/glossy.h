@@ -21,6 +21,7 @@
 
 #include "common.h"
 #include "microfacet_dist.h"
+#include "params.h"
 #include "quadrature.h"
 
 namespace lobe::closures {
@@ -119,6 +120,57 @@ struct Ward {
     return {wi, e.value / e.pdf, e.pdf, flags(), 1.0f, true};
   }
   Vec3 albedo(const Vec3& wo) const { return quadrature_albedo(*this, wo); }
+};
+
+// ---- registry entries (params.h) ------------------------------------------------------------
+
+struct PhongParams {
+  Vec3 N;
+  float exponent;
+  Str label;
+}; // phong, blinn_phong
+struct WardParams {
+  Vec3 N, T;
+  float ax, ay;
+  Str label;
+};
+
+template <> struct Closure<closure_id::phong> {
+  using Params = PhongParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N), offsetof(Params, exponent),
+                                        offsetof(Params, label)};
+  using Lobe = Phong;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    l = Phong{clampf(q.exponent == q.exponent ? q.exponent : 0.0f, 0.0f, 1e6f)};
+    return true;
+  }
+};
+
+template <> struct Closure<closure_id::blinn_phong> {
+  using Params = PhongParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N), offsetof(Params, exponent),
+                                        offsetof(Params, label)};
+  using Lobe = BlinnPhong;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    l = BlinnPhong::make(q.exponent);
+    return true;
+  }
+};
+
+template <> struct Closure<closure_id::ward> {
+  using Params = WardParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N), offsetof(Params, T),
+                                        offsetof(Params, ax), offsetof(Params, ay),
+                                        offsetof(Params, label)};
+  using Lobe = Ward;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, q.T, f)) return false;
+    auto c = [](float a) { return a == a ? clampf(a, 1e-3f, 4.0f) : 1e-3f; };
+    l = Ward{MicrofacetDistribution::make(c(q.ax), c(q.ay), true)};
+    return true;
+  }
 };
 
 } // namespace lobe::closures

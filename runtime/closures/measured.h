@@ -17,6 +17,7 @@
 
 #include "common.h"
 #include "measured_sampler.h"
+#include "params.h"
 #include "quadrature.h"
 
 #include <string>
@@ -65,6 +66,30 @@ struct Measured {
     return {wi, e.value / e.pdf, e.pdf, flags(), 1.0f, true};
   }
   Vec3 albedo(const Vec3& wo) const { return quadrature_albedo(*this, wo); }
+};
+
+// ---- registry entries (params.h) ------------------------------------------------------------
+
+struct MeasuredParams {
+  Vec3 N;
+  Str filename;
+  Color3 tint;
+  Str label;
+};
+
+// Native only (kNativeOnly in the registry): the table is read from a file; a file that does
+// not load gives no lobe.
+template <> struct Closure<closure_id::measured_bsdf> {
+  using Params = MeasuredParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N), offsetof(Params, filename),
+                                        offsetof(Params, tint), offsetof(Params, label)};
+  using Lobe = Measured;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    const MeasuredTable* t = measured_table(q.filename);
+    if (!t || !make_frame(q.N, f)) return false;
+    l = Measured{t, vmax0(sanitize(q.tint))};
+    return true;
+  }
 };
 
 } // namespace lobe::closures

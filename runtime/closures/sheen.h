@@ -16,6 +16,7 @@
 #pragma once
 
 #include "common.h"
+#include "params.h"
 
 namespace lobe::closures {
 
@@ -82,6 +83,20 @@ struct Sheen {
   Vec3 albedo(const Vec3& wo) const {
     if (!(wo.z > 0.0f)) return {};
     return rho * clampf(lookup(kSheenE, safe_sqrt(minf(wo.z, 1.0f))), 0.0f, 1.0f);
+  }
+};
+
+// ---- registry entries (params.h) ------------------------------------------------------------
+
+template <> struct Closure<closure_id::sheen_bsdf> {
+  using Params = AlbedoRoughnessParams;
+  static constexpr size_t kOffsets[] = LOBE_ALBEDO_ROUGHNESS_OFFSETS;
+  using Lobe = Sheen;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    float r = q.roughness == q.roughness ? clampf(q.roughness, 0.01f, 1.0f) : 1.0f;
+    l = Sheen::make(vmax0(sanitize(q.albedo)), r);
+    return true;
   }
 };
 

@@ -14,6 +14,7 @@
 #pragma once
 
 #include "common.h"
+#include "params.h"
 
 namespace lobe::closures {
 
@@ -64,6 +65,31 @@ struct Toon {
     return {wi, e.value / e.pdf, e.pdf, flags(), 1.0f, true};
   }
   Vec3 albedo(const Vec3& wo) const { return wo.z > 0.0f ? albedo_d + specular : Vec3{}; }
+};
+
+// ---- registry entries (params.h) ------------------------------------------------------------
+
+struct ToonParams {
+  Vec3 N;
+  Color3 albedo, specular;
+  float shininess;
+  int bands;
+  float softness;
+  Str label;
+};
+
+template <> struct Closure<closure_id::toon> {
+  using Params = ToonParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N),        offsetof(Params, albedo),
+                                        offsetof(Params, specular), offsetof(Params, shininess),
+                                        offsetof(Params, bands),    offsetof(Params, softness),
+                                        offsetof(Params, label)};
+  using Lobe = Toon;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    l = Toon::make(sanitize(q.albedo), sanitize(q.specular), q.shininess, q.bands, q.softness);
+    return true;
+  }
 };
 
 } // namespace lobe::closures

@@ -22,7 +22,8 @@ namespace lobe::jit {
 namespace {
 
 const char* const kEntries[3] = {"lobe_kernels_eval", "lobe_kernels_sample", "lobe_kernels_albedo"};
-const char* const kSuffix[3] = {"_eval", "_sample", "_albedo"};
+const registry::Kernel kKernel[3] = {registry::Kernel::eval, registry::Kernel::sample,
+                                     registry::Kernel::albedo};
 
 // The bitcode file's bytes, read once per process.
 const std::string* bitcode_bytes(std::string& error) {
@@ -126,14 +127,11 @@ std::string closure_bitcode_path() {
 
 bool compile_closure_kernels(Jit& jit, const std::vector<int>& ids, ClosureKernels& out,
                              CompiledGroup& code, JitTimes& times, std::string& error) {
-  // Only BSDF entries have bitcode: a material with none (an emitter, a background) needs
-  // no module, and the bitcode is not even read for it.
-  auto all = registry::closures();
-  bool any_bsdf = false;
-  for (int id : ids)
-    any_bsdf |= id >= 0 && id < int(all.size()) &&
-                (all[size_t(id)].flags & (registry::kReflect | registry::kTransmit)) != 0;
-  if (!any_bsdf) {
+  // Only BSDF entries have bitcode (registry::has_kernel): a material with none (an emitter, a
+  // background) needs no module, and the bitcode is not even read for it.
+  bool any_kernel = false;
+  for (int id : ids) any_kernel |= registry::kernel_symbol(id, registry::Kernel::eval) != nullptr;
+  if (!any_kernel) {
     out = ClosureKernels{};
     return true;
   }
@@ -188,11 +186,13 @@ bool compile_closure_kernels(Jit& jit, const std::vector<int>& ids, ClosureKerne
   llvm::FunctionType* types[3] = {nullptr, nullptr, nullptr};
   ClosureKernels k;
   for (int id : ids) {
-    if (id < 0 || id >= int(all.size()) || id >= ClosureKernels::kMaxIds || k.covers(id)) continue;
+    if (!registry::kernel_symbol(id, registry::Kernel::eval) || id >= ClosureKernels::kMaxIds ||
+        k.covers(id))
+      continue;
     Case c{id, {}};
     bool complete = true;
     for (int w = 0; w < 3; ++w) {
-      std::string name = std::string("lobe_closure_") + all[size_t(id)].key + kSuffix[w];
+      const char* name = registry::kernel_symbol(id, kKernel[w]);
       llvm::Function* lf = library->getFunction(name);
       if (!lf) {
         complete = false;
