@@ -61,7 +61,7 @@ void BM_EvalJit(benchmark::State& state, int id, closures::Params p) {
   const Inputs& in = inputs();
   size_t k = 0;
   for (auto _ : state) {
-    closures::LobeEval e;
+    BsdfEval e;
     g_kernels.eval(id, p.data(), &in.dirs[k & 1023], &in.dirs[(k + 7) & 1023], 0, &e);
     benchmark::DoNotOptimize(e);
     ++k;
@@ -80,7 +80,7 @@ void BM_SampleJit(benchmark::State& state, int id, closures::Params p) {
   const Inputs& in = inputs();
   size_t k = 0;
   for (auto _ : state) {
-    closures::LobeSample s;
+    BsdfSample s;
     int ok = g_kernels.sample(id, p.data(), &in.dirs[k & 1023], &in.us[(k + 3) & 1023], 0, &s);
     benchmark::DoNotOptimize(ok);
     benchmark::DoNotOptimize(s);

@@ -31,16 +31,16 @@ int mode_of(Transport t) { return t == Transport::Importance ? 1 : 0; }
 BsdfEval lobe_eval(const ClosureKernels* k, const Lobe& l, const Vec3& wo, const Vec3& wi,
                    Transport mode) {
   if (!k || !k->covers(l.id)) return closures::eval(l.id, l.params, wo, wi, mode);
-  closures::LobeEval e;
+  BsdfEval e;
   k->eval(l.id, l.params, &wo, &wi, mode_of(mode), &e);
-  return BsdfEval{e.value, e.pdf};
+  return e;
 }
 std::optional<BsdfSample> lobe_sample(const ClosureKernels* k, const Lobe& l, const Vec3& wo,
                                       const Vec3& u, Transport mode) {
   if (!k || !k->covers(l.id)) return closures::sample(l.id, l.params, wo, u, mode);
-  closures::LobeSample s;
-  if (!k->sample(l.id, l.params, &wo, &u, mode_of(mode), &s) || !s.ok) return std::nullopt;
-  return BsdfSample{s.wi, s.weight, s.pdf, s.flags, s.eta};
+  BsdfSample s;
+  if (!k->sample(l.id, l.params, &wo, &u, mode_of(mode), &s)) return std::nullopt;
+  return s;
 }
 Color3 lobe_albedo(const ClosureKernels* k, int id, const unsigned char* p, const Vec3& wo) {
   if (!k || !k->covers(id)) return closures::albedo(id, p, wo);

@@ -134,7 +134,7 @@ Params& Params::set_closure(std::string_view name, const ClosureNode* v) {
 BsdfEval eval(int id, const unsigned char* params, const Vec3& wo, const Vec3& wi, Transport mode) {
   BsdfEval r;
   with_lobe(id, params, [&](const auto& l, const Frame& f) {
-    LobeEval e = eval_lobe(l, f, wo, wi, mode);
+    BsdfEval e = eval_lobe(l, f, wo, wi, mode);
     r.value = e.value;
     r.pdf = e.pdf;
   });
@@ -149,8 +149,8 @@ std::optional<BsdfSample> sample(int id, const unsigned char* params, const Vec3
                                  Transport mode) {
   std::optional<BsdfSample> r;
   with_lobe(id, params, [&](const auto& l, const Frame& f) {
-    LobeSample s = sample_lobe(l, f, wo, u, mode);
-    if (s.ok) r = BsdfSample{s.wi, s.weight, s.pdf, s.flags, s.eta};
+    BsdfSample s = sample_lobe(l, f, wo, u, mode);
+    if (s.pdf > 0.0f) r = s;
   });
   return r;
 }

@@ -6,7 +6,7 @@
 // bitcode entries (bitcode.cpp), where the id is a constant and the switch folds away.
 //
 // A lobe type L provides, in its local frame (normal = +z):
-//   LobeEval eval(wo, wi[, mode]);  LobeSample sample(wo, u[, mode]);  Vec3 albedo(wo);
+//   BsdfEval eval(wo, wi[, mode]);  BsdfSample sample(wo, u[, mode]);  Vec3 albedo(wo);
 //   uint32_t flags();  and optionally `static constexpr bool kOneSided = true` for lobes that
 // distinguish inside from outside (dielectrics). Other lobes are two-sided: when wo is below
 // the shading normal the frame is mirrored so that they see wo above it.
@@ -104,10 +104,10 @@ template <class L> float to_local(const Frame& f, const Vec3& wo, Vec3& o) {
 }
 
 template <class L>
-LobeEval eval_lobe(const L& l, const Frame& f, const Vec3& wo, const Vec3& wi, Transport mode) {
+BsdfEval eval_lobe(const L& l, const Frame& f, const Vec3& wo, const Vec3& wi, Transport mode) {
   Vec3 o, i = f.to_local(wi);
   i.z *= to_local<L>(f, wo, o);
-  LobeEval e;
+  BsdfEval e;
   if constexpr (requires { l.eval(o, i, mode); })
     e = l.eval(o, i, mode);
   else
@@ -118,17 +118,17 @@ LobeEval eval_lobe(const L& l, const Frame& f, const Vec3& wo, const Vec3& wi, T
 }
 
 template <class L>
-LobeSample sample_lobe(const L& l, const Frame& f, const Vec3& wo, const Vec3& u, Transport mode) {
+BsdfSample sample_lobe(const L& l, const Frame& f, const Vec3& wo, const Vec3& u, Transport mode) {
   Vec3 o;
   float sign = to_local<L>(f, wo, o);
   Vec3 uc = {clampf(u.x, 0.0f, kOneMinusEpsilon), clampf(u.y, 0.0f, kOneMinusEpsilon),
              clampf(u.z, 0.0f, kOneMinusEpsilon)};
-  LobeSample s;
+  BsdfSample s;
   if constexpr (requires { l.sample(o, uc, mode); })
     s = l.sample(o, uc, mode);
   else
     s = l.sample(o, uc);
-  if (!s.ok || !(s.pdf > 0.0f && s.pdf < INFINITY)) return {};
+  if (!(s.pdf > 0.0f && s.pdf < INFINITY)) return {};
   s.wi.z *= sign;
   // The lobe evaluated s.wi; a direction that is already unit is not normalised again, since
   // one ulp moves sharp lobes at grazing incidence by more than 1e-4 and then sample() would

@@ -41,12 +41,12 @@ struct Toon {
     t.omega_h = maxf(2.0f * kPi * (1.0f - c0), 1e-6f);
     return t;
   }
-  uint32_t flags() const { return kFlagReflect | kFlagDiffuse; }
+  uint32_t flags() const { return kLobeReflect | kLobeDiffuse; }
   float quantise(float c) const {
     float x = c * bands, k = std::floor(x);
     return (k + smoothstep01(1.0f - softness, 1.0f, x - k)) / bands;
   }
-  LobeEval eval(const Vec3& wo, const Vec3& wi) const {
+  BsdfEval eval(const Vec3& wo, const Vec3& wi) const {
     if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return {};
     float b = static_cast<float>(bands);
     Vec3 v = albedo_d * (kInvPi * quantise(wi.z) * b / (b + 1.0f));
@@ -56,13 +56,13 @@ struct Toon {
     v += specular * (band * wi.z / (4.0f * omega_h));
     return {v, wi.z * kInvPi};
   }
-  LobeSample sample(const Vec3& wo, const Vec3& u) const {
-    LobeSample s;
+  BsdfSample sample(const Vec3& wo, const Vec3& u) const {
+    BsdfSample s;
     if (!(wo.z > 0.0f)) return s;
     Vec3 wi = sample_cosine_hemisphere(u.x, u.y);
-    LobeEval e = eval(wo, wi);
+    BsdfEval e = eval(wo, wi);
     if (!(e.pdf > 0.0f)) return s;
-    return {wi, e.value / e.pdf, e.pdf, flags(), 1.0f, true};
+    return {wi, e.value / e.pdf, e.pdf, flags(), 1.0f};
   }
   Vec3 albedo(const Vec3& wo) const { return wo.z > 0.0f ? albedo_d + specular : Vec3{}; }
 };

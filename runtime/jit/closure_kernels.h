@@ -2,8 +2,8 @@
 // from the library's LLVM bitcode (lobe_closures.bc, runtime/closures/bitcode.cpp).
 //
 // For the registry ids a material's closures can have, one module gets three dispatchers,
-//   void lobe_kernels_eval  (int id, params, wo, wi, mode, LobeEval* out)
-//   int  lobe_kernels_sample(int id, params, wo, u,  mode, LobeSample* out)
+//   void lobe_kernels_eval  (int id, params, wo, wi, mode, BsdfEval* out)
+//   int  lobe_kernels_sample(int id, params, wo, u,  mode, BsdfSample* out)
 //   void lobe_kernels_albedo(int id, params, wo, Vec3* out)
 // each a switch over just those ids calling lobe_closure_<key>_*; only those functions (and
 // what they use) are linked from the bitcode, which is loaded lazily, everything but the

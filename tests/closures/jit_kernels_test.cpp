@@ -104,11 +104,11 @@ TEST_F(JitKernels, AgreeWithNativeLibrary) {
         for (int mode = 0; mode < 2; ++mode) {
           Transport t = mode ? Transport::Importance : Transport::Radiance;
           BsdfEval ne = closures::eval(id, p.data(), wo, wi, t);
-          closures::LobeEval je;
+          BsdfEval je;
           k.eval(id, p.data(), &wo, &wi, mode, &je);
           bool ok = close(ne.value, je.value, &worst) && close(ne.pdf, je.pdf, &worst);
           auto ns = closures::sample(id, p.data(), wo, u, t);
-          closures::LobeSample js;
+          BsdfSample js;
           bool jok = k.sample(id, p.data(), &wo, &u, mode, &js) != 0;
           ok = ok && jok == bool(ns);
           if (ok && ns)
@@ -271,9 +271,9 @@ std::vector<float> outputs(const ClosureKernels& k, const std::vector<int>& ids)
       Vec3 wo = uniform_sphere(rng.next_double(), rng.next_double());
       wo.z = std::fabs(wo.z);
       Vec3 wi = uniform_sphere(rng.next_double(), rng.next_double()), u = rng.next_vec3();
-      closures::LobeEval e;
+      BsdfEval e;
       k.eval(id, p.data(), &wo, &wi, 0, &e);
-      closures::LobeSample s{};
+      BsdfSample s{};
       int ok = k.sample(id, p.data(), &wo, &u, 0, &s);
       out.insert(out.end(), {e.value.x, e.value.y, e.value.z, e.pdf, float(ok), s.wi.x, s.pdf});
     }

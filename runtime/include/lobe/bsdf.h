@@ -33,11 +33,14 @@ enum LobeFlags : uint32_t {
   kLobeSpecular = 1u << 4, // a delta lobe
 };
 
+// The result types and flags are the closure library's own: each lobe (runtime/closures/)
+// returns them, in its local frame, and the Bsdf its weighted mixture in world space.
 struct BsdfEval {
   Color3 value;  // f * |cos theta_i|, weighted
   float pdf = 0; // solid-angle pdf of sample() producing wi
 };
 
+// A lobe that has no sample for its inputs returns pdf 0 (the Bsdf: std::nullopt).
 struct BsdfSample {
   Vec3 wi;
   Color3 weight;      // value / pdf (for delta lobes: the throughput factor)
@@ -49,14 +52,14 @@ struct BsdfSample {
 // The closure functions of one material, JIT-compiled from the closure library's LLVM bitcode
 // with only that material's closures linked in and inlined (Material::closure_kernels(),
 // runtime/jit/closure_kernels.h). C ABI, as lobe_closure_eval/_sample/_albedo in
-// docs/closures.md ("Bitcode for the JIT"); `out` points to the library's LobeEval/LobeSample.
+// docs/closures.md ("Bitcode for the JIT"); sample returns 0 when there is no sample.
 // A Bsdf built with kernels calls them for the ids they cover and the native library for the
 // rest; both give the same results to float rounding (tests/closures/jit_kernels_test.cpp).
 struct ClosureKernels {
   using EvalFn = void (*)(int id, const unsigned char* params, const Vec3* wo, const Vec3* wi,
-                          int mode, void* out);
+                          int mode, BsdfEval* out);
   using SampleFn = int (*)(int id, const unsigned char* params, const Vec3* wo, const Vec3* u,
-                           int mode, void* out);
+                           int mode, BsdfSample* out);
   using AlbedoFn = void (*)(int id, const unsigned char* params, const Vec3* wo, Vec3* out);
   EvalFn eval = nullptr;
   SampleFn sample = nullptr;
