@@ -167,6 +167,33 @@ uint32_t lobe_flags(int id, const unsigned char* params) {
   return r;
 }
 
+uint32_t setup(int id, const unsigned char* params, void* state) {
+  return setup_lobe(id, params, state);
+}
+
+BsdfEval eval_prepared(int id, const void* state, const Vec3& wo, const Vec3& wi, Transport mode) {
+  BsdfEval r;
+  with_prepared(id, state,
+                [&](const auto& l, const Frame& f) { r = eval_lobe(l, f, wo, wi, mode); });
+  return r;
+}
+
+std::optional<BsdfSample> sample_prepared(int id, const void* state, const Vec3& wo, const Vec3& u,
+                                          Transport mode) {
+  std::optional<BsdfSample> r;
+  with_prepared(id, state, [&](const auto& l, const Frame& f) {
+    BsdfSample s = sample_lobe(l, f, wo, u, mode);
+    if (s.pdf > 0.0f) r = s;
+  });
+  return r;
+}
+
+Color3 albedo_prepared(int id, const void* state, const Vec3& wo) {
+  Color3 r;
+  with_prepared(id, state, [&](const auto& l, const Frame& f) { r = albedo_lobe(l, f, wo); });
+  return r;
+}
+
 bool has_implementation(int id) {
   if (id < 0 || id >= static_cast<int>(registry::closures().size())) return false;
   uint32_t fl = registry::closures()[id].flags;

@@ -25,6 +25,7 @@
 #include "sheen.h"
 #include "toon.h"
 
+#include <new>
 #include <type_traits>
 
 namespace lobe::closures {
@@ -145,6 +146,65 @@ template <class L> Vec3 albedo_lobe(const L& l, const Frame& f, const Vec3& wo) 
   Vec3 o;
   to_local<L>(f, wo, o);
   return sanitize(l.albedo(o));
+}
+
+// ---- lobes set up once per shading point ---------------------------------------------------
+//
+// Bsdf::build sets each lobe up once (Closure<Id>::make: the frame, clamping, Fresnel
+// averages, table look-ups) into a state block of Bsdf::kLobeStateBytes; eval, sample and
+// albedo then read the lobe from there. Same values as setting up at every call, bit for bit.
+
+template <class L> struct Prepared {
+  Frame frame;
+  L lobe;
+};
+
+template <int Id> constexpr bool prepared_fits() {
+  if constexpr (has_lobe<Id>()) {
+    using P = Prepared<typename Closure<Id>::Lobe>;
+    return sizeof(P) <= Bsdf::kLobeStateBytes && alignof(P) <= Bsdf::kLobeStateAlign;
+  } else {
+    return true;
+  }
+}
+#define LOBE_CHECK(key, ...)                                                                       \
+  static_assert(prepared_fits<closure_id::key>(),                                                  \
+                "closure '" #key "': its lobe does not fit Bsdf::kLobeStateBytes");
+LOBE_CLOSURE_TABLE(LOBE_CHECK)
+#undef LOBE_CHECK
+
+// Sets up closure `id`'s lobe from parameter block p in `state`; its LobeFlags, 0 when there
+// is no lobe (state untouched).
+inline uint32_t setup_lobe(int id, const unsigned char* p, void* state) {
+  uint32_t flags = 0;
+  with_lobe(id, p, [&](const auto& l, const Frame& f) {
+    using L = std::decay_t<decltype(l)>;
+    flags = (new (state) Prepared<L>{f, l})->lobe.flags();
+  });
+  return flags;
+}
+
+template <int Id, class Fn> bool with_prepared_as(const void* state, Fn& fn) {
+  if constexpr (has_lobe<Id>()) {
+    const auto& s = *static_cast<const Prepared<typename Closure<Id>::Lobe>*>(state);
+    fn(s.lobe, s.frame);
+    return true;
+  } else {
+    return false;
+  }
+}
+
+// Calls fn(lobe, frame) for the lobe setup_lobe(id, ...) put in `state`.
+template <class Fn> bool with_prepared(int id, const void* state, Fn&& fn) {
+  switch (id) {
+#define LOBE_CASE(key, ...)                                                                        \
+  case closure_id::key:                                                                            \
+    return with_prepared_as<closure_id::key>(state, fn);
+    LOBE_CLOSURE_TABLE(LOBE_CASE)
+#undef LOBE_CASE
+  default:
+    return false;
+  }
 }
 
 } // namespace lobe::closures

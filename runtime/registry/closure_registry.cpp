@@ -15,10 +15,10 @@ const ClosureEntry* find_by_key(std::string_view key) {
 int id_of(std::string_view key) { return table::index_of(key); }
 
 const char* kernel_symbol(int id, Kernel k) {
-  static constexpr const char* kSymbols[][4] = {
+  static constexpr const char* kSymbols[][5] = {
 #define LOBE_SYMBOLS(key, ...)                                                                     \
-  {LOBE_KERNEL_SYMBOL(key, eval), LOBE_KERNEL_SYMBOL(key, sample), LOBE_KERNEL_SYMBOL(key, pdf),   \
-   LOBE_KERNEL_SYMBOL(key, albedo)},
+  {LOBE_KERNEL_SYMBOL(key, setup), LOBE_KERNEL_SYMBOL(key, eval), LOBE_KERNEL_SYMBOL(key, sample), \
+   LOBE_KERNEL_SYMBOL(key, pdf), LOBE_KERNEL_SYMBOL(key, albedo)},
       LOBE_CLOSURE_TABLE(LOBE_SYMBOLS)
 #undef LOBE_SYMBOLS
   };

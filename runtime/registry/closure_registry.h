@@ -71,11 +71,11 @@ std::span<const ClosureEntry> closures();
 const ClosureEntry* find_by_key(std::string_view key);
 int id_of(std::string_view key); // -1 if absent
 
-// The four functions the closure bitcode defines for a BSDF entry (runtime/closures/
+// The five functions the closure bitcode defines for a BSDF entry (runtime/closures/
 // bitcode.cpp) and the JIT links (runtime/jit/closure_kernels.cpp). Their symbol names come
 // from this one macro on both sides: "lobe_closure_" key "_" fn.
 #define LOBE_KERNEL_SYMBOL(key, fn) "lobe_closure_" #key "_" #fn
-enum class Kernel : uint8_t { eval, sample, pdf, albedo };
+enum class Kernel : uint8_t { setup, eval, sample, pdf, albedo };
 // The symbol of entry `id`'s kernel, or null when the entry has none (see has_kernel).
 const char* kernel_symbol(int id, Kernel k);
 // A BSDF lobe with bitcode: kReflect or kTransmit, and not kNativeOnly.
