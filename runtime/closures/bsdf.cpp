@@ -139,11 +139,10 @@ void Bsdf::build(const ClosureNode* closure, const Vec3& wo, const Vec3& Ng,
   ng_ = normalize(Ng);
   kernels_ = kernels;
   BsdfBuilder{*this, wo}.visit(closure, Color3{1, 1, 1}, 0);
+  // A lone lobe's selection weight matters only through sample()'s rescaling of u.x (u.x s / s,
+  // which can round one ulp off u.x): computing it keeps renders bit-identical to
+  // setting lobes up per call, and costs one albedo estimate per shading point.
   total_select_ = 0.0f;
-  if (n_lobes_ == 1) { // nothing to choose between: no albedo needed
-    lobes_[0].select_weight = total_select_ = 1.0f;
-    return;
-  }
   for (int i = 0; i < n_lobes_; ++i) {
     Lobe& l = lobes_[i];
     float s = luminance(l.weight * lobe_albedo(i, wo));

@@ -85,7 +85,7 @@ struct Lobe {
   int32_t id = -1;
   Color3 weight;
   const unsigned char* params = nullptr;
-  float select_weight = 0; // luminance(weight * albedo(wo)), set by build(); 1 if it is alone
+  float select_weight = 0; // luminance(weight * albedo(wo)), set by build()
   uint32_t flags = 0;      // LobeFlags of this lobe (set by build())
 };
 
@@ -99,7 +99,7 @@ public:
   // from `wo`. Emission, transparency, holdout and debug components are collected separately.
   // `kernels` (may be null: the native library) evaluates and samples the lobes. Each lobe is
   // set up here, once (frame, parameter clamping, Fresnel averages), and eval/sample/albedo
-  // read it; the selection weights need each lobe's albedo only when there are several.
+  // read it.
   void build(const ClosureNode* closure, const Vec3& wo, const Vec3& Ng,
              const ClosureKernels* kernels = nullptr);
 
