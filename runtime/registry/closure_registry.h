@@ -66,10 +66,18 @@ struct ClosureEntry {
 };
 
 // All entries, in id order: an entry's id is its index here and is what a ClosureComponent
-// stores at run time.
+// stores at run time. The built-in table (closure_table.h) comes first; closures a renderer
+// registers (lobe/closure_plugin.h, through add_closure) follow it.
 std::span<const ClosureEntry> closures();
 const ClosureEntry* find_by_key(std::string_view key);
 int id_of(std::string_view key); // -1 if absent
+
+// Adds an entry after the built-in ones and returns its id; its strings and parameters are
+// copied. -1 (and `error`) for a key that exists or when kMaxClosures are registered. Not
+// thread-safe: register before anything compiles or shades (spans from closures() taken
+// earlier stay valid: the storage never moves).
+inline constexpr size_t kMaxClosures = 128;
+int add_closure(const ClosureEntry& entry, const char** error = nullptr);
 
 // The five functions the closure bitcode defines for a BSDF entry (runtime/closures/
 // bitcode.cpp) and the JIT links (runtime/jit/closure_kernels.cpp). Their symbol names come
