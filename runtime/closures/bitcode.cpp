@@ -1,14 +1,19 @@
 // Closure entry points compiled with clang-19 to LLVM bitcode (lobe_closures.bc) for the JIT
-// to link and inline into materials. Each registry BSDF key K gets, with C linkage:
-//   void  lobe_closure_K_eval(const unsigned char* params, const Vec3* wo, const Vec3* wi,
-//                             int mode, LobeEval* out)        mode: 0 radiance, 1 importance
-//   int   lobe_closure_K_sample(const unsigned char* params, const Vec3* wo, const Vec3* u,
-//                               int mode, LobeSample* out)    returns out->ok
-//   float lobe_closure_K_pdf(const unsigned char* params, const Vec3* wo, const Vec3* wi)
-//   void  lobe_closure_K_albedo(const unsigned char* params, const Vec3* wo, Vec3* out)
-// and the same four with an explicit registry id as first argument, lobe_closure_eval(id, ...)
-// etc., whose switch folds away when the id is a constant. Structs are those of common.h;
-// directions are world space as in closures.h. measured_bsdf is native-only (it reads files).
+// to link and inline into materials. Each registry key K gets (symbol names from
+// LOBE_KERNEL_SYMBOL, closure_registry.h; only BSDF keys with bitcode are ever linked):
+//   unsigned lobe_closure_K_setup(const unsigned char* params, void* state)
+//                       sets the lobe up in `state` (Bsdf::kLobeStateBytes), returns its
+//                       LobeFlags, 0: no lobe
+//   void  lobe_closure_K_eval(const void* state, const Vec3* wo, const Vec3* wi, int mode,
+//                             BsdfEval* out)          mode: 0 radiance, 1 importance
+//   int   lobe_closure_K_sample(const void* state, const Vec3* wo, const Vec3* u, int mode,
+//                               BsdfSample* out)      returns out->pdf > 0
+//   float lobe_closure_K_pdf(const void* state, const Vec3* wo, const Vec3* wi)
+//   void  lobe_closure_K_albedo(const void* state, const Vec3* wo, Vec3* out)
+// and the same five with an explicit registry id as first argument, lobe_closure_setup(id,
+// ...) etc., whose switch folds away when the id is a constant. Structs are BsdfEval /
+// BsdfSample (lobe/bsdf.h); directions are world space as in closures.h. measured_bsdf is
+// native-only (it reads files).
 #include "dispatch.h"
 
 using namespace lobe;
@@ -18,84 +23,86 @@ namespace {
 
 Transport to_mode(int m) { return m == 1 ? Transport::Importance : Transport::Radiance; }
 
-inline void eval_id(int id, const unsigned char* p, const Vec3* wo, const Vec3* wi, int mode,
-                    LobeEval* out) {
-  *out = LobeEval{};
-  with_lobe(id, p, [&](const auto& l, const Frame& f) {
+inline uint32_t setup_id(int id, const unsigned char* p, void* state) {
+  return setup_lobe(id, p, state);
+}
+inline void eval_id(int id, const void* st, const Vec3* wo, const Vec3* wi, int mode,
+                    BsdfEval* out) {
+  *out = BsdfEval{};
+  with_prepared(id, st, [&](const auto& l, const Frame& f) {
     *out = eval_lobe(l, f, *wo, *wi, to_mode(mode));
   });
 }
-inline int sample_id(int id, const unsigned char* p, const Vec3* wo, const Vec3* u, int mode,
-                     LobeSample* out) {
-  *out = LobeSample{};
-  with_lobe(id, p, [&](const auto& l, const Frame& f) {
+inline int sample_id(int id, const void* st, const Vec3* wo, const Vec3* u, int mode,
+                     BsdfSample* out) {
+  *out = BsdfSample{};
+  with_prepared(id, st, [&](const auto& l, const Frame& f) {
     *out = sample_lobe(l, f, *wo, *u, to_mode(mode));
   });
-  return out->ok ? 1 : 0;
+  return out->pdf > 0.0f ? 1 : 0;
 }
-inline void albedo_id(int id, const unsigned char* p, const Vec3* wo, Vec3* out) {
+inline void albedo_id(int id, const void* st, const Vec3* wo, Vec3* out) {
   *out = Vec3{};
-  with_lobe(id, p, [&](const auto& l, const Frame& f) { *out = albedo_lobe(l, f, *wo); });
+  with_prepared(id, st, [&](const auto& l, const Frame& f) { *out = albedo_lobe(l, f, *wo); });
 }
 
 } // namespace
 
 extern "C" {
 
-void lobe_closure_eval(int id, const unsigned char* p, const Vec3* wo, const Vec3* wi, int mode,
-                       LobeEval* out) {
-  eval_id(id, p, wo, wi, mode, out);
+unsigned lobe_closure_setup(int id, const unsigned char* p, void* state) {
+  return setup_id(id, p, state);
 }
-int lobe_closure_sample(int id, const unsigned char* p, const Vec3* wo, const Vec3* u, int mode,
-                        LobeSample* out) {
-  return sample_id(id, p, wo, u, mode, out);
+void lobe_closure_eval(int id, const void* st, const Vec3* wo, const Vec3* wi, int mode,
+                       BsdfEval* out) {
+  eval_id(id, st, wo, wi, mode, out);
 }
-float lobe_closure_pdf(int id, const unsigned char* p, const Vec3* wo, const Vec3* wi) {
-  LobeEval e;
-  eval_id(id, p, wo, wi, 0, &e);
+int lobe_closure_sample(int id, const void* st, const Vec3* wo, const Vec3* u, int mode,
+                        BsdfSample* out) {
+  return sample_id(id, st, wo, u, mode, out);
+}
+float lobe_closure_pdf(int id, const void* st, const Vec3* wo, const Vec3* wi) {
+  BsdfEval e;
+  eval_id(id, st, wo, wi, 0, &e);
   return e.pdf;
 }
-void lobe_closure_albedo(int id, const unsigned char* p, const Vec3* wo, Vec3* out) {
-  albedo_id(id, p, wo, out);
+void lobe_closure_albedo(int id, const void* st, const Vec3* wo, Vec3* out) {
+  albedo_id(id, st, wo, out);
 }
 
-// One set of four entries per BSDF key (the names are the registry keys).
-#define LOBE_ENTRIES(key, ID)                                                                      \
-  void lobe_closure_##key##_eval(const unsigned char* p, const Vec3* wo, const Vec3* wi, int mode, \
-                                 LobeEval* out) {                                                  \
-    eval_id(ID, p, wo, wi, mode, out);                                                             \
+} // extern "C"
+
+// One set of five entries per registry key, generated from the registry's table; the symbol
+// names are LOBE_KERNEL_SYMBOL's, the ones the JIT asks for (registry::kernel_symbol). Entries
+// with no lobe here (non-BSDF, native-only) do nothing and are never linked.
+namespace lobe_closure_kernels {
+#define LOBE_ENTRIES(key, ...)                                                                     \
+  unsigned key##_setup(const unsigned char* p, void* st) __asm__(LOBE_KERNEL_SYMBOL(key, setup));  \
+  unsigned key##_setup(const unsigned char* p, void* st) {                                         \
+    return setup_id(closure_id::key, p, st);                                                       \
   }                                                                                                \
-  int lobe_closure_##key##_sample(const unsigned char* p, const Vec3* wo, const Vec3* u, int mode, \
-                                  LobeSample* out) {                                               \
-    return sample_id(ID, p, wo, u, mode, out);                                                     \
+  void key##_eval(const void* st, const Vec3* wo, const Vec3* wi, int mode,                        \
+                  BsdfEval* out) __asm__(LOBE_KERNEL_SYMBOL(key, eval));                           \
+  void key##_eval(const void* st, const Vec3* wo, const Vec3* wi, int mode, BsdfEval* out) {       \
+    eval_id(closure_id::key, st, wo, wi, mode, out);                                               \
   }                                                                                                \
-  float lobe_closure_##key##_pdf(const unsigned char* p, const Vec3* wo, const Vec3* wi) {         \
-    LobeEval e;                                                                                    \
-    eval_id(ID, p, wo, wi, 0, &e);                                                                 \
+  int key##_sample(const void* st, const Vec3* wo, const Vec3* u, int mode,                        \
+                   BsdfSample* out) __asm__(LOBE_KERNEL_SYMBOL(key, sample));                      \
+  int key##_sample(const void* st, const Vec3* wo, const Vec3* u, int mode, BsdfSample* out) {     \
+    return sample_id(closure_id::key, st, wo, u, mode, out);                                       \
+  }                                                                                                \
+  float key##_pdf(const void* st, const Vec3* wo,                                                  \
+                  const Vec3* wi) __asm__(LOBE_KERNEL_SYMBOL(key, pdf));                           \
+  float key##_pdf(const void* st, const Vec3* wo, const Vec3* wi) {                                \
+    BsdfEval e;                                                                                    \
+    eval_id(closure_id::key, st, wo, wi, 0, &e);                                                   \
     return e.pdf;                                                                                  \
   }                                                                                                \
-  void lobe_closure_##key##_albedo(const unsigned char* p, const Vec3* wo, Vec3* out) {            \
-    albedo_id(ID, p, wo, out);                                                                     \
+  void key##_albedo(const void* st, const Vec3* wo,                                                \
+                    Vec3* out) __asm__(LOBE_KERNEL_SYMBOL(key, albedo));                           \
+  void key##_albedo(const void* st, const Vec3* wo, Vec3* out) {                                   \
+    albedo_id(closure_id::key, st, wo, out);                                                       \
   }
-
-LOBE_ENTRIES(diffuse, kDiffuseId)
-LOBE_ENTRIES(oren_nayar, kOrenNayarId)
-LOBE_ENTRIES(oren_nayar_diffuse_bsdf, kOrenNayarDiffuseId)
-LOBE_ENTRIES(burley_diffuse_bsdf, kBurleyId)
-LOBE_ENTRIES(translucent, kTranslucentId)
-LOBE_ENTRIES(translucent_bsdf, kTranslucentBsdfId)
-LOBE_ENTRIES(phong, kPhongId)
-LOBE_ENTRIES(blinn_phong, kBlinnPhongId)
-LOBE_ENTRIES(ward, kWardId)
-LOBE_ENTRIES(microfacet, kMicrofacetId)
-LOBE_ENTRIES(reflection, kReflectionId)
-LOBE_ENTRIES(refraction, kRefractionId)
-LOBE_ENTRIES(conductor_bsdf, kConductorId)
-LOBE_ENTRIES(dielectric_bsdf, kDielectricId)
-LOBE_ENTRIES(generalized_schlick_bsdf, kGeneralizedSchlickId)
-LOBE_ENTRIES(sheen_bsdf, kSheenId)
-LOBE_ENTRIES(toon, kToonId)
-LOBE_ENTRIES(subsurface_bssrdf, kSubsurfaceBssrdfId)
+LOBE_CLOSURE_TABLE(LOBE_ENTRIES)
 #undef LOBE_ENTRIES
-
-} // extern "C"
+} // namespace lobe_closure_kernels

@@ -13,7 +13,7 @@
 #include "closure_registry.h"
 #include "closures.h"
 #include "common.h"
-#include "params.h"
+#include "components.h"
 
 namespace lobe {
 namespace {
@@ -26,36 +26,42 @@ bool usable_weight(const Color3& w) {
 
 int mode_of(Transport t) { return t == Transport::Importance ? 1 : 0; }
 
-// One lobe's eval/sample/albedo through the material's JIT kernels when they cover its id,
-// else through the native library.
-BsdfEval lobe_eval(const ClosureKernels* k, const Lobe& l, const Vec3& wo, const Vec3& wi,
-                   Transport mode) {
-  if (!k || !k->covers(l.id)) return closures::eval(l.id, l.params, wo, wi, mode);
-  closures::LobeEval e;
-  k->eval(l.id, l.params, &wo, &wi, mode_of(mode), &e);
-  return BsdfEval{e.value, e.pdf};
+// One lobe's set-up/eval/sample/albedo through the material's JIT kernels when they cover its
+// id, else through the native library. `state` is the lobe's block in the Bsdf, written by
+// lobe_setup once per build() and read by the others.
+bool use_kernels(const ClosureKernels* k, int id) { return k && k->covers(id); }
+
+uint32_t lobe_setup(const ClosureKernels* k, int id, const unsigned char* p, void* state) {
+  if (!use_kernels(k, id)) return closures::setup(id, p, state);
+  return k->setup(id, p, state);
 }
-std::optional<BsdfSample> lobe_sample(const ClosureKernels* k, const Lobe& l, const Vec3& wo,
-                                      const Vec3& u, Transport mode) {
-  if (!k || !k->covers(l.id)) return closures::sample(l.id, l.params, wo, u, mode);
-  closures::LobeSample s;
-  if (!k->sample(l.id, l.params, &wo, &u, mode_of(mode), &s) || !s.ok) return std::nullopt;
-  return BsdfSample{s.wi, s.weight, s.pdf, s.flags, s.eta};
+BsdfEval lobe_eval(const ClosureKernels* k, int id, const void* state, const Vec3& wo,
+                   const Vec3& wi, Transport mode) {
+  if (!use_kernels(k, id)) return closures::eval_prepared(id, state, wo, wi, mode);
+  BsdfEval e;
+  k->eval(id, state, &wo, &wi, mode_of(mode), &e);
+  return e;
 }
-Color3 lobe_albedo(const ClosureKernels* k, int id, const unsigned char* p, const Vec3& wo) {
-  if (!k || !k->covers(id)) return closures::albedo(id, p, wo);
+std::optional<BsdfSample> lobe_sample(const ClosureKernels* k, int id, const void* state,
+                                      const Vec3& wo, const Vec3& u, Transport mode) {
+  if (!use_kernels(k, id)) return closures::sample_prepared(id, state, wo, u, mode);
+  BsdfSample s;
+  if (!k->sample(id, state, &wo, &u, mode_of(mode), &s)) return std::nullopt;
+  return s;
+}
+Color3 lobe_albedo_of(const ClosureKernels* k, int id, const void* state, const Vec3& wo) {
+  if (!use_kernels(k, id)) return closures::albedo_prepared(id, state, wo);
   Vec3 a;
-  k->albedo(id, p, &wo, &a);
+  k->albedo(id, state, &wo, &a);
   return a;
 }
 
-// Collects a tree into a Bsdf; one instance per build() call.
-struct Flattener {
+} // namespace
+
+// Collects a tree into a Bsdf, setting each lobe up as it is added; one per build() call.
+struct BsdfBuilder {
   Bsdf& bsdf;
-  Lobe* lobes;
-  int& n;
   const Vec3& wo;
-  const ClosureKernels* kernels;
 
   void visit(const ClosureNode* node, const Color3& w, int depth) {
     if (!node || depth > 64 || !is_finite(w)) return;
@@ -78,7 +84,7 @@ struct Flattener {
     if (!usable_weight(w)) return;
     if (fl & registry::kEmission) {
       Color3 e =
-          id == closures::kUniformEdfId
+          id == closures::closure_id::uniform_edf
               ? closures::sanitize(closures::as_params<closures::EmittanceParams>(p).emittance)
               : Color3{1, 1, 1};
       bsdf.emission += w * e;
@@ -91,17 +97,20 @@ struct Flattener {
       bsdf.debug_weight += w;
     }
     if (!(fl & (registry::kReflect | registry::kTransmit))) return;
-    if (n >= Bsdf::kMaxLobes || closures::lobe_flags(id, p) == 0) return;
-    lobes[n++] = Lobe{id, w, p, 0.0f};
+    int& n = bsdf.n_lobes_;
+    if (n >= Bsdf::kMaxLobes) return;
+    uint32_t lobe_flags = lobe_setup(bsdf.kernels_, id, p, bsdf.states_[n]);
+    if (lobe_flags == 0) return;
+    bsdf.lobes_[n++] = Lobe{id, w, p, 0.0f, lobe_flags};
   }
 
   void layer(const unsigned char* p, const Color3& w, int depth) {
     const auto& q = closures::as_params<closures::LayerParams>(p);
-    int first = n;
+    int first = bsdf.n_lobes_;
     visit(q.top, w, depth + 1);
     Color3 a; // top albedo per unit weight
-    for (int i = first; i < n; ++i)
-      a += lobes[i].weight * lobe_albedo(kernels, lobes[i].id, lobes[i].params, wo);
+    for (int i = first; i < bsdf.n_lobes_; ++i)
+      a += bsdf.lobes_[i].weight * bsdf.lobe_albedo(i, wo);
     auto frac = [](float x, float wc) {
       return wc > 0.0f ? closures::clampf(x / wc, 0.0f, 1.0f) : 1.0f;
     };
@@ -109,6 +118,8 @@ struct Flattener {
     visit(q.base, w * t, depth + 1);
   }
 };
+
+namespace {
 
 // Lobe i sees the pair (wo, wi) given the geometric side test.
 bool side_ok(uint32_t flags, const Vec3& wo, const Vec3& wi, const Vec3& ng) {
@@ -121,20 +132,28 @@ bool side_ok(uint32_t flags, const Vec3& wo, const Vec3& wi, const Vec3& ng) {
 
 void Bsdf::build(const ClosureNode* closure, const Vec3& wo, const Vec3& Ng,
                  const ClosureKernels* kernels) {
-  *this = Bsdf{};
+  // Only what build() fills is reset: the lobe slots past n_lobes_ and their states are unused.
+  emission = transparency = holdout = background = debug_weight = Color3{};
+  debug_tag = nullptr;
+  n_lobes_ = 0;
   ng_ = normalize(Ng);
   kernels_ = kernels;
-  Flattener f{*this, lobes_, n_lobes_, wo, kernels};
-  f.visit(closure, Color3{1, 1, 1}, 0);
+  BsdfBuilder{*this, wo}.visit(closure, Color3{1, 1, 1}, 0);
+  // A lone lobe's selection weight matters only through sample()'s rescaling of u.x (u.x s / s,
+  // which can round one ulp off u.x): computing it keeps renders bit-identical to
+  // setting lobes up per call, and costs one albedo estimate per shading point.
   total_select_ = 0.0f;
   for (int i = 0; i < n_lobes_; ++i) {
     Lobe& l = lobes_[i];
-    l.flags = closures::lobe_flags(l.id, l.params);
-    float s = luminance(l.weight * lobe_albedo(kernels, l.id, l.params, wo));
+    float s = luminance(l.weight * lobe_albedo(i, wo));
     // A lobe with no albedo estimate at wo still gets a small share, so that it is sampled.
     l.select_weight = closures::maxf(s, 1e-3f * luminance(l.weight));
     total_select_ += l.select_weight;
   }
+}
+
+Color3 Bsdf::lobe_albedo(int i, const Vec3& wo) const {
+  return lobe_albedo_of(kernels_, lobes_[i].id, state(i), wo);
 }
 
 bool Bsdf::has_non_delta() const {
@@ -149,7 +168,7 @@ BsdfEval Bsdf::eval(const Vec3& wo, const Vec3& wi, Transport mode) const {
   for (int i = 0; i < n_lobes_; ++i) {
     const Lobe& l = lobes_[i];
     if ((l.flags & kLobeSpecular) || !side_ok(l.flags, wo, wi, ng_)) continue;
-    BsdfEval e = lobe_eval(kernels_, l, wo, wi, mode);
+    BsdfEval e = lobe_eval(kernels_, l.id, state(i), wo, wi, mode);
     r.value += l.weight * e.value;
     r.pdf += (l.select_weight / total_select_) * e.pdf;
   }
@@ -169,7 +188,7 @@ std::optional<BsdfSample> Bsdf::sample(const Vec3& wo, const Vec3& u, Transport 
   const Lobe& l = lobes_[i];
   float p_pick = l.select_weight / total_select_;
   float ux = closures::clampf(x / l.select_weight, 0.0f, closures::kOneMinusEpsilon);
-  auto s = lobe_sample(kernels_, l, wo, {ux, u.y, u.z}, mode);
+  auto s = lobe_sample(kernels_, l.id, state(i), wo, {ux, u.y, u.z}, mode);
   if (!s || !side_ok(s->flags, wo, s->wi, ng_)) return std::nullopt;
   if (s->flags & kLobeSpecular) {
     s->weight = closures::sanitize(l.weight * s->weight / p_pick);
@@ -185,8 +204,7 @@ std::optional<BsdfSample> Bsdf::sample(const Vec3& wo, const Vec3& u, Transport 
 
 Color3 Bsdf::albedo(const Vec3& wo) const {
   Color3 a;
-  for (int i = 0; i < n_lobes_; ++i)
-    a += lobes_[i].weight * lobe_albedo(kernels_, lobes_[i].id, lobes_[i].params, wo);
+  for (int i = 0; i < n_lobes_; ++i) a += lobes_[i].weight * lobe_albedo(i, wo);
   return a;
 }
 

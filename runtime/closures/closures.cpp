@@ -4,6 +4,7 @@
 
 #include "closure_registry.h"
 #include "dispatch.h"
+#include "plugin.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -132,9 +133,10 @@ Params& Params::set_closure(std::string_view name, const ClosureNode* v) {
 }
 
 BsdfEval eval(int id, const unsigned char* params, const Vec3& wo, const Vec3& wi, Transport mode) {
+  if (const CustomClosure* c = plugin(id)) return plugin_eval(*c, params, wo, wi, mode);
   BsdfEval r;
   with_lobe(id, params, [&](const auto& l, const Frame& f) {
-    LobeEval e = eval_lobe(l, f, wo, wi, mode);
+    BsdfEval e = eval_lobe(l, f, wo, wi, mode);
     r.value = e.value;
     r.pdf = e.pdf;
   });
@@ -142,45 +144,101 @@ BsdfEval eval(int id, const unsigned char* params, const Vec3& wo, const Vec3& w
 }
 
 float pdf(int id, const unsigned char* params, const Vec3& wo, const Vec3& wi) {
+  if (const CustomClosure* c = plugin(id)) return plugin_pdf(*c, params, wo, wi);
   return eval(id, params, wo, wi, Transport::Radiance).pdf;
 }
 
 std::optional<BsdfSample> sample(int id, const unsigned char* params, const Vec3& wo, const Vec3& u,
                                  Transport mode) {
   std::optional<BsdfSample> r;
+  if (const CustomClosure* c = plugin(id)) {
+    BsdfSample s = plugin_sample(*c, params, wo, u, mode);
+    if (s.pdf > 0.0f) r = s;
+    return r;
+  }
   with_lobe(id, params, [&](const auto& l, const Frame& f) {
-    LobeSample s = sample_lobe(l, f, wo, u, mode);
-    if (s.ok) r = BsdfSample{s.wi, s.weight, s.pdf, s.flags, s.eta};
+    BsdfSample s = sample_lobe(l, f, wo, u, mode);
+    if (s.pdf > 0.0f) r = s;
   });
   return r;
 }
 
 Color3 albedo(int id, const unsigned char* params, const Vec3& wo) {
+  if (const CustomClosure* c = plugin(id)) return plugin_albedo(*c, params, wo);
   Color3 r;
   with_lobe(id, params, [&](const auto& l, const Frame& f) { r = albedo_lobe(l, f, wo); });
   return r;
 }
 
 uint32_t lobe_flags(int id, const unsigned char* params) {
+  if (const CustomClosure* c = plugin(id)) return c->lobe_flags;
   uint32_t r = 0;
   with_lobe(id, params, [&](const auto& l, const Frame&) { r = l.flags(); });
   return r;
 }
 
+// A registered closure's state is its parameter block's address: its functions take the
+// block.
+const unsigned char* plugin_params(const void* state) {
+  return *static_cast<const unsigned char* const*>(state);
+}
+
+uint32_t setup(int id, const unsigned char* params, void* state) {
+  if (const CustomClosure* c = plugin(id)) {
+    *static_cast<const unsigned char**>(state) = params;
+    return c->lobe_flags;
+  }
+  return setup_lobe(id, params, state);
+}
+
+BsdfEval eval_prepared(int id, const void* state, const Vec3& wo, const Vec3& wi, Transport mode) {
+  if (const CustomClosure* c = plugin(id))
+    return plugin_eval(*c, plugin_params(state), wo, wi, mode);
+  BsdfEval r;
+  with_prepared(id, state,
+                [&](const auto& l, const Frame& f) { r = eval_lobe(l, f, wo, wi, mode); });
+  return r;
+}
+
+std::optional<BsdfSample> sample_prepared(int id, const void* state, const Vec3& wo, const Vec3& u,
+                                          Transport mode) {
+  std::optional<BsdfSample> r;
+  if (const CustomClosure* c = plugin(id)) {
+    BsdfSample s = plugin_sample(*c, plugin_params(state), wo, u, mode);
+    if (s.pdf > 0.0f) r = s;
+    return r;
+  }
+  with_prepared(id, state, [&](const auto& l, const Frame& f) {
+    BsdfSample s = sample_lobe(l, f, wo, u, mode);
+    if (s.pdf > 0.0f) r = s;
+  });
+  return r;
+}
+
+Color3 albedo_prepared(int id, const void* state, const Vec3& wo) {
+  if (const CustomClosure* c = plugin(id)) return plugin_albedo(*c, plugin_params(state), wo);
+  Color3 r;
+  with_prepared(id, state, [&](const auto& l, const Frame& f) { r = albedo_lobe(l, f, wo); });
+  return r;
+}
+
 bool has_implementation(int id) {
   if (id < 0 || id >= static_cast<int>(registry::closures().size())) return false;
+  if (plugin(id)) return true;
   uint32_t fl = registry::closures()[id].flags;
   if (!(fl & (registry::kReflect | registry::kTransmit))) return true; // handled by Bsdf::build
-  if (id == kMeasuredId) return true; // its default block names no file, so it cannot be probed
+  if (id == closure_id::measured_bsdf)
+    return true; // its default block names no file, so it cannot be probed
   Params p(registry::closures()[id].key);
   return with_lobe(id, p.data(), [](const auto&, const Frame&) {});
 }
 
 const char* param_warning(int id, const unsigned char* params) {
   float thickness = 0.0f;
-  if (id == kConductorId) thickness = as<ConductorParams>(params).thinfilm_thickness;
-  if (id == kDielectricId) thickness = as<DielectricParams>(params).thinfilm_thickness;
-  if (id == kGeneralizedSchlickId)
+  if (id == closure_id::conductor_bsdf) thickness = as<ConductorParams>(params).thinfilm_thickness;
+  if (id == closure_id::dielectric_bsdf)
+    thickness = as<DielectricParams>(params).thinfilm_thickness;
+  if (id == closure_id::generalized_schlick_bsdf)
     thickness = as<GeneralizedSchlickParams>(params).thinfilm_thickness;
   return thickness < 0.0f || thickness != thickness
              ? "thinfilm_thickness is negative or NaN: no thin film"

@@ -51,6 +51,17 @@ std::optional<BsdfSample> sample(int id, const unsigned char* params, const Vec3
 Color3 albedo(int id, const unsigned char* params, const Vec3& wo); // directional albedo
 uint32_t lobe_flags(int id, const unsigned char* params);           // LobeFlags (bsdf.h)
 bool has_implementation(int id);
+
+// The same, set up once and evaluated many times (what Bsdf does per shading point): setup
+// writes closure `id`'s lobe for `params` into `state` (Bsdf::kLobeStateBytes bytes, aligned to
+// Bsdf::kLobeStateAlign) and returns its LobeFlags, 0 when there is no lobe (state unset); the
+// *_prepared calls read it and return exactly what eval/sample/albedo above return.
+uint32_t setup(int id, const unsigned char* params, void* state);
+BsdfEval eval_prepared(int id, const void* state, const Vec3& wo, const Vec3& wi,
+                       Transport mode = Transport::Radiance);
+std::optional<BsdfSample> sample_prepared(int id, const void* state, const Vec3& wo, const Vec3& u,
+                                          Transport mode = Transport::Radiance);
+Color3 albedo_prepared(int id, const void* state, const Vec3& wo);
 // A note about a parameter value the library ignores (a negative thin-film thickness), or null.
 const char* param_warning(int id, const unsigned char* params);
 

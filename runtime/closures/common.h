@@ -1,11 +1,12 @@
-// Shared math for the closure library: constants, safe functions, the shading frame, the
-// per-lobe result types and the sampling warps every lobe uses.
+// Shared math for the closure library: constants, safe functions, the shading frame and the
+// sampling warps every lobe uses.
 //
 // Plain header-only C++ with no allocation, exceptions or virtuals: the same source compiles
 // natively and with clang-19 to LLVM bitcode (bitcode.cpp). Lobes work in a local frame where
 // the shading normal is +z; world <-> local conversion happens once, in the dispatch.
 #pragma once
 
+#include "lobe/bsdf.h"
 #include "lobe/vec.h"
 
 #include <cmath>
@@ -16,10 +17,6 @@ namespace lobe::closures {
 inline constexpr float kPi = 3.14159265358979323846f;
 inline constexpr float kInvPi = 0.31830988618379067154f;
 inline constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
-
-// Lobe flags as in bsdf.h (duplicated as constants so this header needs nothing else).
-inline constexpr uint32_t kFlagReflect = 1u << 0, kFlagTransmit = 1u << 1, kFlagDiffuse = 1u << 2,
-                          kFlagGlossy = 1u << 3, kFlagSpecular = 1u << 4;
 
 inline float safe_sqrt(float x) { return std::sqrt(x > 0.0f ? x : 0.0f); }
 inline float clampf(float x, float lo, float hi) { return x < lo ? lo : (x > hi ? hi : x); }
@@ -36,22 +33,10 @@ inline Vec3 sanitize(const Vec3& v) {
   return {f(v.x), f(v.y), f(v.z)};
 }
 
-// Result of evaluating a lobe: value = f(wo, wi) |cos theta_i|, pdf of sampling wi.
-struct LobeEval {
-  Vec3 value;
-  float pdf = 0.0f;
-};
-
-// Result of sampling a lobe (local or world space depending on the caller). `ok` false: no
-// sample. For delta lobes pdf is 1 and weight the throughput.
-struct LobeSample {
-  Vec3 wi;
-  Vec3 weight;
-  float pdf = 0.0f;
-  uint32_t flags = 0;
-  float eta = 1.0f;
-  bool ok = false;
-};
+// Lobes return the Bsdf's own result types and flags (lobe/bsdf.h): BsdfEval (value =
+// f(wo, wi) |cos theta_i| and the pdf of sampling wi) and BsdfSample, in the lobe's local frame
+// or world space depending on the caller; a lobe without a sample returns pdf 0. For delta
+// lobes the pdf is the probability of the branch taken and the weight its throughput.
 
 // Orthonormal frame around a normal; (t, b, n) right-handed.
 struct Frame {

@@ -26,23 +26,23 @@
 #pragma once
 
 #include "common.h"
+#include "params.h"
 
 namespace lobe::closures {
 
 // Samples a cosine-weighted direction and reports the lobe's own eval() for it, so sampling
 // and evaluation cannot disagree. Works for reflection (wi.z > 0) and transmission lobes.
 template <class L>
-LobeSample sample_cosine(const L& lobe, const Vec3& wo, const Vec3& u, bool transmit) {
-  LobeSample s;
+BsdfSample sample_cosine(const L& lobe, const Vec3& wo, const Vec3& u, bool transmit) {
+  BsdfSample s;
   Vec3 wi = sample_cosine_hemisphere(u.x, u.y);
   if (transmit) wi.z = -wi.z;
-  LobeEval e = lobe.eval(wo, wi);
+  BsdfEval e = lobe.eval(wo, wi);
   if (!(e.pdf > 0.0f)) return s;
   s.wi = wi;
   s.pdf = e.pdf;
   s.weight = e.value / e.pdf;
-  s.flags = kFlagDiffuse | (transmit ? kFlagTransmit : kFlagReflect);
-  s.ok = true;
+  s.flags = kLobeDiffuse | (transmit ? kLobeTransmit : kLobeReflect);
   return s;
 }
 
@@ -50,14 +50,14 @@ LobeSample sample_cosine(const L& lobe, const Vec3& wo, const Vec3& u, bool tran
 struct Lambert {
   Vec3 rho;
   bool transmit = false;
-  uint32_t flags() const { return kFlagDiffuse | (transmit ? kFlagTransmit : kFlagReflect); }
-  LobeEval eval(const Vec3& wo, const Vec3& wi) const {
+  uint32_t flags() const { return kLobeDiffuse | (transmit ? kLobeTransmit : kLobeReflect); }
+  BsdfEval eval(const Vec3& wo, const Vec3& wi) const {
     float c = transmit ? -wi.z : wi.z;
     if (!(c > 0.0f) || !(wo.z > 0.0f)) return {};
     return {rho * (c * kInvPi), c * kInvPi};
   }
-  LobeSample sample(const Vec3& wo, const Vec3& u) const {
-    return wo.z > 0.0f ? sample_cosine(*this, wo, u, transmit) : LobeSample{};
+  BsdfSample sample(const Vec3& wo, const Vec3& u) const {
+    return wo.z > 0.0f ? sample_cosine(*this, wo, u, transmit) : BsdfSample{};
   }
   Vec3 albedo(const Vec3& wo) const { return wo.z > 0.0f ? rho : Vec3{}; }
 };
@@ -81,15 +81,15 @@ struct OrenNayar {
     if (!(s2 < 1e30f)) s2 = 1e30f;
     return {rho, 1.0f - 0.5f * s2 / (s2 + 0.33f), 0.45f * s2 / (s2 + 0.09f)};
   }
-  uint32_t flags() const { return kFlagDiffuse | kFlagReflect; }
-  LobeEval eval(const Vec3& wo, const Vec3& wi) const {
+  uint32_t flags() const { return kLobeDiffuse | kLobeReflect; }
+  BsdfEval eval(const Vec3& wo, const Vec3& wi) const {
     if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return {};
     float s = dot(wo, wi) - wo.z * wi.z;
     float st = s > 0.0f ? s / maxf(wo.z, wi.z) : 0.0f;
     return {rho * ((A + B * st) * wi.z * kInvPi), wi.z * kInvPi};
   }
-  LobeSample sample(const Vec3& wo, const Vec3& u) const {
-    return wo.z > 0.0f ? sample_cosine(*this, wo, u, false) : LobeSample{};
+  BsdfSample sample(const Vec3& wo, const Vec3& u) const {
+    return wo.z > 0.0f ? sample_cosine(*this, wo, u, false) : BsdfSample{};
   }
   Vec3 albedo(const Vec3& wo) const {
     if (!(wo.z > 0.0f)) return {};
@@ -113,14 +113,14 @@ struct FujiiOrenNayar {
   Vec3 rho;
   float r = 0;
   bool compensate = false;
-  uint32_t flags() const { return kFlagDiffuse | kFlagReflect; }
+  uint32_t flags() const { return kLobeDiffuse | kLobeReflect; }
   float avg_albedo() const { return (1.0f + kFonC2 * r) / (1.0f + kFonC1 * r); }
   Vec3 rho_ms() const {
     float e = avg_albedo();
     Vec3 den = splat(1.0f) - rho * (1.0f - e);
     return rho * rho * e / Vec3{maxf(den.x, 1e-6f), maxf(den.y, 1e-6f), maxf(den.z, 1e-6f)};
   }
-  LobeEval eval(const Vec3& wo, const Vec3& wi) const {
+  BsdfEval eval(const Vec3& wo, const Vec3& wi) const {
     if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return {};
     float s = dot(wo, wi) - wo.z * wi.z;
     float st = s > 0.0f ? s / maxf(wo.z, wi.z) : s;
@@ -133,8 +133,8 @@ struct FujiiOrenNayar {
     }
     return {f * wi.z, wi.z * kInvPi};
   }
-  LobeSample sample(const Vec3& wo, const Vec3& u) const {
-    return wo.z > 0.0f ? sample_cosine(*this, wo, u, false) : LobeSample{};
+  BsdfSample sample(const Vec3& wo, const Vec3& u) const {
+    return wo.z > 0.0f ? sample_cosine(*this, wo, u, false) : BsdfSample{};
   }
   Vec3 albedo(const Vec3& wo) const {
     if (!(wo.z > 0.0f)) return {};
@@ -154,8 +154,8 @@ struct Burley {
     float d = r - 1.0f;
     return maxf(1.0f, 1.03149f + 0.59093f * d - 0.48028f * d * d + 1e-4f);
   }
-  uint32_t flags() const { return kFlagDiffuse | kFlagReflect; }
-  LobeEval eval(const Vec3& wo, const Vec3& wi) const {
+  uint32_t flags() const { return kLobeDiffuse | kLobeReflect; }
+  BsdfEval eval(const Vec3& wo, const Vec3& wi) const {
     if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return {};
     Vec3 h = normalize(wo + wi);
     float cd = dot(wi, h);
@@ -168,10 +168,123 @@ struct Burley {
     float f = kInvPi * k * F(wi.z) * F(wo.z);
     return {rho * (f * wi.z), wi.z * kInvPi};
   }
-  LobeSample sample(const Vec3& wo, const Vec3& u) const {
-    return wo.z > 0.0f ? sample_cosine(*this, wo, u, false) : LobeSample{};
+  BsdfSample sample(const Vec3& wo, const Vec3& u) const {
+    return wo.z > 0.0f ? sample_cosine(*this, wo, u, false) : BsdfSample{};
   }
   Vec3 albedo(const Vec3& wo) const { return wo.z > 0.0f ? rho : Vec3{}; }
+};
+
+// ---- registry entries (params.h) ------------------------------------------------------------
+
+struct DiffuseParams {
+  Vec3 N;
+  Str label;
+}; // diffuse, translucent
+struct AlbedoParams {
+  Vec3 N;
+  Color3 albedo;
+  Str label;
+}; // translucent_bsdf
+struct OrenNayarParams {
+  Vec3 N;
+  float sigma;
+  Str label;
+};
+struct OrenNayarDiffuseParams {
+  Vec3 N;
+  Color3 albedo;
+  float roughness;
+  int energy_compensation;
+  Str label;
+};
+struct SubsurfaceBssrdfParams {
+  Vec3 N;
+  Color3 albedo;
+  float transmission_depth;
+  Color3 transmission_color;
+  float anisotropy;
+  Str label;
+};
+
+// diffuse(N) and translucent(N): white Lambert reflection / transmission.
+template <bool kTransmit> struct LambertClosure {
+  using Params = DiffuseParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N), offsetof(Params, label)};
+  using Lobe = Lambert;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    l = Lambert{splat(1.0f), kTransmit};
+    return true;
+  }
+};
+template <> struct Closure<closure_id::diffuse> : LambertClosure<false> {};
+template <> struct Closure<closure_id::translucent> : LambertClosure<true> {};
+
+template <> struct Closure<closure_id::translucent_bsdf> {
+  using Params = AlbedoParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N), offsetof(Params, albedo),
+                                        offsetof(Params, label)};
+  using Lobe = Lambert;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    l = Lambert{vmax0(q.albedo), true};
+    return true;
+  }
+};
+
+template <> struct Closure<closure_id::oren_nayar> {
+  using Params = OrenNayarParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N), offsetof(Params, sigma),
+                                        offsetof(Params, label)};
+  using Lobe = OrenNayar;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    l = OrenNayar::make(splat(1.0f), q.sigma);
+    return true;
+  }
+};
+
+template <> struct Closure<closure_id::oren_nayar_diffuse_bsdf> {
+  using Params = OrenNayarDiffuseParams;
+  static constexpr size_t kOffsets[] = {
+      offsetof(Params, N), offsetof(Params, albedo), offsetof(Params, roughness),
+      offsetof(Params, energy_compensation), offsetof(Params, label)};
+  using Lobe = FujiiOrenNayar;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    float r = clampf(q.roughness, 0.0f, 1.0f);
+    l = FujiiOrenNayar{vmax0(q.albedo), r == r ? r : 0.0f, q.energy_compensation != 0};
+    return true;
+  }
+};
+
+template <> struct Closure<closure_id::burley_diffuse_bsdf> {
+  using Params = AlbedoRoughnessParams;
+  static constexpr size_t kOffsets[] = LOBE_ALBEDO_ROUGHNESS_OFFSETS;
+  using Lobe = Burley;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    float r = clampf(q.roughness, 0.0f, 1.0f);
+    l = Burley{vmax0(q.albedo), r == r ? r : 0.0f};
+    return true;
+  }
+};
+
+// Lobe has no subsurface transport: subsurface_bssrdf is diffuse with the medium's albedo.
+template <> struct Closure<closure_id::subsurface_bssrdf> {
+  using Params = SubsurfaceBssrdfParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N),
+                                        offsetof(Params, albedo),
+                                        offsetof(Params, transmission_depth),
+                                        offsetof(Params, transmission_color),
+                                        offsetof(Params, anisotropy),
+                                        offsetof(Params, label)};
+  using Lobe = Lambert;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    l = Lambert{vmax0(sanitize(q.albedo)), false};
+    return true;
+  }
 };
 
 } // namespace lobe::closures

@@ -1,15 +1,19 @@
 // From a registry id and a parameter block to a lobe in its local frame, and the generic
-// world-space wrappers around any lobe. Shared by the native API (closures.cpp) and the
+// world-space wrappers around any lobe. The family headers are included here (a new family is
+// one more include); the switch over ids and the checks against the registry are generated
+// from its table (LOBE_CLOSURE_TABLE), so a new closure is its family's Closure<> plus its
+// registry row. Shared by the native API (closures.cpp) and the
 // bitcode entries (bitcode.cpp), where the id is a constant and the switch folds away.
 //
 // A lobe type L provides, in its local frame (normal = +z):
-//   LobeEval eval(wo, wi[, mode]);  LobeSample sample(wo, u[, mode]);  Vec3 albedo(wo);
+//   BsdfEval eval(wo, wi[, mode]);  BsdfSample sample(wo, u[, mode]);  Vec3 albedo(wo);
 //   uint32_t flags();  and optionally `static constexpr bool kOneSided = true` for lobes that
 // distinguish inside from outside (dielectrics). Other lobes are two-sided: when wo is below
 // the shading normal the frame is mirrored so that they see wo above it.
 #pragma once
 
 #include "common.h"
+#include "components.h"
 #include "diffuse.h"
 #include "glossy.h"
 #ifndef LOBE_BITCODE
@@ -21,131 +25,64 @@
 #include "sheen.h"
 #include "toon.h"
 
+#include <new>
+#include <type_traits>
+
 namespace lobe::closures {
 
 template <class P> const P& as(const unsigned char* p) { return as_params<P>(p); }
 
-// Calls fn(lobe, frame) for closure `id` and returns true; false when `id` has no BSDF lobe or
-// its parameters are degenerate (zero/NaN normal).
-template <class Fn> bool with_lobe(int id, const unsigned char* p, Fn&& fn) {
-  Frame f;
-  switch (id) {
-  case kDiffuseId:
-  case kTranslucentId: {
-    if (!make_frame(as<DiffuseParams>(p).N, f)) return false;
-    fn(Lambert{splat(1.0f), id == kTranslucentId}, f);
-    return true;
-  }
-  case kTranslucentBsdfId: {
-    const auto& q = as<AlbedoParams>(p);
-    if (!make_frame(q.N, f)) return false;
-    fn(Lambert{vmax0(q.albedo), true}, f);
-    return true;
-  }
-  case kOrenNayarId: {
-    const auto& q = as<OrenNayarParams>(p);
-    if (!make_frame(q.N, f)) return false;
-    fn(OrenNayar::make(splat(1.0f), q.sigma), f);
-    return true;
-  }
-  case kOrenNayarDiffuseId: {
-    const auto& q = as<OrenNayarDiffuseParams>(p);
-    if (!make_frame(q.N, f)) return false;
-    float r = clampf(q.roughness, 0.0f, 1.0f);
-    fn(FujiiOrenNayar{vmax0(q.albedo), r == r ? r : 0.0f, q.energy_compensation != 0}, f);
-    return true;
-  }
-  case kBurleyId: {
-    const auto& q = as<AlbedoRoughnessParams>(p);
-    if (!make_frame(q.N, f)) return false;
-    float r = clampf(q.roughness, 0.0f, 1.0f);
-    fn(Burley{vmax0(q.albedo), r == r ? r : 0.0f}, f);
-    return true;
-  }
-  case kMicrofacetId: {
-    const auto& q = as<MicrofacetParams>(p);
-    if (!make_frame(q.N, q.U, f)) return false;
-    fn(make_microfacet(q.distribution, q.xalpha, q.yalpha, q.eta, q.refract, q.energy_compensation),
-       f);
-    return true;
-  }
-  case kConductorId: {
-    const auto& q = as<ConductorParams>(p);
-    if (!make_frame(q.N, q.U, f)) return false;
-    fn(make_conductor(q), f);
-    return true;
-  }
-  case kDielectricId: {
-    const auto& q = as<DielectricParams>(p);
-    if (!make_frame(q.N, q.U, f)) return false;
-    fn(make_dielectric(q), f);
-    return true;
-  }
-  case kGeneralizedSchlickId: {
-    const auto& q = as<GeneralizedSchlickParams>(p);
-    if (!make_frame(q.N, q.U, f)) return false;
-    fn(make_generalized_schlick(q), f);
-    return true;
-  }
-  case kReflectionId: { // eta 0 (OSL's reflection(N)): no Fresnel, a perfect mirror
-    const auto& q = as<ReflectionParams>(p);
-    if (!make_frame(q.N, f)) return false;
-    fn(make_specular(q.eta > 0.0f ? q.eta : 0.0f, false), f);
-    return true;
-  }
-  case kRefractionId: {
-    const auto& q = as<ReflectionParams>(p);
-    if (!make_frame(q.N, f)) return false;
-    fn(make_specular(q.eta > 0.0f ? q.eta : 1.0f, true), f);
-    return true;
-  }
-  case kPhongId: {
-    const auto& q = as<PhongParams>(p);
-    if (!make_frame(q.N, f)) return false;
-    fn(Phong{clampf(q.exponent == q.exponent ? q.exponent : 0.0f, 0.0f, 1e6f)}, f);
-    return true;
-  }
-  case kBlinnPhongId: {
-    const auto& q = as<PhongParams>(p);
-    if (!make_frame(q.N, f)) return false;
-    fn(BlinnPhong::make(q.exponent), f);
-    return true;
-  }
-  case kWardId: {
-    const auto& q = as<WardParams>(p);
-    if (!make_frame(q.N, q.T, f)) return false;
-    auto c = [](float a) { return a == a ? clampf(a, 1e-3f, 4.0f) : 1e-3f; };
-    fn(Ward{MicrofacetDistribution::make(c(q.ax), c(q.ay), true)}, f);
-    return true;
-  }
-  case kSheenId: {
-    const auto& q = as<AlbedoRoughnessParams>(p);
-    if (!make_frame(q.N, f)) return false;
-    float r = q.roughness == q.roughness ? clampf(q.roughness, 0.01f, 1.0f) : 1.0f;
-    fn(Sheen::make(vmax0(sanitize(q.albedo)), r), f);
-    return true;
-  }
-  case kSubsurfaceBssrdfId: { // Lobe has no subsurface transport: diffuse with the albedo
-    const auto& q = as<SubsurfaceBssrdfParams>(p);
-    if (!make_frame(q.N, f)) return false;
-    fn(Lambert{vmax0(sanitize(q.albedo)), false}, f);
-    return true;
-  }
-  case kToonId: {
-    const auto& q = as<ToonParams>(p);
-    if (!make_frame(q.N, f)) return false;
-    fn(Toon::make(sanitize(q.albedo), sanitize(q.specular), q.shininess, q.bands, q.softness), f);
-    return true;
-  }
-#ifndef LOBE_BITCODE
-  case kMeasuredId: {
-    const auto& q = as<MeasuredParams>(p);
-    const MeasuredTable* t = measured_table(q.filename);
-    if (!t || !make_frame(q.N, f)) return false;
-    fn(Measured{t, vmax0(sanitize(q.tint))}, f);
-    return true;
-  }
+// Closure<Id> has a lobe (a BSDF entry's implementation, params.h).
+template <int Id> constexpr bool has_lobe() {
+  return requires { typename Closure<Id>::Lobe; };
+}
+
+// What the registry says about entry Id, checked against its family's Closure<Id>: the
+// parameter struct has the registry's layout, and a BSDF entry has a lobe (in the bitcode,
+// unless the entry is native-only). Nothing to check for entries out of the families' reach.
+template <int Id> constexpr bool implementation_matches_registry() {
+  using C = Closure<Id>;
+  const registry::ClosureEntry& e = registry::table::kClosures[Id];
+#ifdef LOBE_BITCODE
+  if (e.flags & registry::kNativeOnly) return true;
 #endif
+  if constexpr (std::is_void_v<typename C::Params>) {
+    if (!e.params.empty()) return false;
+  } else {
+    if (!layout_is(Id, C::kOffsets, sizeof(typename C::Params))) return false;
+  }
+  bool bsdf = (e.flags & (registry::kReflect | registry::kTransmit)) != 0;
+  return bsdf == has_lobe<Id>();
+}
+#define LOBE_CHECK(key, ...)                                                                       \
+  static_assert(implementation_matches_registry<closure_id::key>(),                                \
+                "closure '" #key "': its Closure<> (family header) does not match the registry");
+LOBE_CLOSURE_TABLE(LOBE_CHECK)
+#undef LOBE_CHECK
+
+// Calls fn(lobe, frame) for entry Id's lobe set up from parameter block p.
+template <int Id, class Fn> bool with_closure(const unsigned char* p, Fn& fn) {
+  if constexpr (has_lobe<Id>()) {
+    using C = Closure<Id>;
+    typename C::Lobe lobe;
+    Frame f;
+    if (!C::make(as<typename C::Params>(p), lobe, f)) return false;
+    fn(lobe, f);
+    return true;
+  } else {
+    return false;
+  }
+}
+
+// Calls fn(lobe, frame) for closure `id` and returns true; false when `id` has no BSDF lobe or
+// its parameters are degenerate (zero/NaN normal). The switch is generated from the registry.
+template <class Fn> bool with_lobe(int id, const unsigned char* p, Fn&& fn) {
+  switch (id) {
+#define LOBE_CASE(key, ...)                                                                        \
+  case closure_id::key:                                                                            \
+    return with_closure<closure_id::key>(p, fn);
+    LOBE_CLOSURE_TABLE(LOBE_CASE)
+#undef LOBE_CASE
   default:
     return false;
   }
@@ -168,10 +105,10 @@ template <class L> float to_local(const Frame& f, const Vec3& wo, Vec3& o) {
 }
 
 template <class L>
-LobeEval eval_lobe(const L& l, const Frame& f, const Vec3& wo, const Vec3& wi, Transport mode) {
+BsdfEval eval_lobe(const L& l, const Frame& f, const Vec3& wo, const Vec3& wi, Transport mode) {
   Vec3 o, i = f.to_local(wi);
   i.z *= to_local<L>(f, wo, o);
-  LobeEval e;
+  BsdfEval e;
   if constexpr (requires { l.eval(o, i, mode); })
     e = l.eval(o, i, mode);
   else
@@ -182,17 +119,17 @@ LobeEval eval_lobe(const L& l, const Frame& f, const Vec3& wo, const Vec3& wi, T
 }
 
 template <class L>
-LobeSample sample_lobe(const L& l, const Frame& f, const Vec3& wo, const Vec3& u, Transport mode) {
+BsdfSample sample_lobe(const L& l, const Frame& f, const Vec3& wo, const Vec3& u, Transport mode) {
   Vec3 o;
   float sign = to_local<L>(f, wo, o);
   Vec3 uc = {clampf(u.x, 0.0f, kOneMinusEpsilon), clampf(u.y, 0.0f, kOneMinusEpsilon),
              clampf(u.z, 0.0f, kOneMinusEpsilon)};
-  LobeSample s;
+  BsdfSample s;
   if constexpr (requires { l.sample(o, uc, mode); })
     s = l.sample(o, uc, mode);
   else
     s = l.sample(o, uc);
-  if (!s.ok || !(s.pdf > 0.0f && s.pdf < INFINITY)) return {};
+  if (!(s.pdf > 0.0f && s.pdf < INFINITY)) return {};
   s.wi.z *= sign;
   // The lobe evaluated s.wi; a direction that is already unit is not normalised again, since
   // one ulp moves sharp lobes at grazing incidence by more than 1e-4 and then sample() would
@@ -209,6 +146,65 @@ template <class L> Vec3 albedo_lobe(const L& l, const Frame& f, const Vec3& wo) 
   Vec3 o;
   to_local<L>(f, wo, o);
   return sanitize(l.albedo(o));
+}
+
+// ---- lobes set up once per shading point ---------------------------------------------------
+//
+// Bsdf::build sets each lobe up once (Closure<Id>::make: the frame, clamping, Fresnel
+// averages, table look-ups) into a state block of Bsdf::kLobeStateBytes; eval, sample and
+// albedo then read the lobe from there. Same values as setting up at every call, bit for bit.
+
+template <class L> struct Prepared {
+  Frame frame;
+  L lobe;
+};
+
+template <int Id> constexpr bool prepared_fits() {
+  if constexpr (has_lobe<Id>()) {
+    using P = Prepared<typename Closure<Id>::Lobe>;
+    return sizeof(P) <= Bsdf::kLobeStateBytes && alignof(P) <= Bsdf::kLobeStateAlign;
+  } else {
+    return true;
+  }
+}
+#define LOBE_CHECK(key, ...)                                                                       \
+  static_assert(prepared_fits<closure_id::key>(),                                                  \
+                "closure '" #key "': its lobe does not fit Bsdf::kLobeStateBytes");
+LOBE_CLOSURE_TABLE(LOBE_CHECK)
+#undef LOBE_CHECK
+
+// Sets up closure `id`'s lobe from parameter block p in `state`; its LobeFlags, 0 when there
+// is no lobe (state untouched).
+inline uint32_t setup_lobe(int id, const unsigned char* p, void* state) {
+  uint32_t flags = 0;
+  with_lobe(id, p, [&](const auto& l, const Frame& f) {
+    using L = std::decay_t<decltype(l)>;
+    flags = (new (state) Prepared<L>{f, l})->lobe.flags();
+  });
+  return flags;
+}
+
+template <int Id, class Fn> bool with_prepared_as(const void* state, Fn& fn) {
+  if constexpr (has_lobe<Id>()) {
+    const auto& s = *static_cast<const Prepared<typename Closure<Id>::Lobe>*>(state);
+    fn(s.lobe, s.frame);
+    return true;
+  } else {
+    return false;
+  }
+}
+
+// Calls fn(lobe, frame) for the lobe setup_lobe(id, ...) put in `state`.
+template <class Fn> bool with_prepared(int id, const void* state, Fn&& fn) {
+  switch (id) {
+#define LOBE_CASE(key, ...)                                                                        \
+  case closure_id::key:                                                                            \
+    return with_prepared_as<closure_id::key>(state, fn);
+    LOBE_CLOSURE_TABLE(LOBE_CASE)
+#undef LOBE_CASE
+  default:
+    return false;
+  }
 }
 
 } // namespace lobe::closures

@@ -17,6 +17,7 @@
 
 #include "common.h"
 #include "measured_sampler.h"
+#include "params.h"
 #include "quadrature.h"
 
 #include <string>
@@ -44,15 +45,15 @@ const MeasuredTable* measured_table(const char* path);
 struct Measured {
   const MeasuredTable* table = nullptr;
   Vec3 tint{1, 1, 1};
-  uint32_t flags() const { return kFlagReflect | kFlagGlossy; }
+  uint32_t flags() const { return kLobeReflect | kLobeGlossy; }
   static constexpr float kMix = MeasuredSampler::kCosineShare;
-  LobeEval eval(const Vec3& wo, const Vec3& wi) const {
+  BsdfEval eval(const Vec3& wo, const Vec3& wi) const {
     if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return {};
     float pdf = (1.0f - kMix) * table->sampler.pdf(wo, wi) + kMix * wi.z * kInvPi;
     return {tint * table->lookup(wo, wi) * wi.z, pdf};
   }
-  LobeSample sample(const Vec3& wo, const Vec3& u) const {
-    LobeSample s;
+  BsdfSample sample(const Vec3& wo, const Vec3& u) const {
+    BsdfSample s;
     if (!(wo.z > 0.0f)) return s;
     Vec3 wi;
     if (u.z < kMix) {
@@ -60,11 +61,35 @@ struct Measured {
     } else if (!table->sampler.sample(wo, u.x, u.y, wi)) {
       return s;
     }
-    LobeEval e = eval(wo, wi);
+    BsdfEval e = eval(wo, wi);
     if (!(e.pdf > 0.0f)) return s;
-    return {wi, e.value / e.pdf, e.pdf, flags(), 1.0f, true};
+    return {wi, e.value / e.pdf, e.pdf, flags(), 1.0f};
   }
   Vec3 albedo(const Vec3& wo) const { return quadrature_albedo(*this, wo); }
+};
+
+// ---- registry entries (params.h) ------------------------------------------------------------
+
+struct MeasuredParams {
+  Vec3 N;
+  Str filename;
+  Color3 tint;
+  Str label;
+};
+
+// Native only (kNativeOnly in the registry): the table is read from a file; a file that does
+// not load gives no lobe.
+template <> struct Closure<closure_id::measured_bsdf> {
+  using Params = MeasuredParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N), offsetof(Params, filename),
+                                        offsetof(Params, tint), offsetof(Params, label)};
+  using Lobe = Measured;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    const MeasuredTable* t = measured_table(q.filename);
+    if (!t || !make_frame(q.N, f)) return false;
+    l = Measured{t, vmax0(sanitize(q.tint))};
+    return true;
+  }
 };
 
 } // namespace lobe::closures

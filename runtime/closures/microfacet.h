@@ -72,8 +72,8 @@ struct Microfacet {
   bool refracts() const { return trans_tint.x > 0 || trans_tint.y > 0 || trans_tint.z > 0; }
   bool reflects() const { return refl_tint.x > 0 || refl_tint.y > 0 || refl_tint.z > 0; }
   uint32_t flags() const {
-    uint32_t f = (reflects() ? kFlagReflect : 0u) | (refracts() ? kFlagTransmit : 0u);
-    return f | (delta ? kFlagSpecular : kFlagGlossy);
+    uint32_t f = (reflects() ? kLobeReflect : 0u) | (refracts() ? kLobeTransmit : 0u);
+    return f | (delta ? kLobeSpecular : kLobeGlossy);
   }
 
   // Fresnel reflectance for cosine c on the side whose relative IOR is `e`.
@@ -184,7 +184,7 @@ struct Microfacet {
     q = m > 0.0f ? mr / m : 1.0f;
   }
 
-  LobeEval eval(Vec3 wo, Vec3 wi, Transport mode) const {
+  BsdfEval eval(Vec3 wo, Vec3 wi, Transport mode) const {
     float e = eta;
     if (wo.z < 0.0f) {
       wo.z = -wo.z, wi.z = -wi.z, e = 1.0f / eta;
@@ -197,11 +197,11 @@ struct Microfacet {
   float Ed_wo(const Vec3& wo, float e) const { return ms_diel ? Ed(wo, e) : 0.0f; }
 
   // eval with wo.z > 0 and e the relative IOR below the surface.
-  LobeEval eval_above(const Vec3& wo, const Vec3& wi, float e, Transport mode) const {
+  BsdfEval eval_above(const Vec3& wo, const Vec3& wi, float e, Transport mode) const {
     return eval_above(wo, wi, e, Ed_wo(wo, e), mode);
   }
-  LobeEval eval_above(const Vec3& wo, const Vec3& wi, float e, float edo, Transport mode) const {
-    LobeEval r = wi.z > 0.0f ? eval_reflect(wo, wi, e) : eval_refract(wo, wi, e, mode);
+  BsdfEval eval_above(const Vec3& wo, const Vec3& wi, float e, float edo, Transport mode) const {
+    BsdfEval r = wi.z > 0.0f ? eval_reflect(wo, wi, e) : eval_refract(wo, wi, e, mode);
     if (!ms && !ms_diel) return r;
     float p, q;
     ms_probs(wo, e, edo, p, q);
@@ -223,7 +223,7 @@ struct Microfacet {
     return trans_tint * v;
   }
 
-  LobeEval eval_reflect(const Vec3& wo, const Vec3& wi, float e) const {
+  BsdfEval eval_reflect(const Vec3& wo, const Vec3& wi, float e) const {
     Vec3 m;
     float c = half_vector(wo, wi, m);
     if (!(c > 0.0f) || !(m.z > 0.0f)) return {};
@@ -234,7 +234,7 @@ struct Microfacet {
     return {fr * v, pr * dist.G1(wo) * D / (4.0f * wo.z)};
   }
 
-  LobeEval eval_refract(const Vec3& wo, const Vec3& wi, float e, Transport mode) const {
+  BsdfEval eval_refract(const Vec3& wo, const Vec3& wi, float e, Transport mode) const {
     if (e == 1.0f) return {};
     // ht = e wi + wo, m = +-ht/|ht|: then ci + co/e = (ht/e).m = +-|ht|/e, so Walter's
     // denominator (ci + co/e)^2 is |ht|^2/e^2, without the cancellation of ci against co/e.
@@ -255,17 +255,17 @@ struct Microfacet {
     return {ft * f, pdf};
   }
 
-  LobeSample sample(Vec3 wo, const Vec3& u, Transport mode) const {
+  BsdfSample sample(Vec3 wo, const Vec3& u, Transport mode) const {
     float e = eta, sign = 1.0f;
     if (wo.z < 0.0f) wo.z = -wo.z, e = 1.0f / eta, sign = -1.0f;
     if (!(wo.z > 0.0f)) return {};
-    LobeSample s = delta ? sample_delta(wo, u, e, mode) : sample_rough(wo, u, e, mode);
+    BsdfSample s = delta ? sample_delta(wo, u, e, mode) : sample_rough(wo, u, e, mode);
     s.wi.z *= sign;
     return s;
   }
 
-  LobeSample sample_delta(const Vec3& wo, const Vec3& u, float e, Transport mode) const {
-    LobeSample s;
+  BsdfSample sample_delta(const Vec3& wo, const Vec3& u, float e, Transport mode) const {
+    BsdfSample s;
     Vec3 fr, ft;
     float pr = split(wo.z, e, fr, ft);
     if (luminance(fr) + luminance(ft) <= 0.0f) return s;
@@ -273,29 +273,29 @@ struct Microfacet {
       s.wi = reflect_z(wo);
       s.weight = fr / pr;
       s.pdf = pr;
-      s.flags = kFlagReflect | kFlagSpecular;
+      s.flags = kLobeReflect | kLobeSpecular;
     } else {
       if (!refract(wo, Vec3{0, 0, 1}, e, s.wi)) return {};
       s.weight = ft / (1.0f - pr);
       if (mode == Transport::Radiance) s.weight = s.weight / (e * e);
       s.pdf = 1.0f - pr;
-      s.flags = kFlagTransmit | kFlagSpecular;
+      s.flags = kLobeTransmit | kLobeSpecular;
       s.eta = e;
     }
-    s.ok = s.wi.z != 0.0f;
+    if (s.wi.z == 0.0f) return {};
     return s;
   }
 
-  LobeSample sample_rough(const Vec3& wo, Vec3 u, float e, Transport mode) const {
-    LobeSample s;
+  BsdfSample sample_rough(const Vec3& wo, Vec3 u, float e, Transport mode) const {
+    BsdfSample s;
     float p, q, edo = Ed_wo(wo, e);
     ms_probs(wo, e, edo, p, q);
     if (u.z < p) { // compensation lobe: cosine-distributed, reflected or transmitted
       s.wi = sample_cosine_hemisphere(u.x, u.y);
-      s.flags = kFlagReflect | kFlagDiffuse;
+      s.flags = kLobeReflect | kLobeDiffuse;
       if (u.z >= p * q) {
         s.wi.z = -s.wi.z;
-        s.flags = kFlagTransmit | kFlagDiffuse;
+        s.flags = kLobeTransmit | kLobeDiffuse;
         s.eta = e;
       }
     } else {
@@ -307,21 +307,20 @@ struct Microfacet {
       float pr = split(c, e, fr, ft);
       if (u.z < pr) {
         s.wi = reflect(wo, m);
-        s.flags = kFlagReflect | kFlagGlossy;
+        s.flags = kLobeReflect | kLobeGlossy;
       } else {
         if (!refract(wo, m, e, s.wi)) return s;
-        s.flags = kFlagTransmit | kFlagGlossy;
+        s.flags = kLobeTransmit | kLobeGlossy;
         s.eta = e;
         if (!(s.wi.z < 0.0f)) return s;
       }
     }
     s.wi = normalize(s.wi); // evaluated at the direction returned (see dispatch.h)
-    if (s.wi.z == 0.0f || ((s.flags & kFlagReflect) && s.wi.z < 0.0f)) return s;
-    LobeEval ev = eval_above(wo, s.wi, e, edo, mode);
+    if (s.wi.z == 0.0f || ((s.flags & kLobeReflect) && s.wi.z < 0.0f)) return s;
+    BsdfEval ev = eval_above(wo, s.wi, e, edo, mode);
     if (!(ev.pdf > 0.0f)) return s;
     s.pdf = ev.pdf;
     s.weight = ev.value / ev.pdf;
-    s.ok = true;
     return s;
   }
 

@@ -8,6 +8,49 @@
 
 namespace lobe::closures {
 
+struct MicrofacetParams {
+  Str distribution;
+  Vec3 N, U;
+  float xalpha, yalpha, eta;
+  int refract;
+  int energy_compensation;
+  Str label;
+};
+struct ReflectionParams {
+  Vec3 N;
+  float eta;
+  Str label;
+}; // reflection(N, eta), refraction
+struct ConductorParams {
+  Vec3 N, U;
+  float roughness_x, roughness_y;
+  Color3 ior, extinction;
+  Str distribution;
+  float thinfilm_thickness, thinfilm_ior;
+  int energy_compensation;
+  Str label;
+};
+struct DielectricParams {
+  Vec3 N, U;
+  Color3 reflection_tint, transmission_tint;
+  float roughness_x, roughness_y, ior;
+  Str distribution;
+  float thinfilm_thickness, thinfilm_ior;
+  int energy_compensation;
+  Str label;
+};
+struct GeneralizedSchlickParams {
+  Vec3 N, U;
+  Color3 reflection_tint, transmission_tint;
+  float roughness_x, roughness_y;
+  Color3 f0, f90;
+  float exponent;
+  Str distribution;
+  float thinfilm_thickness, thinfilm_ior;
+  int energy_compensation;
+  Str label;
+};
+
 inline bool is_beckmann(const char* s) { return s && (s[0] == 'b' || s[0] == 'B'); }
 
 // NaN/negative IOR: index-matched; within 1e-4 of 1: exactly 1 (pass-through).
@@ -134,5 +177,119 @@ inline Microfacet make_specular(float eta, bool refraction) {
   m.trans_tint = refraction ? splat(1.0f) : Vec3{};
   return m;
 }
+
+// ---- registry entries (params.h) ------------------------------------------------------------
+
+template <> struct Closure<closure_id::microfacet> {
+  using Params = MicrofacetParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, distribution),
+                                        offsetof(Params, N),
+                                        offsetof(Params, U),
+                                        offsetof(Params, xalpha),
+                                        offsetof(Params, yalpha),
+                                        offsetof(Params, eta),
+                                        offsetof(Params, refract),
+                                        offsetof(Params, energy_compensation),
+                                        offsetof(Params, label)};
+  using Lobe = Microfacet;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, q.U, f)) return false;
+    l = make_microfacet(q.distribution, q.xalpha, q.yalpha, q.eta, q.refract,
+                        q.energy_compensation);
+    return true;
+  }
+};
+
+template <> struct Closure<closure_id::conductor_bsdf> {
+  using Params = ConductorParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N),
+                                        offsetof(Params, U),
+                                        offsetof(Params, roughness_x),
+                                        offsetof(Params, roughness_y),
+                                        offsetof(Params, ior),
+                                        offsetof(Params, extinction),
+                                        offsetof(Params, distribution),
+                                        offsetof(Params, thinfilm_thickness),
+                                        offsetof(Params, thinfilm_ior),
+                                        offsetof(Params, energy_compensation),
+                                        offsetof(Params, label)};
+  using Lobe = Microfacet;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, q.U, f)) return false;
+    l = make_conductor(q);
+    return true;
+  }
+};
+
+template <> struct Closure<closure_id::dielectric_bsdf> {
+  using Params = DielectricParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N),
+                                        offsetof(Params, U),
+                                        offsetof(Params, reflection_tint),
+                                        offsetof(Params, transmission_tint),
+                                        offsetof(Params, roughness_x),
+                                        offsetof(Params, roughness_y),
+                                        offsetof(Params, ior),
+                                        offsetof(Params, distribution),
+                                        offsetof(Params, thinfilm_thickness),
+                                        offsetof(Params, thinfilm_ior),
+                                        offsetof(Params, energy_compensation),
+                                        offsetof(Params, label)};
+  using Lobe = Microfacet;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, q.U, f)) return false;
+    l = make_dielectric(q);
+    return true;
+  }
+};
+
+template <> struct Closure<closure_id::generalized_schlick_bsdf> {
+  using Params = GeneralizedSchlickParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N),
+                                        offsetof(Params, U),
+                                        offsetof(Params, reflection_tint),
+                                        offsetof(Params, transmission_tint),
+                                        offsetof(Params, roughness_x),
+                                        offsetof(Params, roughness_y),
+                                        offsetof(Params, f0),
+                                        offsetof(Params, f90),
+                                        offsetof(Params, exponent),
+                                        offsetof(Params, distribution),
+                                        offsetof(Params, thinfilm_thickness),
+                                        offsetof(Params, thinfilm_ior),
+                                        offsetof(Params, energy_compensation),
+                                        offsetof(Params, label)};
+  using Lobe = Microfacet;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, q.U, f)) return false;
+    l = make_generalized_schlick(q);
+    return true;
+  }
+};
+
+// reflection(N, eta): eta 0 (OSL's reflection(N)) is a perfect mirror without Fresnel.
+template <> struct Closure<closure_id::reflection> {
+  using Params = ReflectionParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N), offsetof(Params, eta),
+                                        offsetof(Params, label)};
+  using Lobe = Microfacet;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    l = make_specular(q.eta > 0.0f ? q.eta : 0.0f, false);
+    return true;
+  }
+};
+
+template <> struct Closure<closure_id::refraction> {
+  using Params = ReflectionParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N), offsetof(Params, eta),
+                                        offsetof(Params, label)};
+  using Lobe = Microfacet;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    l = make_specular(q.eta > 0.0f ? q.eta : 1.0f, true);
+    return true;
+  }
+};
 
 } // namespace lobe::closures

@@ -2,7 +2,7 @@
 // where the registry says, and every registry entry has an implementation.
 #include "closure_registry.h"
 #include "closures.h"
-#include "params.h"
+#include "dispatch.h"
 
 #include <gtest/gtest.h>
 

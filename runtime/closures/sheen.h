@@ -16,6 +16,7 @@
 #pragma once
 
 #include "common.h"
+#include "params.h"
 
 namespace lobe::closures {
 
@@ -58,8 +59,8 @@ struct Sheen {
   }
   float projected_area(float mu) const { return lookup(kSheenP, safe_sqrt(1.0f - mu)); }
 
-  uint32_t flags() const { return kFlagReflect | kFlagGlossy; }
-  LobeEval eval(const Vec3& wo, const Vec3& wi) const {
+  uint32_t flags() const { return kLobeReflect | kLobeGlossy; }
+  BsdfEval eval(const Vec3& wo, const Vec3& wi) const {
     if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return {};
     Vec3 h = normalize(wo + wi);
     float inv = 1.0f / r;
@@ -70,18 +71,32 @@ struct Sheen {
     float den = 4.0f * maxf(projected_area(mo) * mi + projected_area(mi) * mo - mo * mi, mo * mi);
     return {rho * (d * mi / den), 1.0f / (2.0f * kPi)};
   }
-  LobeSample sample(const Vec3& wo, const Vec3& u) const {
-    LobeSample s;
+  BsdfSample sample(const Vec3& wo, const Vec3& u) const {
+    BsdfSample s;
     if (!(wo.z > 0.0f)) return s;
     float z = 1.0f - u.x, sr = safe_sqrt(1.0f - z * z), phi = 2.0f * kPi * u.y;
     Vec3 wi{sr * std::cos(phi), sr * std::sin(phi), z};
-    LobeEval e = eval(wo, wi);
+    BsdfEval e = eval(wo, wi);
     if (!(e.pdf > 0.0f) || !(wi.z > 0.0f)) return s;
-    return {wi, e.value / e.pdf, e.pdf, flags(), 1.0f, true};
+    return {wi, e.value / e.pdf, e.pdf, flags(), 1.0f};
   }
   Vec3 albedo(const Vec3& wo) const {
     if (!(wo.z > 0.0f)) return {};
     return rho * clampf(lookup(kSheenE, safe_sqrt(minf(wo.z, 1.0f))), 0.0f, 1.0f);
+  }
+};
+
+// ---- registry entries (params.h) ------------------------------------------------------------
+
+template <> struct Closure<closure_id::sheen_bsdf> {
+  using Params = AlbedoRoughnessParams;
+  static constexpr size_t kOffsets[] = LOBE_ALBEDO_ROUGHNESS_OFFSETS;
+  using Lobe = Sheen;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    float r = q.roughness == q.roughness ? clampf(q.roughness, 0.01f, 1.0f) : 1.0f;
+    l = Sheen::make(vmax0(sanitize(q.albedo)), r);
+    return true;
   }
 };
 

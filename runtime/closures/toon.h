@@ -14,6 +14,7 @@
 #pragma once
 
 #include "common.h"
+#include "params.h"
 
 namespace lobe::closures {
 
@@ -40,12 +41,12 @@ struct Toon {
     t.omega_h = maxf(2.0f * kPi * (1.0f - c0), 1e-6f);
     return t;
   }
-  uint32_t flags() const { return kFlagReflect | kFlagDiffuse; }
+  uint32_t flags() const { return kLobeReflect | kLobeDiffuse; }
   float quantise(float c) const {
     float x = c * bands, k = std::floor(x);
     return (k + smoothstep01(1.0f - softness, 1.0f, x - k)) / bands;
   }
-  LobeEval eval(const Vec3& wo, const Vec3& wi) const {
+  BsdfEval eval(const Vec3& wo, const Vec3& wi) const {
     if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return {};
     float b = static_cast<float>(bands);
     Vec3 v = albedo_d * (kInvPi * quantise(wi.z) * b / (b + 1.0f));
@@ -55,15 +56,40 @@ struct Toon {
     v += specular * (band * wi.z / (4.0f * omega_h));
     return {v, wi.z * kInvPi};
   }
-  LobeSample sample(const Vec3& wo, const Vec3& u) const {
-    LobeSample s;
+  BsdfSample sample(const Vec3& wo, const Vec3& u) const {
+    BsdfSample s;
     if (!(wo.z > 0.0f)) return s;
     Vec3 wi = sample_cosine_hemisphere(u.x, u.y);
-    LobeEval e = eval(wo, wi);
+    BsdfEval e = eval(wo, wi);
     if (!(e.pdf > 0.0f)) return s;
-    return {wi, e.value / e.pdf, e.pdf, flags(), 1.0f, true};
+    return {wi, e.value / e.pdf, e.pdf, flags(), 1.0f};
   }
   Vec3 albedo(const Vec3& wo) const { return wo.z > 0.0f ? albedo_d + specular : Vec3{}; }
+};
+
+// ---- registry entries (params.h) ------------------------------------------------------------
+
+struct ToonParams {
+  Vec3 N;
+  Color3 albedo, specular;
+  float shininess;
+  int bands;
+  float softness;
+  Str label;
+};
+
+template <> struct Closure<closure_id::toon> {
+  using Params = ToonParams;
+  static constexpr size_t kOffsets[] = {offsetof(Params, N),        offsetof(Params, albedo),
+                                        offsetof(Params, specular), offsetof(Params, shininess),
+                                        offsetof(Params, bands),    offsetof(Params, softness),
+                                        offsetof(Params, label)};
+  using Lobe = Toon;
+  static bool make(const Params& q, Lobe& l, Frame& f) {
+    if (!make_frame(q.N, f)) return false;
+    l = Toon::make(sanitize(q.albedo), sanitize(q.specular), q.shininess, q.bands, q.softness);
+    return true;
+  }
 };
 
 } // namespace lobe::closures

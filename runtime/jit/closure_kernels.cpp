@@ -21,8 +21,11 @@
 namespace lobe::jit {
 namespace {
 
-const char* const kEntries[3] = {"lobe_kernels_eval", "lobe_kernels_sample", "lobe_kernels_albedo"};
-const char* const kSuffix[3] = {"_eval", "_sample", "_albedo"};
+constexpr int kNumEntries = 4;
+const char* const kEntries[kNumEntries] = {"lobe_kernels_setup", "lobe_kernels_eval",
+                                           "lobe_kernels_sample", "lobe_kernels_albedo"};
+const registry::Kernel kKernel[kNumEntries] = {registry::Kernel::setup, registry::Kernel::eval,
+                                               registry::Kernel::sample, registry::Kernel::albedo};
 
 // The bitcode file's bytes, read once per process.
 const std::string* bitcode_bytes(std::string& error) {
@@ -56,7 +59,7 @@ std::string bitcode_identity(const std::string& bytes) {
 // The per-key functions a dispatcher calls, declared in `mod` with the library's types.
 struct Case {
   int id;
-  llvm::FunctionCallee fn[3];
+  llvm::FunctionCallee fn[kNumEntries];
 };
 
 // `void|i32 name(i32 id, args...)`: switch (id) { case k: return lobe_closure_<key>_*(args) }.
@@ -126,14 +129,11 @@ std::string closure_bitcode_path() {
 
 bool compile_closure_kernels(Jit& jit, const std::vector<int>& ids, ClosureKernels& out,
                              CompiledGroup& code, JitTimes& times, std::string& error) {
-  // Only BSDF entries have bitcode: a material with none (an emitter, a background) needs
-  // no module, and the bitcode is not even read for it.
-  auto all = registry::closures();
-  bool any_bsdf = false;
-  for (int id : ids)
-    any_bsdf |= id >= 0 && id < int(all.size()) &&
-                (all[size_t(id)].flags & (registry::kReflect | registry::kTransmit)) != 0;
-  if (!any_bsdf) {
+  // Only BSDF entries have bitcode (registry::has_kernel): a material with none (an emitter, a
+  // background) needs no module, and the bitcode is not even read for it.
+  bool any_kernel = false;
+  for (int id : ids) any_kernel |= registry::kernel_symbol(id, registry::Kernel::eval) != nullptr;
+  if (!any_kernel) {
     out = ClosureKernels{};
     return true;
   }
@@ -145,7 +145,7 @@ bool compile_closure_kernels(Jit& jit, const std::vector<int>& ids, ClosureKerne
   std::vector<int> wanted(ids);
   std::sort(wanted.begin(), wanted.end());
   wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
-  std::string key = "closure kernels 1; opt 2; " + jit.target_identity() + "; " +
+  std::string key = "closure kernels 2; opt 2; " + jit.target_identity() + "; " +
                     bitcode_identity(*bytes) + "; ids";
   for (int id : wanted) key += " " + std::to_string(id);
   auto finish = [&](const std::string& covered, const std::string& object) {
@@ -153,11 +153,13 @@ bool compile_closure_kernels(Jit& jit, const std::vector<int>& ids, ClosureKerne
     std::istringstream in(covered);
     for (int id; in >> id;) k.add(id);
     std::vector<void*> addresses;
-    if (!jit.add_object(object, {kEntries[0], kEntries[1], kEntries[2]}, addresses, code, error))
+    if (!jit.add_object(object, {kEntries[0], kEntries[1], kEntries[2], kEntries[3]}, addresses,
+                        code, error))
       return false;
-    k.eval = reinterpret_cast<ClosureKernels::EvalFn>(addresses[0]);
-    k.sample = reinterpret_cast<ClosureKernels::SampleFn>(addresses[1]);
-    k.albedo = reinterpret_cast<ClosureKernels::AlbedoFn>(addresses[2]);
+    k.setup = reinterpret_cast<ClosureKernels::SetupFn>(addresses[0]);
+    k.eval = reinterpret_cast<ClosureKernels::EvalFn>(addresses[1]);
+    k.sample = reinterpret_cast<ClosureKernels::SampleFn>(addresses[2]);
+    k.albedo = reinterpret_cast<ClosureKernels::AlbedoFn>(addresses[3]);
     out = k;
     return true;
   };
@@ -185,14 +187,16 @@ bool compile_closure_kernels(Jit& jit, const std::vector<int>& ids, ClosureKerne
   library->setDataLayout(mod->getDataLayout());
 
   std::vector<Case> cases;
-  llvm::FunctionType* types[3] = {nullptr, nullptr, nullptr};
+  llvm::FunctionType* types[kNumEntries] = {};
   ClosureKernels k;
   for (int id : ids) {
-    if (id < 0 || id >= int(all.size()) || id >= ClosureKernels::kMaxIds || k.covers(id)) continue;
+    if (!registry::kernel_symbol(id, registry::Kernel::eval) || id >= ClosureKernels::kMaxIds ||
+        k.covers(id))
+      continue;
     Case c{id, {}};
     bool complete = true;
-    for (int w = 0; w < 3; ++w) {
-      std::string name = std::string("lobe_closure_") + all[size_t(id)].key + kSuffix[w];
+    for (int w = 0; w < kNumEntries; ++w) {
+      const char* name = registry::kernel_symbol(id, kKernel[w]);
       llvm::Function* lf = library->getFunction(name);
       if (!lf) {
         complete = false;
@@ -209,7 +213,7 @@ bool compile_closure_kernels(Jit& jit, const std::vector<int>& ids, ClosureKerne
     out = ClosureKernels{};
     return true; // nothing to compile: every lobe goes to the native library
   }
-  for (int w = 0; w < 3; ++w) emit_dispatcher(*mod, w, types[w], cases);
+  for (int w = 0; w < kNumEntries; ++w) emit_dispatcher(*mod, w, types[w], cases);
   if (llvm::Linker::linkModules(*mod, std::move(library), llvm::Linker::Flags::LinkOnlyNeeded)) {
     error = "closure bitcode: linking failed";
     return false;

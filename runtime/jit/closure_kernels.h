@@ -1,16 +1,17 @@
 // Closure kernels: the closure library's eval/sample/albedo for one material, JIT-compiled
 // from the library's LLVM bitcode (lobe_closures.bc, runtime/closures/bitcode.cpp).
 //
-// For the registry ids a material's closures can have, one module gets three dispatchers,
-//   void lobe_kernels_eval  (int id, params, wo, wi, mode, LobeEval* out)
-//   int  lobe_kernels_sample(int id, params, wo, u,  mode, LobeSample* out)
-//   void lobe_kernels_albedo(int id, params, wo, Vec3* out)
-// each a switch over just those ids calling lobe_closure_<key>_*; only those functions (and
-// what they use) are linked from the bitcode, which is loaded lazily, everything but the
-// dispatchers is internalised, and LLVM's O2 pipeline inlines the lobes into the switch. So
-// a material pays only for its own closures, and the hot path has no call into the library.
-// Ids without bitcode (measured_bsdf reads files; emission and other non-BSDF closures) are
-// left out, and Bsdf falls back to the native library for them.
+// For the registry ids a material's closures can have, one module gets four dispatchers,
+//   unsigned lobe_kernels_setup(int id, params, state)     once per shading point: LobeFlags
+//   void lobe_kernels_eval  (int id, state, wo, wi, mode, BsdfEval* out)
+//   int  lobe_kernels_sample(int id, state, wo, u,  mode, BsdfSample* out)
+//   void lobe_kernels_albedo(int id, state, wo, Vec3* out)
+// each a switch over just those ids calling lobe_closure_<key>_* (registry::kernel_symbol); only
+// those functions (and what they use) are linked from the bitcode, which is loaded lazily,
+// everything but the dispatchers is internalised, and LLVM's O2 pipeline inlines the lobes into the
+// switch. So a material pays only for its own closures, and the hot path has no call into the
+// library. Ids without bitcode (measured_bsdf reads files; emission and other non-BSDF closures)
+// are left out, and Bsdf falls back to the native library for them.
 #pragma once
 
 #include "jit.h"

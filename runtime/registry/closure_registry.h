@@ -53,6 +53,8 @@ enum Flags : uint32_t {
   kLayer = 1u << 8,       // layer(top, base): a combinator over two closures
   kMedium = 1u << 9,      // describes the medium under the surface (VDFs, subsurface()): no
                           // surface contribution in Lobe, which renders no volumes
+  kNativeOnly = 1u << 10, // a BSDF lobe only the native library has (measured_bsdf reads
+                          // files): no bitcode kernel, the Bsdf calls the native code
 };
 
 struct ClosureEntry {
@@ -64,10 +66,30 @@ struct ClosureEntry {
 };
 
 // All entries, in id order: an entry's id is its index here and is what a ClosureComponent
-// stores at run time.
+// stores at run time. The built-in table (closure_table.h) comes first; closures a renderer
+// registers (lobe/closure_plugin.h, through add_closure) follow it.
 std::span<const ClosureEntry> closures();
 const ClosureEntry* find_by_key(std::string_view key);
 int id_of(std::string_view key); // -1 if absent
+
+// Adds an entry after the built-in ones and returns its id; its strings and parameters are
+// copied. -1 (and `error`) for a key that exists or when kMaxClosures are registered. Not
+// thread-safe: register before anything compiles or shades (spans from closures() taken
+// earlier stay valid: the storage never moves).
+inline constexpr size_t kMaxClosures = 128;
+int add_closure(const ClosureEntry& entry, const char** error = nullptr);
+
+// The five functions the closure bitcode defines for a BSDF entry (runtime/closures/
+// bitcode.cpp) and the JIT links (runtime/jit/closure_kernels.cpp). Their symbol names come
+// from this one macro on both sides: "lobe_closure_" key "_" fn.
+#define LOBE_KERNEL_SYMBOL(key, fn) "lobe_closure_" #key "_" #fn
+enum class Kernel : uint8_t { setup, eval, sample, pdf, albedo };
+// The symbol of entry `id`'s kernel, or null when the entry has none (see has_kernel).
+const char* kernel_symbol(int id, Kernel k);
+// A BSDF lobe with bitcode: kReflect or kTransmit, and not kNativeOnly.
+constexpr bool has_kernel(uint32_t flags) {
+  return (flags & (kReflect | kTransmit)) != 0 && (flags & kNativeOnly) == 0;
+}
 
 constexpr size_t arg_size(ArgType t) {
   switch (t) {

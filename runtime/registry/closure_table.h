@@ -172,51 +172,61 @@ inline constexpr ClosureParam kMediumVdf[] = {
 #undef LOBE_THINFILM
 
 inline constexpr uint32_t kR = kReflect, kRT = kReflect | kTransmit;
+using registry::kBackground, registry::kDebug, registry::kEmission, registry::kHoldout,
+    registry::kLayer, registry::kMedium, registry::kTransparent;
 
-// key, name, params, flags, doc. Order = ids; append new entries at the end when possible.
+// The table: X(key, parameters, flags, doc), one row per closure, in id order (an entry's id
+// is its row; append new closures at the end when possible). `key` is the name shaders call,
+// the family file's `Closure<closure_id::key>` specialisation, and the stem of the kernel
+// symbols (LOBE_KERNEL_SYMBOL); `doc` is the line of the generated reference (docs/closures.md).
+// Everything else about a closure is derived from this one list: ids (closure_id), the entries
+// (kClosures), the dispatch switch and layout checks (runtime/closures/dispatch.h), the
+// bitcode entry points (bitcode.cpp) and the kernel symbols the JIT links (kernel_symbol()).
+#define LOBE_CLOSURE_TABLE(X)                                                                      \
+  X(diffuse, kDiffuse, kR, "Lambertian reflection, f = 1/pi")                                      \
+  X(oren_nayar, kOrenNayar, kR, "Oren-Nayar rough diffuse (qualitative model)")                    \
+  X(oren_nayar_diffuse_bsdf, kOrenNayarDiffuseBsdf, kR,                                            \
+    "Fujii Oren-Nayar; energy-preserving (EON) with energy_compensation")                          \
+  X(burley_diffuse_bsdf, kNormalAlbedoRoughness, kR,                                               \
+    "Disney/Burley diffuse with retro-reflection")                                                 \
+  X(translucent, kNormalOnly, kTransmit, "Lambertian transmission")                                \
+  X(translucent_bsdf, kNormalAlbedo, kTransmit, "Lambertian transmission with albedo")             \
+  X(phong, kPhong, kR, "modified Phong, (n+2)/(2pi) normalisation")                                \
+  X(blinn_phong, kBlinnPhong, kR, "Lobe: normalised Blinn-Phong microfacet lobe")                  \
+  X(ward, kWard, kR, "anisotropic Ward, energy-conserving normalisation")                          \
+  X(microfacet, kMicrofacet, kRT, "GGX/Beckmann microfacet, dielectric Fresnel")                   \
+  X(reflection, kReflection, kR | kDelta, "mirror with Fresnel(eta); eta 0: no Fresnel")           \
+  X(refraction, kRefraction, kTransmit | kDelta, "perfect refraction")                             \
+  X(conductor_bsdf, kConductor, kR, "microfacet metal, complex Fresnel")                           \
+  X(dielectric_bsdf, kDielectric, kRT, "microfacet glass/coat")                                    \
+  X(generalized_schlick_bsdf, kGeneralizedSchlick, kRT,                                            \
+    "microfacet with generalised Schlick Fresnel")                                                 \
+  X(sheen_bsdf, kNormalAlbedoRoughness, kR, "Charlie microfibre sheen")                            \
+  X(transparent, {}, kTransparent, "straight pass-through")                                        \
+  X(transparent_bsdf, {}, kTransparent, "straight pass-through")                                   \
+  X(emission, {}, kEmission, "uniform emission, radiance = weight")                                \
+  X(uniform_edf, kEmittance, kEmission, "uniform emission")                                        \
+  X(background, {}, kBackground, "environment radiance = weight")                                  \
+  X(holdout, {}, kHoldout, "holdout (matte) weight")                                               \
+  X(debug, kDebugTag, kDebug, "an AOV, no light transport")                                        \
+  X(layer, kLayerArgs, kLayer, "top over base, base scaled by 1 - albedo(top)")                    \
+  X(toon, kToon, kR, "Lobe: banded cartoon diffuse + specular")                                    \
+  X(measured_bsdf, kMeasured, kR | kNativeOnly, "Lobe: MERL measured isotropic BRDF")              \
+  X(subsurface, kSubsurface, kMedium,                                                              \
+    "OSL's BSSRDF; no surface contribution (Lobe renders no subsurface transport)")                \
+  X(subsurface_bssrdf, kSubsurfaceBssrdf, kR,                                                      \
+    "approximated by Lambertian reflection with the albedo")                                       \
+  X(anisotropic_vdf, kAnisotropicVdf, kMedium,                                                     \
+    "Henyey-Greenstein medium; no surface contribution")                                           \
+  X(medium_vdf, kMediumVdf, kMedium, "dielectric medium (glass, liquids); no surface contribution")
+
 inline constexpr ClosureEntry kClosures[] = {
-    {"diffuse", "diffuse", kDiffuse, kR, "Lambertian reflection, f = 1/pi"},
-    {"oren_nayar", "oren_nayar", kOrenNayar, kR, "Oren-Nayar rough diffuse (qualitative model)"},
-    {"oren_nayar_diffuse_bsdf", "oren_nayar_diffuse_bsdf", kOrenNayarDiffuseBsdf, kR,
-     "Fujii Oren-Nayar; energy-preserving (EON) with energy_compensation"},
-    {"burley_diffuse_bsdf", "burley_diffuse_bsdf", kNormalAlbedoRoughness, kR,
-     "Disney/Burley diffuse with retro-reflection"},
-    {"translucent", "translucent", kNormalOnly, kTransmit, "Lambertian transmission"},
-    {"translucent_bsdf", "translucent_bsdf", kNormalAlbedo, kTransmit,
-     "Lambertian transmission with albedo"},
-    {"phong", "phong", kPhong, kR, "modified Phong, (n+2)/(2pi) normalisation"},
-    {"blinn_phong", "blinn_phong", kBlinnPhong, kR, "Lobe: normalised Blinn-Phong microfacet lobe"},
-    {"ward", "ward", kWard, kR, "anisotropic Ward, energy-conserving normalisation"},
-    {"microfacet", "microfacet", kMicrofacet, kRT, "GGX/Beckmann microfacet, dielectric Fresnel"},
-    {"reflection", "reflection", kReflection, kR | kDelta, "mirror with Fresnel(eta)"},
-    {"refraction", "refraction", kRefraction, kTransmit | kDelta, "perfect refraction"},
-    {"conductor_bsdf", "conductor_bsdf", kConductor, kR, "microfacet metal, complex Fresnel"},
-    {"dielectric_bsdf", "dielectric_bsdf", kDielectric, kRT, "microfacet glass/coat"},
-    {"generalized_schlick_bsdf", "generalized_schlick_bsdf", kGeneralizedSchlick, kRT,
-     "microfacet with generalised Schlick Fresnel"},
-    {"sheen_bsdf", "sheen_bsdf", kNormalAlbedoRoughness, kR, "Charlie microfibre sheen"},
-    {"transparent", "transparent", {}, kTransparent, "straight pass-through"},
-    {"transparent_bsdf", "transparent_bsdf", {}, kTransparent, "straight pass-through"},
-    {"emission", "emission", {}, kEmission, "uniform emission, radiance = weight"},
-    {"uniform_edf", "uniform_edf", kEmittance, kEmission, "uniform emission"},
-    {"background", "background", {}, kBackground, "environment radiance = weight"},
-    {"holdout", "holdout", {}, kHoldout, "holdout (matte) weight"},
-    {"debug", "debug", kDebugTag, registry::kDebug, "an AOV, no light transport"},
-    {"layer", "layer", kLayerArgs, registry::kLayer,
-     "top over base, base scaled by 1 - albedo(top)"},
-    {"toon", "toon", kToon, kR, "Lobe: banded cartoon diffuse + specular"},
-    {"measured_bsdf", "measured_bsdf", kMeasured, kR, "Lobe: MERL measured isotropic BRDF"},
-    {"subsurface", "subsurface", kSubsurface, registry::kMedium,
-     "OSL's BSSRDF; no surface contribution (Lobe renders no subsurface transport)"},
-    {"subsurface_bssrdf", "subsurface_bssrdf", kSubsurfaceBssrdf, kR,
-     "approximated by Lambertian reflection with the albedo"},
-    {"anisotropic_vdf", "anisotropic_vdf", kAnisotropicVdf, registry::kMedium,
-     "Henyey-Greenstein medium; no surface contribution"},
-    {"medium_vdf", "medium_vdf", kMediumVdf, registry::kMedium,
-     "dielectric medium (glass, liquids); no surface contribution"},
+#define LOBE_ROW(key, params, flags, doc) {#key, #key, params, flags, doc},
+    LOBE_CLOSURE_TABLE(LOBE_ROW)
+#undef LOBE_ROW
 };
 
-// Id of a key at compile time (-1 if absent), for the closure library's dispatch.
+// Id of a key at compile time (-1 if absent).
 constexpr int index_of(std::string_view key) {
   for (size_t i = 0; i < std::size(kClosures); ++i)
     if (key == kClosures[i].key) return static_cast<int>(i);
@@ -224,3 +234,19 @@ constexpr int index_of(std::string_view key) {
 }
 
 } // namespace lobe::registry::table
+
+namespace lobe::registry {
+
+// Registry ids by key, at compile time: closure_id::conductor_bsdf. kCount: the number of
+// built-in entries (ids of closures a renderer registers follow, closure_plugin.h).
+namespace closure_id {
+enum : int {
+#define LOBE_ID(key, ...) key,
+  LOBE_CLOSURE_TABLE(LOBE_ID)
+#undef LOBE_ID
+      kCount
+};
+} // namespace closure_id
+static_assert(closure_id::kCount == std::size(table::kClosures));
+
+} // namespace lobe::registry

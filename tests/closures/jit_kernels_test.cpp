@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -28,6 +29,17 @@ using namespace lobe;
 using namespace lobe::verify;
 
 namespace {
+
+// Bit-for-bit equality of results (the set-up-once path against the set-up-per-call one).
+bool same_bits(const Vec3& a, const Vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(const BsdfEval& a, const BsdfEval& b) {
+  return same_bits(a.value, b.value) && std::memcmp(&a.pdf, &b.pdf, sizeof a.pdf) == 0;
+}
+bool same_bits(const BsdfSample& a, const BsdfSample& b) {
+  return same_bits(a.wi, b.wi) && same_bits(a.weight, b.weight) &&
+         std::memcmp(&a.pdf, &b.pdf, sizeof a.pdf) == 0 && a.flags == b.flags &&
+         std::memcmp(&a.eta, &b.eta, sizeof a.eta) == 0;
+}
 
 bool close(float a, float b, double* worst) {
   if (!std::isfinite(a) || !std::isfinite(b)) return false;
@@ -95,7 +107,18 @@ TEST_F(JitKernels, AgreeWithNativeLibrary) {
     for (const ParamVariant& v : param_variants(cs.front().params)) blocks.push_back(v.params);
     Pcg32 rng(77 + uint64_t(id));
     int mismatches = 0;
-    for (const closures::Params& p : blocks)
+    for (const closures::Params& p : blocks) {
+      // Set up once per block, as Bsdf::build does: natively and through the kernels.
+      alignas(Bsdf::kLobeStateAlign) unsigned char ns_state[Bsdf::kLobeStateBytes];
+      alignas(Bsdf::kLobeStateAlign) unsigned char js_state[Bsdf::kLobeStateBytes];
+      uint32_t nf = closures::setup(id, p.data(), ns_state);
+      uint32_t jf = k.setup(id, p.data(), js_state);
+      EXPECT_EQ(nf, jf) << key;
+      EXPECT_EQ(nf, closures::lobe_flags(id, p.data())) << key;
+      if (nf == 0 || jf == 0) { // a degenerate block: no lobe either way, nothing evaluates
+        EXPECT_FALSE(closures::sample(id, p.data(), Vec3{0, 0, 1}, Vec3{0.5f, 0.5f, 0.5f})) << key;
+        continue;
+      }
       for (int n = 0; n < 200; ++n) {
         Vec3 wo = uniform_sphere(rng.next_double(), rng.next_double());
         Vec3 wi = uniform_sphere(rng.next_double(), rng.next_double());
@@ -104,12 +127,16 @@ TEST_F(JitKernels, AgreeWithNativeLibrary) {
         for (int mode = 0; mode < 2; ++mode) {
           Transport t = mode ? Transport::Importance : Transport::Radiance;
           BsdfEval ne = closures::eval(id, p.data(), wo, wi, t);
-          closures::LobeEval je;
-          k.eval(id, p.data(), &wo, &wi, mode, &je);
+          BsdfEval je;
+          k.eval(id, js_state, &wo, &wi, mode, &je);
           bool ok = close(ne.value, je.value, &worst) && close(ne.pdf, je.pdf, &worst);
           auto ns = closures::sample(id, p.data(), wo, u, t);
-          closures::LobeSample js;
-          bool jok = k.sample(id, p.data(), &wo, &u, mode, &js) != 0;
+          BsdfSample js;
+          bool jok = k.sample(id, js_state, &wo, &u, mode, &js) != 0;
+          // The natively prepared lobe gives the same bits as setting it up at every call.
+          BsdfEval pe = closures::eval_prepared(id, ns_state, wo, wi, t);
+          auto ps = closures::sample_prepared(id, ns_state, wo, u, t);
+          ok = ok && same_bits(pe, ne) && bool(ps) == bool(ns) && (!ps || same_bits(*ps, *ns));
           ok = ok && jok == bool(ns);
           if (ok && ns)
             ok = close(ns->wi, js.wi, &worst) && close(ns->weight, js.weight, &worst) &&
@@ -117,8 +144,10 @@ TEST_F(JitKernels, AgreeWithNativeLibrary) {
                  close(ns->eta, js.eta, &worst);
           if (mode == 0) {
             Vec3 ja;
-            k.albedo(id, p.data(), &wo, &ja);
-            ok = ok && close(closures::albedo(id, p.data(), wo), ja, &worst);
+            k.albedo(id, js_state, &wo, &ja);
+            Color3 na = closures::albedo(id, p.data(), wo);
+            ok = ok && close(na, ja, &worst) &&
+                 same_bits(closures::albedo_prepared(id, ns_state, wo), na);
           }
           if (!ok && ++mismatches <= 3)
             ADD_FAILURE() << key << ": native and JIT differ at wo (" << wo.x << ", " << wo.y
@@ -138,6 +167,7 @@ TEST_F(JitKernels, AgreeWithNativeLibrary) {
                                   : std::string());
         }
       }
+    }
   }
   std::printf("largest relative difference, native vs JIT: %.3g\n", worst);
 }
@@ -271,10 +301,15 @@ std::vector<float> outputs(const ClosureKernels& k, const std::vector<int>& ids)
       Vec3 wo = uniform_sphere(rng.next_double(), rng.next_double());
       wo.z = std::fabs(wo.z);
       Vec3 wi = uniform_sphere(rng.next_double(), rng.next_double()), u = rng.next_vec3();
-      closures::LobeEval e;
-      k.eval(id, p.data(), &wo, &wi, 0, &e);
-      closures::LobeSample s{};
-      int ok = k.sample(id, p.data(), &wo, &u, 0, &s);
+      alignas(Bsdf::kLobeStateAlign) unsigned char state[Bsdf::kLobeStateBytes];
+      uint32_t flags = k.setup(id, p.data(), state);
+      BsdfEval e;
+      BsdfSample s{};
+      int ok = 0;
+      if (flags) {
+        k.eval(id, state, &wo, &wi, 0, &e);
+        ok = k.sample(id, state, &wo, &u, 0, &s);
+      }
       out.insert(out.end(), {e.value.x, e.value.y, e.value.z, e.pdf, float(ok), s.wi.x, s.pdf});
     }
   }

@@ -33,11 +33,14 @@ enum LobeFlags : uint32_t {
   kLobeSpecular = 1u << 4, // a delta lobe
 };
 
+// The result types and flags are the closure library's own: each lobe (runtime/closures/)
+// returns them, in its local frame, and the Bsdf its weighted mixture in world space.
 struct BsdfEval {
   Color3 value;  // f * |cos theta_i|, weighted
   float pdf = 0; // solid-angle pdf of sample() producing wi
 };
 
+// A lobe that has no sample for its inputs returns pdf 0 (the Bsdf: std::nullopt).
 struct BsdfSample {
   Vec3 wi;
   Color3 weight;      // value / pdf (for delta lobes: the throughput factor)
@@ -48,16 +51,20 @@ struct BsdfSample {
 
 // The closure functions of one material, JIT-compiled from the closure library's LLVM bitcode
 // with only that material's closures linked in and inlined (Material::closure_kernels(),
-// runtime/jit/closure_kernels.h). C ABI, as lobe_closure_eval/_sample/_albedo in
-// docs/closures.md ("Bitcode for the JIT"); `out` points to the library's LobeEval/LobeSample.
-// A Bsdf built with kernels calls them for the ids they cover and the native library for the
-// rest; both give the same results to float rounding (tests/closures/jit_kernels_test.cpp).
+// runtime/jit/closure_kernels.h). C ABI, as lobe_closure_setup/_eval/_sample/_albedo in
+// docs/closures.md ("Bitcode for the JIT"): setup writes the lobe of a parameter block into a
+// state block (Bsdf::kLobeStateBytes) and returns its LobeFlags (0: no lobe); the others read
+// that state; sample returns 0 when there is no sample. A Bsdf built with kernels calls them
+// for the ids they cover and the native library for the rest; both give the same results, bit
+// for bit (tests/closures/jit_kernels_test.cpp).
 struct ClosureKernels {
-  using EvalFn = void (*)(int id, const unsigned char* params, const Vec3* wo, const Vec3* wi,
-                          int mode, void* out);
-  using SampleFn = int (*)(int id, const unsigned char* params, const Vec3* wo, const Vec3* u,
-                           int mode, void* out);
-  using AlbedoFn = void (*)(int id, const unsigned char* params, const Vec3* wo, Vec3* out);
+  using SetupFn = uint32_t (*)(int id, const unsigned char* params, void* state);
+  using EvalFn = void (*)(int id, const void* state, const Vec3* wo, const Vec3* wi, int mode,
+                          BsdfEval* out);
+  using SampleFn = int (*)(int id, const void* state, const Vec3* wo, const Vec3* u, int mode,
+                           BsdfSample* out);
+  using AlbedoFn = void (*)(int id, const void* state, const Vec3* wo, Vec3* out);
+  SetupFn setup = nullptr;
   EvalFn eval = nullptr;
   SampleFn sample = nullptr;
   AlbedoFn albedo = nullptr;
@@ -85,10 +92,14 @@ struct Lobe {
 class Bsdf {
 public:
   static constexpr int kMaxLobes = 16;
+  // Room for one lobe set up by build() (its frame and the lobe's own constants).
+  static constexpr size_t kLobeStateBytes = 256, kLobeStateAlign = 16;
 
   // Flattens `closure` (may be null: black) for a point with geometric normal `Ng`, viewed
   // from `wo`. Emission, transparency, holdout and debug components are collected separately.
-  // `kernels` (may be null: the native library) evaluates and samples the lobes.
+  // `kernels` (may be null: the native library) evaluates and samples the lobes. Each lobe is
+  // set up here, once (frame, parameter clamping, Fresnel averages), and eval/sample/albedo
+  // read it.
   void build(const ClosureNode* closure, const Vec3& wo, const Vec3& Ng,
              const ClosureKernels* kernels = nullptr);
 
@@ -112,7 +123,12 @@ public:
   Color3 debug_weight;
 
 private:
+  friend struct BsdfBuilder; // bsdf.cpp: flattens the closure tree into lobes_
+  const void* state(int i) const { return states_[i]; }
+  Color3 lobe_albedo(int i, const Vec3& wo) const;
+
   Lobe lobes_[kMaxLobes];
+  alignas(kLobeStateAlign) unsigned char states_[kMaxLobes][kLobeStateBytes];
   int n_lobes_ = 0;
   float total_select_ = 0;
   Vec3 ng_; // normalised geometric normal, (0,0,0) when unknown: no side test
