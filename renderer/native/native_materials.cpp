@@ -15,10 +15,10 @@
 
 namespace lobe::render {
 
-uint64_t global_bit(const char* name) {
-  for (size_t i = 0; i < std::size(kGlobalFields); ++i)
-    if (std::strcmp(kGlobalFields[i].name, name) == 0) return uint64_t(1) << i;
-  return 0;
+MaterialCompiler native_compiler() {
+  return [](const scene::MaterialDesc& m, std::string& error) {
+    return make_native_material(m.group, error);
+  };
 }
 
 namespace {
