@@ -13,6 +13,7 @@
 #include "closure_registry.h"
 #include "closures.h"
 #include "common.h"
+#include "lobe/detail/closure_kernels.h"
 #include "params.h"
 
 namespace lobe {

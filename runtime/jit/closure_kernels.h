@@ -15,6 +15,7 @@
 
 #include "jit.h"
 #include "lobe/bsdf.h"
+#include "lobe/detail/closure_kernels.h"
 
 #include <string>
 #include <vector>
