@@ -13,11 +13,12 @@
 #        eval pdf = cos(theta_i) / pi = 0.190986                    (cosine-weighted sampling)
 #        sample   : |wi| = 1, wi.z > 0, weight = albedo, pdf = wi.z / pi
 #      and the texture error comes from OpenImageIO, i.e. liblobe_oiio.so loaded from the prefix.
-# Usage: test_install.sh <build dir> <examples/minimal_plugin> <C++ compiler>
+# Usage: test_install.sh <build dir> <examples/minimal_plugin> <C++ compiler> [example flags]
 set -euo pipefail
 build=$1
 example=$2
 cxx=$3
+flags=${4:-} # the sanitizers, when the library was built with them
 
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/lobe_sdk_test.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
@@ -71,7 +72,8 @@ prefix=$tmp/moved
 generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
 cmake -S "$example" -B "$tmp/build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_PREFIX_PATH="$prefix" >"$tmp/configure.log" 2>&1 || {
+  -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" \
+  -DCMAKE_PREFIX_PATH="$prefix" >"$tmp/configure.log" 2>&1 || {
   cat "$tmp/configure.log"
   fail "configuring examples/minimal_plugin against the installed SDK"
 }
