@@ -4,13 +4,16 @@
 //
 // Why: the render tests must not depend on the JIT, and `lobe render --materials native`
 // measures the renderer without it. A scene material whose group is a single layer naming one
-// of these shaders can be built natively; instance values are read with the .osl parameter
-// names and defaults. Supported: matte, plastic, metal, glass, brushed_metal, emitter, mirror,
-// constant_background.
+// of these shaders can be built natively. Supported: matte, plastic, metal, glass,
+// brushed_metal, emitter, mirror, constant_background.
+//
+// The parameters (names, types, defaults) are not repeated here: they are read from the .osl
+// file (lobe::stdlib_shader_dir()), compiled once by the front end (no LLVM), and instance
+// values are checked against them. What each shader computes, and metal's presets, are written
+// by hand (tests/render/jit_materials_test.cpp checks both render alike).
 //
 // Not part of the renderer proper (renderer/render uses the public API only) nor of the SDK: it
-// links lobe_closures, and its tables repeat the .osl files' parameters and presets (the tests
-// in tests/render/jit_materials_test.cpp check that both render alike).
+// links the closure library and the front end.
 #pragma once
 
 #include "scene_setup.h"
