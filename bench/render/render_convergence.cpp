@@ -22,6 +22,7 @@
 #include "default_scene.h"
 #include "image.h"
 #include "material_backend.h"
+#include "native_materials.h"
 #include "renderer.h"
 #include "sampling.h"
 #include "scene.h"
@@ -172,7 +173,8 @@ int main(int argc, char** argv) {
   }
   // The materials as the renderer compiles them (MaterialBackend: the JIT by default, shaders
   // next to the scene first), and their closures through JIT kernels or the native library.
-  MaterialBackend backend(o.materials, {std::filesystem::absolute(o.scene).parent_path().string()});
+  MaterialBackend backend(o.materials, {std::filesystem::absolute(o.scene).parent_path().string()},
+                          native_compiler());
   RenderScene s;
   s.use_closure_kernels(o.closures == "jit");
   if (std::string e = s.setup(*desc, backend.compiler(), o.width, o.height); !e.empty()) {

@@ -8,6 +8,7 @@
 #include "image.h"
 #include "material_backend.h"
 #include "memory_check.h"
+#include "native_materials.h"
 #include "renderer.h"
 #include "scene.h"
 
@@ -153,7 +154,7 @@ int run_render(int argc, char** argv) {
   std::vector<std::string> shader_dirs;
   if (!a.scene.empty())
     shader_dirs.push_back(std::filesystem::absolute(a.scene).parent_path().string());
-  lobe::render::MaterialBackend backend(a.backend, shader_dirs);
+  lobe::render::MaterialBackend backend(a.backend, shader_dirs, lobe::render::native_compiler());
   // An unknown colour space is reported and Rec709 used, as testshade does.
   if (std::string e = backend.set_colorspace(a.colorspace); !e.empty())
     std::fprintf(stderr, "ERROR: %s\n", e.c_str());

@@ -1,8 +1,6 @@
 // Material backend selection (see material_backend.h).
 #include "material_backend.h"
 
-#include "native_materials.h"
-
 #ifdef LOBE_HAVE_JIT
 #include "lobe/shadingsys.h"
 #endif
@@ -21,8 +19,9 @@ struct MaterialBackend::Jit {};
 bool MaterialBackend::jit_available() { return false; }
 #endif
 
-MaterialBackend::MaterialBackend(const std::string& mode, std::vector<std::string> search_dirs)
-    : mode_(mode) {
+MaterialBackend::MaterialBackend(const std::string& mode, std::vector<std::string> search_dirs,
+                                 MaterialCompiler native)
+    : mode_(mode), native_(std::move(native)) {
 #ifdef LOBE_HAVE_JIT
   if (mode_ != "native") {
     jit_ = std::make_unique<Jit>();
@@ -111,7 +110,11 @@ std::shared_ptr<const Material> MaterialBackend::compile(const scene::MaterialDe
     error = "this build has no JIT";
     return nullptr;
   }
-  auto mat = make_native_material(m.group, error);
+  if (!native_) {
+    error = "this build has no native materials";
+    return nullptr;
+  }
+  auto mat = native_(m, error);
   std::lock_guard<std::mutex> lock(mu_);
   used_native_ |= mat != nullptr;
   return mat;

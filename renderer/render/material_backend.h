@@ -1,5 +1,6 @@
 // Which implementation compiles scene materials: the JIT (ShadingSystem, OSL source from the
-// stdlib_shaders/ folder and the scene's folder) or the native C++ stdlib twins.
+// stdlib_shaders/ folder and the scene's folder) or the native C++ stdlib twins, which the
+// caller passes in (`native`: renderer/native's native_compiler(); empty: none).
 //
 // "auto" uses the JIT when this build has it (LOBE_HAVE_JIT), else the native versions of the
 // stdlib shaders; a material the JIT rejects is an error in every mode (never replaced by its
@@ -17,7 +18,8 @@ namespace lobe::render {
 
 class MaterialBackend {
 public:
-  explicit MaterialBackend(const std::string& mode, std::vector<std::string> search_dirs = {});
+  explicit MaterialBackend(const std::string& mode, std::vector<std::string> search_dirs = {},
+                           MaterialCompiler native = {});
   ~MaterialBackend();
   MaterialCompiler compiler();
   std::string name() const; // "jit", "native" or "jit+native"
@@ -35,6 +37,7 @@ private:
   struct Jit;
   std::unique_ptr<Jit> jit_;
   std::string mode_;
+  MaterialCompiler native_;
   mutable std::mutex mu_;
   std::vector<std::string> warnings_;
   bool used_native_ = false, used_jit_ = false;

@@ -3,7 +3,6 @@
 #include "scene_setup.h"
 
 #include "image.h"
-#include "native_materials.h"
 #include "sampling.h"
 #include "sky.h"
 
@@ -20,10 +19,10 @@
 
 namespace lobe::render {
 
-MaterialCompiler native_compiler() {
-  return [](const scene::MaterialDesc& m, std::string& error) {
-    return make_native_material(m.group, error);
-  };
+uint64_t global_bit(const char* name) {
+  for (size_t i = 0; i < std::size(kGlobalFields); ++i)
+    if (std::strcmp(kGlobalFields[i].name, name) == 0) return uint64_t(1) << i;
+  return 0;
 }
 
 void collect_messages(ShadingContext& ctx, int material, ShaderMessages& out) {
@@ -217,10 +216,18 @@ std::string RenderScene::compile_materials(const MaterialCompiler& compile) {
   stats_.materials_compiled = static_cast<int>(todo.size());
   for (const std::string& e : errors)
     if (!e.empty()) return e;
-  std::string err;
-  ShaderGroup grey;
-  grey.layers.push_back({"matte", "default", {{"color", "Cs", "0.5 0.5 0.5"}}});
-  default_material_ = make_native_material(grey, err);
+  // Shapes without a material are grey: the stdlib matte with Cs 0.5, compiled like any other
+  // material (only when some shape needs it).
+  bool need_default = false;
+  for (const scene::Shape& s : desc_.shapes) need_default |= s.material < 0;
+  if (need_default) {
+    scene::MaterialDesc grey;
+    grey.name = "default";
+    grey.group.layers.push_back({"matte", "default", {{"color", "Cs", "0.5 0.5 0.5"}}});
+    std::string err;
+    default_material_ = compile(grey, err);
+    if (!default_material_) return "default material (matte, Cs 0.5): " + err;
+  }
   for (const scene::Shape& s : desc_.shapes) {
     shape_material_.push_back(s.material >= 0 ? materials_[s.material].get()
                                               : default_material_.get());

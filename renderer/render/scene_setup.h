@@ -28,11 +28,14 @@ namespace lobe::render {
 std::string check_scene_extent(const scene::SceneDesc& desc);
 
 // Turns one scene material into a compiled Material: the CLI passes one backed by the JIT's
-// ShadingSystem, tests pass make_native_material. Must be thread-safe (called in parallel).
+// ShadingSystem (MaterialBackend), tests pass the native twins (renderer/native). Must be
+// thread-safe (called in parallel). Shapes without a material get the stdlib matte with
+// Cs 0.5 from the same compiler.
 using MaterialCompiler =
     std::function<std::shared_ptr<const Material>(const scene::MaterialDesc&, std::string& error)>;
 
-MaterialCompiler native_compiler();
+// Bit of kGlobalFields for a global's name (for Material::globals_read), or 0.
+uint64_t global_bit(const char* name);
 
 // What shader code sent to a ShadingContext while shading (texture errors, error(),
 // warning(), printf): each line counted per scene material (-1: the default material).

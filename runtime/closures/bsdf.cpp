@@ -14,6 +14,7 @@
 #include "closures.h"
 #include "common.h"
 #include "components.h"
+#include "lobe/detail/closure_kernels.h"
 
 namespace lobe {
 namespace {

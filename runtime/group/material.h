@@ -6,6 +6,7 @@
 #include "env.h"
 #include "ir/ir.h"
 #include "jit.h"
+#include "lobe/detail/closure_kernels.h"
 #include "lobe/shadingsys.h"
 
 #include <atomic>

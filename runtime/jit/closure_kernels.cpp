@@ -4,6 +4,7 @@
 
 #include "closure_registry.h"
 #include "disk_cache.h"
+#include "install_paths.h"
 
 #include <llvm/Bitcode/BitcodeReader.h>
 #include <llvm/IR/IRBuilder.h>
@@ -118,14 +119,7 @@ void internalize(llvm::Module& mod) {
 
 } // namespace
 
-std::string closure_bitcode_path() {
-  if (const char* env = std::getenv("LOBE_CLOSURES_BC"); env && *env) return env;
-#ifdef LOBE_CLOSURES_BC
-  return LOBE_CLOSURES_BC;
-#else
-  return "lobe_closures.bc";
-#endif
-}
+std::string closure_bitcode_path() { return install::closures_bitcode(); }
 
 bool compile_closure_kernels(Jit& jit, const std::vector<int>& ids, ClosureKernels& out,
                              CompiledGroup& code, JitTimes& times, std::string& error) {

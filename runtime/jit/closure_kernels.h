@@ -16,13 +16,15 @@
 
 #include "jit.h"
 #include "lobe/bsdf.h"
+#include "lobe/detail/closure_kernels.h"
 
 #include <string>
 #include <vector>
 
 namespace lobe::jit {
 
-// The bitcode file: $LOBE_CLOSURES_BC when set, else the one in the build tree.
+// The bitcode file: $LOBE_CLOSURES_BC when set, else the installed one beside the library, else
+// the build tree's (runtime/install/install_paths.h).
 std::string closure_bitcode_path();
 
 // Compiles the kernels for `ids` into `code` (free it with Jit::remove) and fills `out`.

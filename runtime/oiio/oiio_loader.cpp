@@ -1,9 +1,10 @@
 // Finds and loads liblobe_oiio.so once (oiio_module.h describes the search).
 #include "oiio_module.h"
 
+#include "install_paths.h"
+
 #include <dlfcn.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <mutex>
 
@@ -16,30 +17,9 @@ struct Loaded {
   std::string why;
 };
 
-// The folder of the binary or shared library this code was linked into.
-std::filesystem::path own_folder() {
-  Dl_info info{};
-  if (dladdr(reinterpret_cast<void*>(&own_folder), &info) && info.dli_fname) {
-    std::error_code ec;
-    std::filesystem::path p = std::filesystem::canonical(info.dli_fname, ec);
-    if (!ec) return p.parent_path();
-  }
-  std::error_code ec;
-  std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return ec ? std::filesystem::path() : exe.parent_path();
-}
-
 Loaded load() {
   Loaded r;
-  std::vector<std::string> tried;
-  if (const char* env = std::getenv("LOBE_OIIO_MODULE"); env && *env) tried.push_back(env);
-  std::filesystem::path here = own_folder();
-  if (!here.empty()) {
-    tried.push_back((here / LOBE_OIIO_MODULE_NAME).string());
-    tried.push_back((here / ".." / "lib" / "lobe" / LOBE_OIIO_MODULE_NAME).string());
-  }
-  tried.push_back(LOBE_OIIO_MODULE_INSTALLED);
-  tried.push_back(LOBE_OIIO_MODULE_BUILT);
+  std::vector<std::string> tried = install::oiio_module_candidates();
   std::string errors;
   for (const std::string& path : tried) {
     std::error_code ec;
@@ -60,7 +40,7 @@ Loaded load() {
     r.api = api; // never unloaded: texture systems live until exit
     return r;
   }
-  r.why = "cannot load Lobe's OpenImageIO module " LOBE_OIIO_MODULE_NAME " (looked for ";
+  r.why = "cannot load Lobe's OpenImageIO module liblobe_oiio.so (looked for ";
   for (size_t i = 0; i < tried.size(); ++i) r.why += (i ? ", " : "") + tried[i];
   r.why += ")" + errors;
   return r;

@@ -5,8 +5,8 @@
 // first texture lookup, image read or image write, and everything else links only this loader.
 //
 // The module is found, in order, at $LOBE_OIIO_MODULE; beside the binary (or plugin library)
-// that contains this loader, and in its ../lib/lobe; at the install location; at the build
-// location. When none loads, module() returns null and `why` says what was tried; callers turn
+// that contains this loader; in the installed <libdir>/lobe relative to it; at the build
+// location (runtime/install/install_paths.h). When none loads, module() returns null and `why` says what was tried; callers turn
 // that into their own error (a texture lookup fails as a missing file does, an image write
 // names the file).
 //

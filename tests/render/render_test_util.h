@@ -2,6 +2,7 @@
 // materials, render it, and summarise pixels.
 #pragma once
 
+#include "native_materials.h"
 #include "renderer.h"
 #include "scene.h"
 

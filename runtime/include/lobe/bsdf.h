@@ -49,35 +49,9 @@ struct BsdfSample {
   float eta = 1;      // relative IOR crossed by a transmission sample (1 for reflection)
 };
 
-// The closure functions of one material, JIT-compiled from the closure library's LLVM bitcode
-// with only that material's closures linked in and inlined (Material::closure_kernels(),
-// runtime/jit/closure_kernels.h). C ABI, as lobe_closure_setup/_eval/_sample/_albedo in
-// docs/closures.md ("Bitcode for the JIT"): setup writes the lobe of a parameter block into a
-// state block (Bsdf::kLobeStateBytes) and returns its LobeFlags (0: no lobe); the others read
-// that state; sample returns 0 when there is no sample. A Bsdf built with kernels calls them
-// for the ids they cover and the native library for the rest; both give the same results, bit
-// for bit (tests/closures/jit_kernels_test.cpp).
-struct ClosureKernels {
-  using SetupFn = uint32_t (*)(int id, const unsigned char* params, void* state);
-  using EvalFn = void (*)(int id, const void* state, const Vec3* wo, const Vec3* wi, int mode,
-                          BsdfEval* out);
-  using SampleFn = int (*)(int id, const void* state, const Vec3* wo, const Vec3* u, int mode,
-                           BsdfSample* out);
-  using AlbedoFn = void (*)(int id, const void* state, const Vec3* wo, Vec3* out);
-  SetupFn setup = nullptr;
-  EvalFn eval = nullptr;
-  SampleFn sample = nullptr;
-  AlbedoFn albedo = nullptr;
-  uint64_t ids[2] = {0, 0}; // bit i: registry id i is compiled in
-
-  static constexpr int kMaxIds = 128;
-  bool covers(int id) const {
-    return id >= 0 && id < kMaxIds && ((ids[id >> 6] >> (id & 63)) & 1u) != 0;
-  }
-  void add(int id) {
-    if (id >= 0 && id < kMaxIds) ids[id >> 6] |= uint64_t{1} << (id & 63);
-  }
-};
+// The closure functions of one material, JIT-compiled (Material::closure_kernels()): opaque
+// here, pass it to Bsdf::build. Its definition is internal (lobe/detail/closure_kernels.h).
+struct ClosureKernels;
 
 // One weighted lobe: a registry component plus its weight and a pointer to its parameter
 // block (owned by the ShadingContext arena the closure was built in).

@@ -1,84 +1,109 @@
-// Native stdlib materials (see native_materials.h). Each mirrors its .osl file line by line.
+// Native stdlib materials (see native_materials.h). Each mirrors its .osl file line by line;
+// the parameters and their defaults are read from the .osl file itself.
 #include "native_materials.h"
 
 #include "closures.h"
+#include "lower/pipeline.h"
 
 #include "lobe/context.h"
+#include "lobe/install.h"
 
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <functional>
 #include <map>
+#include <mutex>
 #include <new>
 #include <sstream>
 #include <vector>
 
 namespace lobe::render {
 
-uint64_t global_bit(const char* name) {
-  for (size_t i = 0; i < std::size(kGlobalFields); ++i)
-    if (std::strcmp(kGlobalFields[i].name, name) == 0) return uint64_t(1) << i;
-  return 0;
+MaterialCompiler native_compiler() {
+  return [](const scene::MaterialDesc& m, std::string& error) {
+    return make_native_material(m.group, error);
+  };
 }
 
 namespace {
 
-// The parameters of each native shader, as declared in its .osl file.
+// The parameters of a native shader: those its .osl file declares (name, type, constant
+// default, in declaration order), read from the stdlib shader compiled by the front end, so the
+// twins cannot drift from the shaders' interfaces. Only float, color and string parameters.
 enum class PType { Float, Color, String };
 struct ParamSpec {
-  const char* name;
+  std::string name;
   PType type;
+  std::vector<float> def; // Float: 1 value, Color: 3
+  std::string def_s;      // String
+};
+struct DeclaredParams {
+  std::vector<ParamSpec> params;
+  std::string error; // why the .osl could not be read
 };
 
-const std::vector<ParamSpec>* params_of(const std::string& shader) {
-  using P = PType;
-  static const std::map<std::string, std::vector<ParamSpec>> kParams = {
-      {"matte", {{"Cs", P::Color}, {"Kd", P::Float}, {"roughness", P::Float}}},
-      {"plastic",
-       {{"Cs", P::Color},
-        {"Kd", P::Float},
-        {"Ks", P::Float},
-        {"roughness", P::Float},
-        {"ior", P::Float}}},
-      {"metal",
-       {{"preset", P::String},
-        {"ior", P::Color},
-        {"extinction", P::Color},
-        {"roughness", P::Float},
-        {"tint", P::Color}}},
-      {"brushed_metal",
-       {{"preset", P::String},
-        {"roughness_along", P::Float},
-        {"roughness_across", P::Float},
-        {"tint", P::Color}}},
-      {"glass",
-       {{"transmission_color", P::Color},
-        {"reflection_color", P::Color},
-        {"ior", P::Float},
-        {"roughness", P::Float}}},
-      {"emitter", {{"Cs", P::Color}, {"power", P::Float}}},
-      {"mirror", {{"Cs", P::Color}}},
-      {"constant_background", {{"Cs", P::Color}}},
-  };
-  auto it = kParams.find(shader);
-  return it == kParams.end() ? nullptr : &it->second;
+DeclaredParams read_declared_params(const std::string& shader) {
+  DeclaredParams out;
+  std::string path = stdlib_shader_dir() + "/" + shader + ".osl";
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    out.error = "cannot read stdlib shader " + path;
+    return out;
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  lower::PipelineResult r = lower::compile_osl({path, text.str()}, lower::PipelineOptions{});
+  if (!r.ok || !r.shader) {
+    out.error = "stdlib shader " + path + " does not compile:\n" + r.diagnostics;
+    return out;
+  }
+  for (const ir::Symbol& sym : r.shader->symbols) {
+    if (sym.kind != ir::SymKind::Param) continue;
+    ParamSpec ps{sym.name, PType::Float, {}, {}};
+    if (sym.type.is_array() || sym.init.empty() ||
+        !(sym.type.base == ir::BaseType::Float || sym.type.is_triple() ||
+          sym.type.base == ir::BaseType::String)) {
+      out.error = path + ": parameter '" + sym.name + "' is not a float, color or string with " +
+                  "a constant default (the native twins take no other)";
+      return out;
+    }
+    if (sym.type.base == ir::BaseType::String) {
+      ps.type = PType::String;
+      ps.def_s = sym.init[0].s;
+    } else {
+      ps.type = sym.type.is_triple() ? PType::Color : PType::Float;
+      for (const ir::ConstValue& v : sym.init) ps.def.push_back(v.f);
+    }
+    out.params.push_back(std::move(ps));
+  }
+  return out;
+}
+
+// Read once per shader, from any thread.
+const DeclaredParams& declared_params(const std::string& shader) {
+  static std::mutex mu;
+  static std::map<std::string, DeclaredParams> cache;
+  std::lock_guard<std::mutex> lock(mu);
+  auto it = cache.find(shader);
+  if (it == cache.end()) it = cache.emplace(shader, read_declared_params(shader)).first;
+  return it->second;
 }
 
 // Instance values by name, checked against the shader's parameters as the JIT checks them
 // (runtime/group/instance_values.cpp): a string parameter takes the text; a float exactly one
-// number; a color one number (grey) or three. Messages match the JIT's.
+// number; a color one number (grey) or three. Messages match the JIT's. A parameter without an
+// instance value has its declared default.
 class ParamValues {
 public:
   bool parse(const ShaderGroup::Layer& layer, const std::vector<ParamSpec>& specs,
              std::string& error) {
+    specs_ = &specs;
     for (const InstanceValue& iv : layer.values) {
-      const ParamSpec* spec = nullptr;
-      for (const ParamSpec& ps : specs)
-        if (iv.name == ps.name) spec = &ps;
+      const ParamSpec* spec = find(iv.name);
       if (!spec) { // as the renderer reports the JIT's warning for it
         std::string names;
-        for (const ParamSpec& ps : specs)
-          names += (names.empty() ? "" : ", ") + std::string(ps.name);
+        for (const ParamSpec& ps : specs) names += (names.empty() ? "" : ", ") + ps.name;
         error = "layer '" + layer.name + "': shader '" + layer.shader + "' has no parameter '" +
                 iv.name + "' (its parameters: " + names + ")";
         return false;
@@ -106,22 +131,34 @@ public:
     }
     return true;
   }
-  float f(const char* name, float def) const {
-    auto it = nums_.find(name);
-    return it == nums_.end() ? def : it->second[0];
-  }
-  Color3 c(const char* name, Color3 def) const {
-    auto it = nums_.find(name);
-    if (it == nums_.end()) return def;
-    const auto& v = it->second;
+  float f(const char* name) const { return numbers(name)[0]; }
+  Color3 c(const char* name) const {
+    const std::vector<float>& v = numbers(name);
     return v.size() >= 3 ? Color3{v[0], v[1], v[2]} : Color3{v[0], v[0], v[0]};
   }
-  std::string s(const char* name, const char* def) const {
+  std::string s(const char* name) const {
     auto it = strings_.find(name);
-    return it == strings_.end() ? def : it->second;
+    if (it != strings_.end()) return it->second;
+    const ParamSpec* spec = find(name);
+    return spec ? spec->def_s : "";
   }
 
 private:
+  const ParamSpec* find(const std::string& name) const {
+    for (const ParamSpec& ps : *specs_)
+      if (ps.name == name) return &ps;
+    return nullptr;
+  }
+  // The instance value, else the default (make_shader asks only for declared parameters).
+  const std::vector<float>& numbers(const char* name) const {
+    static const std::vector<float> kZero{0};
+    auto it = nums_.find(name);
+    if (it != nums_.end()) return it->second;
+    const ParamSpec* spec = find(name);
+    return spec && !spec->def.empty() ? spec->def : kZero;
+  }
+
+  const std::vector<ParamSpec>* specs_ = nullptr;
   std::map<std::string, std::vector<float>> nums_;
   std::map<std::string, std::string> strings_;
 };
@@ -175,8 +212,8 @@ private:
 // The stdlib shaders, as closures over their parameter values.
 ShadeFn make_shader(const std::string& name, const ParamValues& p) {
   if (name == "matte") {
-    Color3 albedo = p.c("Cs", {0.8f, 0.8f, 0.8f}) * p.f("Kd", 1);
-    float rough = p.f("roughness", 0);
+    Color3 albedo = p.c("Cs") * p.f("Kd");
+    float rough = p.f("roughness");
     return [=](ShaderGlobals& sg, ShadingContext& ctx) -> const ClosureNode* {
       if (rough > 0) {
         closures::Params q("oren_nayar_diffuse_bsdf");
@@ -192,8 +229,8 @@ ShadeFn make_shader(const std::string& name, const ParamValues& p) {
     };
   }
   if (name == "plastic") {
-    Color3 base = p.c("Cs", {0.8f, 0.8f, 0.8f}) * p.f("Kd", 1);
-    float ks = p.f("Ks", 1), r = p.f("roughness", 0.2f), ior = p.f("ior", 1.5f);
+    Color3 base = p.c("Cs") * p.f("Kd");
+    float ks = p.f("Ks"), r = p.f("roughness"), ior = p.f("ior");
     return [=](ShaderGlobals& sg, ShadingContext& ctx) -> const ClosureNode* {
       closures::Params coat("dielectric_bsdf");
       coat.set("N", sg.N)
@@ -212,13 +249,12 @@ ShadeFn make_shader(const std::string& name, const ParamValues& p) {
   if (name == "metal" || name == "brushed_metal") {
     bool brushed = name == "brushed_metal";
     // brushed_metal has no ior/extinction: an unknown preset is aluminium, as in its .osl.
-    MetalIor custom = brushed ? metal_preset("aluminium", {})
-                              : MetalIor{p.c("ior", {0.18299f, 0.42108f, 1.37340f}),
-                                         p.c("extinction", {3.42420f, 2.34590f, 1.77040f})};
-    MetalIor m = metal_preset(p.s("preset", brushed ? "aluminium" : "gold"), custom);
-    float rx = brushed ? p.f("roughness_along", 0.15f) : p.f("roughness", 0.3f);
-    float ry = brushed ? p.f("roughness_across", 0.6f) : rx;
-    Color3 tint = p.c("tint", {1, 1, 1});
+    MetalIor custom =
+        brushed ? metal_preset("aluminium", {}) : MetalIor{p.c("ior"), p.c("extinction")};
+    MetalIor m = metal_preset(p.s("preset"), custom);
+    float rx = brushed ? p.f("roughness_along") : p.f("roughness");
+    float ry = brushed ? p.f("roughness_across") : rx;
+    Color3 tint = p.c("tint");
     return [=](ShaderGlobals& sg, ShadingContext& ctx) -> const ClosureNode* {
       closures::Params q("conductor_bsdf");
       q.set("N", sg.N)
@@ -232,8 +268,8 @@ ShadeFn make_shader(const std::string& name, const ParamValues& p) {
     };
   }
   if (name == "glass") {
-    Color3 tt = p.c("transmission_color", {1, 1, 1}), rt = p.c("reflection_color", {1, 1, 1});
-    float ior = p.f("ior", 1.5f), r = p.f("roughness", 0);
+    Color3 tt = p.c("transmission_color"), rt = p.c("reflection_color");
+    float ior = p.f("ior"), r = p.f("roughness");
     return [=](ShaderGlobals& sg, ShadingContext& ctx) -> const ClosureNode* {
       closures::Params q("dielectric_bsdf");
       q.set("N", sg.N)
@@ -248,13 +284,13 @@ ShadeFn make_shader(const std::string& name, const ParamValues& p) {
     };
   }
   if (name == "emitter") {
-    Color3 e = p.c("Cs", {1, 1, 1}) * p.f("power", 1);
+    Color3 e = p.c("Cs") * p.f("power");
     return [=](ShaderGlobals&, ShadingContext& ctx) -> const ClosureNode* {
       return component(ctx, closures::Params("emission"), e);
     };
   }
   if (name == "mirror") {
-    Color3 cs = p.c("Cs", {1, 1, 1});
+    Color3 cs = p.c("Cs");
     return [=](ShaderGlobals& sg, ShadingContext& ctx) -> const ClosureNode* {
       closures::Params q("reflection");
       q.set("N", sg.N);
@@ -262,7 +298,7 @@ ShadeFn make_shader(const std::string& name, const ParamValues& p) {
     };
   }
   if (name == "constant_background") {
-    Color3 cs = p.c("Cs", {1, 1, 1});
+    Color3 cs = p.c("Cs");
     return [=](ShaderGlobals&, ShadingContext& ctx) -> const ClosureNode* {
       return component(ctx, closures::Params("background"), cs);
     };
@@ -296,8 +332,13 @@ std::shared_ptr<const Material> make_native_material(const ShaderGroup& group, s
     error = "no native version of shader '" + l.shader + "'";
     return nullptr;
   }
+  const DeclaredParams& declared = declared_params(l.shader);
+  if (!declared.error.empty()) {
+    error = declared.error;
+    return nullptr;
+  }
   ParamValues p;
-  if (!p.parse(l, *params_of(l.shader), error)) return nullptr;
+  if (!p.parse(l, declared.params, error)) return nullptr;
   return std::make_shared<NativeMaterial>(make_shader(l.shader, p), reads_of(l.shader));
 }
 
