@@ -7,6 +7,7 @@
 // weight = a, its cos_i = sqrt(1 - u.x) (the warp below), directional albedo = a.
 #include "lobe/bsdf.h"
 #include "lobe/closure_plugin.h"
+#include "lobe/detail/closure_kernels.h" // covers(): the test checks which lobes the kernels take
 #include "lobe/shadingsys.h"
 
 #include <gtest/gtest.h>
