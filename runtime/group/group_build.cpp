@@ -90,53 +90,6 @@ std::set<int> written_symbols(const ir::Shader& sh) {
   return w;
 }
 
-// String comparisons. passes::fold_constants compares constant strings as numbers at the time
-// of writing ("a" == "b" folds to 1), so string eq/neq ops are hidden from it under a private
-// opcode while it runs, and folded here once both operands are constants.
-const char* const kHiddenEq = "lobe.streq";
-const char* const kHiddenNeq = "lobe.strneq";
-
-bool is_string_compare(const ir::Shader& sh, const ir::Op& op) {
-  if (op.args.size() != 3) return false;
-  const ir::Symbol& a = sh.symbols[size_t(op.args[1])];
-  const ir::Symbol& b = sh.symbols[size_t(op.args[2])];
-  return a.type == ir::Type{ir::BaseType::String, 0} && b.type == ir::Type{ir::BaseType::String, 0};
-}
-
-void hide_string_compares(ir::Shader& sh, bool hide) {
-  for (ir::Op& op : sh.ops) {
-    if (hide && (op.opcode == "eq" || op.opcode == "neq") && is_string_compare(sh, op))
-      op.opcode = op.opcode == "eq" ? kHiddenEq : kHiddenNeq;
-    else if (!hide && op.opcode == kHiddenEq)
-      op.opcode = "eq";
-    else if (!hide && op.opcode == kHiddenNeq)
-      op.opcode = "neq";
-  }
-}
-
-bool fold_string_compares(ir::Shader& sh) {
-  bool changed = false;
-  for (ir::Op& op : sh.ops) {
-    if ((op.opcode != "eq" && op.opcode != "neq") || !is_string_compare(sh, op)) continue;
-    const ir::Symbol& a = sh.symbols[size_t(op.args[1])];
-    const ir::Symbol& b = sh.symbols[size_t(op.args[2])];
-    if (a.kind != SymKind::Const || b.kind != SymKind::Const || a.init.empty() || b.init.empty())
-      continue;
-    bool same = a.init[0].s == b.init[0].s;
-    ir::Symbol c;
-    c.name = "$str_cmp" + std::to_string(sh.symbols.size());
-    c.type = ir::Type{ir::BaseType::Int, 0};
-    c.kind = SymKind::Const;
-    c.init = {ir::ConstValue{(op.opcode == "eq") == same ? 1 : 0, 0.0f, ""}};
-    sh.symbols.push_back(c);
-    op.opcode = "assign";
-    op.args = {op.args[0], int(sh.symbols.size()) - 1};
-    op.written_mask = 1;
-    changed = true;
-  }
-  return changed;
-}
-
 // Instance values -> constants; unconnected, unwritten params with known values -> Const.
 void specialize_layer(ir::Shader& sh,
                       const std::map<std::string, std::vector<ir::ConstValue>>& values,
@@ -171,11 +124,7 @@ void specialize_layer(ir::Shader& sh,
     s.derivs = false;
   }
   for (int round = 0; round < 8; ++round) {
-    fold_string_compares(sh);
-    hide_string_compares(sh, true);
     bool changed = passes::fold_constants(sh, math);
-    hide_string_compares(sh, false);
-    changed |= fold_string_compares(sh);
     changed |= passes::eliminate_dead_code(sh);
     if (!changed) break;
   }

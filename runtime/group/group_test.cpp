@@ -1,6 +1,9 @@
 // Shader groups through the public API, on layers given as IR text (ShadingSystem::add_shader_ir):
 // group text, instance values, every kind of connection, lazy layers, specialisation on/off
 // giving identical output, the cache, read_output and globals_read.
+#include "group_build.h"
+#include "ir/parser.h"
+#include "ir/printer.h"
 #include "lobe/shadingsys.h"
 #include "shader_source.h"
 
@@ -305,6 +308,51 @@ end
   EXPECT_EQ(bit("dudx"), 1u); // Dx(u) reads u's derivatives
   EXPECT_EQ(bit("N"), 0u);
   EXPECT_EQ(bit("P"), 0u);
+}
+
+// String compares of constants fold by content when the group is specialised (constant
+// folding compares strings, so no op is hidden from it), and give OSL's results. OSL 1.13.12:
+//   surface strcmp(string mode = "plain", output int same = 0, output int differ = 0,
+//                  output int lit = 0) { same = mode == "fancy"; differ = mode != "fancy";
+//     lit = "a" == "b"; printf("same %d differ %d lit %d\n", same, differ, lit); }
+//   testshade strcmp                     -> same 0 differ 1 lit 0
+//   testshade --param mode fancy strcmp  -> same 1 differ 0 lit 0 (also at -O0)
+const char* kStrcmp = R"(lobe-ir 1
+surface strcmp
+symbols
+  param string mode = "plain"
+  oparam int same = 0
+  oparam int differ = 0
+  oparam int lit = 0
+  const string $fancy = "fancy"
+  const string $a = "a"
+  const string $b = "b"
+  const string $fmt = "same %d differ %d lit %d\n"
+main
+  useparam mode
+  eq same mode $fancy
+  neq differ mode $fancy
+  eq lit $a $b
+  printf $fmt same differ lit
+end
+)";
+
+TEST_F(Groups, StringComparesOfConstantsFold) {
+  DiagnosticList d;
+  ASSERT_TRUE(ss.add_shader_ir("strcmp", kStrcmp, d)) << d[0].text;
+  EXPECT_EQ(both("shader strcmp s ;"), "same 0 differ 1 lit 0\n");
+  EXPECT_EQ(both("param string mode \"fancy\" ; shader strcmp s ;"), "same 1 differ 0 lit 0\n");
+  // Specialised, the compares are constants: no eq/neq op is left.
+  ir::ParseResult src = ir::parse(kStrcmp);
+  ASSERT_TRUE(src.shader);
+  auto g = ss.parse_group("param string mode \"fancy\" ; shader strcmp s ;", "t", d);
+  ASSERT_TRUE(g);
+  group::GroupBuild built;
+  ASSERT_TRUE(group::build_group(*g, {&*src.shader}, true, built, d));
+  ASSERT_EQ(built.shaders.size(), 1u);
+  for (const ir::Op& op : built.shaders[0]->ops)
+    EXPECT_TRUE(op.opcode != "eq" && op.opcode != "neq")
+        << ir::print(*built.shaders[0]);
 }
 
 } // namespace
