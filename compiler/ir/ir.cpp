@@ -111,11 +111,6 @@ std::optional<Opcode> opcode_from_name(std::string_view name) {
   return it->second;
 }
 
-const OpcodeInfo* find_opcode(std::string_view name) {
-  std::optional<Opcode> op = opcode_from_name(name);
-  return op ? &info(*op) : nullptr;
-}
-
 // The table defines the enum, so row i is opcode i.
 static_assert([] {
   for (size_t i = 0; i < kOpcodeCount; ++i)

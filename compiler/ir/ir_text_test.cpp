@@ -28,9 +28,9 @@ ConstValue f(float v) { return ConstValue::of_float(v); }
 ConstValue i(int v) { return ConstValue::of_int(v); }
 ConstValue s(std::string v) { return ConstValue::of_string(std::move(v)); }
 
-Op op(std::string code, std::vector<int> args, uint32_t mask, std::vector<int> jumps = {}) {
+Op op(std::string_view code, std::vector<int> args, uint32_t mask, std::vector<int> jumps = {}) {
   Op o;
-  o.opcode = std::move(code);
+  o.opcode = *opcode_from_name(code);
   o.args = std::move(args);
   o.written_mask = mask;
   o.jumps = std::move(jumps);

@@ -233,7 +233,5 @@ constexpr bool is_jump(Opcode op) { return info(op).flags & kJump; }
 // The opcode printed as `name`; nullopt if no opcode has that name.
 std::optional<Opcode> opcode_from_name(std::string_view name);
 inline std::span<const OpcodeInfo> opcodes() { return kOpcodes; }
-// By name (kept while ops carry their opcode as a string); null if unknown.
-const OpcodeInfo* find_opcode(std::string_view name);
 
 } // namespace lobe::ir

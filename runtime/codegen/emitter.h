@@ -136,7 +136,7 @@ private:
   std::string error_;
 };
 
-// Op emitters, by family (ops_*.cpp); returns null for an unknown opcode.
-OpEmitFn find_op_emitter(const std::string& opcode);
+// Op emitters, by family (ops_*.cpp); returns null for an opcode without one.
+OpEmitFn find_op_emitter(ir::Opcode op);
 
 } // namespace lobe::codegen

@@ -9,8 +9,8 @@
 namespace lobe::codegen {
 
 struct OpEntry {
-  const char* name;
-  OpEmitFn fn;
+  ir::Opcode op;
+  OpEmitFn fn; // null only for the control flow LayerEmitter::emit_op does itself
 };
 
 std::span<const OpEntry> core_ops();     // ops_core.cpp

@@ -97,7 +97,7 @@ void specialize_layer(ir::Shader& sh,
   // isconstant answers for the shader before specialisation (docs/language.md), as codegen
   // does without it: resolve it now, before params become constants.
   for (ir::Op& op : sh.ops) {
-    if (op.opcode != "isconstant" || op.args.size() != 2) continue;
+    if (op.opcode != ir::Opcode::IsConstant || op.args.size() != 2) continue;
     ir::Symbol c;
     c.name = "$isconstant" + std::to_string(sh.symbols.size());
     c.type = ir::Type{ir::BaseType::Int, 0};
@@ -105,7 +105,7 @@ void specialize_layer(ir::Shader& sh,
     bool k = sh.symbols[size_t(op.args[1])].kind == SymKind::Const;
     c.init = {ir::ConstValue{k ? 1 : 0, 0.0f, ""}};
     sh.symbols.push_back(c);
-    op.opcode = "assign";
+    op.opcode = ir::Opcode::Assign;
     op.args = {op.args[0], int(sh.symbols.size()) - 1};
     op.written_mask = 1;
   }
@@ -139,8 +139,8 @@ void extend_derivatives(ir::Shader& sh) {
   for (bool grew = true; grew;) {
     grew = false;
     for (const ir::Op& op : sh.ops) {
-      const ir::OpcodeInfo* info = ir::find_opcode(op.opcode);
-      if (!info || !(info->flags & ir::kPropagates)) continue;
+      const ir::OpcodeInfo* info = &ir::info(op.opcode);
+      if (!(info->flags & ir::kPropagates)) continue;
       bool needs = false;
       for (size_t a = 0; a < op.args.size(); ++a)
         needs |= op.writes(int(a)) && sh.symbols[size_t(op.args[a])].derivs;
@@ -250,7 +250,7 @@ KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool run
       if (sh.symbols[size_t(op.args[a])].kind == SymKind::Global)
         written_globals.insert(op.args[a]);
     }
-    bool jump = op.opcode == "br" || op.opcode == "cbr" || op.opcode == "exit";
+    bool jump = ir::is_jump(op.opcode);
     if (jump && writer < 0) jump_before = true;
   }
   if (writes == 0) {
@@ -259,7 +259,7 @@ KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool run
   }
   if (writes > 1 || jump_before) return k;
   const ir::Op& op = sh.ops[size_t(writer)];
-  if (op.opcode != "assign" || op.args.size() != 2 || op.args[0] != si) return k;
+  if (op.opcode != ir::Opcode::Assign || op.args.size() != 2 || op.args[0] != si) return k;
   const ir::Symbol& src = sh.symbols[size_t(op.args[1])];
   if (src.kind == SymKind::Const) {
     k.value = convert_const(src.init, src.type, s.type);
@@ -417,7 +417,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         // isconnected() still answers for the connection as made: keep those.
         auto asks = [](const ir::Shader& x, int symbol) {
           for (const ir::Op& op : x.ops)
-            if (op.opcode == "isconnected" && op.args.size() > 1 && op.args[1] == symbol)
+            if (op.opcode == ir::Opcode::IsConnected && op.args.size() > 1 && op.args[1] == symbol)
               return true;
           return false;
         };
@@ -439,9 +439,9 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
           dsym.init_begin = dsym.init_end = -1;
           dsym.metadata.clear();
           for (ir::Op& op : sh->ops) // its reads need no fetch now
-            if (op.opcode == "useparam") {
+            if (op.opcode == ir::Opcode::UseParam) {
               op.args.erase(std::remove(op.args.begin(), op.args.end(), ds), op.args.end());
-              if (op.args.empty()) op.opcode = "nop";
+              if (op.args.empty()) op.opcode = ir::Opcode::Nop;
             }
         }
         l.dead = true;

@@ -351,7 +351,7 @@ TEST_F(Groups, StringComparesOfConstantsFold) {
   ASSERT_TRUE(group::build_group(*g, {&*src.shader}, true, built, d));
   ASSERT_EQ(built.shaders.size(), 1u);
   for (const ir::Op& op : built.shaders[0]->ops)
-    EXPECT_TRUE(op.opcode != "eq" && op.opcode != "neq")
+    EXPECT_TRUE(op.opcode != ir::Opcode::Eq && op.opcode != ir::Opcode::Neq)
         << ir::print(*built.shaders[0]);
 }
 

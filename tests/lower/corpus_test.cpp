@@ -263,7 +263,7 @@ TEST(ConstantExpressions, LowerToOneConstant) {
 TEST(Builtins, EveryBuiltinHasALowering) {
   const std::set<std::string> lowered = {"radians", "degrees", "exit"};
   for (const lobe::sema::BuiltinSig& s : lobe::sema::builtins().all())
-    EXPECT_TRUE(lobe::ir::find_opcode(s.name) || lowered.count(s.name)) << s.signature();
+    EXPECT_TRUE(lobe::ir::opcode_from_name(s.name) || lowered.count(s.name)) << s.signature();
 }
 
 } // namespace
