@@ -254,7 +254,7 @@ void LayerEmitter::emit_op(int index) {
     emit_exit();
   } else if (op.opcode == ir::Opcode::UseParam) {
     for (int a : op.args) run_useparam(a);
-  } else if (OpEmitFn fn = find_op_emitter(op.opcode)) {
+  } else if (OpEmitFn fn = op_emitter(op.opcode)) {
     if (group_.debug_uninit) check_uninit_reads(index);
     fn(*this, op);
     if (group_.debug_nan && !b_.GetInsertBlock()->getTerminator()) check_nan_writes(index);

@@ -846,12 +846,4 @@ const OpEntry kLibraryOps[] = {
 
 std::span<const OpEntry> library_ops() { return kLibraryOps; }
 
-OpEmitFn find_op_emitter(ir::Opcode op) {
-  for (auto table :
-       {core_ops(), access_ops(), math_ops(), geometry_ops(), library_ops(), data_ops()})
-    for (const OpEntry& e : table)
-      if (op == e.op) return e.fn;
-  return nullptr;
-}
-
 } // namespace lobe::codegen
