@@ -102,8 +102,8 @@ bool remove_unused_symbols(Shader& sh) {
 
 bool op_reads(const Op& op, int argi) {
   if (!op.writes(argi)) return true;
-  return argi == 0 &&
-         (op.opcode == "compassign" || op.opcode == "mxcompassign" || op.opcode == "aassign");
+  return argi == 0 && (op.opcode == Opcode::CompAssign || op.opcode == Opcode::MxCompAssign ||
+                       op.opcode == Opcode::AAssign);
 }
 
 } // namespace lobe::ir

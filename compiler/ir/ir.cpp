@@ -98,15 +98,24 @@ const StructType* Shader::find_struct(const std::string& n) const {
   return nullptr;
 }
 
-// A linear scan would do (about 130 entries), but codegen and the verifier look up every op.
-const OpcodeInfo* find_opcode(std::string_view name) {
-  static const std::unordered_map<std::string_view, const OpcodeInfo*> index = [] {
-    std::unordered_map<std::string_view, const OpcodeInfo*> m;
-    for (const OpcodeInfo& o : kOpcodes) m.emplace(o.name, &o);
+// By name, for the text parser and lowering (builtins named as opcodes); everything past them
+// compares the enum.
+std::optional<Opcode> opcode_from_name(std::string_view name) {
+  static const std::unordered_map<std::string_view, Opcode> index = [] {
+    std::unordered_map<std::string_view, Opcode> m;
+    for (const OpcodeInfo& o : kOpcodes) m.emplace(o.name, o.op);
     return m;
   }();
   auto it = index.find(name);
-  return it == index.end() ? nullptr : it->second;
+  if (it == index.end()) return std::nullopt;
+  return it->second;
 }
+
+// The table defines the enum, so row i is opcode i.
+static_assert([] {
+  for (size_t i = 0; i < kOpcodeCount; ++i)
+    if (size_t(kOpcodes[i].op) != i) return false;
+  return true;
+}());
 
 } // namespace lobe::ir

@@ -11,6 +11,8 @@
 // docs/ir.md. print(parse(print(ir))) == print(ir) is a tested invariant.
 #pragma once
 
+#include "ir/opcodes.h"
+
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -128,13 +130,11 @@ struct StructType {
   friend bool operator==(const StructType&, const StructType&) = default;
 };
 
-// An operation: `opcode dst src...`. The opcode is a name: the core ops listed in
-// docs/ir.md (assign, add, sub, mul, div, mod, neg, eq, neq, lt, le, gt, ge, not, compl,
-// bitand, bitor, xor, shl, shr, compref, compassign, mxcompref, mxcompassign, aref, aassign,
-// arraycopy, construct, closure, br, cbr, exit, nop, ...) or the name of a standard-library
+// An operation: `opcode dst src...`. The opcode is one of the table in ir/opcodes.h: the core
+// ops listed in docs/ir.md (assign, add, ..., br, cbr, exit, nop) or a standard-library
 // function (sin, noise, printf, ...) resolved by codegen from the argument types.
 struct Op {
-  std::string opcode;
+  Opcode opcode = Opcode::Nop;
   std::vector<int> args;     // symbol indices; by convention written args come first
   uint32_t written_mask = 0; // bit i set: args[i] is written by this op
   std::vector<int> jumps;    // op indices (br: {target}; cbr: {if_true, if_false})

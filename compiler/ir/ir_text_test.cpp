@@ -1,6 +1,7 @@
 // IR text form: printing a hand-built shader gives the documented text; parsing gives the
 // same data back; print(parse(print(x))) == print(x) over many programs; malformed text gives
 // errors at the right line and column.
+#include "ir/opcodes.h"
 #include "ir/parser.h"
 #include "ir/printer.h"
 #include "ir/verifier.h"
@@ -8,6 +9,8 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <set>
+#include <string_view>
 
 using namespace lobe::ir;
 
@@ -25,9 +28,9 @@ ConstValue f(float v) { return ConstValue::of_float(v); }
 ConstValue i(int v) { return ConstValue::of_int(v); }
 ConstValue s(std::string v) { return ConstValue::of_string(std::move(v)); }
 
-Op op(std::string code, std::vector<int> args, uint32_t mask, std::vector<int> jumps = {}) {
+Op op(std::string_view code, std::vector<int> args, uint32_t mask, std::vector<int> jumps = {}) {
   Op o;
-  o.opcode = std::move(code);
+  o.opcode = *opcode_from_name(code);
   o.args = std::move(args);
   o.written_mask = mask;
   o.jumps = std::move(jumps);
@@ -364,6 +367,24 @@ TEST(IrText, ErrorsCarryLineAndColumn) {
   ParseResult r = parse("lobe-ir 2\n");
   ASSERT_FALSE(r.shader);
   EXPECT_EQ(r.error.to_string(), "1:1: expected 'lobe-ir 1'");
+}
+
+// The table defines the enum: row i is opcode i, every name is unique and maps back to its
+// opcode, and a name that is no opcode's maps to nothing.
+TEST(Opcodes, NamesAndEnumAgree) {
+  std::set<std::string_view> names;
+  for (size_t i = 0; i < kOpcodeCount; ++i) {
+    Opcode op = Opcode(i);
+    EXPECT_EQ(size_t(info(op).op), i);
+    EXPECT_TRUE(names.insert(to_string(op)).second) << to_string(op);
+    EXPECT_EQ(opcode_from_name(to_string(op)), op) << to_string(op);
+  }
+  EXPECT_EQ(to_string(Opcode::Add), std::string_view("add"));
+  EXPECT_EQ(to_string(Opcode::MxCompAssign), std::string_view("mxcompassign"));
+  EXPECT_EQ(opcode_from_name("calculatenormal"), Opcode::CalculateNormal);
+  EXPECT_FALSE(opcode_from_name("frob"));
+  EXPECT_FALSE(opcode_from_name("Add"));
+  EXPECT_TRUE(is_jump(Opcode::Cbr) && is_jump(Opcode::Exit) && !is_jump(Opcode::UseParam));
 }
 
 } // namespace

@@ -330,10 +330,10 @@ void Parser::symbol_line(std::vector<Token>& toks) {
 
 void Parser::op_line(std::vector<Token>& toks) {
   Op op;
-  op.opcode = toks[0].text;
-  const OpcodeInfo* info = find_opcode(op.opcode);
-  if (!info) throw Fail{toks[0].col, "unknown opcode '" + op.opcode + "'"};
-  op.written_mask = info->written;
+  std::optional<Opcode> code = opcode_from_name(toks[0].text);
+  if (!code) throw Fail{toks[0].col, "unknown opcode '" + toks[0].text + "'"};
+  op.opcode = *code;
+  op.written_mask = info(op.opcode).written;
   size_t i = 1;
   for (; i < toks.size(); ++i) {
     const Token& t = toks[i];

@@ -148,14 +148,13 @@ static std::string sym_name(const Shader& sh, int i) {
 }
 
 static std::string print_op(const Shader& sh, const Op& op) {
-  std::string line = "  " + op.opcode;
+  std::string line = "  " + std::string(to_string(op.opcode));
   for (int a : op.args) line += " " + sym_name(sh, a);
   if (!op.jumps.empty()) {
     line += " ->";
     for (int j : op.jumps) line += " L" + std::to_string(j);
   }
-  const OpcodeInfo* info = find_opcode(op.opcode);
-  if (!info || info->written != op.written_mask)
+  if (info(op.opcode).written != op.written_mask)
     line += " wmask=" + std::to_string(op.written_mask);
   append(line, format_loc(op.loc));
   return line;

@@ -84,8 +84,8 @@ void Verifier::symbols() {
 void Verifier::jumps(int index, const OpcodeInfo& info) {
   const Op& o = sh_.ops[index];
   size_t want = 0;
-  if (o.opcode == "br") want = 1;
-  if (o.opcode == "cbr") want = 2;
+  if (o.opcode == Opcode::Br) want = 1;
+  if (o.opcode == Opcode::Cbr) want = 2;
   if (o.jumps.size() != want)
     error("has " + std::to_string(o.jumps.size()) + " jump targets, needs " + std::to_string(want));
   bool in_init = index < sh_.main_begin;
@@ -99,11 +99,14 @@ void Verifier::jumps(int index, const OpcodeInfo& info) {
 
 void Verifier::op(int index) {
   const Op& o = sh_.ops[index];
-  prefix_ = "op " + std::to_string(index) + " (" + o.opcode;
+  if (size_t(o.opcode) >= kOpcodeCount) {
+    prefix_ = "op " + std::to_string(index) + ": ";
+    return error("unknown opcode");
+  }
+  prefix_ = "op " + std::to_string(index) + " (" + to_string(o.opcode);
   std::string l = format_loc(o.loc);
   prefix_ += (l.empty() ? "" : " " + l) + "): ";
-  const OpcodeInfo* info = find_opcode(o.opcode);
-  if (!info) return error("unknown opcode");
+  const OpcodeInfo* info = &ir::info(o.opcode);
   int n = int(o.args.size());
   if (n < info->min_args || (info->max_args != kVariadic && n > info->max_args))
     return error("has " + std::to_string(n) + " operands, needs " + std::to_string(info->min_args) +
@@ -124,7 +127,7 @@ void Verifier::op(int index) {
 
 // The type rules of docs/ir.md for the core opcodes.
 void Verifier::types(const Op& o) {
-  const std::string& c = o.opcode;
+  const Opcode c = o.opcode;
   auto t = [&](int i) -> const Type& { return ty(o, i); };
   auto name = [&](int i) {
     return "'" + sh_.symbols[o.args[i]].name + "' (" + to_string(t(i)) + ")";
@@ -133,9 +136,10 @@ void Verifier::types(const Op& o) {
     const Symbol& s = sh_.symbols[o.args[i]];
     return s.kind == SymKind::Const && scalar(s.type, BaseType::String);
   };
-  if (c == "assign") {
+  if (c == Opcode::Assign) {
     expect(assignable(t(1), t(0)), "cannot assign " + name(1) + " to " + name(0));
-  } else if (c == "add" || c == "sub" || c == "mul" || c == "div" || c == "mod" || c == "neg") {
+  } else if (c == Opcode::Add || c == Opcode::Sub || c == Opcode::Mul || c == Opcode::Div ||
+             c == Opcode::Mod || c == Opcode::Neg) {
     int n = int(o.args.size());
     if (scalar(t(0), BaseType::Closure)) {
       int closures = 0;
@@ -146,11 +150,11 @@ void Verifier::types(const Op& o) {
           expect(numeric(t(i)) || scalar(t(i), BaseType::Color),
                  "closure weight " + name(i) + " must be float or color");
       }
-      if (c == "add")
+      if (c == Opcode::Add)
         expect(closures == 2, "closure add needs two closures");
-      else if (c == "mul")
+      else if (c == Opcode::Mul)
         expect(closures == 1, "closure mul needs one closure and one weight");
-      else if (c == "neg")
+      else if (c == Opcode::Neg)
         expect(closures == 1, "closure neg needs a closure");
       else
         error("closures support only add, mul, neg");
@@ -158,9 +162,10 @@ void Verifier::types(const Op& o) {
     }
     for (int i = 1; i < n; ++i)
       expect(promotes(t(i), t(0)), "operand " + name(i) + " does not convert to " + name(0));
-  } else if (c == "eq" || c == "neq" || c == "lt" || c == "le" || c == "gt" || c == "ge") {
+  } else if (c == Opcode::Eq || c == Opcode::Neq || c == Opcode::Lt || c == Opcode::Le ||
+             c == Opcode::Gt || c == Opcode::Ge) {
     expect(scalar(t(0), BaseType::Int), "result " + name(0) + " must be int");
-    bool ordered = c != "eq" && c != "neq";
+    bool ordered = c != Opcode::Eq && c != Opcode::Neq;
     for (int i = 1; i < 3; ++i) {
       if (ordered)
         expect(numeric(t(i)), "ordered comparison of " + name(i));
@@ -169,37 +174,38 @@ void Verifier::types(const Op& o) {
     }
     expect(promotes(t(1), t(2)) || promotes(t(2), t(1)),
            "incomparable " + name(1) + " and " + name(2));
-  } else if (c == "not") {
+  } else if (c == Opcode::Not) {
     expect(scalar(t(0), BaseType::Int), "result must be int");
     expect(numeric(t(1)) || scalar(t(1), BaseType::Closure), "operand " + name(1));
-  } else if (c == "compl" || c == "bitand" || c == "bitor" || c == "xor" || c == "shl" ||
-             c == "shr") {
+  } else if (c == Opcode::Compl || c == Opcode::BitAnd || c == Opcode::BitOr || c == Opcode::Xor ||
+             c == Opcode::Shl || c == Opcode::Shr) {
     for (size_t i = 0; i < o.args.size(); ++i)
       expect(scalar(t(int(i)), BaseType::Int), "operand " + name(int(i)) + " must be int");
-  } else if (c == "compref") {
+  } else if (c == Opcode::CompRef) {
     expect(scalar(t(0), BaseType::Float) && t(1).is_triple() && !t(1).is_array() &&
                scalar(t(2), BaseType::Int),
            "needs float = triple[int]");
-  } else if (c == "compassign") {
+  } else if (c == Opcode::CompAssign) {
     expect(t(0).is_triple() && !t(0).is_array() && scalar(t(1), BaseType::Int) && numeric(t(2)),
            "needs triple[int] = float");
-  } else if (c == "mxcompref") {
+  } else if (c == Opcode::MxCompRef) {
     expect(scalar(t(0), BaseType::Float) && scalar(t(1), BaseType::Matrix) &&
                scalar(t(2), BaseType::Int) && scalar(t(3), BaseType::Int),
            "needs float = matrix[int][int]");
-  } else if (c == "mxcompassign") {
+  } else if (c == Opcode::MxCompAssign) {
     expect(scalar(t(0), BaseType::Matrix) && scalar(t(1), BaseType::Int) &&
                scalar(t(2), BaseType::Int) && numeric(t(3)),
            "needs matrix[int][int] = float");
-  } else if (c == "aref" || c == "aassign") {
-    int arr = c == "aref" ? 1 : 0, elem = c == "aref" ? 0 : 2, idx = c == "aref" ? 2 : 1;
+  } else if (c == Opcode::ARef || c == Opcode::AAssign) {
+    int arr = c == Opcode::ARef ? 1 : 0, elem = c == Opcode::ARef ? 0 : 2,
+        idx = c == Opcode::ARef ? 2 : 1;
     expect(t(arr).is_array(), name(arr) + " is not an array");
     expect(scalar(t(idx), BaseType::Int), "index " + name(idx) + " must be int");
     Type e = t(arr);
     e.arraylen = 0;
-    expect(c == "aref" ? t(elem) == e : promotes(t(elem), e),
+    expect(c == Opcode::ARef ? t(elem) == e : promotes(t(elem), e),
            "element " + name(elem) + " does not match " + name(arr));
-  } else if (c == "arraycopy") {
+  } else if (c == Opcode::ArrayCopy) {
     auto triple = [](BaseType b) {
       return b == BaseType::Color || b == BaseType::Point || b == BaseType::Vector ||
              b == BaseType::Normal;
@@ -207,32 +213,33 @@ void Verifier::types(const Op& o) {
     expect(t(0).is_array() && t(1).is_array() &&
                (t(0).base == t(1).base || (triple(t(0).base) && triple(t(1).base))),
            "needs two arrays of one element type (or of two triple kinds)");
-  } else if (c == "arraylength") {
+  } else if (c == Opcode::ArrayLength) {
     expect(scalar(t(0), BaseType::Int) && t(1).is_array(), "needs int = arraylength(array)");
-  } else if (c == "construct") {
+  } else if (c == Opcode::Construct) {
     expect(t(0).is_triple() || scalar(t(0), BaseType::Matrix),
            "constructs only triples and matrices");
-  } else if (c == "closure") {
+  } else if (c == Opcode::Closure) {
     expect(scalar(t(0), BaseType::Closure), "result must be a closure");
     expect(is_const_string(1), "second operand must be the registry key (a string constant)");
-  } else if (c == "declared_closure") {
+  } else if (c == Opcode::DeclaredClosure) {
     expect(scalar(t(0), BaseType::Closure), "result must be a closure");
     expect(is_const_string(1), "second operand must be the closure's name (a string constant)");
     expect(o.args.size() >= 3 && scalar(t(2), BaseType::Int) &&
                sh_.symbols[o.args[2]].kind == SymKind::Const,
            "third operand must be the number of positional arguments (an int constant)");
-  } else if (c == "cbr") {
+  } else if (c == Opcode::Cbr) {
     expect(numeric(t(0)), "condition " + name(0) + " must be int or float");
-  } else if (c == "useparam") {
+  } else if (c == Opcode::UseParam) {
     for (size_t i = 0; i < o.args.size(); ++i) {
       SymKind k = sh_.symbols[o.args[i]].kind;
       expect(k == SymKind::Param || k == SymKind::OutputParam,
              name(int(i)) + " is not a parameter");
     }
-  } else if (c == "Dx" || c == "Dy" || c == "Dz" || c == "filterwidth") {
+  } else if (c == Opcode::Dx || c == Opcode::Dy || c == Opcode::Dz || c == Opcode::FilterWidth) {
     expect(float_based(t(0)) && float_based(t(1)), "needs float or triple operands");
-  } else if (c == "printf" || c == "format" || c == "error" || c == "warning") {
-    int f = c == "format" ? 1 : 0;
+  } else if (c == Opcode::Printf || c == Opcode::Format || c == Opcode::Error ||
+             c == Opcode::Warning) {
+    int f = c == Opcode::Format ? 1 : 0;
     expect(scalar(t(f), BaseType::String), "format " + name(f) + " must be a string");
   }
 }

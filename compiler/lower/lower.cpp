@@ -148,7 +148,7 @@ void Lowerer::patch(const std::vector<int>& ops, int target) {
 
 // Appends an op; before it, a `useparam` naming the parameters it reads that this basic block
 // has not announced yet. Returns the op's index. Unpatched jump targets are -1.
-int Lowerer::emit(const std::string& opcode, std::vector<int> args, uint32_t written,
+int Lowerer::emit(ir::Opcode opcode, std::vector<int> args, uint32_t written,
                   const ast::Node* where, std::vector<int> jumps) {
   ir::Op op;
   op.opcode = opcode;
@@ -166,13 +166,13 @@ int Lowerer::emit(const std::string& opcode, std::vector<int> args, uint32_t wri
   }
   if (!reads.empty()) {
     ir::Op u;
-    u.opcode = "useparam";
+    u.opcode = ir::Opcode::UseParam;
     u.args = reads;
     u.loc = op.loc;
     sh_.ops.push_back(std::move(u));
   }
   sh_.ops.push_back(std::move(op));
-  if (opcode == "br" || opcode == "cbr" || opcode == "exit") used_params_.clear();
+  if (ir::is_jump(opcode)) used_params_.clear();
   return int(sh_.ops.size()) - 1;
 }
 
@@ -252,15 +252,16 @@ bool Lowerer::const_values(const ast::Expr* e, const ir::Type& t,
     if (u->overload || u->op == ast::UnaryOp::Not) return false;
     if (!const_values(u->operand.get(), et, v)) return false;
     if (u->op == ast::UnaryOp::Plus) break;
-    auto r = passes::evaluate(u->op == ast::UnaryOp::Neg ? "neg" : "compl", et, {{et, &v}});
+    auto r = passes::evaluate(u->op == ast::UnaryOp::Neg ? ir::Opcode::Neg : ir::Opcode::Compl, et,
+                              {{et, &v}});
     if (!r) return false;
     v = *r;
     break;
   }
   case K::Binary: {
     auto* b = static_cast<const ast::BinaryExpr*>(e);
-    const char* op = binop_opcode(b->op);
-    if (b->overload || std::string(op) == "nop") return false;
+    ir::Opcode op = binop_opcode(b->op);
+    if (b->overload || op == ir::Opcode::Nop) return false;
     ir::Type lt = irtype(b->lhs->type, e), rt = irtype(b->rhs->type, e);
     std::vector<ir::ConstValue> lv, rv;
     if (lt.is_array() || rt.is_array() || !const_values(b->lhs.get(), lt, lv) ||

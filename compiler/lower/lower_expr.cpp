@@ -12,43 +12,43 @@ namespace lobe::lower {
 using ir::SymKind;
 using K = ast::ExprKind;
 
-const char* binop_opcode(ast::BinaryOp op) {
+ir::Opcode binop_opcode(ast::BinaryOp op) {
   using B = ast::BinaryOp;
   switch (op) {
   case B::Add:
-    return "add";
+    return ir::Opcode::Add;
   case B::Sub:
-    return "sub";
+    return ir::Opcode::Sub;
   case B::Mul:
-    return "mul";
+    return ir::Opcode::Mul;
   case B::Div:
-    return "div";
+    return ir::Opcode::Div;
   case B::Mod:
-    return "mod";
+    return ir::Opcode::Mod;
   case B::Shl:
-    return "shl";
+    return ir::Opcode::Shl;
   case B::Shr:
-    return "shr";
+    return ir::Opcode::Shr;
   case B::BitAnd:
-    return "bitand";
+    return ir::Opcode::BitAnd;
   case B::BitOr:
-    return "bitor";
+    return ir::Opcode::BitOr;
   case B::BitXor:
-    return "xor";
+    return ir::Opcode::Xor;
   case B::Lt:
-    return "lt";
+    return ir::Opcode::Lt;
   case B::Le:
-    return "le";
+    return ir::Opcode::Le;
   case B::Gt:
-    return "gt";
+    return ir::Opcode::Gt;
   case B::Ge:
-    return "ge";
+    return ir::Opcode::Ge;
   case B::Eq:
-    return "eq";
+    return ir::Opcode::Eq;
   case B::Ne:
-    return "neq";
+    return ir::Opcode::Neq;
   default:
-    return "nop";
+    return ir::Opcode::Nop;
   }
 }
 
@@ -60,7 +60,7 @@ int Lowerer::pick(int hint, const ir::Type& t) {
 int Lowerer::convert(int sym, const ir::Type& to, const ast::Node* where) {
   if (sh_.symbols[sym].type == to) return sym;
   int t = temp(to);
-  emit(to.is_array() ? "arraycopy" : "assign", {t, sym}, 1, where);
+  emit(to.is_array() ? ir::Opcode::ArrayCopy : ir::Opcode::Assign, {t, sym}, 1, where);
   return t;
 }
 
@@ -73,7 +73,7 @@ int Lowerer::int_add(int a, int b, const ast::Node* where) {
       y.init.size() == 1)
     return ir::intern_int(sh_, x.init[0].i + y.init[0].i);
   int t = temp(ir::Type{ir::BaseType::Int});
-  emit("add", {t, a, b}, 1, where);
+  emit(ir::Opcode::Add, {t, a, b}, 1, where);
   return t;
 }
 
@@ -82,7 +82,7 @@ int Lowerer::int_mul(int a, int k, const ast::Node* where) {
   const ir::Symbol& x = sh_.symbols[size_t(a)];
   if (x.kind == SymKind::Const && x.init.size() == 1) return ir::intern_int(sh_, x.init[0].i * k);
   int t = temp(ir::Type{ir::BaseType::Int});
-  emit("mul", {t, a, ir::intern_int(sh_, k)}, 1, where);
+  emit(ir::Opcode::Mul, {t, a, ir::intern_int(sh_, k)}, 1, where);
   return t;
 }
 
@@ -116,29 +116,30 @@ int Lowerer::load(const LRef& r, const ast::Node* where) {
     int a = temp(at);
     int x = temp(et);
     for (int k = 0; k < r.slice; ++k) {
-      emit("aref", {x, base, slice_elem(r, k, where)}, 1, where);
-      emit("aassign", {a, ir::intern_int(sh_, k), x}, 1, where);
+      emit(ir::Opcode::ARef, {x, base, slice_elem(r, k, where)}, 1, where);
+      emit(ir::Opcode::AAssign, {a, ir::intern_int(sh_, k), x}, 1, where);
     }
     return a;
   }
   if (r.index >= 0) {
     int t = temp(et);
-    emit("aref", {t, base, r.index}, 1, where);
+    emit(ir::Opcode::ARef, {t, base, r.index}, 1, where);
     base = t;
   }
   if (r.comp < 0) return base;
   int f = temp(ir::Type{ir::BaseType::Float});
   if (r.comp2 >= 0)
-    emit("mxcompref", {f, base, r.comp, r.comp2}, 1, where);
+    emit(ir::Opcode::MxCompRef, {f, base, r.comp, r.comp2}, 1, where);
   else
-    emit("compref", {f, base, r.comp}, 1, where);
+    emit(ir::Opcode::CompRef, {f, base, r.comp}, 1, where);
   return f;
 }
 
 void Lowerer::store(const LRef& r, int v, const ast::Node* where) {
   if (r.whole()) {
     if (v == r.sym) return;
-    emit(sh_.symbols[size_t(r.sym)].type.is_array() ? "arraycopy" : "assign", {r.sym, v}, 1, where);
+    emit(sh_.symbols[size_t(r.sym)].type.is_array() ? ir::Opcode::ArrayCopy : ir::Opcode::Assign,
+         {r.sym, v}, 1, where);
     return;
   }
   int base = r.sym;
@@ -148,24 +149,24 @@ void Lowerer::store(const LRef& r, int v, const ast::Node* where) {
     int x = temp(et);
     int n = std::min(r.slice, std::max(0, sh_.symbols[size_t(v)].type.arraylen));
     for (int k = 0; k < n; ++k) {
-      emit("aref", {x, v, ir::intern_int(sh_, k)}, 1, where);
-      emit("aassign", {r.sym, slice_elem(r, k, where), x}, 1, where);
+      emit(ir::Opcode::ARef, {x, v, ir::intern_int(sh_, k)}, 1, where);
+      emit(ir::Opcode::AAssign, {r.sym, slice_elem(r, k, where), x}, 1, where);
     }
     return;
   }
   if (r.index >= 0 && r.comp < 0) {
-    emit("aassign", {r.sym, r.index, v}, 1, where);
+    emit(ir::Opcode::AAssign, {r.sym, r.index, v}, 1, where);
     return;
   }
   if (r.index >= 0) {
     base = temp(et);
-    emit("aref", {base, r.sym, r.index}, 1, where);
+    emit(ir::Opcode::ARef, {base, r.sym, r.index}, 1, where);
   }
   if (r.comp2 >= 0)
-    emit("mxcompassign", {base, r.comp, r.comp2, v}, 1, where);
+    emit(ir::Opcode::MxCompAssign, {base, r.comp, r.comp2, v}, 1, where);
   else
-    emit("compassign", {base, r.comp, v}, 1, where);
-  if (r.index >= 0) emit("aassign", {r.sym, r.index, base}, 1, where);
+    emit(ir::Opcode::CompAssign, {base, r.comp, v}, 1, where);
+  if (r.index >= 0) emit(ir::Opcode::AAssign, {r.sym, r.index, base}, 1, where);
 }
 
 std::vector<LRef> Lowerer::lvalue(const ast::Expr* e) {
@@ -294,7 +295,7 @@ std::vector<int> Lowerer::rvalue_flat(const ast::Expr* e) {
     for (size_t i = 0; alias && i < v.size(); ++i) {
       if (v[i] < 0) continue;
       int t = temp(sh_.symbols[size_t(v[i])].type);
-      emit("assign", {t, v[i]}, 1, e);
+      emit(ir::Opcode::Assign, {t, v[i]}, 1, e);
       v[i] = t;
     }
     for (size_t i = 0; i < dst.size() && i < v.size(); ++i) store(dst[i], v[i], e);
@@ -322,11 +323,11 @@ int Lowerer::logical(const ast::BinaryExpr* b) {
   int res = temp(ir::Type{ir::BaseType::Int});
   int zero = ir::intern_int(sh_, 0);
   int a = rvalue(b->lhs.get());
-  emit("neq", {res, a, zero}, 1, b);
-  int j = emit("cbr", {res}, 0, b, {-1, -1});
+  emit(ir::Opcode::Neq, {res, a, zero}, 1, b);
+  int j = emit(ir::Opcode::Cbr, {res}, 0, b, {-1, -1});
   sh_.ops[size_t(j)].jumps[is_and ? 0 : 1] = here();
   int c = rvalue(b->rhs.get());
-  emit("neq", {res, c, zero}, 1, b);
+  emit(ir::Opcode::Neq, {res, c, zero}, 1, b);
   sh_.ops[size_t(j)].jumps[is_and ? 1 : 0] = here();
   return res;
 }
@@ -334,10 +335,10 @@ int Lowerer::logical(const ast::BinaryExpr* b) {
 int Lowerer::ternary(const ast::TernaryExpr* t, int hint) {
   int res = pick(hint, irtype(t->type, t));
   int c = rvalue(t->cond.get());
-  int j = emit("cbr", {c}, 0, t, {-1, -1});
+  int j = emit(ir::Opcode::Cbr, {c}, 0, t, {-1, -1});
   sh_.ops[size_t(j)].jumps[0] = here();
   store(LRef{res}, rvalue(t->then_expr.get(), res), t);
-  int skip = emit("br", {}, 0, t, {-1});
+  int skip = emit(ir::Opcode::Br, {}, 0, t, {-1});
   sh_.ops[size_t(j)].jumps[1] = here();
   store(LRef{res}, rvalue(t->else_expr.get(), res), t);
   sh_.ops[size_t(skip)].jumps[0] = here();
@@ -349,11 +350,11 @@ std::vector<int> Lowerer::ternary_flat(const ast::TernaryExpr* t) {
   std::vector<int> res;
   for (const Leaf& l : leaves(t->type, t)) res.push_back(temp(irtype(l.type, t)));
   int c = rvalue(t->cond.get());
-  int j = emit("cbr", {c}, 0, t, {-1, -1});
+  int j = emit(ir::Opcode::Cbr, {c}, 0, t, {-1, -1});
   sh_.ops[size_t(j)].jumps[0] = here();
   std::vector<int> a = rvalue_flat(t->then_expr.get());
   for (size_t i = 0; i < res.size() && i < a.size(); ++i) store(LRef{res[i]}, a[i], t);
-  int skip = emit("br", {}, 0, t, {-1});
+  int skip = emit(ir::Opcode::Br, {}, 0, t, {-1});
   sh_.ops[size_t(j)].jumps[1] = here();
   std::vector<int> b = rvalue_flat(t->else_expr.get());
   for (size_t i = 0; i < res.size() && i < b.size(); ++i) store(LRef{res[i]}, b[i], t);
@@ -394,11 +395,11 @@ int Lowerer::incdec(const ast::IncDecExpr* e) {
   int old = -1;
   if (!e->prefix) {
     old = temp(t);
-    emit("assign", {old, cur}, 1, e);
+    emit(ir::Opcode::Assign, {old, cur}, 1, e);
   }
   int one = t.base == ir::BaseType::Int ? ir::intern_int(sh_, 1) : ir::intern_float(sh_, 1.0f);
   int res = dst.whole() ? dst.sym : temp(t);
-  emit(e->increment ? "add" : "sub", {res, cur, one}, 1, e);
+  emit(e->increment ? ir::Opcode::Add : ir::Opcode::Sub, {res, cur, one}, 1, e);
   store(dst, res, e);
   return e->prefix ? res : old;
 }
@@ -409,11 +410,11 @@ int Lowerer::construct(const ast::ConstructExpr* c, int hint) {
   for (const auto& a : c->args) args.push_back(rvalue(a.get()));
   int dst = pick(hint, t);
   if (args.size() == 1 && !c->has_space) {
-    emit("assign", {dst, args[0]}, 1, c);
+    emit(ir::Opcode::Assign, {dst, args[0]}, 1, c);
     return dst;
   }
   args.insert(args.begin(), dst);
-  emit("construct", args, 1, c);
+  emit(ir::Opcode::Construct, args, 1, c);
   return dst;
 }
 
@@ -463,9 +464,9 @@ int Lowerer::rvalue(const ast::Expr* e, int hint) {
       break;
     }
     r = pick(hint, irtype(e->type, e));
-    emit(u->op == ast::UnaryOp::Neg   ? "neg"
-         : u->op == ast::UnaryOp::Not ? "not"
-                                      : "compl",
+    emit(u->op == ast::UnaryOp::Neg   ? ir::Opcode::Neg
+         : u->op == ast::UnaryOp::Not ? ir::Opcode::Not
+                                      : ir::Opcode::Compl,
          {r, x}, 1, e);
     break;
   }
@@ -515,7 +516,8 @@ int Lowerer::rvalue(const ast::Expr* e, int hint) {
       break;
     }
     r = pick(hint, t);
-    emit(t.is_array() ? "arraycopy" : "assign", {r, x}, 1, e); // point[] -> vector[] for a call
+    emit(t.is_array() ? ir::Opcode::ArrayCopy : ir::Opcode::Assign, {r, x}, 1,
+         e); // point[] -> vector[] for a call
     break;
   }
   case K::InitList: {

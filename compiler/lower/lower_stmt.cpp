@@ -42,10 +42,10 @@ void Lowerer::stmt(const ast::Stmt* s) {
     break;
   case S::If: {
     auto* i = static_cast<const ast::IfStmt*>(s);
-    int j = emit("cbr", {rvalue(i->cond.get())}, 0, s, {-1, -1});
+    int j = emit(ir::Opcode::Cbr, {rvalue(i->cond.get())}, 0, s, {-1, -1});
     sh_.ops[size_t(j)].jumps[0] = here();
     stmt(i->then_stmt.get());
-    int skip = i->else_stmt ? emit("br", {}, 0, s, {-1}) : -1;
+    int skip = i->else_stmt ? emit(ir::Opcode::Br, {}, 0, s, {-1}) : -1;
     sh_.ops[size_t(j)].jumps[1] = here();
     if (i->else_stmt) {
       stmt(i->else_stmt.get());
@@ -67,7 +67,7 @@ void Lowerer::stmt(const ast::Stmt* s) {
       cond = f->cond.get(), step = f->step.get(), body = f->body.get();
     }
     int top = here();
-    int j = cond ? emit("cbr", {rvalue(cond)}, 0, s, {-1, -1}) : -1;
+    int j = cond ? emit(ir::Opcode::Cbr, {rvalue(cond)}, 0, s, {-1, -1}) : -1;
     if (j >= 0) sh_.ops[size_t(j)].jumps[0] = here();
     loops_.push_back({});
     stmt(body);
@@ -77,7 +77,7 @@ void Lowerer::stmt(const ast::Stmt* s) {
       rvalue(step);
       temp_release(m);
     }
-    emit("br", {}, 0, s, {top});
+    emit(ir::Opcode::Br, {}, 0, s, {top});
     int end = here();
     if (j >= 0) sh_.ops[size_t(j)].jumps[1] = end;
     patch(loops_.back().continues, cont);
@@ -91,7 +91,7 @@ void Lowerer::stmt(const ast::Stmt* s) {
     loops_.push_back({});
     stmt(d->body.get());
     int cont = here();
-    int j = emit("cbr", {rvalue(d->cond.get())}, 0, s, {top, -1});
+    int j = emit(ir::Opcode::Cbr, {rvalue(d->cond.get())}, 0, s, {top, -1});
     int end = here();
     sh_.ops[size_t(j)].jumps[1] = end;
     patch(loops_.back().continues, cont);
@@ -106,12 +106,12 @@ void Lowerer::stmt(const ast::Stmt* s) {
       break;
     }
     (s->kind == S::Break ? loops_.back().breaks : loops_.back().continues)
-        .push_back(emit("br", {}, 0, s, {-1}));
+        .push_back(emit(ir::Opcode::Br, {}, 0, s, {-1}));
     break;
   case S::Return: {
     auto* r = static_cast<const ast::ReturnStmt*>(s);
     if (inlines_.empty()) {
-      emit("exit", {}, 0, s);
+      emit(ir::Opcode::Exit, {}, 0, s);
       break;
     }
     std::vector<int> result = inlines_.back().result;
@@ -121,7 +121,7 @@ void Lowerer::stmt(const ast::Stmt* s) {
     } else if (r->value && !result.empty()) {
       store(LRef{result[0]}, rvalue(r->value.get(), result[0]), s);
     }
-    inlines_.back().returns.push_back(emit("br", {}, 0, s, {-1}));
+    inlines_.back().returns.push_back(emit(ir::Opcode::Br, {}, 0, s, {-1}));
     break;
   }
   case S::Empty:
@@ -160,7 +160,7 @@ std::vector<int> Lowerer::call_user(const ast::FunctionDecl* f,
         if (!p->is_output && k == ir::SymKind::Const) {
           int v = load(r, where);
           int t = temp(sh_.symbols[v].type);
-          emit("assign", {t, v}, 1, where);
+          emit(ir::Opcode::Assign, {t, v}, 1, where);
           syms.push_back(t);
           continue;
         }
@@ -170,7 +170,7 @@ std::vector<int> Lowerer::call_user(const ast::FunctionDecl* f,
         }
         int v = load(r, where);
         int t = temp(retype ? irtype(p->type, where) : sh_.symbols[v].type);
-        emit("assign", {t, v}, 1, where);
+        emit(ir::Opcode::Assign, {t, v}, 1, where);
         syms.push_back(t);
         copy_back.push_back({r, t});
       }
@@ -213,7 +213,7 @@ int Lowerer::scratch_copy(const ast::Expr* e, const ast::Node* where) {
   int v = rvalue(e);
   ir::Type t = sh_.symbols[size_t(v)].type;
   int s = temp(t);
-  emit(t.is_array() ? "arraycopy" : "assign", {s, v}, 1, where);
+  emit(t.is_array() ? ir::Opcode::ArrayCopy : ir::Opcode::Assign, {s, v}, 1, where);
   return s;
 }
 
@@ -227,7 +227,7 @@ int Lowerer::call_arith(const ast::CallExpr* c, int hint) {
     float k = c->name == "radians" ? kPi / 180.0f : 180.0f / kPi;
     int x = rvalue(c->args[0].get());
     int r = pick(hint, irtype(c->type, c));
-    emit("mul", {r, x, ir::intern_float(sh_, k)}, 1, c);
+    emit(ir::Opcode::Mul, {r, x, ir::intern_float(sh_, k)}, 1, c);
     return r;
   }
   if (c->name == "arraylength" && c->args.size() == 1 && c->args[0]->type.arraylen > 0)
@@ -244,11 +244,11 @@ int Lowerer::floor_mod(const ast::CallExpr* c, int hint) {
   int a = rvalue(c->args[0].get());
   int b = rvalue(c->args[1].get());
   int r = temp(t);
-  emit("div", {r, a, b}, 1, c);
-  if (t.base != ir::BaseType::Int) emit("floor", {r, r}, 1, c);
-  emit("mul", {r, r, b}, 1, c);
+  emit(ir::Opcode::Div, {r, a, b}, 1, c);
+  if (t.base != ir::BaseType::Int) emit(ir::Opcode::Floor, {r, r}, 1, c);
+  emit(ir::Opcode::Mul, {r, r, b}, 1, c);
   int out = pick(hint, t);
-  emit("sub", {out, a, r}, 1, c);
+  emit(ir::Opcode::Sub, {out, a, r}, 1, c);
   return out;
 }
 
@@ -259,13 +259,13 @@ int Lowerer::floor_mod(const ast::CallExpr* c, int hint) {
 // opcode table's written mask (the last arguments, OSL's convention).
 int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
   if (c->name == "exit") {
-    emit("exit", {}, 0, c);
+    emit(ir::Opcode::Exit, {}, 0, c);
     return -1;
   }
   int arith = call_arith(c, hint);
   if (arith != -2) return arith;
-  const ir::OpcodeInfo* info = ir::find_opcode(c->name);
-  if (!info) {
+  std::optional<ir::Opcode> code = ir::opcode_from_name(c->name);
+  if (!code) {
     error(c, diag::DiagId::err_lower_no_opcode, {c->name});
     return -1;
   }
@@ -279,7 +279,8 @@ int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
     const auto& ps = c->callee.builtin->params;
     for (size_t i = 0; i < npos && i < ps.size(); ++i) is_out[i] = ps[i].output;
   } else {
-    size_t nout = std::min(npos, size_t(std::popcount(info->written)) - (returns ? 1 : 0));
+    size_t nout =
+        std::min(npos, size_t(std::popcount(ir::info(*code).written)) - (returns ? 1 : 0));
     for (size_t i = npos - nout; i < npos; ++i) is_out[i] = true;
   }
   std::vector<int> args;
@@ -307,7 +308,7 @@ int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
     args.push_back(ir::intern_string(sh_, k.name));
     args.push_back(rvalue(k.value));
   }
-  emit(c->name, args, mask, c);
+  emit(*code, args, mask, c);
   for (const auto& [r, s] : copy_back) store(r, s, c);
   return returns ? args[0] : -1;
 }
@@ -316,12 +317,11 @@ int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
 // [[ int builtin = 1 ]], by name, then its number of positional arguments: its operands'
 // types are its layout).
 int Lowerer::call_closure(const ast::CallExpr* c, const std::string& key, int hint,
-                          const char* opcode) {
+                          ir::Opcode opcode) {
   int dst = pick(hint, ir::Type{ir::BaseType::Closure});
   std::vector<int> args = {dst, ir::intern_string(sh_, key)};
   size_t npos = c->num_positional < 0 ? c->args.size() : size_t(c->num_positional);
-  if (std::string_view(opcode) == "declared_closure")
-    args.push_back(ir::intern_int(sh_, int(npos)));
+  if (opcode == ir::Opcode::DeclaredClosure) args.push_back(ir::intern_int(sh_, int(npos)));
   for (size_t i = 0; i < npos; ++i) args.push_back(rvalue(c->args[i].get()));
   for (const ast::KeywordArg& k : c->keywords) {
     args.push_back(ir::intern_string(sh_, k.name));
@@ -340,7 +340,8 @@ int Lowerer::call(const ast::CallExpr* c, int hint) {
   case ast::CalleeKind::User: {
     const ast::FunctionDecl* f = c->callee.function;
     if (f && !f->body) {
-      if (f->return_type.is_closure()) return call_closure(c, f->name, hint, "declared_closure");
+      if (f->return_type.is_closure())
+        return call_closure(c, f->name, hint, ir::Opcode::DeclaredClosure);
       return call_builtin(c, hint);
     }
     std::vector<const ast::Expr*> args;

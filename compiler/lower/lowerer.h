@@ -39,7 +39,7 @@ struct Leaf {
 };
 
 // The IR opcode of a binary operator ("add", "lt", ...; "nop" for && and ||).
-const char* binop_opcode(ast::BinaryOp op);
+ir::Opcode binop_opcode(ast::BinaryOp op);
 
 class Lowerer {
 public:
@@ -52,8 +52,8 @@ public:
   std::vector<Leaf> leaves(const ast::Type& t, const ast::Node* where);
   int new_symbol(const std::string& name, const ir::Type& t, ir::SymKind k, const ast::Node* where);
   int temp(const ir::Type& t);
-  int emit(const std::string& opcode, std::vector<int> args, uint32_t written,
-           const ast::Node* where, std::vector<int> jumps = {});
+  int emit(ir::Opcode opcode, std::vector<int> args, uint32_t written, const ast::Node* where,
+           std::vector<int> jumps = {});
   int here(); // the index the next op gets; a jump target (resets useparam tracking)
   // Reports `id` at `where` (null: the statement being lowered).
   void error(const ast::Node* where, diag::DiagId id, std::vector<std::string> args = {});
@@ -98,7 +98,7 @@ public:
                              const ast::Node* where);
   int call_builtin(const ast::CallExpr* c, int hint);
   int call_closure(const ast::CallExpr* c, const std::string& key, int hint,
-                   const char* opcode = "closure");
+                   ir::Opcode opcode = ir::Opcode::Closure);
   int scratch_copy(const ast::Expr* e, const ast::Node* where);
   int call_arith(const ast::CallExpr* c, int hint); // builtins lowered to arithmetic, or -2
   int floor_mod(const ast::CallExpr* c, int hint);  // OSL mod(): a - b*floor(a/b)

@@ -4,6 +4,7 @@
 #include "passes/consteval.h"
 #include "hashword.h"
 #include "mathops.h"
+#include "passes/math_opcode.h"
 
 #include <cfloat>
 #include <cmath>
@@ -34,53 +35,53 @@ std::optional<Type> wider(const Type& a, const Type& b) {
   return ra >= rb ? a : b;
 }
 
-int32_t int_binop(const std::string& op, int32_t a, int32_t b, bool& ok) {
+int32_t int_binop(Opcode op, int32_t a, int32_t b, bool& ok) {
   int64_t x = a, y = b;
-  if (op == "add") return int32_t(uint32_t(a) + uint32_t(b));
-  if (op == "sub") return int32_t(uint32_t(a) - uint32_t(b));
-  if (op == "mul") return int32_t(uint32_t(a) * uint32_t(b));
-  if (op == "div") return b == 0 ? 0 : int32_t(x / y);
-  if (op == "mod") return b == 0 ? 0 : int32_t(x % y);
-  if (op == "bitand") return a & b;
-  if (op == "bitor") return a | b;
-  if (op == "xor") return a ^ b;
-  if (op == "shl") return (b < 0 || b > 31) ? (ok = false, 0) : int32_t(uint32_t(a) << b);
-  if (op == "shr") return (b < 0 || b > 31) ? (ok = false, 0) : (a >> b);
-  if (op == "min") return std::min(a, b);
-  if (op == "max") return std::max(a, b);
+  if (op == Opcode::Add) return int32_t(uint32_t(a) + uint32_t(b));
+  if (op == Opcode::Sub) return int32_t(uint32_t(a) - uint32_t(b));
+  if (op == Opcode::Mul) return int32_t(uint32_t(a) * uint32_t(b));
+  if (op == Opcode::Div) return b == 0 ? 0 : int32_t(x / y);
+  if (op == Opcode::Mod) return b == 0 ? 0 : int32_t(x % y);
+  if (op == Opcode::BitAnd) return a & b;
+  if (op == Opcode::BitOr) return a | b;
+  if (op == Opcode::Xor) return a ^ b;
+  if (op == Opcode::Shl) return (b < 0 || b > 31) ? (ok = false, 0) : int32_t(uint32_t(a) << b);
+  if (op == Opcode::Shr) return (b < 0 || b > 31) ? (ok = false, 0) : (a >> b);
+  if (op == Opcode::Min) return std::min(a, b);
+  if (op == Opcode::Max) return std::max(a, b);
   ok = false;
   return 0;
 }
 
 // Float functions of one operand (math builtins as runtime/mathlib/mathops.h defines them).
-std::function<float(float)> float_unop(const std::string& op, math::MathMode mode) {
-  if (const math::FnInfo* f = math::find_fn(op, 1))
+std::function<float(float)> float_unop(Opcode op, math::MathMode mode) {
+  if (const math::FnInfo* f = math_fn(op, 1))
     return [fn = f->fn, mode](float a) { return math::value1(fn, mode, a); };
-  if (op == "neg") return [](float a) { return -a; };
-  if (op == "sqrt") return [](float a) { return math::sqrt(a); };
-  if (op == "inversesqrt") return [](float a) { return math::inversesqrt(a); };
-  if (op == "abs" || op == "fabs") return [](float a) { return std::fabs(a); };
-  if (op == "sign") return [](float a) { return math::sign(a); };
-  if (op == "floor") return [](float a) { return std::floor(a); };
-  if (op == "ceil") return [](float a) { return std::ceil(a); };
-  if (op == "round") return [](float a) { return std::round(a); };
-  if (op == "trunc") return [](float a) { return std::trunc(a); };
+  if (op == Opcode::Neg) return [](float a) { return -a; };
+  if (op == Opcode::Sqrt) return [](float a) { return math::sqrt(a); };
+  if (op == Opcode::InverseSqrt) return [](float a) { return math::inversesqrt(a); };
+  if (op == Opcode::Abs || op == Opcode::Fabs) return [](float a) { return std::fabs(a); };
+  if (op == Opcode::Sign) return [](float a) { return math::sign(a); };
+  if (op == Opcode::Floor) return [](float a) { return std::floor(a); };
+  if (op == Opcode::Ceil) return [](float a) { return std::ceil(a); };
+  if (op == Opcode::Round) return [](float a) { return std::round(a); };
+  if (op == Opcode::Trunc) return [](float a) { return std::trunc(a); };
   return nullptr;
 }
 
-std::function<float(float, float)> float_binop(const std::string& op, math::MathMode mode) {
-  if (const math::FnInfo* f = math::find_fn(op, 2))
+std::function<float(float, float)> float_binop(Opcode op, math::MathMode mode) {
+  if (const math::FnInfo* f = math_fn(op, 2))
     return [fn = f->fn, mode](float a, float b) { return math::value2(fn, mode, a, b); };
-  if (op == "add") return [](float a, float b) { return a + b; };
-  if (op == "sub") return [](float a, float b) { return a - b; };
-  if (op == "mul") return [](float a, float b) { return a * b; };
-  if (op == "div") return [](float a, float b) { return math::div(a, b); };
-  if (op == "mod") return [](float a, float b) { return math::fmod(a, b); };
-  if (op == "min") return [](float a, float b) { return math::min(a, b); };
-  if (op == "max") return [](float a, float b) { return math::max(a, b); };
-  if (op == "step") return [](float a, float b) { return math::step(a, b); };
-  if (op == "hypot") return [](float a, float b) { return math::sqrt(a * a + b * b); };
-  if (op == "log") // log(a, base) = log(a) / log(base)
+  if (op == Opcode::Add) return [](float a, float b) { return a + b; };
+  if (op == Opcode::Sub) return [](float a, float b) { return a - b; };
+  if (op == Opcode::Mul) return [](float a, float b) { return a * b; };
+  if (op == Opcode::Div) return [](float a, float b) { return math::div(a, b); };
+  if (op == Opcode::Mod) return [](float a, float b) { return math::fmod(a, b); };
+  if (op == Opcode::Min) return [](float a, float b) { return math::min(a, b); };
+  if (op == Opcode::Max) return [](float a, float b) { return math::max(a, b); };
+  if (op == Opcode::Step) return [](float a, float b) { return math::step(a, b); };
+  if (op == Opcode::Hypot) return [](float a, float b) { return math::sqrt(a * a + b * b); };
+  if (op == Opcode::Log) // log(a, base) = log(a) / log(base)
     return [mode](float a, float b) {
       return math::div(math::value1(math::Fn::Log, mode, a), math::value1(math::Fn::Log, mode, b));
     };
@@ -88,14 +89,14 @@ std::function<float(float, float)> float_binop(const std::string& op, math::Math
 }
 
 // Three operands, as codegen computes them (ops_math.cpp).
-std::function<float(float, float, float)> float_ternop(const std::string& op) {
-  if (op == "clamp") // the IR's clamp: min(max(x, lo), hi)
+std::function<float(float, float, float)> float_ternop(Opcode op) {
+  if (op == Opcode::Clamp) // the IR's clamp: min(max(x, lo), hi)
     return [](float x, float lo, float hi) { return math::min(math::max(x, lo), hi); };
-  if (op == "mix") return [](float x, float y, float t) { return x * (1 - t) + y * t; };
-  if (op == "select") return [](float x, float y, float c) { return c != 0 ? y : x; };
-  if (op == "smoothstep")
+  if (op == Opcode::Mix) return [](float x, float y, float t) { return x * (1 - t) + y * t; };
+  if (op == Opcode::Select) return [](float x, float y, float c) { return c != 0 ? y : x; };
+  if (op == Opcode::SmoothStep)
     return [](float e0, float e1, float x) { return math::smoothstep(e0, e1, x); };
-  if (op == "hypot")
+  if (op == Opcode::Hypot)
     return [](float a, float b, float c) {
       float s = a * a + b * b;
       return math::sqrt(s + c * c);
@@ -105,12 +106,12 @@ std::function<float(float, float, float)> float_ternop(const std::string& op) {
 
 // Comparisons with codegen's rules: ints and strings exactly; floats unordered (a NaN makes
 // every comparison true), triples by all components (==) or any (!=).
-std::optional<Values> compare(const std::string& op, const std::vector<ConstArg>& s) {
+std::optional<Values> compare(Opcode op, const std::vector<ConstArg>& s) {
   bool strings = s[0].type == Type{BaseType::String} && s[1].type == s[0].type;
   if (strings) { // compared by content: strings have no numeric value to widen
-    if (op != "eq" && op != "neq") return std::nullopt;
+    if (op != Opcode::Eq && op != Opcode::Neq) return std::nullopt;
     bool same = (*s[0].value)[0].s == (*s[1].value)[0].s;
-    return Values{ConstValue::of_int(op == "eq" ? same : !same)};
+    return Values{ConstValue::of_int(op == Opcode::Eq ? same : !same)};
   }
   auto t = wider(s[0].type, s[1].type);
   if (!t) return std::nullopt;
@@ -119,28 +120,28 @@ std::optional<Values> compare(const std::string& op, const std::vector<ConstArg>
   if (!a || !b) return std::nullopt;
   if (t->base == BaseType::Int) {
     int32_t x = (*a)[0].i, y = (*b)[0].i;
-    bool r = op == "eq"    ? x == y
-             : op == "neq" ? x != y
-             : op == "lt"  ? x < y
-             : op == "le"  ? x <= y
-             : op == "gt"  ? x > y
-                           : x >= y;
+    bool r = op == Opcode::Eq    ? x == y
+             : op == Opcode::Neq ? x != y
+             : op == Opcode::Lt  ? x < y
+             : op == Opcode::Le  ? x <= y
+             : op == Opcode::Gt  ? x > y
+                                 : x >= y;
     return Values{ConstValue::of_int(r)};
   }
-  if (op == "eq" || op == "neq") {
+  if (op == Opcode::Eq || op == Opcode::Neq) {
     bool all_eq = true, any_ne = false;
     for (size_t i = 0; i < a->size(); ++i) {
       all_eq &= math::eq((*a)[i].f, (*b)[i].f);
       any_ne |= math::ne((*a)[i].f, (*b)[i].f);
     }
-    return Values{ConstValue::of_int(op == "eq" ? all_eq : any_ne)};
+    return Values{ConstValue::of_int(op == Opcode::Eq ? all_eq : any_ne)};
   }
   if (t->is_triple()) return std::nullopt;
   float x = (*a)[0].f, y = (*b)[0].f;
-  bool r = op == "lt"   ? math::lt(x, y)
-           : op == "le" ? math::le(x, y)
-           : op == "gt" ? math::gt(x, y)
-                        : math::ge(x, y);
+  bool r = op == Opcode::Lt   ? math::lt(x, y)
+           : op == Opcode::Le ? math::le(x, y)
+           : op == Opcode::Gt ? math::gt(x, y)
+                              : math::ge(x, y);
   return Values{ConstValue::of_int(r)};
 }
 
@@ -161,7 +162,7 @@ std::optional<Values> hash(const std::vector<ConstArg>& s) {
 }
 
 // Arithmetic in the destination type, sources converted to it.
-std::optional<Values> arith(const std::string& op, const Type& dst, const std::vector<ConstArg>& s,
+std::optional<Values> arith(Opcode op, const Type& dst, const std::vector<ConstArg>& s,
                             math::MathMode mode) {
   if (!(is_num(dst) || (dst.is_triple() && !dst.is_array()))) return std::nullopt;
   std::vector<Values> args;
@@ -174,14 +175,14 @@ std::optional<Values> arith(const std::string& op, const Type& dst, const std::v
   bool ok = true;
   for (size_t c = 0; c < out.size(); ++c) {
     if (dst.base == BaseType::Int) {
-      if (args.size() == 1 && op == "neg")
+      if (args.size() == 1 && op == Opcode::Neg)
         out[c] = ConstValue::of_int(int32_t(0u - uint32_t(args[0][c].i)));
-      else if (args.size() == 1 && (op == "abs" || op == "fabs"))
+      else if (args.size() == 1 && (op == Opcode::Abs || op == Opcode::Fabs))
         out[c] = ConstValue::of_int(args[0][c].i < 0 ? int32_t(0u - uint32_t(args[0][c].i))
                                                      : args[0][c].i);
-      else if (args.size() == 1 && op == "compl")
+      else if (args.size() == 1 && op == Opcode::Compl)
         out[c] = ConstValue::of_int(~args[0][c].i);
-      else if (args.size() == 1 && op == "sign")
+      else if (args.size() == 1 && op == Opcode::Sign)
         out[c] = ConstValue::of_int(args[0][c].i < 0 ? -1 : args[0][c].i > 0 ? 1 : 0);
       else if (args.size() == 2)
         out[c] = ConstValue::of_int(int_binop(op, args[0][c].i, args[1][c].i, ok));
@@ -227,22 +228,23 @@ std::optional<Values> convert_const(const Type& from, const Values& v, const Typ
   return std::nullopt;
 }
 
-std::optional<Values> evaluate(const std::string& op, const Type& dst,
-                               const std::vector<ConstArg>& s, const EvalOptions& options) {
-  if (op == "assign" && s.size() == 1) return convert_const(s[0].type, *s[0].value, dst);
-  if ((op == "eq" || op == "neq" || op == "lt" || op == "le" || op == "gt" || op == "ge") &&
+std::optional<Values> evaluate(Opcode op, const Type& dst, const std::vector<ConstArg>& s,
+                               const EvalOptions& options) {
+  if (op == Opcode::Assign && s.size() == 1) return convert_const(s[0].type, *s[0].value, dst);
+  if ((op == Opcode::Eq || op == Opcode::Neq || op == Opcode::Lt || op == Opcode::Le ||
+       op == Opcode::Gt || op == Opcode::Ge) &&
       s.size() == 2)
     return compare(op, s);
-  if (op == "not" && s.size() == 1 && is_num(s[0].type)) {
+  if (op == Opcode::Not && s.size() == 1 && is_num(s[0].type)) {
     const ConstValue& c = (*s[0].value)[0];
     return Values{ConstValue::of_int(s[0].type.base == BaseType::Int ? c.i == 0 : c.f == 0)};
   }
-  if (op == "compref" && s.size() == 2 && s[0].type.is_triple() && !s[0].type.is_array()) {
+  if (op == Opcode::CompRef && s.size() == 2 && s[0].type.is_triple() && !s[0].type.is_array()) {
     int i = (*s[1].value)[0].i;
     if (i < 0 || i > 2) return std::nullopt; // keep the run-time range error
     return Values{(*s[0].value)[size_t(i)]};
   }
-  if (op == "construct" && s.size() == 3 && dst.is_triple() && !dst.is_array()) {
+  if (op == Opcode::Construct && s.size() == 3 && dst.is_triple() && !dst.is_array()) {
     Values out;
     for (const ConstArg& a : s) {
       auto v = convert_const(a.type, *a.value, Type{BaseType::Float});
@@ -251,9 +253,9 @@ std::optional<Values> evaluate(const std::string& op, const Type& dst,
     }
     return out;
   }
-  if (op == "strlen" && s.size() == 1 && s[0].type == Type{BaseType::String})
+  if (op == Opcode::Strlen && s.size() == 1 && s[0].type == Type{BaseType::String})
     return Values{ConstValue::of_int(int32_t((*s[0].value)[0].s.size()))};
-  if (op == "concat" && dst == Type{BaseType::String}) {
+  if (op == Opcode::Concat && dst == Type{BaseType::String}) {
     ConstValue c;
     for (const ConstArg& a : s) {
       if (!(a.type == Type{BaseType::String})) return std::nullopt;
@@ -261,24 +263,72 @@ std::optional<Values> evaluate(const std::string& op, const Type& dst,
     }
     return Values{c};
   }
-  if (op == "hash" && dst == Type{BaseType::Int}) return hash(s);
-  if ((op == "isnan" || op == "isinf" || op == "isfinite") && s.size() == 1 &&
+  if (op == Opcode::Hash && dst == Type{BaseType::Int}) return hash(s);
+  if ((op == Opcode::IsNan || op == Opcode::IsInf || op == Opcode::IsFinite) && s.size() == 1 &&
       s[0].type == Type{BaseType::Float}) {
     float x = (*s[0].value)[0].f;
-    bool r = op == "isnan" ? std::isnan(x) : op == "isinf" ? std::isinf(x) : std::isfinite(x);
+    bool r = op == Opcode::IsNan   ? std::isnan(x)
+             : op == Opcode::IsInf ? std::isinf(x)
+                                   : std::isfinite(x);
     return Values{ConstValue::of_int(r)};
   }
   // Operators and the math library (per component, in the destination type).
-  static const char* kArith[] = {
-      "add",   "sub",    "mul",  "div",        "mod",         "neg",  "compl", "bitand", "bitor",
-      "xor",   "shl",    "shr",  "sin",        "cos",         "tan",  "asin",  "acos",   "atan",
-      "atan2", "sinh",   "cosh", "tanh",       "pow",         "exp",  "exp2",  "expm1",  "log",
-      "log2",  "log10",  "logb", "sqrt",       "inversesqrt", "cbrt", "hypot", "abs",    "fabs",
-      "sign",  "floor",  "ceil", "round",      "trunc",       "fmod", "min",   "max",    "clamp",
-      "mix",   "select", "step", "smoothstep", "erf",         "erfc"};
-  for (const char* a : kArith)
-    if (op == a)
-      return arith(op, dst, s, options.fast_math ? math::MathMode::Fast : math::MathMode::Exact);
+  switch (op) {
+  case Opcode::Add:
+  case Opcode::Sub:
+  case Opcode::Mul:
+  case Opcode::Div:
+  case Opcode::Mod:
+  case Opcode::Neg:
+  case Opcode::Compl:
+  case Opcode::BitAnd:
+  case Opcode::BitOr:
+  case Opcode::Xor:
+  case Opcode::Shl:
+  case Opcode::Shr:
+  case Opcode::Sin:
+  case Opcode::Cos:
+  case Opcode::Tan:
+  case Opcode::Asin:
+  case Opcode::Acos:
+  case Opcode::Atan:
+  case Opcode::Atan2:
+  case Opcode::Sinh:
+  case Opcode::Cosh:
+  case Opcode::Tanh:
+  case Opcode::Pow:
+  case Opcode::Exp:
+  case Opcode::Exp2:
+  case Opcode::Expm1:
+  case Opcode::Log:
+  case Opcode::Log2:
+  case Opcode::Log10:
+  case Opcode::Logb:
+  case Opcode::Sqrt:
+  case Opcode::InverseSqrt:
+  case Opcode::Cbrt:
+  case Opcode::Hypot:
+  case Opcode::Abs:
+  case Opcode::Fabs:
+  case Opcode::Sign:
+  case Opcode::Floor:
+  case Opcode::Ceil:
+  case Opcode::Round:
+  case Opcode::Trunc:
+  case Opcode::Fmod:
+  case Opcode::Min:
+  case Opcode::Max:
+  case Opcode::Clamp:
+  case Opcode::Mix:
+  case Opcode::Select:
+  case Opcode::Step:
+  case Opcode::SmoothStep:
+  case Opcode::Erf:
+  case Opcode::Erfc:
+    return arith(op, dst, s, options.fast_math ? math::MathMode::Fast : math::MathMode::Exact);
+  default:
+    break;
+  }
   return std::nullopt;
 }
 

@@ -29,7 +29,7 @@ std::optional<std::vector<ir::ConstValue>>
 convert_const(const ir::Type& from, const std::vector<ir::ConstValue>& v, const ir::Type& to);
 
 // The value the op `opcode dst srcs...` writes to dst (of type `dst`), or nullopt.
-std::optional<std::vector<ir::ConstValue>> evaluate(const std::string& opcode, const ir::Type& dst,
+std::optional<std::vector<ir::ConstValue>> evaluate(ir::Opcode opcode, const ir::Type& dst,
                                                     const std::vector<ConstArg>& srcs,
                                                     const EvalOptions& options = {});
 

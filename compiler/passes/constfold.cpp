@@ -43,7 +43,9 @@ private:
 };
 
 void Folder::substitute(Op& op) {
-  if (op.opcode == "useparam" || op.opcode == "isconnected" || op.opcode == "isconstant") return;
+  if (op.opcode == Opcode::UseParam || op.opcode == Opcode::IsConnected ||
+      op.opcode == Opcode::IsConstant)
+    return;
   for (size_t i = 0; i < op.args.size(); ++i) {
     if (op.writes(int(i))) continue;
     auto it = known_.find(op.args[i]);
@@ -62,7 +64,7 @@ bool Folder::all_zero(int s) const {
 }
 
 void Folder::make_assign(Op& op, int dst, int src) {
-  op.opcode = "assign";
+  op.opcode = Opcode::Assign;
   op.args = {dst, src};
   op.written_mask = 1;
   op.jumps.clear();
@@ -72,15 +74,15 @@ void Folder::make_assign(Op& op, int dst, int src) {
 // add/mul/neg on closures with a null operand or a zero weight.
 bool Folder::fold_closure(Op& op) {
   int dst = op.args[0];
-  if (op.opcode == "add" && op.args.size() == 3) {
+  if (op.opcode == Opcode::Add && op.args.size() == 3) {
     int a = op.args[1], b = op.args[2];
     if (is_null(a)) return make_assign(op, dst, b), true;
     if (is_null(b)) return make_assign(op, dst, a), true;
-  } else if (op.opcode == "mul" && op.args.size() == 3) {
+  } else if (op.opcode == Opcode::Mul && op.args.size() == 3) {
     int a = op.args[1], b = op.args[2];
     int k = is_closure(a) ? a : b, w = is_closure(a) ? b : a;
     if (is_null(k) || all_zero(w)) return make_assign(op, dst, intern_int(sh_, 0)), true;
-  } else if (op.opcode == "neg" && op.args.size() == 2 && is_null(op.args[1])) {
+  } else if (op.opcode == Opcode::Neg && op.args.size() == 2 && is_null(op.args[1])) {
     return make_assign(op, dst, intern_int(sh_, 0)), true;
   }
   return false;
@@ -92,27 +94,29 @@ bool Folder::fold_closure(Op& op) {
 // printf("pw %g %g %g", pow(a, 1.0/3), pow(a, 0.5), pow(a, -0.5)) with a = -8 a lockgeom=0
 // parameter (testshade at its default -O2; at -O0 it prints "pw 0 0 0", as Lobe does unfolded).
 bool Folder::fold_pow(Op& op) {
-  if (op.opcode != "pow" || op.args.size() != 3 || is_const(op.args[1]) || !is_const(op.args[2]))
+  if (op.opcode != Opcode::Pow || op.args.size() != 3 || is_const(op.args[1]) ||
+      !is_const(op.args[2]))
     return false;
   const Symbol& k = sh_.symbols[op.args[2]];
   if (k.type != Type{BaseType::Float} || k.init.size() != 1) return false;
   float e = k.init[0].f;
-  const char* fn = e == 0.5f               ? "sqrt"
-                   : e == -0.5f            ? "inversesqrt"
-                   : e == float(1.0 / 3.0) ? "cbrt"
-                                           : nullptr;
+  std::optional<Opcode> fn = e == 0.5f               ? Opcode::Sqrt
+                             : e == -0.5f            ? Opcode::InverseSqrt
+                             : e == float(1.0 / 3.0) ? std::optional(Opcode::Cbrt)
+                                                     : std::nullopt;
   if (!fn) return false;
-  op.opcode = fn;
+  op.opcode = *fn;
   op.args.pop_back();
   changed_ = true;
   return true;
 }
 
 bool Folder::fold(Op& op) {
-  if (op.opcode == "cbr" && !op.args.empty() && is_const(op.args[0]) && op.jumps.size() == 2) {
+  if (op.opcode == Opcode::Cbr && !op.args.empty() && is_const(op.args[0]) &&
+      op.jumps.size() == 2) {
     const Symbol& c = sh_.symbols[op.args[0]];
     bool taken = c.type.base == BaseType::Int ? c.init[0].i != 0 : c.init[0].f != 0.0f;
-    op.opcode = "br";
+    op.opcode = Opcode::Br;
     op.jumps = {op.jumps[taken ? 0 : 1]};
     op.args.clear();
     op.written_mask = 0;
@@ -121,8 +125,8 @@ bool Folder::fold(Op& op) {
   }
   if (op.args.empty() || op.written_mask != 1 || is_const(op.args[0])) return false;
   if (is_closure(op.args[0])) return fold_closure(op);
-  const OpcodeInfo* info = find_opcode(op.opcode);
-  if (!info || !(info->flags & kPure)) return false;
+  const ir::OpcodeInfo* info = &ir::info(op.opcode);
+  if (!(info->flags & kPure)) return false;
   if (fold_pow(op)) return true;
   std::vector<ConstArg> srcs;
   for (size_t i = 1; i < op.args.size(); ++i) {
@@ -134,7 +138,7 @@ bool Folder::fold(Op& op) {
   auto v = evaluate(op.opcode, dt, srcs, options_);
   if (!v) return false;
   int c = intern_const(sh_, dt, *v);
-  if (op.opcode == "assign" && op.args[1] == c) return false;
+  if (op.opcode == Opcode::Assign && op.args[1] == c) return false;
   make_assign(op, op.args[0], c);
   return true;
 }
@@ -146,7 +150,7 @@ void Folder::record(const Op& op) {
     known_.erase(op.args[i]);
     null_.erase(op.args[i]);
   }
-  if (op.opcode != "assign" || op.args.size() != 2 || !is_const(op.args[1])) return;
+  if (op.opcode != Opcode::Assign || op.args.size() != 2 || !is_const(op.args[1])) return;
   int dst = op.args[0], src = op.args[1];
   if (is_closure(dst)) {
     null_.insert(dst);
@@ -169,8 +173,8 @@ bool Folder::run() {
     substitute(op);
     fold(op);
     record(sh_.ops[i]);
-    const OpcodeInfo* info = find_opcode(sh_.ops[i].opcode);
-    if (info && (info->flags & kJump)) known_.clear(), null_.clear();
+    const ir::OpcodeInfo* info = &ir::info(sh_.ops[i].opcode);
+    if (info->flags & kJump) known_.clear(), null_.clear();
   }
   return changed_;
 }

@@ -24,8 +24,8 @@ void reach(const Shader& sh, int start, int region_end, std::vector<bool>& live)
     if (i < 0 || i >= region_end || live[i]) continue;
     live[i] = true;
     const Op& op = sh.ops[i];
-    if (op.opcode == "exit") continue;
-    if (op.opcode == "br" || op.opcode == "cbr") {
+    if (op.opcode == Opcode::Exit) continue;
+    if (op.opcode == Opcode::Br || op.opcode == Opcode::Cbr) {
       for (int j : op.jumps) work.push_back(j);
       continue;
     }
@@ -35,9 +35,9 @@ void reach(const Shader& sh, int start, int region_end, std::vector<bool>& live)
 
 // An op that does nothing: nop, a jump to the next op, x = x.
 bool trivial(const Op& op, int index) {
-  if (op.opcode == "nop") return true;
-  if (op.opcode == "br" && op.jumps.size() == 1 && op.jumps[0] == index + 1) return true;
-  return op.opcode == "assign" && op.args.size() == 2 && op.args[0] == op.args[1];
+  if (op.opcode == Opcode::Nop) return true;
+  if (op.opcode == Opcode::Br && op.jumps.size() == 1 && op.jumps[0] == index + 1) return true;
+  return op.opcode == Opcode::Assign && op.args.size() == 2 && op.args[0] == op.args[1];
 }
 
 bool observable(const Symbol& s) {
@@ -58,8 +58,8 @@ bool drop_unread_writes(const Shader& sh, std::vector<bool>& keep) {
     }
     for (size_t i = 0; i < sh.ops.size(); ++i) {
       const Op& op = sh.ops[i];
-      const OpcodeInfo* info = find_opcode(op.opcode);
-      if (!keep[i] || !info || (info->flags & (kEffect | kJump)) || op.written_mask == 0) continue;
+      const ir::OpcodeInfo* info = &ir::info(op.opcode);
+      if (!keep[i] || (info->flags & (kEffect | kJump)) || op.written_mask == 0) continue;
       bool dead = true;
       for (size_t a = 0; a < op.args.size() && dead; ++a) {
         if (!op.writes(int(a))) continue;
@@ -77,9 +77,9 @@ bool drop_unread_writes(const Shader& sh, std::vector<bool>& keep) {
 // True if `op` overwrites the whole of operand `a` (so an earlier value is dead): a pure op
 // writing it without reading it; arraycopy only between arrays of the same length.
 bool full_write(const Shader& sh, const Op& op, int a) {
-  const OpcodeInfo* info = find_opcode(op.opcode);
-  if (!info || !(info->flags & kPure) || !op.writes(a) || op_reads(op, a)) return false;
-  if (op.opcode == "arraycopy") {
+  const ir::OpcodeInfo* info = &ir::info(op.opcode);
+  if (!(info->flags & kPure) || !op.writes(a) || op_reads(op, a)) return false;
+  if (op.opcode == Opcode::ArrayCopy) {
     const Type& d = sh.symbols[size_t(op.args[0])].type;
     const Type& s = sh.symbols[size_t(op.args[1])].type;
     return d.arraylen > 0 && d.arraylen == s.arraylen;
@@ -102,7 +102,7 @@ std::vector<Block> main_blocks(const Shader& sh, std::vector<int>& block_of) {
   for (int i = sh.main_begin; i < n; ++i) {
     const Op& op = sh.ops[size_t(i)];
     for (int j : op.jumps) leader[size_t(std::clamp(j, sh.main_begin, n))] = true;
-    if (!op.jumps.empty() || op.opcode == "exit") leader[size_t(i) + 1] = true;
+    if (!op.jumps.empty() || op.opcode == Opcode::Exit) leader[size_t(i) + 1] = true;
   }
   std::vector<Block> blocks;
   block_of.assign(size_t(n) + 1, -1);
@@ -114,7 +114,7 @@ std::vector<Block> main_blocks(const Shader& sh, std::vector<int>& block_of) {
   for (size_t b = 0; b < blocks.size(); ++b) {
     const Op& last = sh.ops[size_t(blocks[b].end - 1)];
     std::vector<int> targets = last.jumps;
-    if (last.opcode != "br" && last.opcode != "cbr" && last.opcode != "exit")
+    if (last.opcode != Opcode::Br && last.opcode != Opcode::Cbr && last.opcode != Opcode::Exit)
       targets.push_back(blocks[b].end);
     for (int t : targets)
       if (t >= sh.main_begin && t < n) blocks[b].succ.push_back(block_of[size_t(t)]);
@@ -159,9 +159,9 @@ bool drop_dead_stores(const Shader& sh, std::vector<bool>& keep) {
     for (int i = b.end - 1; i >= b.begin; --i) {
       if (!keep[size_t(i)]) continue;
       const Op& op = sh.ops[size_t(i)];
-      const OpcodeInfo* info = find_opcode(op.opcode);
-      bool dead = info && (info->flags & kPure) && !(info->flags & (kEffect | kJump)) &&
-                  op.written_mask != 0;
+      const ir::OpcodeInfo* info = &ir::info(op.opcode);
+      bool dead =
+          (info->flags & kPure) && !(info->flags & (kEffect | kJump)) && op.written_mask != 0;
       for (size_t a = 0; a < op.args.size() && dead; ++a) {
         if (!op.writes(int(a))) continue;
         int s = op.args[a];
@@ -195,8 +195,8 @@ static bool dce_round(Shader& sh) {
       continue;
     }
     Op& op = sh.ops[i];
-    if (op.opcode == "cbr" && op.jumps.size() == 2 && op.jumps[0] == op.jumps[1]) {
-      op.opcode = "br";
+    if (op.opcode == Opcode::Cbr && op.jumps.size() == 2 && op.jumps[0] == op.jumps[1]) {
+      op.opcode = Opcode::Br;
       op.args.clear();
       op.written_mask = 0;
       op.jumps.resize(1);

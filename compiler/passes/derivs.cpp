@@ -26,16 +26,15 @@ bool analyze_derivatives(Shader& sh) {
     return true;
   };
   for (const Op& op : sh.ops) {
-    const OpcodeInfo* info = find_opcode(op.opcode);
-    if (!info) continue;
+    const ir::OpcodeInfo* info = &ir::info(op.opcode);
     for (size_t i = 0; i < op.args.size() && i < 32; ++i)
       if ((info->derivs >> i) & 1u) mark(op.args[i]);
   }
   for (bool grew = true; grew;) {
     grew = false;
     for (const Op& op : sh.ops) {
-      const OpcodeInfo* info = find_opcode(op.opcode);
-      if (!info || !(info->flags & kPropagates)) continue;
+      const ir::OpcodeInfo* info = &ir::info(op.opcode);
+      if (!(info->flags & kPropagates)) continue;
       bool result_needs = false;
       for (size_t i = 0; i < op.args.size(); ++i)
         if (op.writes(int(i)) && need[op.args[i]]) result_needs = true;

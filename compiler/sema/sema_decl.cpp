@@ -3,6 +3,7 @@
 #include "sema/sema_impl.h"
 
 #include "closure_registry.h"
+#include "lobe/shading_globals.h"
 
 #include <algorithm>
 #include <functional>
@@ -140,40 +141,40 @@ std::vector<ast::FunctionDecl*> Sema::lookup_functions(const std::string& name, 
 }
 
 namespace {
-// The shading globals shaders may read: name and type.
-struct GlobalInfo {
-  const char* name;
-  ast::BaseType type;
-};
-const GlobalInfo kGlobals[] = {
-    {"P", ast::BaseType::Point},     {"I", ast::BaseType::Vector},
-    {"N", ast::BaseType::Normal},    {"Ng", ast::BaseType::Normal},
-    {"u", ast::BaseType::Float},     {"v", ast::BaseType::Float},
-    {"dPdu", ast::BaseType::Vector}, {"dPdv", ast::BaseType::Vector},
-    {"dPdx", ast::BaseType::Vector}, {"dPdy", ast::BaseType::Vector},
-    {"dPdz", ast::BaseType::Vector}, {"time", ast::BaseType::Float},
-    {"dtime", ast::BaseType::Float}, {"dPdtime", ast::BaseType::Vector},
-    {"Ps", ast::BaseType::Point},    {"Ci", ast::BaseType::Closure},
-};
+// A global's type in the language (lobe/shading_globals.h).
+ast::BaseType global_base(GlobalType t) {
+  switch (t) {
+  case GlobalType::Float:
+    return ast::BaseType::Float;
+  case GlobalType::Point:
+    return ast::BaseType::Point;
+  case GlobalType::Vector:
+    return ast::BaseType::Vector;
+  case GlobalType::Normal:
+    return ast::BaseType::Normal;
+  case GlobalType::Closure:
+    return ast::BaseType::Closure;
+  }
+  return ast::BaseType::Float;
+}
 } // namespace
 
-// Globals are declared on first use, so the translation unit lists only those it reads.
+// Globals are declared on first use, so the translation unit lists only those it reads; the
+// ones shaders may name are lobe/shading_globals.h's kGlobalNamed rows.
 ast::VarDecl* Sema::global(const std::string& name) {
   auto it = globals_.find(name);
   if (it != globals_.end()) return it->second;
-  for (const auto& g : kGlobals) {
-    if (name != g.name) continue;
-    auto v = std::make_unique<ast::VarDecl>();
-    v->name = name;
-    v->type = ast::Type(g.type);
-    v->storage = ast::Storage::Global;
-    v->writable = name == "P" || name == "I" || name == "N" || name == "Ci";
-    ast::VarDecl* raw = v.get();
-    tu_.globals.push_back(std::move(v));
-    globals_[name] = raw;
-    return raw;
-  }
-  return nullptr;
+  const ShadingGlobal* g = find_shading_global(name);
+  if (!g || !(g->flags & kGlobalNamed)) return nullptr;
+  auto v = std::make_unique<ast::VarDecl>();
+  v->name = name;
+  v->type = ast::Type(global_base(g->type));
+  v->storage = ast::Storage::Global;
+  v->writable = (g->flags & kGlobalWritable) != 0;
+  ast::VarDecl* raw = v.get();
+  tu_.globals.push_back(std::move(v));
+  globals_[name] = raw;
+  return raw;
 }
 
 const ast::StructDecl* Sema::find_struct(const std::string& name) const {

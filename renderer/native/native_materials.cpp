@@ -198,7 +198,8 @@ public:
   NativeMaterial(ShadeFn fn, uint64_t reads) : fn_(std::move(fn)), reads_(reads) {}
   void shade(ShaderGlobals& sg) const override { sg.Ci = fn_(sg, *sg.context); }
   uint64_t globals_read() const override { return reads_; }
-  bool read_output(const std::string&, const std::string&, std::vector<float>&) const override {
+  bool read_output(const ShadingContext&, const std::string&, const std::string&,
+                   std::vector<float>&) const override {
     return false;
   }
   const CompileStats& stats() const override { return stats_; }

@@ -7,6 +7,7 @@
 #include "jit.h"
 #include "lobe/context.h"
 #include "lobe/shading.h"
+#include "op_tables.h"
 #include "passes/derivs.h"
 
 #include <gtest/gtest.h>
@@ -418,4 +419,17 @@ end
   EXPECT_EQ(run(ir), "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n"
                      "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n"
                      "1 1 1\n");
+}
+
+// The emitter is found by index: every opcode of the table is in exactly one family table,
+// and every opcode but the control flow emit_op does itself has an emitter.
+TEST(Codegen, EveryOpcodeHasExactlyOneEmitter) {
+  std::array<int, ir::kOpcodeCount> rows = codegen::op_emitter_rows();
+  for (size_t i = 0; i < ir::kOpcodeCount; ++i) {
+    ir::Opcode op = ir::Opcode(i);
+    EXPECT_EQ(rows[i], 1) << ir::to_string(op);
+    bool flow = op == ir::Opcode::Nop || op == ir::Opcode::Br || op == ir::Opcode::Cbr ||
+                op == ir::Opcode::Exit || op == ir::Opcode::UseParam;
+    EXPECT_EQ(codegen::op_emitter(op) == nullptr, flow) << ir::to_string(op);
+  }
 }

@@ -51,7 +51,7 @@ void LayerEmitter::fail(const ir::Op& op, const std::string& msg) {
   // Appended piecewise: ":" + to_string(...) trips GCC 12's false -Wrestrict.
   if (op.loc.line > 0) where.append(":").append(std::to_string(op.loc.line));
   if (op.loc.line > 0 && op.loc.column > 0) where.append(":").append(std::to_string(op.loc.column));
-  error_ = where + ": error: " + op.opcode + ": " + msg;
+  error_ = where + ": error: " + ir::to_string(op.opcode) + ": " + msg;
 }
 
 llvm::Value* LayerEmitter::env_ptr() {
@@ -317,9 +317,9 @@ llvm::Value* LayerEmitter::checked_index(const ir::Op& op, int index_arg, int le
   b_.CreateCondBr(bad, report, ok);
   b_.SetInsertPoint(report);
   // The indexed symbol: the destination of an element store, else the source.
-  const ir::Symbol& what = arg(
-      op,
-      op.opcode.size() > 6 && op.opcode.compare(op.opcode.size() - 6, 6, "assign") == 0 ? 0 : 1);
+  bool store = op.opcode == ir::Opcode::AAssign || op.opcode == ir::Opcode::CompAssign ||
+               op.opcode == ir::Opcode::MxCompAssign;
+  const ir::Symbol& what = arg(op, store ? 0 : 1);
   std::string where = "(" + layer_description() + ")";
   call("lobe_range_error", {sg_, idx, iconst(length), string_const(what.name),
                             string_const(op.loc.file.empty() ? shader().name : op.loc.file),
@@ -338,11 +338,11 @@ namespace {
 // The op's name as OSL's run-time checks print it: Lobe's `construct` is OSL's type-named
 // constructor op (`color`, `point`, ...), a conditional branch OSL's `if`.
 std::string osl_opname(const ir::Op& op, const ir::Shader& sh) {
-  if (op.opcode == "construct" && !op.args.empty())
+  if (op.opcode == ir::Opcode::Construct && !op.args.empty())
     return to_string(sh.symbols[size_t(op.args[0])].type.base);
-  if (op.opcode == "cbr") return "if";
-  if (op.opcode == "declared_closure") return "closure";
-  return op.opcode;
+  if (op.opcode == ir::Opcode::Cbr) return "if";
+  if (op.opcode == ir::Opcode::DeclaredClosure) return "closure";
+  return ir::to_string(op.opcode);
 }
 } // namespace
 
@@ -359,7 +359,7 @@ void LayerEmitter::number_ops_as_osl() {
   for (size_t i = 0; i < ops.size(); ++i) {
     const ir::Op& op = ops[i];
     bool conditional = furthest > int(i);
-    if (op.opcode != "useparam" && op.opcode != "br") {
+    if (op.opcode != ir::Opcode::UseParam && op.opcode != ir::Opcode::Br) {
       std::vector<int> fresh;
       for (size_t a = 0; a < op.args.size(); ++a) {
         int si = op.args[a];
@@ -373,7 +373,7 @@ void LayerEmitter::number_ops_as_osl() {
     } else {
       osl_opnum_[i] = n;
     }
-    if (op.opcode == "cbr")
+    if (op.opcode == ir::Opcode::Cbr)
       for (int t : op.jumps) furthest = std::max(furthest, t);
   }
 }
@@ -391,19 +391,21 @@ void LayerEmitter::check_uninit_reads(int index) {
     if (s.kind == SymKind::Const || s.kind == SymKind::Global || !storage_[size_t(si)]) continue;
     if (s.type.base == BaseType::Closure) continue;
     // The value after an attribute name of pointcloud_search/get is where it is written.
-    if ((op.opcode == "pointcloud_search" || op.opcode == "pointcloud_get") && a > 0 &&
-        sym(op.args[a - 1]).type.base == BaseType::String)
+    if ((op.opcode == ir::Opcode::PointcloudSearch || op.opcode == ir::Opcode::PointcloudGet) &&
+        a > 0 && sym(op.args[a - 1]).type.base == BaseType::String)
       continue;
     int comps = s.type.components();
     llvm::Value* first = iconst(0);
     llvm::Value* count = iconst(elements_of(s) * comps);
-    if (a == 1 && op.opcode == "aref" && op.args.size() > 2 && s.type.is_array()) {
+    if (a == 1 && op.opcode == ir::Opcode::ARef && op.args.size() > 2 && s.type.is_array()) {
       first = b_.CreateMul(clamped_index(op, 2, elements_of(s)), iconst(comps));
       count = iconst(comps);
-    } else if (a == 1 && op.opcode == "compref" && op.args.size() > 2 && !s.type.is_array()) {
+    } else if (a == 1 && op.opcode == ir::Opcode::CompRef && op.args.size() > 2 &&
+               !s.type.is_array()) {
       first = clamped_index(op, 2, comps);
       count = iconst(1);
-    } else if (a == 1 && op.opcode == "mxcompref" && op.args.size() > 3 && !s.type.is_array()) {
+    } else if (a == 1 && op.opcode == ir::Opcode::MxCompRef && op.args.size() > 3 &&
+               !s.type.is_array()) {
       first =
           b_.CreateAdd(b_.CreateMul(clamped_index(op, 2, 4), iconst(4)), clamped_index(op, 3, 4));
       count = iconst(1);
@@ -433,13 +435,15 @@ void LayerEmitter::check_nan_writes(int index) {
     int all = elements_of(s) * comps;
     llvm::Value* first = iconst(0);
     llvm::Value* count = iconst(all);
-    if (a == 0 && op.opcode == "aassign" && op.args.size() > 2 && s.type.is_array()) {
+    if (a == 0 && op.opcode == ir::Opcode::AAssign && op.args.size() > 2 && s.type.is_array()) {
       first = b_.CreateMul(clamped_index(op, 1, elements_of(s)), iconst(comps));
       count = iconst(comps);
-    } else if (a == 0 && op.opcode == "compassign" && op.args.size() > 2 && !s.type.is_array()) {
+    } else if (a == 0 && op.opcode == ir::Opcode::CompAssign && op.args.size() > 2 &&
+               !s.type.is_array()) {
       first = clamped_index(op, 1, comps);
       count = iconst(1);
-    } else if (a == 0 && op.opcode == "mxcompassign" && op.args.size() > 3 && !s.type.is_array()) {
+    } else if (a == 0 && op.opcode == ir::Opcode::MxCompAssign && op.args.size() > 3 &&
+               !s.type.is_array()) {
       first =
           b_.CreateAdd(b_.CreateMul(clamped_index(op, 1, 4), iconst(4)), clamped_index(op, 2, 4));
       count = iconst(1);

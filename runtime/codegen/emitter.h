@@ -136,7 +136,8 @@ private:
   std::string error_;
 };
 
-// Op emitters, by family (ops_*.cpp); returns null for an unknown opcode.
-OpEmitFn find_op_emitter(const std::string& opcode);
+// The emitter of an opcode (ops_*.cpp), by direct index; null for the control flow
+// (nop, br, cbr, exit, useparam) that LayerEmitter::emit_op does itself.
+OpEmitFn op_emitter(ir::Opcode op);
 
 } // namespace lobe::codegen

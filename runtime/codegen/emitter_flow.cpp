@@ -25,9 +25,6 @@ const GlobalField* find_global(const std::string& name) {
     if (name == g.name) return &g;
   return nullptr;
 }
-bool is_jump(const std::string& opcode) {
-  return opcode == "br" || opcode == "cbr" || opcode == "exit";
-}
 } // namespace
 
 bool LayerEmitter::is_leader(int i) const {
@@ -139,7 +136,7 @@ void LayerEmitter::init_params() {
   bool lazy = false;
   std::vector<bool> read(syms.size(), false);
   for (const ir::Op& op : shader().ops) {
-    lazy |= op.opcode == "useparam";
+    lazy |= op.opcode == ir::Opcode::UseParam;
     for (size_t a = 0; a < op.args.size(); ++a)
       if (ir::op_reads(op, int(a))) read[size_t(op.args[a])] = true;
   }
@@ -240,24 +237,24 @@ void LayerEmitter::emit_region(int begin, int end, llvm::BasicBlock* after) {
 
 void LayerEmitter::emit_op(int index) {
   const ir::Op& op = shader().ops[size_t(index)];
-  if (op.opcode == "nop") return;
-  if (loop_budget_ && is_jump(op.opcode))
+  if (op.opcode == ir::Opcode::Nop) return;
+  if (loop_budget_ && ir::is_jump(op.opcode))
     for (int t : op.jumps)
       if (t >= 0 && t <= index) {
         emit_loop_check(op);
         break;
       }
-  if (op.opcode == "br") {
+  if (op.opcode == ir::Opcode::Br) {
     b_.CreateBr(block_at(op.jumps.at(0)));
-  } else if (op.opcode == "cbr") {
+  } else if (op.opcode == ir::Opcode::Cbr) {
     if (group_.debug_uninit) check_uninit_reads(index);
     llvm::Value* c = truthy(load(op.args[0], nullptr, false), arg(op, 0).type.base);
     b_.CreateCondBr(c, block_at(op.jumps.at(0)), block_at(op.jumps.at(1)));
-  } else if (op.opcode == "exit") {
+  } else if (op.opcode == ir::Opcode::Exit) {
     emit_exit();
-  } else if (op.opcode == "useparam") {
+  } else if (op.opcode == ir::Opcode::UseParam) {
     for (int a : op.args) run_useparam(a);
-  } else if (OpEmitFn fn = find_op_emitter(op.opcode)) {
+  } else if (OpEmitFn fn = op_emitter(op.opcode)) {
     if (group_.debug_uninit) check_uninit_reads(index);
     fn(*this, op);
     if (group_.debug_nan && !b_.GetInsertBlock()->getTerminator()) check_nan_writes(index);
@@ -338,7 +335,7 @@ bool LayerEmitter::emit() {
   const auto& ops = shader().ops;
   leader_.assign(ops.size() + 1, 0);
   for (size_t i = 0; i < ops.size(); ++i) {
-    if (is_jump(ops[i].opcode)) {
+    if (ir::is_jump(ops[i].opcode)) {
       leader_[i + 1] = 1;
       for (int t : ops[i].jumps)
         if (t >= 0 && size_t(t) <= ops.size()) leader_[size_t(t)] = 1;
@@ -350,7 +347,7 @@ bool LayerEmitter::emit() {
   if (group_.loop_count_offset >= 0 && group_.max_loop_iterations >= 0) {
     bool loops = false;
     for (size_t i = 0; i < ops.size(); ++i)
-      if (is_jump(ops[i].opcode))
+      if (ir::is_jump(ops[i].opcode))
         for (int t : ops[i].jumps) loops |= t >= 0 && size_t(t) <= i;
     if (loops) {
       loop_budget_ = entry_alloca(b_.getInt64Ty(), 1, "loop_budget");

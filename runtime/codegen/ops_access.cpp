@@ -154,11 +154,11 @@ void op_construct(LayerEmitter& e, const ir::Op& op) {
 }
 
 const OpEntry kAccessOps[] = {
-    {"compref", op_compref},     {"compassign", op_compassign},
-    {"mxcompref", op_mxcompref}, {"mxcompassign", op_mxcompassign},
-    {"aref", op_aref},           {"aassign", op_aassign},
-    {"arraycopy", op_arraycopy}, {"arraylength", op_arraylength},
-    {"construct", op_construct},
+    {ir::Opcode::CompRef, op_compref},     {ir::Opcode::CompAssign, op_compassign},
+    {ir::Opcode::MxCompRef, op_mxcompref}, {ir::Opcode::MxCompAssign, op_mxcompassign},
+    {ir::Opcode::ARef, op_aref},           {ir::Opcode::AAssign, op_aassign},
+    {ir::Opcode::ArrayCopy, op_arraycopy}, {ir::Opcode::ArrayLength, op_arraylength},
+    {ir::Opcode::Construct, op_construct},
 };
 
 } // namespace

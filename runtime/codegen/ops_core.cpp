@@ -36,12 +36,12 @@ void closure_arith(LayerEmitter& e, const ir::Op& op) {
     return e.spill({w[0].v, w[1].v, w[2].v});
   };
   llvm::Value* r = nullptr;
-  if (op.opcode == "add") {
+  if (op.opcode == ir::Opcode::Add) {
     r = e.call("lobe_closure_add", {e.sg(), e.load(op.args[1])[0].v, e.load(op.args[2])[0].v});
-  } else if (op.opcode == "mul" || op.opcode == "div") {
+  } else if (op.opcode == ir::Opcode::Mul || op.opcode == ir::Opcode::Div) {
     int ci = is_closure(e.arg(op, 1)) ? 1 : 2, wi = 3 - ci;
     llvm::Value* w = weight_ptr(wi);
-    if (op.opcode == "div") { // closure / w: scale by 1/w (0 where w == 0)
+    if (op.opcode == ir::Opcode::Div) { // closure / w: scale by 1/w (0 where w == 0)
       Val wv = e.load_as(op, wi, BaseType::Color, false);
       DualOps d(e);
       std::vector<llvm::Value*> inv;
@@ -49,7 +49,7 @@ void closure_arith(LayerEmitter& e, const ir::Op& op) {
       w = e.spill(inv);
     }
     r = e.call("lobe_closure_mul", {e.sg(), e.load(op.args[size_t(ci)])[0].v, w});
-  } else if (op.opcode == "neg") {
+  } else if (op.opcode == ir::Opcode::Neg) {
     llvm::Value* w = e.spill({e.fconst(-1), e.fconst(-1), e.fconst(-1)});
     r = e.call("lobe_closure_mul", {e.sg(), e.load(op.args[1])[0].v, w});
   } else {
@@ -64,7 +64,7 @@ void closure_arith(LayerEmitter& e, const ir::Op& op) {
 void matrix_arith(LayerEmitter& e, const ir::Op& op) {
   bool am = e.arg(op, 1).type.base == BaseType::Matrix;
   bool bm = op.args.size() > 2 && e.arg(op, 2).type.base == BaseType::Matrix;
-  if ((op.opcode == "mul" || op.opcode == "div") && am && bm) {
+  if ((op.opcode == ir::Opcode::Mul || op.opcode == ir::Opcode::Div) && am && bm) {
     auto to_ptr = [&](int i) {
       Val v = e.load_as(op, i, BaseType::Matrix, false);
       std::vector<llvm::Value*> c;
@@ -72,13 +72,14 @@ void matrix_arith(LayerEmitter& e, const ir::Op& op) {
       return e.spill(c);
     };
     llvm::Value* out = e.spill(std::vector<llvm::Value*>(16, e.fconst(0)));
-    e.call(op.opcode == "mul" ? "lobe_mat_mul" : "lobe_mat_div", {out, to_ptr(1), to_ptr(2)});
+    e.call(op.opcode == ir::Opcode::Mul ? "lobe_mat_mul" : "lobe_mat_div",
+           {out, to_ptr(1), to_ptr(2)});
     Val r;
     for (llvm::Value* v : e.reload(out, 16)) r.push_back(Dual{v});
     e.store(op.args[0], r);
     return;
   }
-  if (op.opcode == "div" && !am && bm) { // float / matrix = diag(float) * inverse(matrix)
+  if (op.opcode == ir::Opcode::Div && !am && bm) { // float / matrix = diag(float) * inverse(matrix)
     Val a = e.load_as(op, 1, BaseType::Matrix, false),
         b = e.load_as(op, 2, BaseType::Matrix, false);
     std::vector<llvm::Value*> ac, bc;
@@ -96,8 +97,9 @@ void matrix_arith(LayerEmitter& e, const ir::Op& op) {
   // Per element: matrix +-* float or matrix, matrix / float, -matrix. A float operand of
   // add/sub acts as a diagonal matrix (conversion rule), of mul/div as a scalar.
   DualOps d(e);
-  bool scalar_b = op.args.size() > 2 && !bm && (op.opcode == "mul" || op.opcode == "div");
-  bool scalar_a = !am && op.opcode == "mul";
+  bool scalar_b =
+      op.args.size() > 2 && !bm && (op.opcode == ir::Opcode::Mul || op.opcode == ir::Opcode::Div);
+  bool scalar_a = !am && op.opcode == ir::Opcode::Mul;
   Val a = scalar_a ? e.load_as(op, 1, BaseType::Float, false)
                    : e.load_as(op, 1, BaseType::Matrix, false);
   Val b;
@@ -107,16 +109,16 @@ void matrix_arith(LayerEmitter& e, const ir::Op& op) {
   Val r(16);
   for (size_t i = 0; i < 16; ++i) {
     Dual x = scalar_a ? a[0] : a[i];
-    if (op.opcode == "neg") {
+    if (op.opcode == ir::Opcode::Neg) {
       r[i] = d.neg(x);
       continue;
     }
     Dual y = scalar_b ? b[0] : b[i];
-    if (op.opcode == "add")
+    if (op.opcode == ir::Opcode::Add)
       r[i] = d.add(x, y);
-    else if (op.opcode == "sub")
+    else if (op.opcode == ir::Opcode::Sub)
       r[i] = d.sub(x, y);
-    else if (op.opcode == "mul")
+    else if (op.opcode == ir::Opcode::Mul)
       r[i] = d.mul(x, y);
     else
       r[i] = d.div(x, y);
@@ -130,7 +132,7 @@ void arith(LayerEmitter& e, const ir::Op& op) {
   if (t == BaseType::Closure) return closure_arith(e, op);
   if (t == BaseType::Matrix) return matrix_arith(e, op);
   auto& B = e.b();
-  bool unary = op.opcode == "neg";
+  bool unary = op.opcode == ir::Opcode::Neg;
   if (t == BaseType::Int) {
     llvm::Value* a = e.load_as(op, 1, t)[0].v;
     llvm::Value* r = nullptr;
@@ -138,14 +140,14 @@ void arith(LayerEmitter& e, const ir::Op& op) {
       r = B.CreateSub(e.iconst(0), a);
     else {
       llvm::Value* b = e.load_as(op, 2, t)[0].v;
-      if (op.opcode == "add")
+      if (op.opcode == ir::Opcode::Add)
         r = B.CreateAdd(a, b);
-      else if (op.opcode == "sub")
+      else if (op.opcode == ir::Opcode::Sub)
         r = B.CreateSub(a, b);
-      else if (op.opcode == "mul")
+      else if (op.opcode == ir::Opcode::Mul)
         r = B.CreateMul(a, b);
       else
-        r = int_divmod(e, a, b, op.opcode == "mod");
+        r = int_divmod(e, a, b, op.opcode == ir::Opcode::Mod);
     }
     e.store(op.args[0], Val{Dual{r}});
     return;
@@ -158,13 +160,13 @@ void arith(LayerEmitter& e, const ir::Op& op) {
   for (size_t i = 0; i < a.size(); ++i) {
     if (unary)
       r[i] = d.neg(a[i]);
-    else if (op.opcode == "add")
+    else if (op.opcode == ir::Opcode::Add)
       r[i] = d.add(a[i], b[i]);
-    else if (op.opcode == "sub")
+    else if (op.opcode == ir::Opcode::Sub)
       r[i] = d.sub(a[i], b[i]);
-    else if (op.opcode == "mul")
+    else if (op.opcode == ir::Opcode::Mul)
       r[i] = d.mul(a[i], b[i]);
-    else if (op.opcode == "div")
+    else if (op.opcode == ir::Opcode::Div)
       r[i] = d.div(a[i], b[i]);
     else { // fmod (math::fmod), 0 where b == 0; d(fmod(a,b)) = da - trunc(a/b) db
       Dual q = d.div(a[i], b[i]);
@@ -196,9 +198,9 @@ void compare(LayerEmitter& e, const ir::Op& op) {
   auto& B = e.b();
   BaseType t = compare_type(e.arg(op, 1), e.arg(op, 2));
   Val a = e.load_as(op, 1, t, false), b = e.load_as(op, 2, t, false);
-  const std::string& o = op.opcode;
+  const ir::Opcode o = op.opcode;
   llvm::Value* r = nullptr;
-  if (o == "eq" || o == "neq") {
+  if (o == ir::Opcode::Eq || o == ir::Opcode::Neq) {
     for (size_t i = 0; i < a.size(); ++i) {
       llvm::Value* c;
       if (t == BaseType::Int || t == BaseType::String || t == BaseType::Closure)
@@ -207,26 +209,27 @@ void compare(LayerEmitter& e, const ir::Op& op) {
         c = B.CreateFCmpUEQ(a[i].v, b[i].v);
       r = r ? B.CreateAnd(r, c) : c;
     }
-    if (o == "neq" && t != BaseType::Int && t != BaseType::String && t != BaseType::Closure) {
+    if (o == ir::Opcode::Neq && t != BaseType::Int && t != BaseType::String &&
+        t != BaseType::Closure) {
       r = nullptr; // any component != (unordered: a NaN makes == and != both true)
       for (size_t i = 0; i < a.size(); ++i) {
         llvm::Value* c = B.CreateFCmpUNE(a[i].v, b[i].v);
         r = r ? B.CreateOr(r, c) : c;
       }
-    } else if (o == "neq") {
+    } else if (o == ir::Opcode::Neq) {
       r = B.CreateNot(r);
     }
   } else if (t == BaseType::Int) {
-    auto p = o == "lt"   ? llvm::CmpInst::ICMP_SLT
-             : o == "le" ? llvm::CmpInst::ICMP_SLE
-             : o == "gt" ? llvm::CmpInst::ICMP_SGT
-                         : llvm::CmpInst::ICMP_SGE;
+    auto p = o == ir::Opcode::Lt   ? llvm::CmpInst::ICMP_SLT
+             : o == ir::Opcode::Le ? llvm::CmpInst::ICMP_SLE
+             : o == ir::Opcode::Gt ? llvm::CmpInst::ICMP_SGT
+                                   : llvm::CmpInst::ICMP_SGE;
     r = B.CreateICmp(p, a[0].v, b[0].v);
   } else {
-    auto p = o == "lt"   ? llvm::CmpInst::FCMP_ULT
-             : o == "le" ? llvm::CmpInst::FCMP_ULE
-             : o == "gt" ? llvm::CmpInst::FCMP_UGT
-                         : llvm::CmpInst::FCMP_UGE;
+    auto p = o == ir::Opcode::Lt   ? llvm::CmpInst::FCMP_ULT
+             : o == ir::Opcode::Le ? llvm::CmpInst::FCMP_ULE
+             : o == ir::Opcode::Gt ? llvm::CmpInst::FCMP_UGT
+                                   : llvm::CmpInst::FCMP_UGE;
     r = B.CreateFCmp(p, a[0].v, b[0].v);
   }
   e.store(op.args[0],
@@ -243,30 +246,33 @@ void bits(LayerEmitter& e, const ir::Op& op) {
   auto& B = e.b();
   llvm::Value* a = e.load_as(op, 1, BaseType::Int)[0].v;
   llvm::Value* r;
-  if (op.opcode == "compl")
+  if (op.opcode == ir::Opcode::Compl)
     r = B.CreateNot(a);
   else {
     llvm::Value* b = e.load_as(op, 2, BaseType::Int)[0].v;
-    const std::string& o = op.opcode;
-    if (o == "bitand")
+    const ir::Opcode o = op.opcode;
+    if (o == ir::Opcode::BitAnd)
       r = B.CreateAnd(a, b);
-    else if (o == "bitor")
+    else if (o == ir::Opcode::BitOr)
       r = B.CreateOr(a, b);
-    else if (o == "xor")
+    else if (o == ir::Opcode::Xor)
       r = B.CreateXor(a, b);
     else { // shift counts are taken modulo 32 (C leaves larger ones undefined)
       llvm::Value* n = B.CreateAnd(b, e.iconst(31));
-      r = o == "shl" ? B.CreateShl(a, n) : B.CreateAShr(a, n);
+      r = o == ir::Opcode::Shl ? B.CreateShl(a, n) : B.CreateAShr(a, n);
     }
   }
   e.store(op.args[0], Val{Dual{r}});
 }
 
 const OpEntry kCoreOps[] = {
-    {"assign", op_assign}, {"add", arith},  {"sub", arith},  {"mul", arith},     {"div", arith},
-    {"mod", arith},        {"neg", arith},  {"eq", compare}, {"neq", compare},   {"lt", compare},
-    {"le", compare},       {"gt", compare}, {"ge", compare}, {"not", logic_not}, {"compl", bits},
-    {"bitand", bits},      {"bitor", bits}, {"xor", bits},   {"shl", bits},      {"shr", bits},
+    {ir::Opcode::Assign, op_assign}, {ir::Opcode::Add, arith},     {ir::Opcode::Sub, arith},
+    {ir::Opcode::Mul, arith},        {ir::Opcode::Div, arith},     {ir::Opcode::Mod, arith},
+    {ir::Opcode::Neg, arith},        {ir::Opcode::Eq, compare},    {ir::Opcode::Neq, compare},
+    {ir::Opcode::Lt, compare},       {ir::Opcode::Le, compare},    {ir::Opcode::Gt, compare},
+    {ir::Opcode::Ge, compare},       {ir::Opcode::Not, logic_not}, {ir::Opcode::Compl, bits},
+    {ir::Opcode::BitAnd, bits},      {ir::Opcode::BitOr, bits},    {ir::Opcode::Xor, bits},
+    {ir::Opcode::Shl, bits},         {ir::Opcode::Shr, bits},
 };
 
 } // namespace

@@ -56,17 +56,19 @@ void op_dict_value(LayerEmitter& e, const ir::Op& op) {
 
 // pointcloud_search / _get / _write: no point clouds, so no points (one warning per run).
 void op_pointcloud(LayerEmitter& e, const ir::Op& op) {
-  int_result(e, op, e.call("lobe_pointcloud", {e.sg(), e.env_ptr(), e.string_const(op.opcode)}));
+  int_result(
+      e, op,
+      e.call("lobe_pointcloud", {e.sg(), e.env_ptr(), e.string_const(ir::to_string(op.opcode))}));
 }
 
 const OpEntry kDataOps[] = {
-    {"split", op_split},
-    {"dict_find", op_dict_find},
-    {"dict_next", op_dict_next},
-    {"dict_value", op_dict_value},
-    {"pointcloud_search", op_pointcloud},
-    {"pointcloud_get", op_pointcloud},
-    {"pointcloud_write", op_pointcloud},
+    {ir::Opcode::Split, op_split},
+    {ir::Opcode::DictFind, op_dict_find},
+    {ir::Opcode::DictNext, op_dict_next},
+    {ir::Opcode::DictValue, op_dict_value},
+    {ir::Opcode::PointcloudSearch, op_pointcloud},
+    {ir::Opcode::PointcloudGet, op_pointcloud},
+    {ir::Opcode::PointcloudWrite, op_pointcloud},
 };
 
 } // namespace

@@ -197,14 +197,14 @@ void op_luminance(LayerEmitter& e, const ir::Op& op) {
 
 void op_spectral(LayerEmitter& e, const ir::Op& op) {
   llvm::Value* out = e.spill({e.fconst(0), e.fconst(0), e.fconst(0)});
-  e.call(op.opcode == "blackbody" ? "lobe_blackbody" : "lobe_wavelength_color",
+  e.call(op.opcode == ir::Opcode::Blackbody ? "lobe_blackbody" : "lobe_wavelength_color",
          {e.colors_ptr(), out, e.load_as(op, 1, BaseType::Float, false)[0].v});
   e.store(op.args[0], from_values(e.reload(out, 3)));
 }
 
 void op_matrix_fn(LayerEmitter& e, const ir::Op& op) {
   llvm::Value* m = e.spill(values(e.load_as(op, 1, BaseType::Matrix, false)));
-  if (op.opcode == "determinant") {
+  if (op.opcode == ir::Opcode::Determinant) {
     e.store(op.args[0], Val{Dual{e.call("lobe_mat_det", {m})}});
     return;
   }
@@ -224,17 +224,17 @@ void op_getmatrix(LayerEmitter& e, const ir::Op& op) {
 
 // Dx, Dy, Dz, filterwidth, area, calculatenormal: read derivatives, write plain values.
 void op_deriv(LayerEmitter& e, const ir::Op& op) {
-  const std::string& o = op.opcode;
+  const ir::Opcode o = op.opcode;
   BaseType t = e.arg(op, 1).type.base;
   Val x = e.load(op.args[1]);
   auto dxv = [&](const Dual& c) { return c.dx ? c.dx : e.fconst(0); };
   auto dyv = [&](const Dual& c) { return c.dy ? c.dy : e.fconst(0); };
   DualOps d(e);
   Val r;
-  if (o == "Dx" || o == "Dy" || o == "Dz") {
+  if (o == ir::Opcode::Dx || o == ir::Opcode::Dy || o == ir::Opcode::Dz) {
     for (const Dual& c : x)
-      r.push_back(Dual{o == "Dx" ? dxv(c) : o == "Dy" ? dyv(c) : e.fconst(0)});
-  } else if (o == "filterwidth") {
+      r.push_back(Dual{o == ir::Opcode::Dx ? dxv(c) : o == ir::Opcode::Dy ? dyv(c) : e.fconst(0)});
+  } else if (o == ir::Opcode::FilterWidth) {
     for (const Dual& c : x) {
       Dual fx{dxv(c)}, fy{dyv(c)};
       r.push_back(sqrt_dual(e, d, d.add(d.mul(fx, fx), d.mul(fy, fy))));
@@ -246,7 +246,7 @@ void op_deriv(LayerEmitter& e, const ir::Op& op) {
       py.push_back(Dual{dyv(c)});
     }
     Val n = cross3(d, px, py);
-    if (o == "area") {
+    if (o == ir::Opcode::Area) {
       r = Val{sqrt_dual(e, d, dot3(d, n, n))};
     } else {
       llvm::Value* flip = e.b().CreateLoad(
@@ -264,26 +264,26 @@ void op_deriv(LayerEmitter& e, const ir::Op& op) {
 }
 
 const OpEntry kGeometryOps[] = {
-    {"dot", op_dot},
-    {"cross", op_cross},
-    {"length", op_length},
-    {"distance", op_distance},
-    {"normalize", op_normalize},
-    {"transform", op_transform},
-    {"transformu", op_transformu},
-    {"transformc", op_transformc},
-    {"luminance", op_luminance},
-    {"blackbody", op_spectral},
-    {"wavelength_color", op_spectral},
-    {"determinant", op_matrix_fn},
-    {"transpose", op_matrix_fn},
-    {"getmatrix", op_getmatrix},
-    {"Dx", op_deriv},
-    {"Dy", op_deriv},
-    {"Dz", op_deriv},
-    {"filterwidth", op_deriv},
-    {"area", op_deriv},
-    {"calculatenormal", op_deriv},
+    {ir::Opcode::Dot, op_dot},
+    {ir::Opcode::Cross, op_cross},
+    {ir::Opcode::Length, op_length},
+    {ir::Opcode::Distance, op_distance},
+    {ir::Opcode::Normalize, op_normalize},
+    {ir::Opcode::Transform, op_transform},
+    {ir::Opcode::TransformU, op_transformu},
+    {ir::Opcode::TransformC, op_transformc},
+    {ir::Opcode::Luminance, op_luminance},
+    {ir::Opcode::Blackbody, op_spectral},
+    {ir::Opcode::WavelengthColor, op_spectral},
+    {ir::Opcode::Determinant, op_matrix_fn},
+    {ir::Opcode::Transpose, op_matrix_fn},
+    {ir::Opcode::GetMatrix, op_getmatrix},
+    {ir::Opcode::Dx, op_deriv},
+    {ir::Opcode::Dy, op_deriv},
+    {ir::Opcode::Dz, op_deriv},
+    {ir::Opcode::FilterWidth, op_deriv},
+    {ir::Opcode::Area, op_deriv},
+    {ir::Opcode::CalculateNormal, op_deriv},
 };
 
 } // namespace

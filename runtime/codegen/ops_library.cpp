@@ -74,8 +74,8 @@ void format_args(LayerEmitter& e, const ir::Op& op, size_t first, std::string& c
 }
 
 void op_printf(LayerEmitter& e, const ir::Op& op) {
-  const std::string& o = op.opcode;
-  bool to_file = o == "fprintf", returns = o == "format";
+  const ir::Opcode o = op.opcode;
+  bool to_file = o == ir::Opcode::Fprintf, returns = o == ir::Opcode::Format;
   size_t fmt_i = returns || to_file ? 1 : 0;
   std::string codes;
   llvm::Value* argv = nullptr;
@@ -91,11 +91,11 @@ void op_printf(LayerEmitter& e, const ir::Op& op) {
            {e.sg(), e.env_ptr(), e.load(op.args[0])[0].v, fmt, e.string_const(codes), argv});
     return;
   }
-  if (o == "printf") {
+  if (o == ir::Opcode::Printf) {
     e.call("lobe_printf", {e.sg(), e.env_ptr(), fmt, e.string_const(codes), argv});
     return;
   }
-  e.call(o == "error" ? "lobe_error" : "lobe_warning",
+  e.call(o == ir::Opcode::Error ? "lobe_error" : "lobe_warning",
          {e.sg(), e.env_ptr(), e.string_const(e.shader().name), fmt, e.string_const(codes), argv});
 }
 
@@ -106,47 +106,49 @@ llvm::Value* str(LayerEmitter& e, const ir::Op& op, int i) {
 }
 
 void op_string(LayerEmitter& e, const ir::Op& op) {
-  const std::string& o = op.opcode;
+  const ir::Opcode o = op.opcode;
   llvm::Value* r = nullptr;
-  if (o == "concat") {
+  if (o == ir::Opcode::Concat) {
     r = str(e, op, 1);
     for (size_t i = 2; i < op.args.size(); ++i)
       r = e.call("lobe_concat", {e.env_ptr(), r, str(e, op, int(i))});
-  } else if (o == "strlen")
+  } else if (o == ir::Opcode::Strlen)
     r = e.call("lobe_strlen", {str(e, op, 1)});
-  else if (o == "startswith")
+  else if (o == ir::Opcode::StartsWith)
     r = e.call("lobe_startswith", {str(e, op, 1), str(e, op, 2)});
-  else if (o == "endswith")
+  else if (o == ir::Opcode::EndsWith)
     r = e.call("lobe_endswith", {str(e, op, 1), str(e, op, 2)});
-  else if (o == "stoi")
+  else if (o == ir::Opcode::Stoi)
     r = e.call("lobe_stoi", {str(e, op, 1)});
-  else if (o == "stof")
+  else if (o == ir::Opcode::Stof)
     r = e.call("lobe_stof", {str(e, op, 1)});
-  else if (o == "getchar")
+  else if (o == ir::Opcode::GetChar)
     r = e.call("lobe_getchar", {str(e, op, 1), e.load_as(op, 2, BaseType::Int)[0].v});
-  else if (o == "substr") {
+  else if (o == ir::Opcode::Substr) {
     llvm::Value* len =
         op.args.size() > 3 ? e.load_as(op, 3, BaseType::Int)[0].v : e.iconst(0x7fffffff);
     r = e.call("lobe_substr",
                {e.env_ptr(), str(e, op, 1), e.load_as(op, 2, BaseType::Int)[0].v, len});
-  } else if ((o == "regex_search" || o == "regex_match") && op.args.size() == 4) {
+  } else if ((o == ir::Opcode::RegexSearch || o == ir::Opcode::RegexMatch) && op.args.size() == 4) {
     // regex_x result results[] subject pattern: the shadeop fills a buffer, copied to results.
     int n = std::max(0, e.arg(op, 1).type.arraylen);
     llvm::Value* buf =
         e.spill(std::vector<llvm::Value*>(size_t(std::max(n, 1)), e.iconst(0)), e.i32());
-    r = e.call("lobe_regex_results", {str(e, op, 2), str(e, op, 3),
-                                      e.iconst(o == "regex_match" ? 1 : 0), buf, e.iconst(n)});
+    r = e.call("lobe_regex_results",
+               {str(e, op, 2), str(e, op, 3), e.iconst(o == ir::Opcode::RegexMatch ? 1 : 0), buf,
+                e.iconst(n)});
     std::vector<llvm::Value*> got = e.reload(buf, n, e.i32());
     for (int i = 0; i < n; ++i) e.store(op.args[1], Val{Dual{got[size_t(i)]}}, e.iconst(i));
-  } else if (o == "regex_search" || o == "regex_match") {
+  } else if (o == ir::Opcode::RegexSearch || o == ir::Opcode::RegexMatch) {
     r = e.call("lobe_regex", {str(e, op, 1), str(e, op, int(op.args.size()) - 1),
-                              e.iconst(o == "regex_match" ? 1 : 0)});
+                              e.iconst(o == ir::Opcode::RegexMatch ? 1 : 0)});
   }
-  e.store(op.args[0], e.convert(Val{Dual{r}},
-                                o == "stof"                        ? BaseType::Float
-                                : (o == "concat" || o == "substr") ? BaseType::String
-                                                                   : BaseType::Int,
-                                e.arg(op, 0).type.base));
+  e.store(op.args[0],
+          e.convert(Val{Dual{r}},
+                    o == ir::Opcode::Stof                                  ? BaseType::Float
+                    : (o == ir::Opcode::Concat || o == ir::Opcode::Substr) ? BaseType::String
+                                                                           : BaseType::Int,
+                    e.arg(op, 0).type.base));
 }
 
 // hash(string) is OIIO's ustring hash, as in OSL (shadeop); hash of numbers is OSL's lookup3
@@ -331,17 +333,17 @@ void op_declared_closure(LayerEmitter& e, const ir::Op& op) {
 // ---- noise ----------------------------------------------------------------------------------
 
 void op_noise(LayerEmitter& e, const ir::Op& op) {
-  const std::string& o = op.opcode;
+  const ir::Opcode o = op.opcode;
   size_t first = 1;
-  int kind = o == "snoise" || o == "psnoise" ? shadeops::kPerlin
-             : o == "cellnoise"              ? shadeops::kCell
-             : o == "hashnoise"              ? shadeops::kHash
-                                             : shadeops::kUPerlin;
+  int kind = o == ir::Opcode::SNoise || o == ir::Opcode::PSNoise ? shadeops::kPerlin
+             : o == ir::Opcode::CellNoise                        ? shadeops::kCell
+             : o == ir::Opcode::HashNoise                        ? shadeops::kHash
+                                                                 : shadeops::kUPerlin;
   // noise("name", ...): a constant known name selects the kind here; a name known only at run
   // time (or an unknown constant, so that -O0 and -O2 agree when specialisation makes a name
   // constant) dispatches in lobe_noise_named_d, which reports an unknown name as a run-time
   // error. "gabor" calls lobe_gabor.
-  bool periodic = o == "pnoise" || o == "psnoise";
+  bool periodic = o == ir::Opcode::PNoise || o == ir::Opcode::PSNoise;
   bool named = false, gabor = false, maybe_gabor = false;
   if (e.arg(op, 1).type.base == BaseType::String) {
     first = 2;
@@ -456,7 +458,7 @@ void op_noise(LayerEmitter& e, const ir::Op& op) {
 // spline a "basis" x (knots... | knots[] | nknots knots[]); splineinverse likewise (floats).
 void op_spline(LayerEmitter& e, const ir::Op& op) {
   auto& B = e.b();
-  bool inverse = op.opcode == "splineinverse";
+  bool inverse = op.opcode == ir::Opcode::SplineInverse;
   BaseType t =
       inverse || e.arg(op, 0).type.base == BaseType::Float ? BaseType::Float : BaseType::Color;
   int comps = t == BaseType::Float ? 1 : 3;
@@ -529,20 +531,20 @@ int raytype_bit(const std::string& name) {
 
 void op_query(LayerEmitter& e, const ir::Op& op) {
   auto& B = e.b();
-  const std::string& o = op.opcode;
+  const ir::Opcode o = op.opcode;
   Val r;
-  if (o == "raytype") {
+  if (o == ir::Opcode::RayType) {
     int bit = raytype_bit(const_string(e.arg(op, 1)));
     llvm::Value* rt = sg_field(e, offsetof(ShaderGlobals, raytype), e.i32());
     r = Val{
         Dual{B.CreateZExt(B.CreateICmpNE(B.CreateAnd(rt, e.iconst(bit)), e.iconst(0)), e.i32())}};
-  } else if (o == "backfacing") {
+  } else if (o == ir::Opcode::Backfacing) {
     r = Val{Dual{sg_field(e, offsetof(ShaderGlobals, backfacing), e.i32())}};
-  } else if (o == "surfacearea") {
+  } else if (o == ir::Opcode::SurfaceArea) {
     r = Val{Dual{sg_field(e, offsetof(ShaderGlobals, surfacearea), e.f32())}};
     e.store(op.args[0], e.convert(r, BaseType::Float, e.arg(op, 0).type.base));
     return;
-  } else if (o == "isconnected") {
+  } else if (o == ir::Opcode::IsConnected) {
     int s = op.args[1], v = 0;
     for (const ConnectionPlan& c : e.group().layers[size_t(e.layer())].connections)
       v |= c.dst_symbol == s ? 1 : 0;
@@ -550,7 +552,7 @@ void op_query(LayerEmitter& e, const ir::Op& op) {
       for (const ConnectionPlan& c : lp.connections)
         v |= (c.src_layer == e.layer() && c.src_symbol == s) ? 2 : 0;
     r = Val{Dual{e.iconst(v)}};
-  } else if (o == "isconstant") {
+  } else if (o == ir::Opcode::IsConstant) {
     // A constant of the shader as written; specialisation resolves isconstant before it turns
     // params into constants (runtime/group/group_build.cpp), so the answer is the same.
     r = Val{Dual{e.iconst(e.arg(op, 1).kind == ir::SymKind::Const ? 1 : 0)}};
@@ -776,7 +778,7 @@ void op_texture3d(LayerEmitter& e, const ir::Op& op) {
     dx.push_back(c.dx ? c.dx : e.fconst(0));
     dy.push_back(c.dy ? c.dy : e.fconst(0));
   }
-  size_t nderivs = op.opcode == "texture3d" ? 3 : 2;
+  size_t nderivs = op.opcode == ir::Opcode::Texture3d ? 3 : 2;
   bool explicit_d = op.args.size() >= 3 + nderivs && e.arg(op, 3).type.base != BaseType::String;
   if (explicit_d) {
     auto comps = [&](int i) {
@@ -790,7 +792,7 @@ void op_texture3d(LayerEmitter& e, const ir::Op& op) {
   }
   llvm::Value* args = texture_args(e, op, explicit_d ? 3 + nderivs : 3);
   llvm::Value* out = e.spill(std::vector<llvm::Value*>(size_t(n), e.fconst(0)));
-  e.call(op.opcode == "texture3d" ? "lobe_texture3d" : "lobe_environment",
+  e.call(op.opcode == ir::Opcode::Texture3d ? "lobe_texture3d" : "lobe_environment",
          {e.sg(), e.env_ptr(), e.load(op.args[1])[0].v, e.spill(v), e.spill(dx), e.spill(dy),
           e.spill(dz), e.iconst(n), out, args});
   Val r;
@@ -799,57 +801,49 @@ void op_texture3d(LayerEmitter& e, const ir::Op& op) {
 }
 
 const OpEntry kLibraryOps[] = {
-    {"printf", op_printf},
-    {"format", op_printf},
-    {"error", op_printf},
-    {"warning", op_printf},
-    {"fprintf", op_printf},
-    {"concat", op_string},
-    {"strlen", op_string},
-    {"startswith", op_string},
-    {"endswith", op_string},
-    {"stoi", op_string},
-    {"stof", op_string},
-    {"substr", op_string},
-    {"getchar", op_string},
-    {"regex_search", op_string},
-    {"regex_match", op_string},
-    {"hash", op_hash},
-    {"closure", op_closure},
-    {"declared_closure", op_declared_closure},
-    {"noise", op_noise},
-    {"snoise", op_noise},
-    {"pnoise", op_noise},
-    {"psnoise", op_noise},
-    {"cellnoise", op_noise},
-    {"hashnoise", op_noise},
-    {"raytype", op_query},
-    {"backfacing", op_query},
-    {"surfacearea", op_query},
-    {"isconnected", op_query},
-    {"isconstant", op_query},
-    {"getattribute", op_getattribute},
-    {"getmessage", op_getmessage},
-    {"trace", op_trace},
-    {"gettextureinfo", op_gettextureinfo},
-    {"setmessage", op_setmessage},
-    {"spline", op_spline},
-    {"splineinverse", op_spline},
-    {"texture", op_texture},
-    {"texture3d", op_texture3d},
-    {"environment", op_texture3d},
+    {ir::Opcode::Printf, op_printf},
+    {ir::Opcode::Format, op_printf},
+    {ir::Opcode::Error, op_printf},
+    {ir::Opcode::Warning, op_printf},
+    {ir::Opcode::Fprintf, op_printf},
+    {ir::Opcode::Concat, op_string},
+    {ir::Opcode::Strlen, op_string},
+    {ir::Opcode::StartsWith, op_string},
+    {ir::Opcode::EndsWith, op_string},
+    {ir::Opcode::Stoi, op_string},
+    {ir::Opcode::Stof, op_string},
+    {ir::Opcode::Substr, op_string},
+    {ir::Opcode::GetChar, op_string},
+    {ir::Opcode::RegexSearch, op_string},
+    {ir::Opcode::RegexMatch, op_string},
+    {ir::Opcode::Hash, op_hash},
+    {ir::Opcode::Closure, op_closure},
+    {ir::Opcode::DeclaredClosure, op_declared_closure},
+    {ir::Opcode::Noise, op_noise},
+    {ir::Opcode::SNoise, op_noise},
+    {ir::Opcode::PNoise, op_noise},
+    {ir::Opcode::PSNoise, op_noise},
+    {ir::Opcode::CellNoise, op_noise},
+    {ir::Opcode::HashNoise, op_noise},
+    {ir::Opcode::RayType, op_query},
+    {ir::Opcode::Backfacing, op_query},
+    {ir::Opcode::SurfaceArea, op_query},
+    {ir::Opcode::IsConnected, op_query},
+    {ir::Opcode::IsConstant, op_query},
+    {ir::Opcode::GetAttribute, op_getattribute},
+    {ir::Opcode::GetMessage, op_getmessage},
+    {ir::Opcode::Trace, op_trace},
+    {ir::Opcode::GetTextureInfo, op_gettextureinfo},
+    {ir::Opcode::SetMessage, op_setmessage},
+    {ir::Opcode::Spline, op_spline},
+    {ir::Opcode::SplineInverse, op_spline},
+    {ir::Opcode::Texture, op_texture},
+    {ir::Opcode::Texture3d, op_texture3d},
+    {ir::Opcode::Environment, op_texture3d},
 };
 
 } // namespace
 
 std::span<const OpEntry> library_ops() { return kLibraryOps; }
-
-OpEmitFn find_op_emitter(const std::string& opcode) {
-  for (auto table :
-       {core_ops(), access_ops(), math_ops(), geometry_ops(), library_ops(), data_ops()})
-    for (const OpEntry& e : table)
-      if (opcode == e.name) return e.fn;
-  return nullptr;
-}
 
 } // namespace lobe::codegen

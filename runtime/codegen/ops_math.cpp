@@ -8,6 +8,7 @@
 #include "duals.h"
 #include "mathops.h"
 #include "op_tables.h"
+#include "passes/math_opcode.h"
 #include "shadeops.h"
 
 #include <llvm/IR/Constants.h>
@@ -65,18 +66,19 @@ Dual binary_dual(LayerEmitter& e, math::Fn f, const Dual& a, const Dual& b) {
 }
 
 // The unary functions: value and derivative.
-Dual unary(LayerEmitter& e, DualOps& d, const std::string& name, const Dual& x) {
+Dual unary(LayerEmitter& e, DualOps& d, ir::Opcode name, const Dual& x) {
   auto& B = e.b();
   llvm::Value* v = x.v;
   llvm::Value* one = e.fconst(1);
   llvm::Value* zero = e.fconst(0);
-  if (const math::FnInfo* f = math::find_fn(name, 1)) {
+  if (const math::FnInfo* f = passes::math_fn(name, 1)) {
     llvm::Value* r = call_math(e, f->fn, MathForm::Value, {v});
     if (f->fn == math::Fn::Logb) return Dual{r}; // piecewise constant
     return d.chain(x, r, [&] { return call_math(e, f->fn, MathForm::Slope, {v}); });
   }
-  if (name == "sqrt" || name == "inversesqrt") { // 0 outside the domain (NaN included)
-    bool sq = name == "sqrt";
+  if (name == ir::Opcode::Sqrt ||
+      name == ir::Opcode::InverseSqrt) { // 0 outside the domain (NaN included)
+    bool sq = name == ir::Opcode::Sqrt;
     llvm::Value* pos = sq ? B.CreateFCmpOGE(v, zero) : B.CreateFCmpOGT(v, zero);
     llvm::Value* s = intr(e, llvm::Intrinsic::sqrt, B.CreateSelect(pos, v, one));
     llvm::Value* r = B.CreateSelect(pos, sq ? s : fdiv(e, one, s), zero);
@@ -86,20 +88,21 @@ Dual unary(LayerEmitter& e, DualOps& d, const std::string& name, const Dual& x) 
       return B.CreateSelect(B.CreateFCmpOGT(v, zero), k, zero);
     });
   }
-  if (name == "abs" || name == "fabs") { // |x|; the partials flip where !(x >= 0), as OSL's
+  if (name == ir::Opcode::Abs ||
+      name == ir::Opcode::Fabs) { // |x|; the partials flip where !(x >= 0), as OSL's
     Dual r = d.select(B.CreateFCmpOGE(v, zero), x, d.neg(x));
     r.v = intr(e, llvm::Intrinsic::fabs, v);
     return r;
   }
-  if (name == "sign") { // -1, 0 (either zero) or 1 (NaN too)
+  if (name == ir::Opcode::Sign) { // -1, 0 (either zero) or 1 (NaN too)
     llvm::Value* s = B.CreateSelect(B.CreateFCmpOLT(v, zero), e.fconst(-1),
                                     B.CreateSelect(B.CreateFCmpOEQ(v, zero), zero, one));
     return Dual{s};
   }
-  if (name == "floor") return Dual{intr(e, llvm::Intrinsic::floor, v)};
-  if (name == "ceil") return Dual{intr(e, llvm::Intrinsic::ceil, v)};
-  if (name == "round") return Dual{intr(e, llvm::Intrinsic::round, v)};
-  if (name == "trunc") return Dual{intr(e, llvm::Intrinsic::trunc, v)};
+  if (name == ir::Opcode::Floor) return Dual{intr(e, llvm::Intrinsic::floor, v)};
+  if (name == ir::Opcode::Ceil) return Dual{intr(e, llvm::Intrinsic::ceil, v)};
+  if (name == ir::Opcode::Round) return Dual{intr(e, llvm::Intrinsic::round, v)};
+  if (name == ir::Opcode::Trunc) return Dual{intr(e, llvm::Intrinsic::trunc, v)};
   return x;
 }
 
@@ -108,8 +111,8 @@ void op_unary(LayerEmitter& e, const ir::Op& op) {
   auto& B = e.b();
   if (t == BaseType::Int) { // abs/sign of ints; float functions truncated into int results
     BaseType src = e.arg(op, 1).type.base;
-    bool abs = op.opcode == "abs" || op.opcode == "fabs";
-    if (src == BaseType::Int && (abs || op.opcode == "sign")) {
+    bool abs = op.opcode == ir::Opcode::Abs || op.opcode == ir::Opcode::Fabs;
+    if (src == BaseType::Int && (abs || op.opcode == ir::Opcode::Sign)) {
       llvm::Value* x = e.load(op.args[1])[0].v;
       llvm::Value* r =
           abs ? B.CreateSelect(B.CreateICmpSLT(x, e.iconst(0)), B.CreateSub(e.iconst(0), x), x)
@@ -137,9 +140,9 @@ void op_isclass(LayerEmitter& e, const ir::Op& op) {
   llvm::Value* x = e.load_as(op, 1, BaseType::Float, false)[0].v;
   llvm::Value* a = intr(e, llvm::Intrinsic::fabs, x);
   llvm::Value* inf = e.fconst(INFINITY);
-  llvm::Value* r = op.opcode == "isnan"   ? B.CreateFCmpUNO(x, x)
-                   : op.opcode == "isinf" ? B.CreateFCmpOEQ(a, inf)
-                                          : B.CreateFCmpOLT(a, inf);
+  llvm::Value* r = op.opcode == ir::Opcode::IsNan   ? B.CreateFCmpUNO(x, x)
+                   : op.opcode == ir::Opcode::IsInf ? B.CreateFCmpOEQ(a, inf)
+                                                    : B.CreateFCmpOLT(a, inf);
   e.store(op.args[0], Val{Dual{B.CreateZExt(r, e.i32())}});
 }
 
@@ -147,13 +150,14 @@ void op_isclass(LayerEmitter& e, const ir::Op& op) {
 void op_nary(LayerEmitter& e, const ir::Op& op) {
   auto& B = e.b();
   BaseType t = e.arg(op, 0).type.base;
-  const std::string& o = op.opcode;
-  if (t == BaseType::Int && (o == "min" || o == "max" || o == "clamp")) {
+  const ir::Opcode o = op.opcode;
+  if (t == BaseType::Int &&
+      (o == ir::Opcode::Min || o == ir::Opcode::Max || o == ir::Opcode::Clamp)) {
     llvm::Value* a = e.load_as(op, 1, t)[0].v;
     llvm::Value* b = e.load_as(op, 2, t)[0].v;
-    llvm::Value* r = o == "max" ? B.CreateSelect(B.CreateICmpSGT(a, b), a, b)
-                                : B.CreateSelect(B.CreateICmpSLT(a, b), a, b);
-    if (o == "clamp") {
+    llvm::Value* r = o == ir::Opcode::Max ? B.CreateSelect(B.CreateICmpSGT(a, b), a, b)
+                                          : B.CreateSelect(B.CreateICmpSLT(a, b), a, b);
+    if (o == ir::Opcode::Clamp) {
       llvm::Value* mx = B.CreateSelect(B.CreateICmpSGT(a, b), a, b);
       llvm::Value* c = e.load_as(op, 3, t)[0].v;
       r = B.CreateSelect(B.CreateICmpSLT(mx, c), mx, c);
@@ -177,36 +181,36 @@ void op_nary(LayerEmitter& e, const ir::Op& op) {
     const Dual& y = a.size() > 1 ? a[1][c] : x;
     Dual z = a.size() > 2 ? a[2][c] : x;
     Dual out;
-    if (const math::FnInfo* f = math::find_fn(o, 2)) { // atan2, pow, fmod
+    if (const math::FnInfo* f = passes::math_fn(o, 2)) { // atan2, pow, fmod
       bool has = x.dx || x.dy || y.dx || y.dy;
       if (f->fn == math::Fn::Fmod || !has) // fmod passes a's derivatives on
         out = Dual{call_math(e, f->fn, MathForm::Value, {x.v, y.v}), x.dx, x.dy};
       else
         out = binary_dual(e, f->fn, x, y);
-    } else if (o == "min")
+    } else if (o == ir::Opcode::Min)
       out = d.select(B.CreateFCmpOLT(y.v, x.v), y, x);
-    else if (o == "max")
+    else if (o == ir::Opcode::Max)
       out = d.select(B.CreateFCmpOGT(y.v, x.v), y, x);
-    else if (o == "clamp") {
+    else if (o == ir::Opcode::Clamp) {
       Dual lo = d.select(B.CreateFCmpOGT(y.v, x.v), y, x);
       out = d.select(B.CreateFCmpOLT(z.v, lo.v), z, lo);
-    } else if (o == "mix")
+    } else if (o == ir::Opcode::Mix)
       out = d.add(d.mul(x, d.sub(d.constant(1), z)), d.mul(y, z));
-    else if (o == "select")
+    else if (o == ir::Opcode::Select)
       out = d.select(B.CreateFCmpUNE(z.v, e.fconst(0)), y, x);
-    else if (o == "step")
+    else if (o == ir::Opcode::Step)
       out = Dual{B.CreateSelect(B.CreateFCmpOLT(y.v, x.v), e.fconst(0), e.fconst(1))};
-    else if (o == "smoothstep") { // t = clamp((z-x)/(y-x)); t*t*(3-2t)
+    else if (o == ir::Opcode::SmoothStep) { // t = clamp((z-x)/(y-x)); t*t*(3-2t)
       Dual tt = d.div(d.sub(z, x), d.sub(y, x));
       Dual s = d.mul(d.mul(tt, tt), d.sub(d.constant(3), d.mul(d.constant(2), tt)));
       out = d.select(B.CreateFCmpOLT(z.v, x.v), d.constant(0),
                      d.select(B.CreateFCmpOGE(z.v, y.v), d.constant(1), s));
-    } else if (o == "hypot") {
+    } else if (o == ir::Opcode::Hypot) {
       Dual s2 = d.add(d.mul(x, x), d.mul(y, y));
       if (a.size() > 2) s2 = d.add(s2, d.mul(z, z));
-      out = unary(e, d, "sqrt", s2);
-    } else if (o == "log") { // log(x, base)
-      out = d.div(unary(e, d, "log", x), unary(e, d, "log", y));
+      out = unary(e, d, ir::Opcode::Sqrt, s2);
+    } else if (o == ir::Opcode::Log) { // log(x, base)
+      out = d.div(unary(e, d, ir::Opcode::Log, x), unary(e, d, ir::Opcode::Log, y));
     }
     r.push_back(out);
   }
@@ -224,29 +228,36 @@ void op_sincos(LayerEmitter& e, const ir::Op& op) {
   DualOps d(e);
   Val s, c;
   for (const Dual& v : x) {
-    s.push_back(unary(e, d, "sin", v));
-    c.push_back(unary(e, d, "cos", v));
+    s.push_back(unary(e, d, ir::Opcode::Sin, v));
+    c.push_back(unary(e, d, ir::Opcode::Cos, v));
   }
   e.store(op.args[0], s);
   e.store(op.args[1], c);
 }
 
 const OpEntry kMathOps[] = {
-    {"sin", op_unary},        {"cos", op_unary},       {"tan", op_unary},
-    {"asin", op_unary},       {"acos", op_unary},      {"atan", op_unary},
-    {"sinh", op_unary},       {"cosh", op_unary},      {"tanh", op_unary},
-    {"exp", op_unary},        {"exp2", op_unary},      {"expm1", op_unary},
-    {"log", op_log},          {"log2", op_unary},      {"log10", op_unary},
-    {"logb", op_unary},       {"sqrt", op_unary},      {"inversesqrt", op_unary},
-    {"cbrt", op_unary},       {"abs", op_unary},       {"fabs", op_unary},
-    {"sign", op_unary},       {"floor", op_unary},     {"ceil", op_unary},
-    {"round", op_unary},      {"trunc", op_unary},     {"erf", op_unary},
-    {"erfc", op_unary},       {"isnan", op_isclass},   {"isinf", op_isclass},
-    {"isfinite", op_isclass}, {"pow", op_nary},        {"atan2", op_nary},
-    {"fmod", op_nary},        {"min", op_nary},        {"max", op_nary},
-    {"clamp", op_nary},       {"mix", op_nary},        {"select", op_nary},
-    {"step", op_nary},        {"smoothstep", op_nary}, {"hypot", op_nary},
-    {"sincos", op_sincos},
+    {ir::Opcode::Sin, op_unary},        {ir::Opcode::Cos, op_unary},
+    {ir::Opcode::Tan, op_unary},        {ir::Opcode::Asin, op_unary},
+    {ir::Opcode::Acos, op_unary},       {ir::Opcode::Atan, op_unary},
+    {ir::Opcode::Sinh, op_unary},       {ir::Opcode::Cosh, op_unary},
+    {ir::Opcode::Tanh, op_unary},       {ir::Opcode::Exp, op_unary},
+    {ir::Opcode::Exp2, op_unary},       {ir::Opcode::Expm1, op_unary},
+    {ir::Opcode::Log, op_log},          {ir::Opcode::Log2, op_unary},
+    {ir::Opcode::Log10, op_unary},      {ir::Opcode::Logb, op_unary},
+    {ir::Opcode::Sqrt, op_unary},       {ir::Opcode::InverseSqrt, op_unary},
+    {ir::Opcode::Cbrt, op_unary},       {ir::Opcode::Abs, op_unary},
+    {ir::Opcode::Fabs, op_unary},       {ir::Opcode::Sign, op_unary},
+    {ir::Opcode::Floor, op_unary},      {ir::Opcode::Ceil, op_unary},
+    {ir::Opcode::Round, op_unary},      {ir::Opcode::Trunc, op_unary},
+    {ir::Opcode::Erf, op_unary},        {ir::Opcode::Erfc, op_unary},
+    {ir::Opcode::IsNan, op_isclass},    {ir::Opcode::IsInf, op_isclass},
+    {ir::Opcode::IsFinite, op_isclass}, {ir::Opcode::Pow, op_nary},
+    {ir::Opcode::Atan2, op_nary},       {ir::Opcode::Fmod, op_nary},
+    {ir::Opcode::Min, op_nary},         {ir::Opcode::Max, op_nary},
+    {ir::Opcode::Clamp, op_nary},       {ir::Opcode::Mix, op_nary},
+    {ir::Opcode::Select, op_nary},      {ir::Opcode::Step, op_nary},
+    {ir::Opcode::SmoothStep, op_nary},  {ir::Opcode::Hypot, op_nary},
+    {ir::Opcode::SinCos, op_sincos},
 };
 
 } // namespace

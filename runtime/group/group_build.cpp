@@ -92,53 +92,6 @@ std::set<int> written_symbols(const ir::Shader& sh) {
   return w;
 }
 
-// String comparisons. passes::fold_constants compares constant strings as numbers at the time
-// of writing ("a" == "b" folds to 1), so string eq/neq ops are hidden from it under a private
-// opcode while it runs, and folded here once both operands are constants.
-const char* const kHiddenEq = "lobe.streq";
-const char* const kHiddenNeq = "lobe.strneq";
-
-bool is_string_compare(const ir::Shader& sh, const ir::Op& op) {
-  if (op.args.size() != 3) return false;
-  const ir::Symbol& a = sh.symbols[size_t(op.args[1])];
-  const ir::Symbol& b = sh.symbols[size_t(op.args[2])];
-  return a.type == ir::Type{ir::BaseType::String, 0} && b.type == ir::Type{ir::BaseType::String, 0};
-}
-
-void hide_string_compares(ir::Shader& sh, bool hide) {
-  for (ir::Op& op : sh.ops) {
-    if (hide && (op.opcode == "eq" || op.opcode == "neq") && is_string_compare(sh, op))
-      op.opcode = op.opcode == "eq" ? kHiddenEq : kHiddenNeq;
-    else if (!hide && op.opcode == kHiddenEq)
-      op.opcode = "eq";
-    else if (!hide && op.opcode == kHiddenNeq)
-      op.opcode = "neq";
-  }
-}
-
-bool fold_string_compares(ir::Shader& sh) {
-  bool changed = false;
-  for (ir::Op& op : sh.ops) {
-    if ((op.opcode != "eq" && op.opcode != "neq") || !is_string_compare(sh, op)) continue;
-    const ir::Symbol& a = sh.symbols[size_t(op.args[1])];
-    const ir::Symbol& b = sh.symbols[size_t(op.args[2])];
-    if (a.kind != SymKind::Const || b.kind != SymKind::Const || a.init.empty() || b.init.empty())
-      continue;
-    bool same = a.init[0].s == b.init[0].s;
-    ir::Symbol c;
-    c.name = "$str_cmp" + std::to_string(sh.symbols.size());
-    c.type = ir::Type{ir::BaseType::Int, 0};
-    c.kind = SymKind::Const;
-    c.init = {ir::ConstValue{(op.opcode == "eq") == same ? 1 : 0, 0.0f, ""}};
-    sh.symbols.push_back(c);
-    op.opcode = "assign";
-    op.args = {op.args[0], int(sh.symbols.size()) - 1};
-    op.written_mask = 1;
-    changed = true;
-  }
-  return changed;
-}
-
 // Instance values -> constants; unconnected, unwritten params with known values -> Const.
 void specialize_layer(ir::Shader& sh,
                       const std::map<std::string, std::vector<ir::ConstValue>>& values,
@@ -146,7 +99,7 @@ void specialize_layer(ir::Shader& sh,
   // isconstant answers for the shader before specialisation (docs/language.md), as codegen
   // does without it: resolve it now, before params become constants.
   for (ir::Op& op : sh.ops) {
-    if (op.opcode != "isconstant" || op.args.size() != 2) continue;
+    if (op.opcode != ir::Opcode::IsConstant || op.args.size() != 2) continue;
     ir::Symbol c;
     c.name = "$isconstant" + std::to_string(sh.symbols.size());
     c.type = ir::Type{ir::BaseType::Int, 0};
@@ -154,7 +107,7 @@ void specialize_layer(ir::Shader& sh,
     bool k = sh.symbols[size_t(op.args[1])].kind == SymKind::Const;
     c.init = {ir::ConstValue{k ? 1 : 0, 0.0f, ""}};
     sh.symbols.push_back(c);
-    op.opcode = "assign";
+    op.opcode = ir::Opcode::Assign;
     op.args = {op.args[0], int(sh.symbols.size()) - 1};
     op.written_mask = 1;
   }
@@ -174,14 +127,6 @@ void specialize_layer(ir::Shader& sh,
   }
   passes::OptimizeOptions opt;
   opt.math = math;
-  opt.before_fold = [](ir::Shader& s) {
-    fold_string_compares(s);
-    hide_string_compares(s, true);
-  };
-  opt.after_fold = [](ir::Shader& s) {
-    hide_string_compares(s, false);
-    return fold_string_compares(s);
-  };
   passes::optimize(sh, opt);
 }
 
@@ -194,8 +139,8 @@ void extend_derivatives(ir::Shader& sh) {
   for (bool grew = true; grew;) {
     grew = false;
     for (const ir::Op& op : sh.ops) {
-      const ir::OpcodeInfo* info = ir::find_opcode(op.opcode);
-      if (!info || !(info->flags & ir::kPropagates)) continue;
+      const ir::OpcodeInfo* info = &ir::info(op.opcode);
+      if (!(info->flags & ir::kPropagates)) continue;
       bool needs = false;
       for (size_t a = 0; a < op.args.size(); ++a)
         needs |= op.writes(int(a)) && sh.symbols[size_t(op.args[a])].derivs;
@@ -305,7 +250,7 @@ KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool run
       if (sh.symbols[size_t(op.args[a])].kind == SymKind::Global)
         written_globals.insert(op.args[a]);
     }
-    bool jump = op.opcode == "br" || op.opcode == "cbr" || op.opcode == "exit";
+    bool jump = ir::is_jump(op.opcode);
     if (jump && writer < 0) jump_before = true;
   }
   if (writes == 0) {
@@ -314,7 +259,7 @@ KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool run
   }
   if (writes > 1 || jump_before) return k;
   const ir::Op& op = sh.ops[size_t(writer)];
-  if (op.opcode != "assign" || op.args.size() != 2 || op.args[0] != si) return k;
+  if (op.opcode != ir::Opcode::Assign || op.args.size() != 2 || op.args[0] != si) return k;
   const ir::Symbol& src = sh.symbols[size_t(op.args[1])];
   if (src.kind == SymKind::Const) {
     k.value = convert_const(src.init, src.type, s.type);
@@ -473,7 +418,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         // isconnected() still answers for the connection as made: keep those.
         auto asks = [](const ir::Shader& x, int symbol) {
           for (const ir::Op& op : x.ops)
-            if (op.opcode == "isconnected" && op.args.size() > 1 && op.args[1] == symbol)
+            if (op.opcode == ir::Opcode::IsConnected && op.args.size() > 1 && op.args[1] == symbol)
               return true;
           return false;
         };
@@ -495,9 +440,9 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
           dsym.init_begin = dsym.init_end = -1;
           dsym.metadata.clear();
           for (ir::Op& op : sh->ops) // its reads need no fetch now
-            if (op.opcode == "useparam") {
+            if (op.opcode == ir::Opcode::UseParam) {
               op.args.erase(std::remove(op.args.begin(), op.args.end(), ds), op.args.end());
-              if (op.args.empty()) op.opcode = "nop";
+              if (op.args.empty()) op.opcode = ir::Opcode::Nop;
             }
         }
         l.dead = true;

@@ -2,6 +2,9 @@
 // group text, instance values, every kind of connection, lazy layers, specialisation on/off
 // giving identical output, the cache, read_output and globals_read.
 #include "driver/search.h"
+#include "group_build.h"
+#include "ir/parser.h"
+#include "ir/printer.h"
 #include "lobe/shadingsys.h"
 #include "shader_source.h"
 
@@ -192,23 +195,66 @@ TEST_F(Groups, CacheHitsAndReadOutput) {
   ShaderGlobals sg{};
   sg.context = &ctx;
   b.mat->shade(sg);
-  ASSERT_TRUE(b.mat->read_output("d", "result", out));
+  ASSERT_TRUE(b.mat->read_output(ctx, "d", "result", out));
   ASSERT_EQ(out.size(), 1u);
   EXPECT_EQ(out[0], 7.0f);
-  ASSERT_TRUE(b.mat->read_output("u", "Cout", out));
+  ASSERT_TRUE(b.mat->read_output(ctx, "u", "Cout", out));
   EXPECT_EQ(out, (std::vector<float>{3, 6, 9}));
-  EXPECT_FALSE(b.mat->read_output("d", "nope", out));
+  EXPECT_FALSE(b.mat->read_output(ctx, "d", "nope", out));
   GroupRun o2 = run_group(ss, text, true, 2);
   ASSERT_TRUE(o2.mat);
   EXPECT_EQ(o2.output, "Cin 3 6 9 g 0 h 0 sx 0\nmode plain\n"); // no "upstream ran"
-  EXPECT_FALSE(o2.mat->read_output("u", "Cout", out));
-  ASSERT_TRUE(o2.mat->read_output("d", "result", out));
+  EXPECT_FALSE(o2.mat->read_output(ctx, "u", "Cout", out));
+  ASSERT_TRUE(o2.mat->read_output(ctx, "d", "result", out));
   // A different instance value is a different material.
   GroupRun c = run_group(
       ss, "param float a 4 ; shader upstream u ; shader downstream d ; connect u.Cout d.Cin ;",
       true);
   ASSERT_TRUE(c.mat);
   EXPECT_FALSE(c.mat->stats().cache_hit);
+}
+
+// read_output reads what the last shade() with the given context left: two contexts shading
+// one material keep their own results, and a context that shaded another material since reads
+// the values before any shade (here the default 0).
+TEST(GroupOutputs, ReadOutputIsPerContext) {
+  ShadingSystem ss;
+  DiagnosticList d;
+  ASSERT_TRUE(ss.add_shader_ir("twice", R"(lobe-ir 1
+surface twice
+symbols
+  global float u
+  oparam float r = 0
+  const float $c2 = 2
+main
+  mul r u $c2
+end
+)",
+                               d));
+  ASSERT_TRUE(ss.add_shader_ir("other", "lobe-ir 1\nsurface other\nsymbols\nmain\nend\n", d));
+  auto twice = ss.compile(*ss.parse_group("shader twice l ;", "t", d), d);
+  auto other = ss.compile(*ss.parse_group("shader other l ;", "t", d), d);
+  ASSERT_TRUE(twice && other);
+  ShadingContext c1, c2;
+  ShaderGlobals s1{}, s2{};
+  s1.context = &c1;
+  s1.u = 1;
+  s2.context = &c2;
+  s2.u = 3;
+  twice->shade(s1);
+  twice->shade(s2);
+  std::vector<float> out;
+  ASSERT_TRUE(twice->read_output(c1, "l", "r", out));
+  EXPECT_EQ(out, std::vector<float>{2});
+  ASSERT_TRUE(twice->read_output(c2, "l", "r", out));
+  EXPECT_EQ(out, std::vector<float>{6});
+  ShaderGlobals s3{};
+  s3.context = &c1;
+  other->shade(s3);
+  ASSERT_TRUE(twice->read_output(c1, "l", "r", out));
+  EXPECT_EQ(out, std::vector<float>{0});
+  ASSERT_TRUE(twice->read_output(c2, "l", "r", out));
+  EXPECT_EQ(out, std::vector<float>{6});
 }
 
 // Unsized array parameters (`float[]`) take their length per instance: the default's (its
@@ -306,6 +352,51 @@ end
   EXPECT_EQ(bit("dudx"), 1u); // Dx(u) reads u's derivatives
   EXPECT_EQ(bit("N"), 0u);
   EXPECT_EQ(bit("P"), 0u);
+}
+
+// String compares of constants fold by content when the group is specialised (constant
+// folding compares strings, so no op is hidden from it), and give OSL's results. OSL 1.13.12:
+//   surface strcmp(string mode = "plain", output int same = 0, output int differ = 0,
+//                  output int lit = 0) { same = mode == "fancy"; differ = mode != "fancy";
+//     lit = "a" == "b"; printf("same %d differ %d lit %d\n", same, differ, lit); }
+//   testshade strcmp                     -> same 0 differ 1 lit 0
+//   testshade --param mode fancy strcmp  -> same 1 differ 0 lit 0 (also at -O0)
+const char* kStrcmp = R"(lobe-ir 1
+surface strcmp
+symbols
+  param string mode = "plain"
+  oparam int same = 0
+  oparam int differ = 0
+  oparam int lit = 0
+  const string $fancy = "fancy"
+  const string $a = "a"
+  const string $b = "b"
+  const string $fmt = "same %d differ %d lit %d\n"
+main
+  useparam mode
+  eq same mode $fancy
+  neq differ mode $fancy
+  eq lit $a $b
+  printf $fmt same differ lit
+end
+)";
+
+TEST_F(Groups, StringComparesOfConstantsFold) {
+  DiagnosticList d;
+  ASSERT_TRUE(ss.add_shader_ir("strcmp", kStrcmp, d)) << d[0].text;
+  EXPECT_EQ(both("shader strcmp s ;"), "same 0 differ 1 lit 0\n");
+  EXPECT_EQ(both("param string mode \"fancy\" ; shader strcmp s ;"), "same 1 differ 0 lit 0\n");
+  // Specialised, the compares are constants: no eq/neq op is left.
+  ir::ParseResult src = ir::parse(kStrcmp);
+  ASSERT_TRUE(src.shader);
+  auto g = ss.parse_group("param string mode \"fancy\" ; shader strcmp s ;", "t", d);
+  ASSERT_TRUE(g);
+  group::GroupBuild built;
+  ASSERT_TRUE(group::build_group(*g, {&*src.shader}, true, built, d));
+  ASSERT_EQ(built.shaders.size(), 1u);
+  for (const ir::Op& op : built.shaders[0]->ops)
+    EXPECT_TRUE(op.opcode != ir::Opcode::Eq && op.opcode != ir::Opcode::Neq)
+        << ir::print(*built.shaders[0]);
 }
 
 } // namespace

@@ -58,17 +58,8 @@ void MaterialImpl::shade(ShaderGlobals& sg) const {
   std::memcpy(ctx->groupdata.data(), groupdata_.data(), groupdata_.size());
   ctx->groupdata_owner = this;
   ctx->begin_shade();
-  last_context_.store(ctx, std::memory_order_relaxed);
   entry_(&sg, ctx->groupdata.data());
   if (ctx->stopped) sg.Ci = nullptr; // a stopped shade leaves no closure (context.h)
-}
-
-bool MaterialImpl::read_output(const std::string& layer, const std::string& param,
-                               std::vector<float>& dst) const {
-  const ShadingContext* ctx = last_context_.load(std::memory_order_relaxed);
-  return read_from((ctx && ctx->groupdata_owner == this) ? ctx->groupdata.data()
-                                                         : groupdata_.data(),
-                   layer, param, dst);
 }
 
 bool MaterialImpl::read_output(const ShadingContext& ctx, const std::string& layer,

@@ -9,7 +9,6 @@
 #include "lobe/detail/closure_kernels.h"
 #include "lobe/shadingsys.h"
 
-#include <atomic>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -36,8 +35,6 @@ public:
 
   void shade(ShaderGlobals& sg) const override;
   uint64_t globals_read() const override { return globals_; }
-  bool read_output(const std::string& layer, const std::string& param,
-                   std::vector<float>& dst) const override;
   bool read_output(const ShadingContext& ctx, const std::string& layer, const std::string& param,
                    std::vector<float>& dst) const override;
   std::optional<OutputInfo> output_info(const std::string& layer,
@@ -62,7 +59,6 @@ private:
   std::map<std::string, OutputSlot> slots_; // "layer.param" -> storage
   uint64_t globals_;
   CompileStats stats_;
-  mutable std::atomic<const ShadingContext*> last_context_{nullptr};
   // Closure kernels, compiled on first use (closure_kernels()).
   std::vector<int> closure_ids_; // registry ids of the closures the group can create
   mutable std::once_flag kernels_once_;
@@ -79,10 +75,6 @@ public:
       : m_(std::move(m)), stats_(stats) {}
   void shade(ShaderGlobals& sg) const override { m_->shade(sg); }
   uint64_t globals_read() const override { return m_->globals_read(); }
-  bool read_output(const std::string& layer, const std::string& param,
-                   std::vector<float>& dst) const override {
-    return m_->read_output(layer, param, dst);
-  }
   bool read_output(const ShadingContext& ctx, const std::string& layer, const std::string& param,
                    std::vector<float>& dst) const override {
     return m_->read_output(ctx, layer, param, dst);

@@ -201,7 +201,7 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   std::vector<int> closure_ids;
   for (const auto& shp : b.shaders)
     for (const ir::Op& op : shp->ops) {
-      if (op.opcode != "closure" || op.args.size() < 2) continue;
+      if (op.opcode != ir::Opcode::Closure || op.args.size() < 2) continue;
       const ir::Symbol& key = shp->symbols[size_t(op.args[1])];
       if (key.kind != ir::SymKind::Const || key.init.empty()) continue;
       int id = registry::id_of(key.init[0].s);

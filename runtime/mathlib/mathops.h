@@ -55,7 +55,8 @@ enum class Fn : int32_t {
   Fmod
 };
 
-// One row per Fn, in enum order: the IR opcode it implements and its number of operands.
+// One row per Fn, in enum order: the IR opcode it implements and its number of operands
+// (compiler/passes/math_opcode.h maps opcodes to rows by this name).
 struct FnInfo {
   Fn fn;
   const char* name;
@@ -69,13 +70,6 @@ inline constexpr FnInfo kFns[] = {
     {Fn::Cbrt, "cbrt", 1}, {Fn::Erf, "erf", 1},   {Fn::Erfc, "erfc", 1},   {Fn::Atan2, "atan2", 2},
     {Fn::Pow, "pow", 2},   {Fn::Fmod, "fmod", 2},
 };
-
-// The row of `name` with `arity` operands (log has 1; its 2-operand form is stdosl-style).
-inline const FnInfo* find_fn(std::string_view name, int arity) {
-  for (const FnInfo& f : kFns)
-    if (name == f.name && arity == f.arity) return &f;
-  return nullptr;
-}
 
 // ---- the two function libraries ---------------------------------------------------------------
 

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -263,7 +264,81 @@ TEST(ConstantExpressions, LowerToOneConstant) {
 TEST(Builtins, EveryBuiltinHasALowering) {
   const std::set<std::string> lowered = {"radians", "degrees", "exit"};
   for (const lobe::sema::BuiltinSig& s : lobe::sema::builtins().all())
-    EXPECT_TRUE(lobe::ir::find_opcode(s.name) || lowered.count(s.name)) << s.signature();
+    EXPECT_TRUE(lobe::ir::opcode_from_name(s.name) || lowered.count(s.name)) << s.signature();
+}
+
+// ---- shading globals -------------------------------------------------------------------------
+
+// One table (lobe/shading_globals.h) declares the globals to the type checker and places them
+// in ShaderGlobals. The globals a shader may name are OSL's (the OSL specification's list, with
+// their types); each reaches the IR as a global of that type, and has a ShaderGlobals member
+// of that type's size (taken from the struct itself). Derivative fields are no globals to
+// shaders; only P, I, N and Ci may be assigned.
+TEST(Globals, TypeCheckerAndShaderGlobalsAgree) {
+  const std::map<std::string, std::string> osl = {
+      {"P", "point"},     {"I", "vector"},       {"N", "normal"},    {"Ng", "normal"},
+      {"u", "float"},     {"v", "float"},        {"dPdu", "vector"}, {"dPdv", "vector"},
+      {"dPdx", "vector"}, {"dPdy", "vector"},    {"dPdz", "vector"}, {"time", "float"},
+      {"dtime", "float"}, {"dPdtime", "vector"}, {"Ps", "point"},    {"Ci", "closure"}};
+  std::map<std::string, size_t> member_bytes;
+#define LOBE_MEMBER_BYTES(member, ...) member_bytes[#member] = sizeof(lobe::ShaderGlobals::member);
+  LOBE_SHADING_GLOBALS(LOBE_MEMBER_BYTES)
+#undef LOBE_MEMBER_BYTES
+  std::string body;
+  int k = 0;
+  for (const auto& [name, type] : osl)
+    body += "  " + std::string(type == "closure" ? "closure color" : type) + " x" +
+            std::to_string(k++) + " = " + name + ";\n";
+  lobe::lower::PipelineResult r = compile_text("shader gap() {\n" + body + "}\n");
+  ASSERT_TRUE(r.shader) << r.diagnostics;
+  int globals = 0;
+  for (const lobe::ir::Symbol& s : r.shader->symbols) {
+    if (s.kind != lobe::ir::SymKind::Global) continue;
+    ++globals;
+    ASSERT_TRUE(osl.count(s.name)) << s.name;
+    EXPECT_EQ(lobe::ir::to_string(s.type), osl.at(s.name)) << s.name;
+    size_t bytes = s.type.base == lobe::ir::BaseType::Closure ? sizeof(void*)
+                                                              : 4 * size_t(s.type.components());
+    ASSERT_TRUE(member_bytes.count(s.name)) << s.name;
+    EXPECT_EQ(member_bytes.at(s.name), bytes) << s.name;
+    const lobe::GlobalField* f = nullptr;
+    for (const lobe::GlobalField& g : lobe::kGlobalFields)
+      if (s.name == g.name) f = &g;
+    ASSERT_TRUE(f) << s.name;
+    EXPECT_LE(f->offset + bytes, sizeof(lobe::ShaderGlobals)) << s.name;
+  }
+  EXPECT_EQ(globals, int(osl.size()));
+  for (const char* hidden : {"dudx", "dvdy", "dIdx", "dPsdx", "raytype", "surfacearea"})
+    EXPECT_FALSE(compile_text(std::string("shader gap() { printf(\"%g\", ") + hidden + "); }\n").ok)
+        << hidden;
+  for (const auto& [name, type] : osl) {
+    std::string value = type == "closure" ? "0" : type == "float" ? "1" : type + "(1)";
+    bool ok = compile_text("shader gap() { " + name + " = " + value + "; }\n").ok;
+    EXPECT_EQ(ok, name == "P" || name == "I" || name == "N" || name == "Ci") << name;
+  }
+}
+
+// Ps has derivatives (dPsdx, dPsdy in ShaderGlobals); reading them once dereferenced a missing
+// field. OSL 1.13.12, `testshade psd` of `shader psd() { printf("%g\n", Dx(Ps)); }`: "0 0 0".
+TEST(Globals, DerivativesOfPs) {
+  lobe::ShadingSystem ss;
+  lobe::DiagnosticList d;
+  ASSERT_TRUE(
+      ss.add_shader_source("psd", "shader psd() { printf(\"%g\\n\", Dx(Ps)); }\n", "psd.osl", d))
+      << (d.empty() ? "" : d[0].text);
+  lobe::ShaderGroup g;
+  g.layers.push_back({"psd", "l", {}});
+  auto mat = ss.compile(g, d);
+  ASSERT_TRUE(mat) << (d.empty() ? "" : d[0].text);
+  lobe::ShadingContext ctx;
+  lobe::ShaderGlobals sg{};
+  sg.context = &ctx;
+  mat->shade(sg);
+  EXPECT_EQ(ctx.output, "0 0 0\n");
+  sg.dPsdx = lobe::Vec3{1, 2, 3}; // Dx(Ps) is dPsdx, as Dx(P) is dPdx
+  ctx.output.clear();
+  mat->shade(sg);
+  EXPECT_EQ(ctx.output, "1 2 3\n");
 }
 
 } // namespace

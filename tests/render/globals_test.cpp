@@ -42,7 +42,8 @@ public:
     sg.Ci = c;
   }
   uint64_t globals_read() const override { return reads_; }
-  bool read_output(const std::string&, const std::string&, std::vector<float>&) const override {
+  bool read_output(const ShadingContext&, const std::string&, const std::string&,
+                   std::vector<float>&) const override {
     return false;
   }
   const CompileStats& stats() const override { return stats_; }
@@ -151,7 +152,8 @@ public:
     sg.Ci = sum;
   }
   uint64_t globals_read() const override { return global_bit("N"); }
-  bool read_output(const std::string&, const std::string&, std::vector<float>&) const override {
+  bool read_output(const ShadingContext&, const std::string&, const std::string&,
+                   std::vector<float>&) const override {
     return false;
   }
   const CompileStats& stats() const override { return stats_; }

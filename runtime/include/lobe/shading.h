@@ -1,9 +1,11 @@
 // What a compiled shader reads and writes: the shading globals and the closure tree.
 //
 // Both structs are shared byte-for-byte with JIT-compiled code, which addresses their fields
-// by offset: keep them standard-layout, and change kGlobalFields with any field change.
+// by offset: keep them standard-layout. The globals are listed once, in lobe/shading_globals.h
+// (read by the type checker too); kGlobalFields below is that list with each field's offset.
 #pragma once
 
+#include "lobe/shading_globals.h"
 #include "lobe/vec.h"
 
 #include <cstddef>
@@ -51,7 +53,8 @@ struct ShaderGlobals {
   const ClosureNode* Ci;   // the surface closure (output)
 };
 
-// Field table for codegen: name as shaders see it, kind, byte offset.
+// Field table for codegen: kShadingGlobals (lobe/shading_globals.h) with each member's
+// place in ShaderGlobals, in the same order (index i is bit i of Material::globals_read).
 enum class GlobalKind : uint8_t { Float, Int, Triple, Closure };
 struct GlobalField {
   const char* name;
@@ -60,30 +63,27 @@ struct GlobalField {
   const char* dx; // name of the d/dx field, or null
   const char* dy; // name of the d/dy field, or null
 };
+constexpr GlobalKind global_kind(GlobalType t) {
+  return t == GlobalType::Float     ? GlobalKind::Float
+         : t == GlobalType::Closure ? GlobalKind::Closure
+                                    : GlobalKind::Triple;
+}
+constexpr size_t global_bytes(GlobalType t) {
+  return t == GlobalType::Float     ? sizeof(float)
+         : t == GlobalType::Closure ? sizeof(const ClosureNode*)
+                                    : 3 * sizeof(float);
+}
 inline constexpr GlobalField kGlobalFields[] = {
-    {"P", GlobalKind::Triple, offsetof(ShaderGlobals, P), "dPdx", "dPdy"},
-    {"dPdx", GlobalKind::Triple, offsetof(ShaderGlobals, dPdx), nullptr, nullptr},
-    {"dPdy", GlobalKind::Triple, offsetof(ShaderGlobals, dPdy), nullptr, nullptr},
-    {"dPdz", GlobalKind::Triple, offsetof(ShaderGlobals, dPdz), nullptr, nullptr},
-    {"I", GlobalKind::Triple, offsetof(ShaderGlobals, I), "dIdx", "dIdy"},
-    {"dIdx", GlobalKind::Triple, offsetof(ShaderGlobals, dIdx), nullptr, nullptr},
-    {"dIdy", GlobalKind::Triple, offsetof(ShaderGlobals, dIdy), nullptr, nullptr},
-    {"N", GlobalKind::Triple, offsetof(ShaderGlobals, N), nullptr, nullptr},
-    {"Ng", GlobalKind::Triple, offsetof(ShaderGlobals, Ng), nullptr, nullptr},
-    {"u", GlobalKind::Float, offsetof(ShaderGlobals, u), "dudx", "dudy"},
-    {"dudx", GlobalKind::Float, offsetof(ShaderGlobals, dudx), nullptr, nullptr},
-    {"dudy", GlobalKind::Float, offsetof(ShaderGlobals, dudy), nullptr, nullptr},
-    {"v", GlobalKind::Float, offsetof(ShaderGlobals, v), "dvdx", "dvdy"},
-    {"dvdx", GlobalKind::Float, offsetof(ShaderGlobals, dvdx), nullptr, nullptr},
-    {"dvdy", GlobalKind::Float, offsetof(ShaderGlobals, dvdy), nullptr, nullptr},
-    {"dPdu", GlobalKind::Triple, offsetof(ShaderGlobals, dPdu), nullptr, nullptr},
-    {"dPdv", GlobalKind::Triple, offsetof(ShaderGlobals, dPdv), nullptr, nullptr},
-    {"time", GlobalKind::Float, offsetof(ShaderGlobals, time), nullptr, nullptr},
-    {"dtime", GlobalKind::Float, offsetof(ShaderGlobals, dtime), nullptr, nullptr},
-    {"dPdtime", GlobalKind::Triple, offsetof(ShaderGlobals, dPdtime), nullptr, nullptr},
-    {"Ps", GlobalKind::Triple, offsetof(ShaderGlobals, Ps), "dPsdx", "dPsdy"},
-    {"Ci", GlobalKind::Closure, offsetof(ShaderGlobals, Ci), nullptr, nullptr},
+#define LOBE_GLOBAL_FIELD(member, type, flags, dx, dy)                                             \
+  {#member, global_kind(GlobalType::type), offsetof(ShaderGlobals, member), dx, dy},
+    LOBE_SHADING_GLOBALS(LOBE_GLOBAL_FIELD)
+#undef LOBE_GLOBAL_FIELD
 };
+// Every global's member has the size its type says.
+#define LOBE_GLOBAL_SIZE(member, type, flags, dx, dy)                                              \
+  static_assert(sizeof(ShaderGlobals::member) == global_bytes(GlobalType::type), #member);
+LOBE_SHADING_GLOBALS(LOBE_GLOBAL_SIZE)
+#undef LOBE_GLOBAL_SIZE
 
 // Closure tree nodes, built by shader code through the ShadingContext's arena.
 // id >= 0: a component (registry id); kClosureAdd / kClosureMul: combinators;

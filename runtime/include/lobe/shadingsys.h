@@ -151,18 +151,13 @@ public:
   virtual void shade(ShaderGlobals& sg) const = 0;
   // Bit i set: the group reads kGlobalFields[i] (so a renderer can skip computing the rest).
   virtual uint64_t globals_read() const = 0;
-  // Reads an output parameter of a layer after shade() (for testshade-style `-o`); returns
-  // false if absent. `dst` receives components as floats (ints converted).
-  // (Reads the most recent shade() on any thread; that thread's ShadingContext must still
-  // exist. With several threads, use the form below.)
-  virtual bool read_output(const std::string& layer, const std::string& param,
-                           std::vector<float>& dst) const = 0;
-  // As above, for the most recent shade() that used `ctx`.
+  // Reads an output parameter of a layer (for testshade-style `-o`) as the most recent
+  // shade() that used `ctx` left it: each thread reads its own context's results. If `ctx`
+  // has shaded another material since (or never shaded this one), the value is the one
+  // before any shade (instance value or default). False if the layer has no such parameter.
+  // `dst` receives components as floats (ints converted).
   virtual bool read_output(const ShadingContext& ctx, const std::string& layer,
-                           const std::string& param, std::vector<float>& dst) const {
-    (void)ctx;
-    return read_output(layer, param, dst);
-  }
+                           const std::string& param, std::vector<float>& dst) const = 0;
   // An output parameter of a layer: its type, or nullopt when the layer has no output
   // parameter of that name. `closure`: a closure output (its value is a pointer into the
   // shading context, not data to copy).
