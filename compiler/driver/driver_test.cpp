@@ -130,7 +130,7 @@ end
   Loaded folded = parse_ir("fold.lir", text, o);
   ASSERT_TRUE(folded.ok) << folded.rendered();
   ASSERT_EQ(folded.shader->ops.size(), 1u);
-  EXPECT_EQ(folded.shader->ops[0].opcode, "assign");
+  EXPECT_EQ(folded.shader->ops[0].opcode, ir::Opcode::Assign);
 }
 
 // Every stage's error arrives structured: id, severity, file, line, column, message, and the
