@@ -4,7 +4,7 @@
 #   2. the installed headers are exactly include/lobe/*.h, each compiles alone against the
 #      prefix, and none includes a header that is not installed;
 #   3. the prefix is moved (everything must be found relative to the library, never through the
-#      build tree: liblobe.so has no build-tree paths);
+#      build tree: liblobe.so has no build-tree paths); the installed bin/lobe runs from there;
 #   4. examples/minimal_plugin configures with find_package(Lobe), builds and runs;
 #   5. its printed values equal closed forms computed here, not by Lobe:
 #        t.Cout   = c (0.5 + 0.5 u), c = (0.2, 0.4, 0.6)          (the tint shader)
@@ -67,6 +67,12 @@ done
 # 3. Move the prefix.
 mv "$prefix" "$tmp/moved"
 prefix=$tmp/moved
+
+# The installed executable runs from the moved prefix and finds the stdlib there.
+[ -x "$prefix/bin/lobe" ] || fail "not installed: bin/lobe"
+"$prefix/bin/lobe" --version | grep -q -E '^lobe [0-9]+\.[0-9]+\.[0-9]+' || fail "bin/lobe --version"
+info=$("$prefix/bin/lobe" info matte) || fail "bin/lobe info matte (stdlib not found from the prefix?)"
+echo "$info" | grep -q -x 'surface "matte"' || fail "bin/lobe info matte printed: $info"
 
 # 4. Build and run the example against the installed SDK only.
 generator=()

@@ -20,6 +20,7 @@
 #include "stress.h"
 
 #include "lobe/context.h"
+#include "lobe/install.h"
 #include "lobe/shadingsys.h"
 
 #include <CLI/CLI.hpp>
@@ -357,7 +358,8 @@ bool plot(const Options& o, const Subject& pc, const LobeView& lobe, Transport m
 std::unique_ptr<ShaderLobe> shader_lobe(const Options& o, std::string& err) {
   ShadingSystem ss;
   ss.options().include_dirs = o.include_dirs;
-  ss.options().include_dirs.push_back(LOBE_BRDF_STDLIB_DIR);
+  if (std::string stdlib = lobe::stdlib_shader_dir(); !stdlib.empty())
+    ss.options().include_dirs.push_back(stdlib);
   ShaderGroup g;
   ShaderGroup::Layer layer{o.shader, "material", {}};
   for (size_t i = 0; i + 1 < o.params.size(); i += 2)

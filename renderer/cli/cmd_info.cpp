@@ -14,6 +14,7 @@
 
 #include "driver/driver.h"
 #include "ir/query.h"
+#include "lobe/install.h"
 
 #include <chrono>
 #include <cstdio>
@@ -104,7 +105,7 @@ bool info(const std::string& name, const Options& o) {
   std::vector<std::string> dirs = {"."};
   dirs.insert(dirs.end(), o.search.begin(), o.search.end());
   dirs.insert(dirs.end(), o.includes.begin(), o.includes.end());
-  dirs.push_back(LOBE_STDLIB_SHADER_DIR);
+  if (std::string stdlib = lobe::stdlib_shader_dir(); !stdlib.empty()) dirs.push_back(stdlib);
   std::string path = lobe::driver::find_shader(name, dirs);
   if (path.empty()) {
     std::string base =

@@ -2,6 +2,7 @@
 #include "material_backend.h"
 
 #ifdef LOBE_HAVE_JIT
+#include "lobe/install.h"
 #include "lobe/shadingsys.h"
 #endif
 
@@ -27,7 +28,7 @@ MaterialBackend::MaterialBackend(const std::string& mode, std::vector<std::strin
     jit_ = std::make_unique<Jit>();
     auto& inc = jit_->ss.options().include_dirs;
     inc.insert(inc.end(), search_dirs.begin(), search_dirs.end());
-    inc.push_back(LOBE_STDLIB_SHADER_DIR);
+    if (std::string stdlib = stdlib_shader_dir(); !stdlib.empty()) inc.push_back(stdlib);
   }
 #else
   (void)search_dirs;
