@@ -12,7 +12,8 @@
 #        eval     = albedo cos(theta_i) / pi, cos = 0.6             (Lambert, cosine included)
 #        eval pdf = cos(theta_i) / pi = 0.190986                    (cosine-weighted sampling)
 #        sample   : |wi| = 1, wi.z > 0, weight = albedo, pdf = wi.z / pi
-#      and the texture error comes from OpenImageIO, i.e. liblobe_oiio.so loaded from the prefix.
+#      and the texture error comes from OpenImageIO, i.e. liblobe_oiio.so loaded from the prefix;
+#      and the renderer-registered closure of step 9 evaluates as its closed form (below).
 # Usage: test_install.sh <build dir> <examples/minimal_plugin> <C++ compiler> [example flags]
 set -euo pipefail
 build=$1
@@ -129,3 +130,23 @@ echo "$out" | awk '
     if (bad) exit 1
     print "minimal_plugin: all values as the closed forms"
   }' || fail "values differ from the closed forms"
+
+# Step 9: the renderer's own closure (registered by the example, declared by its shader with
+# [[ int builtin = 1 ]]), Ci = 0.8 * renderer_lambert(N, t), t = (0.25, 0.5, 0.75):
+#   eval = 0.8 t cos(theta_i) / pi, cos = 0.6;  pdf = 0.6 / pi;  albedo = 0.8 t.
+echo "$out" | grep -q "^renderer closure Ci = .*renderer_lambert" ||
+  fail "the renderer's closure is not in Ci"
+echo "$out" | awk '
+  function near(a, b, what) {
+    d = a - b; if (d < 0) d = -d
+    if (d > 2e-5) { printf "FAIL: %s = %.6f, expected %.6f\n", what, a, b; bad = 1 }
+  }
+  BEGIN { pi = 3.14159265358979; t[1] = 0.25; t[2] = 0.5; t[3] = 0.75 }
+  /^renderer closure eval pdf / { near($5, 0.6 / pi, "renderer closure pdf"); seen++ }
+  /^renderer closure eval / && !/pdf/ { for (i = 1; i <= 3; i++) near($(i + 3), 0.8 * t[i] * 0.6 / pi, "renderer closure eval[" i "]"); seen++ }
+  /^renderer closure albedo / { for (i = 1; i <= 3; i++) near($(i + 3), 0.8 * t[i], "renderer closure albedo[" i "]"); seen++ }
+  END {
+    if (seen != 3) { print "FAIL: renderer closure lines printed " seen + 0 ", expected 3"; bad = 1 }
+    if (bad) exit 1
+    print "minimal_plugin: the renderer closure as the closed forms"
+  }' || fail "the renderer closure differs from the closed forms"

@@ -8,14 +8,19 @@
 //   5. shade a few points, each with its ShaderGlobals and a per-thread ShadingContext;
 //   6. read an output parameter of a layer;
 //   7. turn the closure the shader returned into a Bsdf, and evaluate and sample it;
-//   8. see a shader's run-time error arrive through the ShadingContext's message sink.
+//   8. see a shader's run-time error arrive through the ShadingContext's message sink;
+//   9. give a closure the shader declares `[[ int builtin = 1 ]]` the renderer's own
+//      implementation (registered in step 0, before anything compiles).
 // Every value it prints is one a reader can check by hand (README.md gives the formulas).
 #include <lobe/bsdf.h>
+#include <lobe/closure_plugin.h>
 #include <lobe/context.h>
 #include <lobe/install.h>
 #include <lobe/shadingsys.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <optional>
 #include <string>
@@ -54,10 +59,91 @@ void print_color(const char* label, const lobe::Color3& c) {
   std::printf("%s %.6f %.6f %.6f\n", label, c.x, c.y, c.z);
 }
 
+// Step 0 and 9: the renderer's own closure, `renderer_lambert(normal N, color albedo)`: a
+// Lambertian lobe, f = albedo / pi, sampled with density cos / pi about N. Its functions get
+// the component's parameter block; where each parameter sits comes from the registry.
+constexpr float kPi = 3.14159265358979f;
+long g_off_N = -1, g_off_albedo = -1;
+
+lobe::Vec3 param_vec3(const unsigned char* params, long offset) {
+  lobe::Vec3 v;
+  std::memcpy(&v, params + offset, sizeof v);
+  return v;
+}
+
+lobe::BsdfEval lambert_eval(const unsigned char* p, const lobe::Vec3&, const lobe::Vec3& wi,
+                            lobe::Transport, void*) {
+  float cos_i = lobe::dot(lobe::normalize(param_vec3(p, g_off_N)), wi);
+  if (cos_i <= 0) return {};
+  lobe::BsdfEval e;
+  e.value = param_vec3(p, g_off_albedo) * (cos_i / kPi); // f |cos|, the cosine included
+  e.pdf = cos_i / kPi;
+  return e;
+}
+
+float lambert_pdf(const unsigned char* p, const lobe::Vec3&, const lobe::Vec3& wi, void*) {
+  return std::fmax(0.0f, lobe::dot(lobe::normalize(param_vec3(p, g_off_N)), wi)) / kPi;
+}
+
+lobe::BsdfSample lambert_sample(const unsigned char* p, const lobe::Vec3&, const lobe::Vec3& u,
+                                lobe::Transport, void*) {
+  // A cosine-weighted direction on the unit disk lifted to the hemisphere, then turned from
+  // z to N with an orthonormal frame (Duff et al. 2017).
+  lobe::Vec3 n = lobe::normalize(param_vec3(p, g_off_N));
+  float sign = std::copysign(1.0f, n.z), a = -1.0f / (sign + n.z), b = n.x * n.y * a;
+  lobe::Vec3 t = {1 + sign * n.x * n.x * a, sign * b, -sign * n.x};
+  lobe::Vec3 bt = {b, sign + n.y * n.y * a, -n.y};
+  float r = std::sqrt(u.x), phi = 2 * kPi * u.y, z = std::sqrt(std::fmax(0.0f, 1 - u.x));
+  lobe::BsdfSample s;
+  s.wi = t * (r * std::cos(phi)) + bt * (r * std::sin(phi)) + n * z;
+  s.pdf = z / kPi;
+  s.weight = param_vec3(p, g_off_albedo); // f cos / pdf = albedo
+  s.flags = lobe::kLobeReflect | lobe::kLobeDiffuse;
+  return s;
+}
+
+lobe::Color3 lambert_albedo(const unsigned char* p, const lobe::Vec3&, void*) {
+  return param_vec3(p, g_off_albedo);
+}
+
+bool register_renderer_closures() {
+  lobe::CustomClosure c;
+  c.name = "renderer_lambert";
+  c.params = {{"N", lobe::ClosureParamType::Vector}, {"albedo", lobe::ClosureParamType::Color}};
+  c.lobe_flags = lobe::kLobeReflect | lobe::kLobeDiffuse;
+  c.doc = "the renderer's Lambertian lobe (minimal_plugin)";
+  c.eval = lambert_eval;
+  c.pdf = lambert_pdf;
+  c.sample = lambert_sample;
+  c.albedo = lambert_albedo;
+  std::string err;
+  if (lobe::register_closure(c, &err) < 0) {
+    std::fprintf(stderr, "register_closure: %s\n", err.c_str());
+    return false;
+  }
+  g_off_N = lobe::closure_param_offset("renderer_lambert", "N");
+  g_off_albedo = lobe::closure_param_offset("renderer_lambert", "albedo");
+  return true;
+}
+
+// Step 9's shader declares the closure as OSL shaders declare renderer closures; the
+// registration above is what implements it.
+const char* kRendererClosureSource = R"(
+closure color renderer_lambert(normal N, color albedo) [[ int builtin = 1 ]];
+surface uses_renderer_closure(color tint = color(0.25, 0.5, 0.75))
+{
+    Ci = 0.8 * renderer_lambert(N, tint);
+}
+)";
+
 } // namespace
 
 int main() {
   std::printf("lobe %s\n", lobe::version());
+
+  // 0. The renderer's own closures are registered first, before anything compiles (they last
+  //    for the process).
+  if (!register_renderer_closures()) return 1;
 
   // 1. One ShadingSystem per process. Its options are read when a group compiles; the
   //    stdlib shaders were installed beside the library, which knows where.
@@ -163,5 +249,33 @@ int main() {
   ctx.reset();
   tex_material->shade(sg);
   std::printf("errors reported: %d\n", ctx.errors);
+
+  // 9. A shader that calls the renderer's closure: compiled and shaded as any other, and the
+  //    Bsdf calls the registered functions for its lobe (weighted by the shader's 0.8).
+  if (!ss.add_shader_source("uses_renderer_closure", kRendererClosureSource,
+                            "uses_renderer_closure.osl", diags)) {
+    print_diagnostics(diags);
+    return 1;
+  }
+  lobe::ShaderGroup own;
+  own.layers.push_back({"uses_renderer_closure", "own", {}});
+  std::shared_ptr<const lobe::Material> own_material = ss.compile(own, diags);
+  if (!own_material) {
+    print_diagnostics(diags);
+    return 1;
+  }
+  lobe::ShaderGlobals osg{};
+  osg.N = osg.Ng = {0, 0, 1};
+  osg.I = {0, 0, -1};
+  osg.context = &ctx;
+  ctx.reset();
+  own_material->shade(osg);
+  std::printf("renderer closure Ci = %s\n", lobe::closure_to_string(osg.Ci).c_str());
+  lobe::Bsdf own_bsdf;
+  own_bsdf.build(osg.Ci, -osg.I, osg.Ng, own_material->closure_kernels());
+  lobe::BsdfEval oe = own_bsdf.eval(-osg.I, {0.8f, 0.0f, 0.6f});
+  print_color("renderer closure eval", oe.value);
+  std::printf("renderer closure eval pdf %.6f\n", oe.pdf);
+  print_color("renderer closure albedo", own_bsdf.albedo(-osg.I));
   return 0;
 }
