@@ -6,9 +6,9 @@
 #include "dispatch.h"
 #include "plugin.h"
 
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 namespace lobe::closures {
@@ -16,9 +16,11 @@ namespace {
 
 using registry::ArgType;
 
+// A Params block asked for what the registry does not have: a programming error in the caller
+// (the closure library's own native materials and tests), reported as an exception the caller
+// sees rather than printed (the library never prints).
 [[noreturn]] void check_failed(const std::string& what) {
-  std::fprintf(stderr, "CHECK failed: %s\n", what.c_str());
-  std::abort();
+  throw std::logic_error("closure parameters: " + what);
 }
 
 // Writes a keyword's registry default (literal text) into its slot.
