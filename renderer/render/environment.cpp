@@ -30,6 +30,7 @@ EnvironmentLight::EnvironmentLight(std::vector<float> rgb, int w, int h, float r
     }
   }
   avg_lum_ = weight_sum > 0 ? float(lum_sum / weight_sum) : 0;
+  if (constant_ && !rgb_.empty()) color_ = {rgb_[0], rgb_[1], rgb_[2]};
   dist_ = Distribution2D(f, w, h);
 }
 
@@ -66,8 +67,7 @@ void EnvironmentLight::dir_to_uv(const Vec3& dw, float& u, float& v) const {
   u = u - std::floor(u);
 }
 
-Color3 EnvironmentLight::eval(const Vec3& dir) const {
-  if (!valid()) return {};
+Color3 EnvironmentLight::eval_table(const Vec3& dir) const {
   float u, v;
   dir_to_uv(dir, u, v);
   int x = std::clamp(int(u * w_), 0, w_ - 1), y = std::clamp(int(v * h_), 0, h_ - 1);
@@ -77,6 +77,7 @@ Color3 EnvironmentLight::eval(const Vec3& dir) const {
 
 float EnvironmentLight::pdf(const Vec3& dir) const {
   if (!valid()) return 0;
+  if (constant_) return 1 / (4 * kPi);
   float u, v;
   dir_to_uv(dir, u, v);
   float st = std::sin(v * kPi);
@@ -85,11 +86,27 @@ float EnvironmentLight::pdf(const Vec3& dir) const {
 }
 
 Vec3 EnvironmentLight::sample(float u1, float u2, float& pdf) const {
+  if (constant_) {
+    pdf = 1 / (4 * kPi);
+    return square_to_uniform_sphere(u1, u2);
+  }
   float u, v, p;
   dist_.sample(u1, u2, u, v, p);
   float st = std::sin(v * kPi);
   pdf = st > 0 ? p / (2 * kPi * kPi * st) : 0;
   return uv_to_dir(u, v);
+}
+
+Vec3 EnvironmentLight::sample(const Vec3& n, float u1, float u2, float& pdf) const {
+  if (!constant_) return sample(u1, u2, pdf);
+  Vec3 l = square_to_cosine_hemisphere(u1, u2);
+  pdf = l.z * kInvPi;
+  return Frame(n).to_world(l);
+}
+
+float EnvironmentLight::pdf(const Vec3& dir, const Vec3& n) const {
+  if (!constant_) return pdf(dir);
+  return std::max(0.0f, dot(dir, n)) * kInvPi;
 }
 
 } // namespace lobe::render

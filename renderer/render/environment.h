@@ -6,6 +6,11 @@
 // Radiance lookups read the same table the distribution was built from, so lookup and pdf
 // agree exactly and MIS weights are consistent.
 //
+// A table whose texels are all equal (a constant environment, or a background shader that
+// returns one colour) skips the table: eval is the colour, and sampling is uniform over the
+// sphere, or cosine-weighted about a surface normal when one is given (pdf cos/pi on its
+// hemisphere, 0 below), with exact pdfs; the expected image is the same.
+//
 // Mapping (after rotating by -rotation about +Y): v = theta/pi with theta measured from +Y
 // (row 0 is straight up), u = 0.5 + atan2(x, -z) / (2 pi) (the image centre looks down -Z).
 #pragma once
@@ -29,9 +34,15 @@ public:
                                         int h, float rotation_deg);
 
   bool valid() const { return w_ > 0; }
-  Color3 eval(const Vec3& dir) const;
+  Color3 eval(const Vec3& dir) const {
+    return constant_ ? color_ : (valid() ? eval_table(dir) : Color3{});
+  }
   float pdf(const Vec3& dir) const;                  // solid-angle density of sample()
   Vec3 sample(float u1, float u2, float& pdf) const; // direction towards the environment
+  // As seen from a surface with unit normal `n` (on the side the light is wanted): a constant
+  // environment is sampled cosine-weighted about n; a table as above (n unused).
+  Vec3 sample(const Vec3& n, float u1, float u2, float& pdf) const;
+  float pdf(const Vec3& dir, const Vec3& n) const; // solid-angle density of sample(n, ...)
   float average_luminance() const { return avg_lum_; }
   bool is_constant() const { return constant_; }
 
@@ -39,11 +50,14 @@ public:
   void dir_to_uv(const Vec3& d, float& u, float& v) const;
 
 private:
+  Color3 eval_table(const Vec3& dir) const;
+
   std::vector<float> rgb_;
   int w_ = 0, h_ = 0;
   float cos_r_ = 1, sin_r_ = 0;
   float avg_lum_ = 0;
   bool constant_ = false;
+  Color3 color_; // the colour of a constant table
   Distribution2D dist_;
 };
 

@@ -61,7 +61,7 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
   Ray ray = camera_ray;
   bool after_delta = true; // the camera ray counts as delta: emission seen directly has weight 1
   float prev_pdf = 0;
-  Vec3 prev_p;
+  Vec3 prev_p, prev_n; // the previous vertex and its normal on the side of the sampled ray
   int raytype = kRayCamera;
   float path_length = 0; // distance from the camera along the path (for ray footprints)
   Vertex v;
@@ -69,8 +69,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
     ++c.rays;
     if (!geo.intersect(ray, v.hit)) {
       if (const EnvironmentLight* env = lights.environment()) {
-        float w =
-            weight_bsdf_hit(strategy_, after_delta, prev_pdf, lights.pdf_environment(ray.dir));
+        float w = weight_bsdf_hit(strategy_, after_delta, prev_pdf,
+                                  lights.pdf_environment(ray.dir, prev_n));
         out.L += beta * env->eval(ray.dir) * w;
       }
       break;
@@ -78,6 +78,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
     path_length += v.hit.t;
     shade_into(scene_, v.hit, ray.dir, raytype, ctx, v.bsdf, c, time_, path_length);
     const Vec3 wo = -ray.dir;
+    // The shading normal on the viewer's side: the hemisphere the environment is sampled over.
+    const Vec3 n_lit = dot(v.hit.N, wo) < 0 ? -v.hit.N : v.hit.N;
     if (!is_zero(v.bsdf.emission)) {
       float lp = lights.is_emitter(v.hit.shape) ? lights.pdf_area(prev_p, v.hit) : 0;
       out.L += beta * v.bsdf.emission * weight_bsdf_hit(strategy_, after_delta, prev_pdf, lp);
@@ -110,7 +112,7 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
     if (strategy_ != Strategy::BsdfOnly && v.bsdf.has_non_delta()) {
       float us = sampler.next(), u1 = sampler.next(), u2 = sampler.next();
       LightSample ls;
-      if (lights.sample(v.hit.P, us, u1, u2, ls)) {
+      if (lights.sample(v.hit.P, n_lit, us, u1, u2, ls)) {
         BsdfEval f = v.bsdf.eval(wo, ls.wi);
         if (!is_zero(f.value)) {
           Color3 Le = ls.L;
@@ -142,6 +144,7 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
     after_delta = (s->flags & kLobeSpecular) != 0;
     prev_pdf = s->pdf;
     prev_p = v.hit.P;
+    prev_n = n_lit;
     raytype = after_delta ? (s->flags & kLobeTransmit ? kRayRefraction : kRayReflection)
                           : (s->flags & kLobeDiffuse ? kRayDiffuse : kRayGlossy);
     ray = Ray{offset_ray_origin(v.hit.P, v.hit.Ng, s->wi), s->wi};

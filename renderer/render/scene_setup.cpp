@@ -238,11 +238,9 @@ std::string RenderScene::build_environment() {
   case scene::Environment::Kind::None:
     return "";
   case scene::Environment::Kind::Constant: {
-    // 64 x 32 texels rather than one: rows let the sampler follow sin(theta), so a constant
-    // environment is sampled almost uniformly over the sphere.
-    std::vector<float> rgb(64 * 32 * 3);
-    for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = e.color[int(i % 3)] * k;
-    env_ = EnvironmentLight(std::move(rgb), 64, 32, 0);
+    // One texel: a constant table takes EnvironmentLight's constant path (no table lookups,
+    // cosine-weighted light samples about the normal).
+    env_ = EnvironmentLight({e.color.x * k, e.color.y * k, e.color.z * k}, 1, 1, 0);
     return "";
   }
   case scene::Environment::Kind::Map: {
