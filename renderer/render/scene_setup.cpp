@@ -383,6 +383,11 @@ std::string RenderScene::setup(const scene::SceneDesc& desc, const MaterialCompi
   desc_ = desc;
   camera_ = Camera(desc_.camera, width, height);
   services_ = SceneServices(desc_.camera, width, height, &geo_);
+  using clock = std::chrono::steady_clock;
+  auto since = [](clock::time_point t) {
+    return std::chrono::duration<double>(clock::now() - t).count();
+  };
+  auto t0 = clock::now();
   if (std::string e = geo_.build(desc_.shapes); !e.empty()) return desc_.path + ": " + e;
   shape_area_.clear();
   for (size_t i = 0; i < desc_.shapes.size(); ++i) {
@@ -398,14 +403,19 @@ std::string RenderScene::setup(const scene::SceneDesc& desc, const MaterialCompi
     }
     shape_area_.push_back(area);
   }
+  stats_.geometry_seconds = since(t0);
   if (std::string e = compile_materials(compile); !e.empty()) return e;
   if (cancelled()) return "interrupted (Ctrl-C) after compiling the materials";
+  t0 = clock::now();
   if (std::string e = build_environment(); !e.empty()) return e;
+  stats_.environment_seconds = since(t0);
   if (cancelled()) return "interrupted (Ctrl-C) after tabulating the background";
+  t0 = clock::now();
   std::vector<LightSet::Emitter> emitters;
   if (std::string e = find_emitters(emitters, stats_.messages); !e.empty()) return e;
   stats_.emitters = static_cast<int>(emitters.size());
   lights_.build(geo_, desc_.lights, emitters, env_.valid() ? &env_ : nullptr);
+  stats_.lights_seconds = since(t0);
   return "";
 }
 
