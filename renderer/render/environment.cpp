@@ -70,19 +70,35 @@ void EnvironmentLight::dir_to_uv(const Vec3& dw, float& u, float& v) const {
 Color3 EnvironmentLight::eval_table(const Vec3& dir) const {
   float u, v;
   dir_to_uv(dir, u, v);
-  int x = std::clamp(int(u * w_), 0, w_ - 1), y = std::clamp(int(v * h_), 0, h_ - 1);
-  const float* p = &rgb_[(size_t(y) * w_ + x) * 3];
+  const float* p = texel(u, v);
   return {p[0], p[1], p[2]};
 }
+
+// sin(theta) of a direction: theta is measured from +Y, which the rotation keeps.
+static float sin_theta(const Vec3& d) { return std::sqrt(std::max(0.0f, 1 - d.y * d.y)); }
 
 float EnvironmentLight::pdf(const Vec3& dir) const {
   if (!valid()) return 0;
   if (constant_) return 1 / (4 * kPi);
   float u, v;
   dir_to_uv(dir, u, v);
-  float st = std::sin(v * kPi);
-  if (!(st > 0)) return 0;
-  return dist_.pdf(u, v) / (2 * kPi * kPi * st);
+  return table_pdf(u, v, sin_theta(dir));
+}
+
+Color3 EnvironmentLight::eval_pdf(const Vec3& dir, const Vec3& n, float& pdf) const {
+  if (constant_) {
+    pdf = std::max(0.0f, dot(dir, n)) * kInvPi;
+    return color_;
+  }
+  if (!valid()) {
+    pdf = 0;
+    return {};
+  }
+  float u, v;
+  dir_to_uv(dir, u, v);
+  pdf = table_pdf(u, v, sin_theta(dir));
+  const float* p = texel(u, v);
+  return {p[0], p[1], p[2]};
 }
 
 Vec3 EnvironmentLight::sample(float u1, float u2, float& pdf) const {
@@ -97,11 +113,20 @@ Vec3 EnvironmentLight::sample(float u1, float u2, float& pdf) const {
   return uv_to_dir(u, v);
 }
 
-Vec3 EnvironmentLight::sample(const Vec3& n, float u1, float u2, float& pdf) const {
-  if (!constant_) return sample(u1, u2, pdf);
-  Vec3 l = square_to_cosine_hemisphere(u1, u2);
-  pdf = l.z * kInvPi;
-  return Frame(n).to_world(l);
+Vec3 EnvironmentLight::sample(const Vec3& n, float u1, float u2, float& pdf, Color3& L) const {
+  if (constant_) {
+    Vec3 l = square_to_cosine_hemisphere(u1, u2);
+    pdf = l.z * kInvPi;
+    L = color_;
+    return Frame(n).to_world(l);
+  }
+  float u, v, p;
+  dist_.sample(u1, u2, u, v, p);
+  const float* t = texel(u, v);
+  L = {t[0], t[1], t[2]};
+  float st = std::sin(v * kPi);
+  pdf = st > 0 ? p / (2 * kPi * kPi * st) : 0;
+  return uv_to_dir(u, v);
 }
 
 float EnvironmentLight::pdf(const Vec3& dir, const Vec3& n) const {

@@ -16,9 +16,11 @@
 #pragma once
 
 #include "distribution.h"
+#include "sampling.h"
 
 #include "lobe/vec.h"
 
+#include <algorithm>
 #include <functional>
 #include <vector>
 
@@ -40,9 +42,12 @@ public:
   float pdf(const Vec3& dir) const;                  // solid-angle density of sample()
   Vec3 sample(float u1, float u2, float& pdf) const; // direction towards the environment
   // As seen from a surface with unit normal `n` (on the side the light is wanted): a constant
-  // environment is sampled cosine-weighted about n; a table as above (n unused).
-  Vec3 sample(const Vec3& n, float u1, float u2, float& pdf) const;
+  // environment is sampled cosine-weighted about n; a table as above (n unused). `L` gets the
+  // radiance of the sampled texel (no second lookup).
+  Vec3 sample(const Vec3& n, float u1, float u2, float& pdf, Color3& L) const;
   float pdf(const Vec3& dir, const Vec3& n) const; // solid-angle density of sample(n, ...)
+  // eval(dir) and pdf(dir, n) with one direction-to-texel mapping.
+  Color3 eval_pdf(const Vec3& dir, const Vec3& n, float& pdf) const;
   float average_luminance() const { return avg_lum_; }
   bool is_constant() const { return constant_; }
 
@@ -51,6 +56,14 @@ public:
 
 private:
   Color3 eval_table(const Vec3& dir) const;
+  const float* texel(float u, float v) const {
+    int x = std::min(std::max(int(u * w_), 0), w_ - 1),
+        y = std::min(std::max(int(v * h_), 0), h_ - 1);
+    return &rgb_[(size_t(y) * w_ + x) * 3];
+  }
+  float table_pdf(float u, float v, float sin_theta) const {
+    return sin_theta > 0 ? dist_.pdf(u, v) / (2 * kPi * kPi * sin_theta) : 0;
+  }
 
   std::vector<float> rgb_;
   int w_ = 0, h_ = 0;

@@ -57,6 +57,24 @@ TEST(Environment, PdfIntegratesToOneAndMatchesSample) {
   }
 }
 
+TEST(Environment, TableSampleWithNormalReturnsTheTexelAndEvalPdfAgrees) {
+  EnvironmentLight env = gradient_env(25);
+  const Vec3 n{0, 1, 0};
+  Sampler s(2, 7, 3);
+  for (int i = 0; i < 500; ++i) {
+    float p, q;
+    Color3 L;
+    Vec3 d = env.sample(n, s.next(), s.next(), p, L);
+    ASSERT_GT(p, 0);
+    EXPECT_NEAR(env.pdf(d), p, 2e-3 * p);
+    Color3 e = env.eval_pdf(d, n, q);
+    EXPECT_FLOAT_EQ(q, env.pdf(d));
+    EXPECT_FLOAT_EQ(e.x, env.eval(d).x);
+    // The texel sampled is the one the direction maps back to (up to texel-edge rounding).
+    EXPECT_NEAR(L.x, e.x, 0.05f * e.x);
+  }
+}
+
 TEST(Environment, ImportanceSampledIrradianceMatchesClosedForm) {
   // Irradiance at an upward-facing point: integral over the upper hemisphere of
   // (1 + 3 cos^2) cos dw = pi + 3 * 2pi/4 = 2.5 pi (red channel).
@@ -105,7 +123,9 @@ TEST(Environment, ConstantSamplerPdfsAreClosedFormsAndIntegrateToOne) {
     Vec3 du = env.sample(s.next(), s.next(), pu);
     EXPECT_NEAR(length(du), 1.0f, 1e-5);
     EXPECT_FLOAT_EQ(pu, float(1 / (4 * M_PI)));
-    Vec3 dc = env.sample(n, s.next(), s.next(), pc);
+    Color3 L;
+    Vec3 dc = env.sample(n, s.next(), s.next(), pc, L);
+    EXPECT_FLOAT_EQ(L.y, 0.7f);
     EXPECT_NEAR(length(dc), 1.0f, 1e-5);
     float c = dot(dc, n);
     above += c >= 0;
@@ -130,8 +150,9 @@ TEST(Environment, ConstantIrradianceIsPiTimesRadiance) {
     float p;
     Vec3 d = env.sample(s.next(), s.next(), p);
     sum_u += env.eval(d).x * std::max(0.0f, dot(d, n)) / p;
-    d = env.sample(n, s.next(), s.next(), p);
-    if (p > 0) sum_c += env.eval(d).x * dot(d, n) / p;
+    Color3 L;
+    d = env.sample(n, s.next(), s.next(), p, L);
+    if (p > 0) sum_c += L.x * dot(d, n) / p;
   }
   EXPECT_NEAR(sum_u / n_mc, M_PI * 0.7, 0.01 * M_PI * 0.7);
   // Cosine sampling cancels the cosine: every sample is exactly pi L.

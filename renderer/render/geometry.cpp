@@ -189,7 +189,10 @@ void Geometry::surface(int shape, int prim, float bu, float bv, SurfaceHit& hit)
       uv[2 * k] = m.uvs[2 * tri[k]], uv[2 * k + 1] = m.uvs[2 * tri[k] + 1];
   hit.u = uv[0] * b0 + uv[2] * bu + uv[4] * bv;
   hit.v = uv[1] * b0 + uv[3] * bu + uv[5] * bv;
-  triangle_tangents(p, uv, hit.Ng, hit.dPdu, hit.dPdv);
+  if (tangents_.empty() || tangents_[size_t(shape)])
+    triangle_tangents(p, uv, hit.Ng, hit.dPdu, hit.dPdv);
+  else
+    hit.dPdu = hit.dPdv = Vec3{};
   hit.N = hit.Ng;
   if (!m.normals.empty()) {
     Vec3 n = normalize(m.normals[tri[0]] * b0 + m.normals[tri[1]] * bu + m.normals[tri[2]] * bv);

@@ -56,6 +56,10 @@ public:
   // Raw traversal only (no surface data), for benchmarks: Embree's own speed.
   bool intersect_raw(const Ray& ray, float& t) const;
 
+  // Per shape: whether surface() computes a mesh's dPdu/dPdv (0: left zero, for materials that
+  // read neither tangents nor derivatives). Unset: always.
+  void set_tangents_needed(std::vector<char> needed) { tangents_ = std::move(needed); }
+
   // Surface data at (shape, prim, barycentric u, v) as intersect() fills it.
   void surface(int shape, int prim, float bu, float bv, SurfaceHit& hit) const;
 
@@ -72,6 +76,7 @@ private:
   const std::vector<scene::Shape>* shapes_ = nullptr;
   std::vector<scene::Mesh> meshes_; // per shape; quads converted, spheres empty
   std::vector<int> geom_to_shape_;
+  std::vector<char> tangents_;
   Vec3 center_;
   float radius_ = 1;
 };

@@ -103,10 +103,10 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
     bool found = geo.traverse(ray, raw);
     lap(&P::traverse);
     if (!found) {
-      if (const EnvironmentLight* env = lights.environment()) {
-        float w = weight_bsdf_hit(strategy_, after_delta, prev_pdf,
-                                  lights.pdf_environment(ray.dir, prev_n));
-        out.L += beta * env->eval(ray.dir) * w;
+      if (lights.environment()) {
+        float lp;
+        Color3 Le = lights.environment_hit(ray.dir, prev_n, lp);
+        out.L += beta * Le * weight_bsdf_hit(strategy_, after_delta, prev_pdf, lp);
       }
       lap(&P::lights);
       break;

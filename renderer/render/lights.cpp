@@ -88,9 +88,8 @@ bool LightSet::sample(const Vec3& p, const Vec3& n, float u_select, float u1, fl
   }
   float pdf;
   out.kind = LightSample::Kind::Environment;
-  out.wi = env_->sample(n, u1, u2, pdf);
+  out.wi = env_->sample(n, u1, u2, pdf, out.L);
   out.dist = std::numeric_limits<float>::infinity();
-  out.L = env_->eval(out.wi);
   out.pdf = pdf * prob;
   return out.pdf > 0;
 }
@@ -156,6 +155,16 @@ float LightSet::pdf_area(const Vec3& p, const SurfaceHit& hit) const {
 float LightSet::pdf_environment(const Vec3& dir, const Vec3& n) const {
   if (!env_) return 0;
   return select_.discrete_prob(count_ - 1) * env_->pdf(dir, n);
+}
+
+Color3 LightSet::environment_hit(const Vec3& dir, const Vec3& n, float& pdf) const {
+  if (!env_) {
+    pdf = 0;
+    return {};
+  }
+  Color3 L = env_->eval_pdf(dir, n, pdf);
+  pdf *= select_.discrete_prob(count_ - 1);
+  return L;
 }
 
 } // namespace lobe::render

@@ -48,6 +48,8 @@ public:
   // Selection x density of sample() from a point of normal `n` reaching the environment along
   // `dir`.
   float pdf_environment(const Vec3& dir, const Vec3& n) const;
+  // The environment's radiance along `dir` and pdf_environment(dir, n), with one lookup.
+  Color3 environment_hit(const Vec3& dir, const Vec3& n, float& pdf) const;
   bool is_emitter(int shape) const {
     return shape >= 0 && shape < int(shape_to_area_.size()) && shape_to_area_[shape] >= 0;
   }

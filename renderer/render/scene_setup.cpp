@@ -227,6 +227,11 @@ std::string RenderScene::compile_materials(const MaterialCompiler& compile) {
     shape_reads_.push_back(shape_material_.back()->globals_read());
     shape_kernels_.push_back(use_kernels_ ? shape_material_.back()->closure_kernels() : nullptr);
   }
+  // Triangle tangents only for materials that read them (or screen derivatives built on them).
+  std::vector<char> tangents;
+  for (uint64_t r : shape_reads_)
+    tangents.push_back((r & (tangent_bits() | derivative_bits())) != 0);
+  geo_.set_tangents_needed(std::move(tangents));
   return "";
 }
 
