@@ -19,6 +19,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <mutex>
 #include <unistd.h>
@@ -78,7 +79,7 @@ struct Args {
   int spp = 0, threads = 0, max_depth = 0;
   long long seed = -1;
   long long max_loop_iterations = 100000000;
-  float exposure = 0;
+  float exposure = 0, clamp = -1;
   bool quiet = false, stats = false;
   std::string progress = "auto";
 };
@@ -144,6 +145,11 @@ int run_render(int argc, char** argv) {
   app.add_option("--seed", a.seed, "random seed")->check(CLI::Range(0LL, 1LL << 40));
   app.add_option("--max-depth", a.max_depth, "maximum bounces")->check(CLI::Range(1, 1024));
   app.add_option("--exposure", a.exposure, "exposure in stops for PNG output");
+  app.add_option("--clamp", a.clamp,
+                 "luminance cap on each indirect contribution (light reaching a path after its "
+                 "first bounce), against fireflies from caustics; biased; 0: none (default: the "
+                 "scene's settings.clamp)")
+      ->check(CLI::Range(0.0f, 3.4e38f));
   app.add_option("--materials", a.backend, "material backend: auto, jit or native")
       ->check(CLI::IsMember({"auto", "jit", "native"}));
   app.add_option("--closures", a.closures,
@@ -195,6 +201,7 @@ int run_render(int argc, char** argv) {
   if (a.max_depth) st.max_depth = a.max_depth;
   if (a.seed >= 0) st.seed = uint64_t(a.seed);
   if (app.count("--exposure")) st.exposure = a.exposure;
+  if (app.count("--clamp")) st.clamp = a.clamp;
   std::string out = !a.output.empty() ? a.output : (!st.output.empty() ? st.output : "lobe.png");
   // A bad output path is found now, not after a long render.
   if (std::string e = lobe::image::check_writable(out); !e.empty()) {
@@ -250,6 +257,7 @@ int run_render(int argc, char** argv) {
   opt.strategy = parse_strategy(a.strategy);
   opt.aovs = lobe::image::keeps_all_channels(out); // AOV channels only where they are kept
   opt.profile = a.stats;
+  opt.clamp = st.clamp;
   ProgressBar::Mode mode = ProgressBar::Mode::None;
   if (!a.quiet) {
     if (a.progress == "bar" || (a.progress == "auto" && isatty(STDERR_FILENO)))
@@ -288,12 +296,15 @@ int run_render(int argc, char** argv) {
     uint64_t rays = stats.counters.rays + stats.counters.shadow_rays;
     // Interrupted: how many samples per pixel finished (pixels of the last, partial pass have
     // one more), e.g. "8.4 of 32 spp".
-    char spp[64];
+    char spp[128];
     if (stats.cancelled)
       std::snprintf(spp, sizeof spp, "%.1f of %d spp",
                     double(stats.samples) / (double(st.width) * st.height), st.spp);
     else
       std::snprintf(spp, sizeof spp, "%d spp", st.spp);
+    if (st.clamp > 0) // biased: always said
+      std::snprintf(spp + std::strlen(spp), sizeof spp - std::strlen(spp),
+                    ", indirect light clamped at %g", st.clamp);
     std::fprintf(stderr,
                  "%s%s: %dx%d, %s, %s materials (%d compiled in %.2fs, %d with closure "
                  "kernels, %d from the cache, setup %.2fs), render %.2fs, %.2f Mrays/s\n",

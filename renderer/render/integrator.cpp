@@ -49,6 +49,13 @@ float weight_bsdf_hit(Strategy s, bool after_delta, float bsdf_pdf, float light_
   return power_heuristic(bsdf_pdf, light_pdf);
 }
 
+// Scales `c` down to luminance `cap` when above it (cap 0: unchanged).
+Color3 clamped(const Color3& c, float cap) {
+  if (!(cap > 0)) return c;
+  float l = luminance(c);
+  return l > cap ? c * (cap / l) : c;
+}
+
 } // namespace
 
 // Shades `hit` seen along `dir` and flattens its closure into `bsdf`.
@@ -106,7 +113,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
       if (lights.environment()) {
         float lp;
         Color3 Le = lights.environment_hit(ray.dir, prev_n, lp);
-        out.L += beta * Le * weight_bsdf_hit(strategy_, after_delta, prev_pdf, lp);
+        Color3 c = beta * Le * weight_bsdf_hit(strategy_, after_delta, prev_pdf, lp);
+        out.L += depth >= 2 ? clamped(c, clamp_) : c;
       }
       lap(&P::lights);
       break;
@@ -120,7 +128,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
     const Vec3 n_lit = dot(v.hit.N, wo) < 0 ? -v.hit.N : v.hit.N;
     if (!is_zero(v.bsdf.emission)) {
       float lp = lights.is_emitter(v.hit.shape) ? lights.pdf_area(prev_p, v.hit) : 0;
-      out.L += beta * v.bsdf.emission * weight_bsdf_hit(strategy_, after_delta, prev_pdf, lp);
+      Color3 c = beta * v.bsdf.emission * weight_bsdf_hit(strategy_, after_delta, prev_pdf, lp);
+      out.L += depth >= 2 ? clamped(c, clamp_) : c;
       lap(&P::lights);
     }
     if (depth == 0) {
@@ -182,7 +191,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
           if (visible) {
             float w =
                 (delta || strategy_ == Strategy::LightOnly) ? 1 : power_heuristic(ls.pdf, f.pdf);
-            out.L += beta * f.value * Le * (w / ls.pdf);
+            Color3 c = beta * f.value * Le * (w / ls.pdf);
+            out.L += depth >= 1 ? clamped(c, clamp_) : c;
           }
         }
       }

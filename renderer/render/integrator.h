@@ -65,6 +65,11 @@ public:
   // for next-event estimation, so that shading a light never resets the arena holding the
   // closure of the point it lights. One pair per thread. `timed`: add this path's time split
   // to counters.phases.
+  // Luminance cap on each contribution of light reaching the path after its first bounce
+  // (NEE from the second vertex on, emission and environment found by the second and later
+  // BSDF rays); 0: none. Biased (loses the energy above the cap); direct light is exact.
+  void set_clamp(float c) { clamp_ = c; }
+
   PathResult trace(const Ray& camera_ray, Sampler& sampler, ShadingContext& ctx,
                    ShadingContext& light_ctx, TraceCounters& counters, bool timed = false) const;
 
@@ -73,6 +78,7 @@ private:
   int max_depth_;
   Strategy strategy_;
   bool time_;
+  float clamp_ = 0;
 };
 
 } // namespace lobe::render

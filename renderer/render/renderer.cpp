@@ -92,6 +92,7 @@ image::Image render_image(const RenderScene& scene, int width, int height, const
                           RenderStats* stats) {
   auto t0 = std::chrono::steady_clock::now();
   PathTracer pt(scene, opt.max_depth, opt.strategy, opt.time_shading);
+  pt.set_clamp(opt.clamp);
   std::vector<Accum> acc(size_t(width) * height);
   tbb::enumerable_thread_specific<ThreadState> states;
   int tiles = ((width + kTile - 1) / kTile) * ((height + kTile - 1) / kTile);

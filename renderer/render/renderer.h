@@ -27,6 +27,7 @@ struct RenderOptions {
   // Time split of one path in kProfileEvery (RenderStats::counters.phases; `lobe render
   // --stats`): a few timestamp reads per vertex on those paths only.
   bool profile = false;
+  float clamp = 0; // Settings::clamp: luminance cap on indirect contributions (0: none; biased)
 };
 
 constexpr int kProfileEvery = 8;

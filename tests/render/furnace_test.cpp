@@ -77,6 +77,55 @@ TEST(WhiteFurnace, ConstantEnvironmentGivesAlbedoTimesRadianceForEachStrategy) {
   }
 }
 
+TEST(WhiteFurnace, ClampNeverTouchesDirectLight) {
+  // A convex sphere in a furnace: every path escapes at its first bounce, so all its light is
+  // direct and even a tiny clamp leaves the image bit for bit as it was (radiance 100, albedo
+  // 0.35: 35 per pixel).
+  const int w = 16, h = 16;
+  auto s = test::setup_scene(furnace_scene(R"({"shader": "matte", "params": {"Cs": 0.35}})", "100"),
+                             w, h);
+  ASSERT_TRUE(s);
+  RenderOptions opt;
+  opt.spp = 8;
+  auto plain = test::render(*s, w, h, opt);
+  opt.clamp = 0.01f;
+  auto capped = test::render(*s, w, h, opt);
+  EXPECT_EQ(plain.img.pixels, capped.img.pixels);
+  double mean, err;
+  test::mean_and_error(capped.img, 0, mean, err);
+  EXPECT_NEAR(mean, 35, 4 * err + 1e-3);
+}
+
+TEST(WhiteFurnace, ClampCapsIndirectLight) {
+  // A sphere on a ground quad: the light bouncing between them is indirect. A cap far above
+  // every contribution changes nothing; a tiny cap removes most indirect light (darker, never
+  // brighter); off (0) is the unclamped image.
+  const int w = 16, h = 16;
+  auto s = test::setup_scene(R"({
+    "camera": {"eye": [0, 1, 4], "look_at": [0, 0.5, 0], "fov": 30},
+    "materials": {"m": {"shader": "matte", "params": {"Cs": 0.8}}},
+    "shapes": [{"type": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": "m"},
+               {"type": "quad", "corner": [-5, 0, 5], "edge_x": [10, 0, 0], "edge_y": [0, 0, -10],
+                "material": "m"}],
+    "environment": {"type": "constant", "color": 1}
+  })",
+                             w, h);
+  ASSERT_TRUE(s);
+  RenderOptions opt;
+  opt.spp = 8;
+  auto plain = test::render(*s, w, h, opt);
+  opt.clamp = 1e6f;
+  EXPECT_EQ(test::render(*s, w, h, opt).img.pixels, plain.img.pixels);
+  opt.clamp = 1e-3f;
+  auto capped = test::render(*s, w, h, opt);
+  double m0, e0, m1, e1;
+  test::mean_and_error(plain.img, 0, m0, e0);
+  test::mean_and_error(capped.img, 0, m1, e1);
+  EXPECT_LT(m1, m0 * 0.97);
+  for (size_t i = 0; i < plain.img.pixels.size(); ++i)
+    ASSERT_LE(capped.img.pixels[i], plain.img.pixels[i] + 1e-6f) << i;
+}
+
 TEST(WhiteFurnace, MirrorIsOne) {
   if (!implemented("reflection")) GTEST_SKIP() << "reflection closure not implemented yet";
   expect_furnace(R"({"shader": "mirror"})", 1.0, 0);
