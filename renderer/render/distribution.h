@@ -23,7 +23,12 @@ public:
   float pdf(int i) const; // density over [0,1] in cell i
 
 private:
+  int find(float u) const;
+
   std::vector<float> func_, cdf_;
+  // guide_[k]: the cell of u = k / size() (a start for the search of any u in [k, k+1) /
+  // size(): a few steps forward instead of a binary search; same cell as the binary search).
+  std::vector<int> guide_;
   float integral_ = 0;
 };
 
@@ -40,6 +45,7 @@ public:
 private:
   std::vector<Distribution1D> rows_;
   Distribution1D marginal_;
+  std::vector<float> pdf_; // w x h: marginal pdf x row pdf, one load for pdf()
   int w_ = 0, h_ = 0;
 };
 
