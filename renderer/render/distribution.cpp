@@ -39,14 +39,15 @@ static int find_interval(const std::vector<float>& cdf, float u) {
   return std::clamp(i, 0, static_cast<int>(cdf.size()) - 2);
 }
 
-// The cell find_interval gives (last i with cdf_[i] <= u, clamped), from the guide table: u is at
-// least the guide's u, so the cell is the guide's or one after it.
+// The cell find_interval gives (last i with cdf_[i] <= u, clamped), searched only between the
+// guides around u: cdf_[guide_[k]] <= k/n <= u < (k+1)/n < cdf_[guide_[k+1] + 1].
 int Distribution1D::find(float u) const {
   const int n = size();
   if (guide_.empty() || !(u >= 0) || !(u < 1)) return find_interval(cdf_, u);
-  int i = guide_[std::min(int(u * float(n)), n - 1)];
-  while (i + 1 < n && cdf_[size_t(i) + 1] <= u) ++i;
-  return i;
+  int k = std::min(int(u * float(n)), n - 1);
+  int lo = guide_[size_t(k)], hi = k + 1 < n ? guide_[size_t(k) + 1] : n - 1;
+  auto it = std::upper_bound(cdf_.begin() + lo + 1, cdf_.begin() + hi + 1, u);
+  return int(it - cdf_.begin()) - 1;
 }
 
 float Distribution1D::sample_continuous(float u, float& pdf, int& index) const {
