@@ -2,6 +2,7 @@
 // (the environment map, emissive triangles by area, lights by power).
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 namespace lobe::render {
@@ -40,6 +41,7 @@ public:
   // Sample (u, v) in [0,1)^2 with density pdf over the unit square.
   void sample(float u1, float u2, float& u, float& v, float& pdf) const;
   float pdf(float u, float v) const;
+  float pdf_cell(int x, int y) const { return pdf_[std::size_t(y) * w_ + x]; } // pdf() in that cell
   bool empty() const { return rows_.empty(); }
 
 private:

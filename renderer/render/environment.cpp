@@ -9,7 +9,7 @@
 namespace lobe::render {
 
 EnvironmentLight::EnvironmentLight(std::vector<float> rgb, int w, int h, float rotation_deg)
-    : rgb_(std::move(rgb)), w_(w), h_(h) {
+    : w_(w), h_(h) {
   float r = rotation_deg * kPi / 180.0f;
   cos_r_ = std::cos(r), sin_r_ = std::sin(r);
   // Sampling weight: luminance times sin(theta) (the solid angle of a texel's row).
@@ -19,19 +19,26 @@ EnvironmentLight::EnvironmentLight(std::vector<float> rgb, int w, int h, float r
   for (int y = 0; y < h; ++y) {
     float s = std::sin(kPi * (y + 0.5f) / float(h));
     for (int x = 0; x < w; ++x) {
-      const float* p = &rgb_[(size_t(y) * w + x) * 3];
+      const float* p = &rgb[(size_t(y) * w + x) * 3];
       float l = std::max(0.0f, luminance({p[0], p[1], p[2]}));
       // Keep a small floor so every direction with radiance can be sampled.
       f[size_t(y) * w + x] =
           (l > 0 || p[0] > 0 || p[1] > 0 || p[2] > 0) ? std::max(l, 1e-6f) * s : 0;
       lum_sum += double(l) * s;
       weight_sum += s;
-      constant_ &= p[0] == rgb_[0] && p[1] == rgb_[1] && p[2] == rgb_[2];
+      constant_ &= p[0] == rgb[0] && p[1] == rgb[1] && p[2] == rgb[2];
     }
   }
   avg_lum_ = weight_sum > 0 ? float(lum_sum / weight_sum) : 0;
-  if (constant_ && !rgb_.empty()) color_ = {rgb_[0], rgb_[1], rgb_[2]};
+  if (constant_ && !rgb.empty()) color_ = {rgb[0], rgb[1], rgb[2]};
   dist_ = Distribution2D(f, w, h);
+  tex_.resize(size_t(w) * h * 4);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      size_t i = size_t(y) * w + x;
+      for (int c = 0; c < 3; ++c) tex_[i * 4 + c] = rgb[i * 3 + c];
+      tex_[i * 4 + 3] = dist_.pdf_cell(x, y);
+    }
 }
 
 EnvironmentLight EnvironmentLight::from_function(const std::function<Color3(const Vec3&)>& radiance,
@@ -82,7 +89,7 @@ float EnvironmentLight::pdf(const Vec3& dir) const {
   if (constant_) return 1 / (4 * kPi);
   float u, v;
   dir_to_uv(dir, u, v);
-  return table_pdf(u, v, sin_theta(dir));
+  return table_pdf(texel(u, v), sin_theta(dir));
 }
 
 Color3 EnvironmentLight::eval_pdf(const Vec3& dir, const Vec3& n, float& pdf) const {
@@ -96,8 +103,8 @@ Color3 EnvironmentLight::eval_pdf(const Vec3& dir, const Vec3& n, float& pdf) co
   }
   float u, v;
   dir_to_uv(dir, u, v);
-  pdf = table_pdf(u, v, sin_theta(dir));
   const float* p = texel(u, v);
+  pdf = table_pdf(p, sin_theta(dir));
   return {p[0], p[1], p[2]};
 }
 

@@ -56,16 +56,18 @@ public:
 
 private:
   Color3 eval_table(const Vec3& dir) const;
+  // A texel: radiance r, g, b and the distribution's density over the unit square there (one
+  // cache line holds what eval and pdf read).
   const float* texel(float u, float v) const {
     int x = std::min(std::max(int(u * w_), 0), w_ - 1),
         y = std::min(std::max(int(v * h_), 0), h_ - 1);
-    return &rgb_[(size_t(y) * w_ + x) * 3];
+    return &tex_[(size_t(y) * w_ + x) * 4];
   }
-  float table_pdf(float u, float v, float sin_theta) const {
-    return sin_theta > 0 ? dist_.pdf(u, v) / (2 * kPi * kPi * sin_theta) : 0;
+  static float table_pdf(const float* t, float sin_theta) {
+    return sin_theta > 0 ? t[3] / (2 * kPi * kPi * sin_theta) : 0;
   }
 
-  std::vector<float> rgb_;
+  std::vector<float> tex_; // w x h texels of 4 floats (see texel())
   int w_ = 0, h_ = 0;
   float cos_r_ = 1, sin_r_ = 0;
   float avg_lum_ = 0;
