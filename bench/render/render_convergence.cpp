@@ -119,42 +119,6 @@ void write_plot(const Options& o) {
   if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "gnuplot failed (plot skipped)\n");
 }
 
-// Embree alone: camera rays, then one cosine-distributed bounce from each first hit.
-double raw_embree_rate(const RenderScene& s, int w, int h, int spp, int threads,
-                       uint64_t& rays_out) {
-  std::vector<Ray> rays;
-  rays.reserve(size_t(w) * h * spp * 2);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      for (int k = 0; k < spp; ++k) {
-        Sampler smp(uint64_t(y) * w + x, k, 99);
-        Ray r = s.camera().generate(x + smp.next(), y + smp.next(), 0.5f, 0.5f);
-        rays.push_back(r);
-        SurfaceHit hit;
-        if (!s.geometry().intersect(r, hit)) continue;
-        Frame f(dot(hit.Ng, r.dir) < 0 ? hit.Ng : -hit.Ng);
-        float u1 = smp.next(), u2 = smp.next(), rr = std::sqrt(u1), phi = 2 * kPi * u2;
-        Vec3 d = f.to_world({rr * std::cos(phi), rr * std::sin(phi), std::sqrt(1 - u1)});
-        rays.push_back({offset_ray_origin(hit.P, hit.Ng, d), d});
-      }
-  std::atomic<uint64_t> hits{0};
-  tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
-  auto t0 = std::chrono::steady_clock::now();
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 4096), [&](auto r) {
-      uint64_t n = 0;
-      for (size_t i = r.begin(); i < r.end(); ++i) {
-        float t;
-        n += s.geometry().intersect_raw(rays[i], t);
-      }
-      hits += n;
-    });
-  });
-  double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  rays_out = rays.size();
-  return double(rays.size()) / sec;
-}
-
 } // namespace
 
 int main(int argc, char** argv) {
@@ -239,7 +203,7 @@ int main(int argc, char** argv) {
   int threads = opt.threads > 0 ? opt.threads : tbb::this_task_arena::max_concurrency();
   double shade_share = st.counters.shade_seconds / (st.seconds * threads);
   uint64_t raw_rays = 0;
-  double raw = raw_embree_rate(s, o.width, o.height, 16, opt.threads, raw_rays);
+  double raw = raw_traversal_rate(s, o.width, o.height, 16, opt.threads, raw_rays);
   std::printf("renderer: %.2f Mrays/s (%llu rays, %llu shades in %.2f s on %d threads), "
               "shading %.0f%% of thread time\n",
               double(rays) / st.seconds / 1e6, (unsigned long long)rays,

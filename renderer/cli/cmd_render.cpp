@@ -13,11 +13,14 @@
 #include "scene.h"
 
 #include <CLI/CLI.hpp>
+#include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <mutex>
 #include <unistd.h>
@@ -28,33 +31,45 @@ namespace {
 std::atomic<bool> g_cancel{false};
 extern "C" void on_sigint(int) { g_cancel.store(true); }
 
-// Prints a progress line at most every 0.25 s: percentage, samples/s and time left.
+// Progress on stderr. Bar: one line redrawn at most every 0.25 s (percentage, samples/s, time
+// left). Lines: a line at each further 10% (for logs, where a redrawn line is noise).
 class ProgressBar {
 public:
-  explicit ProgressBar(bool enabled) : enabled_(enabled), t0_(clock::now()) {}
+  enum class Mode { None, Bar, Lines };
+  explicit ProgressBar(Mode mode) : mode_(mode), t0_(clock::now()) {}
   void update(uint64_t done, uint64_t total) {
-    if (!enabled_) return;
+    if (mode_ == Mode::None) return;
     std::lock_guard<std::mutex> lock(mu_);
     auto now = clock::now();
-    if (done < total && now - last_ < std::chrono::milliseconds(250)) return;
-    last_ = now;
+    double frac = total ? double(done) / double(total) : 1.0;
     double el = std::chrono::duration<double>(now - t0_).count();
     double rate = el > 0 ? double(done) / el : 0;
     double left = rate > 0 ? double(total - done) / rate : 0;
-    int width = 30, fill = total ? int(width * double(done) / double(total)) : width;
+    if (mode_ == Mode::Lines) {
+      int tenth = int(frac * 10 + 1e-9);
+      if (tenth <= last_tenth_) return;
+      last_tenth_ = tenth;
+      std::fprintf(stderr, "render: %3d%%  %.1fs elapsed, %.1fs left\n", tenth * 10, el, left);
+      std::fflush(stderr);
+      return;
+    }
+    if (done < total && now - last_ < std::chrono::milliseconds(250)) return;
+    last_ = now;
+    int width = 30, fill = int(width * frac);
     std::fprintf(stderr, "\r[%s%s] %5.1f%%  %.2f Msamples/s  %.1fs left   ",
                  std::string(fill, '#').c_str(), std::string(width - fill, '.').c_str(),
-                 total ? 100.0 * double(done) / double(total) : 100.0, rate / 1e6, left);
+                 100.0 * frac, rate / 1e6, left);
     std::fflush(stderr);
   }
   void finish() {
-    if (enabled_) std::fprintf(stderr, "\n");
+    if (mode_ == Mode::Bar) std::fprintf(stderr, "\n");
   }
 
 private:
   using clock = std::chrono::steady_clock;
-  bool enabled_;
+  Mode mode_;
   clock::time_point t0_, last_{};
+  int last_tenth_ = 0;
   std::mutex mu_;
 };
 
@@ -65,14 +80,58 @@ struct Args {
   int spp = 0, threads = 0, max_depth = 0;
   long long seed = -1;
   long long max_loop_iterations = 100000000;
-  float exposure = 0;
-  bool quiet = false;
+  float exposure = 0, clamp = -1;
+  bool quiet = false, stats = false;
+  std::string progress = "auto";
 };
 
 lobe::render::Strategy parse_strategy(const std::string& s) {
   if (s == "bsdf") return lobe::render::Strategy::BsdfOnly;
   if (s == "light") return lobe::render::Strategy::LightOnly;
   return lobe::render::Strategy::Mis;
+}
+
+// --stats: where the time went, set-up by stage and the render by phase, with the rates.
+void print_stats(const lobe::render::RenderScene& scene, const lobe::scene::SceneDesc& desc,
+                 double load_s, double setup_s, const lobe::render::RenderStats& stats,
+                 const lobe::scene::Settings& st, int threads_opt) {
+  const lobe::render::SetupStats& ss = scene.stats();
+  size_t triangles = 0;
+  for (const auto& sh : desc.shapes) triangles += sh.mesh.indices.size() / 3;
+  std::fprintf(stderr,
+               "stats: set-up %.2fs: scene file %.2fs (%zu mesh triangles), Embree build %.2fs, "
+               "materials %.2fs, environment %.2fs, lights %.2fs\n",
+               load_s + setup_s, load_s, triangles, ss.geometry_seconds, ss.compile_seconds,
+               ss.environment_seconds, ss.lights_seconds);
+  const lobe::render::PhaseTicks& p = stats.counters.phases;
+  double total = double(p.total());
+  int threads = threads_opt > 0 ? threads_opt : tbb::this_task_arena::max_concurrency();
+  uint64_t rays = stats.counters.rays + stats.counters.shadow_rays;
+  if (total > 0) {
+    auto pc = [&](uint64_t t) { return 100.0 * double(t) / total; };
+    std::fprintf(stderr,
+                 "stats: render %.2fs on %d threads: traversal %.0f%%, hit data %.0f%%, shading "
+                 "%.0f%%, BSDF %.0f%%, lights %.0f%%, integrator %.0f%% (of path time, 1 path "
+                 "in %d timed)\n",
+                 stats.seconds, threads, pc(p.traverse), pc(p.hit), pc(p.shade), pc(p.bsdf),
+                 pc(p.lights), pc(p.other), lobe::render::kProfileEvery);
+    // Embree's rate inside the render: the rays over the thread time spent traversing.
+    double trav_s = stats.seconds * threads * double(p.traverse) / total;
+    std::fprintf(
+        stderr,
+        "stats: %.2f Mrays/s (%llu closest-hit + %llu shadow rays, %llu shades); "
+        "traversal alone in the render %.2f Mrays/s\n",
+        stats.seconds > 0 ? double(rays) / stats.seconds / 1e6 : 0.0,
+        (unsigned long long)stats.counters.rays, (unsigned long long)stats.counters.shadow_rays,
+        (unsigned long long)stats.counters.shades, trav_s > 0 ? double(rays) / trav_s / 1e6 : 0.0);
+  }
+  uint64_t raw_rays = 0;
+  double raw = lobe::render::raw_traversal_rate(scene, st.width, st.height, std::min(st.spp, 4),
+                                                threads_opt, raw_rays);
+  std::fprintf(stderr,
+               "stats: Embree raw traversal %.2f Mrays/s (%llu camera + diffuse-bounce "
+               "closest-hit rays, no shading, %d threads)\n",
+               raw / 1e6, (unsigned long long)raw_rays, threads);
 }
 
 int run_render(int argc, char** argv) {
@@ -87,6 +146,11 @@ int run_render(int argc, char** argv) {
   app.add_option("--seed", a.seed, "random seed")->check(CLI::Range(0LL, 1LL << 40));
   app.add_option("--max-depth", a.max_depth, "maximum bounces")->check(CLI::Range(1, 1024));
   app.add_option("--exposure", a.exposure, "exposure in stops for PNG output");
+  app.add_option("--clamp", a.clamp,
+                 "luminance cap on each indirect contribution (light reaching a path after its "
+                 "first bounce), against fireflies from caustics; biased; 0: none (default: the "
+                 "scene's settings.clamp)")
+      ->check(CLI::Range(0.0f, 3.4e38f));
   app.add_option("--materials", a.backend, "material backend: auto, jit or native")
       ->check(CLI::IsMember({"auto", "jit", "native"}));
   app.add_option("--closures", a.closures,
@@ -103,6 +167,14 @@ int run_render(int argc, char** argv) {
                  "(0: unlimited, -1: no checks)")
       ->check(CLI::Range(-1LL, 1LL << 62));
   app.add_flag("-q,--quiet", a.quiet, "no progress or summary");
+  app.add_flag("--stats", a.stats,
+               "after the summary: set-up times by stage, the render's time split (traversal, "
+               "hit data, shading, BSDF, lights; sampled on one path in 8) and Embree's raw "
+               "traversal rate on this scene, measured after the render");
+  app.add_option("--progress", a.progress,
+                 "progress on stderr: auto (a bar when stderr is a terminal), bar, lines (a "
+                 "line every 10%, for logs) or none")
+      ->check(CLI::IsMember({"auto", "bar", "lines", "none"}));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -111,6 +183,7 @@ int run_render(int argc, char** argv) {
 
   std::string err;
   lobe::scene::SceneDesc desc;
+  auto t_load = std::chrono::steady_clock::now();
   if (a.scene.empty()) {
     desc = lobe::render::default_scene();
   } else {
@@ -121,6 +194,7 @@ int run_render(int argc, char** argv) {
     }
     desc = std::move(*s);
   }
+  double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_load).count();
   for (const std::string& w : desc.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   lobe::scene::Settings& st = desc.settings;
   if (a.res.size() == 2) st.width = a.res[0], st.height = a.res[1];
@@ -128,6 +202,7 @@ int run_render(int argc, char** argv) {
   if (a.max_depth) st.max_depth = a.max_depth;
   if (a.seed >= 0) st.seed = uint64_t(a.seed);
   if (app.count("--exposure")) st.exposure = a.exposure;
+  if (app.count("--clamp")) st.clamp = a.clamp;
   std::string out = !a.output.empty() ? a.output : (!st.output.empty() ? st.output : "lobe.png");
   // A bad output path is found now, not after a long render.
   if (std::string e = lobe::image::check_writable(out); !e.empty()) {
@@ -182,7 +257,16 @@ int run_render(int argc, char** argv) {
   opt.threads = a.threads;
   opt.strategy = parse_strategy(a.strategy);
   opt.aovs = lobe::image::keeps_all_channels(out); // AOV channels only where they are kept
-  ProgressBar bar(!a.quiet && isatty(STDERR_FILENO));
+  opt.profile = a.stats;
+  opt.clamp = st.clamp;
+  ProgressBar::Mode mode = ProgressBar::Mode::None;
+  if (!a.quiet) {
+    if (a.progress == "bar" || (a.progress == "auto" && isatty(STDERR_FILENO)))
+      mode = ProgressBar::Mode::Bar;
+    else if (a.progress == "lines")
+      mode = ProgressBar::Mode::Lines;
+  }
+  ProgressBar bar(mode);
   lobe::render::RenderStats stats;
   lobe::image::Image img = lobe::render::render_image(
       scene, st.width, st.height, opt, &g_cancel, [&](uint64_t d, uint64_t t) { bar.update(d, t); },
@@ -213,12 +297,15 @@ int run_render(int argc, char** argv) {
     uint64_t rays = stats.counters.rays + stats.counters.shadow_rays;
     // Interrupted: how many samples per pixel finished (pixels of the last, partial pass have
     // one more), e.g. "8.4 of 32 spp".
-    char spp[64];
+    char spp[128];
     if (stats.cancelled)
       std::snprintf(spp, sizeof spp, "%.1f of %d spp",
                     double(stats.samples) / (double(st.width) * st.height), st.spp);
     else
       std::snprintf(spp, sizeof spp, "%d spp", st.spp);
+    if (st.clamp > 0) // biased: always said
+      std::snprintf(spp + std::strlen(spp), sizeof spp - std::strlen(spp),
+                    ", indirect light clamped at %g", st.clamp);
     std::fprintf(stderr,
                  "%s%s: %dx%d, %s, %s materials (%d compiled in %.2fs, %d with closure "
                  "kernels, %d from the cache, setup %.2fs), render %.2fs, %.2f Mrays/s\n",
@@ -228,6 +315,7 @@ int run_render(int argc, char** argv) {
                  scene.stats().closure_kernels, scene.stats().closure_kernels_cached, setup_s,
                  stats.seconds, stats.seconds > 0 ? double(rays) / stats.seconds / 1e6 : 0.0);
   }
+  if (a.stats) print_stats(scene, desc, load_s, setup_s, stats, st, a.threads);
   return stats.cancelled ? 130 : 0;
 }
 

@@ -1,6 +1,11 @@
 // The default scene: five stdlib materials on spheres (matte, plastic, rough gold, glass,
-// brushed aluminium) on a ground plane under the procedural sky. Sized to render in well
-// under 30 s on two cores at its default settings.
+// brushed aluminium) on a ground plane under the procedural sky. Sized for two cores: about 14 s
+// of CPU time at its default settings (27M rays), i.e. about 7 s on two free cores. Indirect light
+// is clamped at luminance 10 (biased, and said so in the summary; `--clamp 0` renders it
+// unclamped): the sun seen through the glass and in the rough gold from the diffuse ground is a
+// caustic that unclamped paths find only rarely, as fireflies. On a 240x240 close-up of the gold
+// sphere at 32 spp, against a 512-spp unclamped image: relMSE 0.84 -> 0.023 (gold 0.109 -> 0.015),
+// image mean 1.1% darker.
 #include "default_scene.h"
 
 namespace lobe::render {
@@ -9,7 +14,7 @@ const std::string& default_scene_json() {
   static const std::string text = R"({
   "camera": {"eye": [0, 1.5, 7.5], "look_at": [0, 0.75, 0], "fov": 30},
   "settings": {"resolution": [800, 400], "spp": 32, "max_depth": 8, "exposure": -1,
-               "output": "lobe.png"},
+               "clamp": 10, "output": "lobe.png"},
   "materials": {
     "ground":  {"shader": "matte", "params": {"Cs": [0.55, 0.55, 0.52]}},
     "matte":   {"shader": "matte", "params": {"Cs": [0.75, 0.18, 0.12]}},

@@ -19,10 +19,17 @@ Distribution1D::Distribution1D(const std::vector<float>& f) : func_(f), cdf_(f.s
   if (!(sum > 0)) {
     for (size_t i = 0; i < n; ++i) func_[i] = 1, cdf_[i + 1] = float(i + 1) / float(n);
     integral_ = n ? 1.0f : 0.0f;
+    guide_.clear(); // binary search (a uniform table is rare and small)
     return;
   }
   for (size_t i = 1; i <= n; ++i) cdf_[i] = static_cast<float>(cdf_[i] / sum);
   cdf_[n] = 1;
+  guide_.resize(n);
+  for (size_t k = 0, i = 0; k < n; ++k) { // guide_[k] = last cell i with cdf_[i] <= k / n
+    float u = float(k) / float(n);
+    while (i + 1 < n && cdf_[i + 1] <= u) ++i;
+    guide_[k] = int(i);
+  }
 }
 
 static int find_interval(const std::vector<float>& cdf, float u) {
@@ -32,8 +39,19 @@ static int find_interval(const std::vector<float>& cdf, float u) {
   return std::clamp(i, 0, static_cast<int>(cdf.size()) - 2);
 }
 
+// The cell find_interval gives (last i with cdf_[i] <= u, clamped), searched only between the
+// guides around u: cdf_[guide_[k]] <= k/n <= u < (k+1)/n < cdf_[guide_[k+1] + 1].
+int Distribution1D::find(float u) const {
+  const int n = size();
+  if (guide_.empty() || !(u >= 0) || !(u < 1)) return find_interval(cdf_, u);
+  int k = std::min(int(u * float(n)), n - 1);
+  int lo = guide_[size_t(k)], hi = k + 1 < n ? guide_[size_t(k) + 1] : n - 1;
+  auto it = std::upper_bound(cdf_.begin() + lo + 1, cdf_.begin() + hi + 1, u);
+  return int(it - cdf_.begin()) - 1;
+}
+
 float Distribution1D::sample_continuous(float u, float& pdf, int& index) const {
-  index = find_interval(cdf_, u);
+  index = find(u);
   float width = cdf_[index + 1] - cdf_[index];
   float du = width > 0 ? (u - cdf_[index]) / width : 0.5f;
   pdf = integral_ > 0 ? func_[index] / integral_ : 0;
@@ -42,7 +60,7 @@ float Distribution1D::sample_continuous(float u, float& pdf, int& index) const {
 }
 
 int Distribution1D::sample_discrete(float u, float& prob) const {
-  int i = find_interval(cdf_, u);
+  int i = find(u);
   prob = discrete_prob(i);
   return i;
 }
@@ -66,6 +84,9 @@ Distribution2D::Distribution2D(const std::vector<float>& f, int w, int h) : w_(w
     marg[y] = rows_.back().integral();
   }
   marginal_ = Distribution1D(marg);
+  pdf_.resize(size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) pdf_[size_t(y) * w + x] = marginal_.pdf(y) * rows_[y].pdf(x);
 }
 
 void Distribution2D::sample(float u1, float u2, float& u, float& v, float& pdf) const {
@@ -78,7 +99,7 @@ void Distribution2D::sample(float u1, float u2, float& u, float& v, float& pdf) 
 
 float Distribution2D::pdf(float u, float v) const {
   int iu = std::clamp(int(u * w_), 0, w_ - 1), iv = std::clamp(int(v * h_), 0, h_ - 1);
-  return marginal_.pdf(iv) * rows_[iv].pdf(iu);
+  return pdf_[size_t(iv) * w_ + iu];
 }
 
 } // namespace lobe::render

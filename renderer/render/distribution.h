@@ -2,6 +2,7 @@
 // (the environment map, emissive triangles by area, lights by power).
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 namespace lobe::render {
@@ -23,7 +24,12 @@ public:
   float pdf(int i) const; // density over [0,1] in cell i
 
 private:
+  int find(float u) const;
+
   std::vector<float> func_, cdf_;
+  // guide_[k]: the cell of u = k / size() (a start for the search of any u in [k, k+1) /
+  // size(): a few steps forward instead of a binary search; same cell as the binary search).
+  std::vector<int> guide_;
   float integral_ = 0;
 };
 
@@ -35,11 +41,13 @@ public:
   // Sample (u, v) in [0,1)^2 with density pdf over the unit square.
   void sample(float u1, float u2, float& u, float& v, float& pdf) const;
   float pdf(float u, float v) const;
+  float pdf_cell(int x, int y) const { return pdf_[std::size_t(y) * w_ + x]; } // pdf() in that cell
   bool empty() const { return rows_.empty(); }
 
 private:
   std::vector<Distribution1D> rows_;
   Distribution1D marginal_;
+  std::vector<float> pdf_; // w x h: marginal pdf x row pdf, one load for pdf()
   int w_ = 0, h_ = 0;
 };
 

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using namespace lobe::render;
 
 TEST(Distribution1D, DiscreteFrequenciesMatchWeights) {
@@ -39,6 +41,29 @@ TEST(Distribution1D, RemappedUniformStaysUniform) {
   int i = d.sample_discrete(0.75f + 0.5f * 0.25f, p, rest); // middle of cell 2 ([0.5, 1))
   EXPECT_EQ(i, 2);
   EXPECT_NEAR(rest, 0.75f, 1e-6);
+}
+
+TEST(Distribution1D, GuidedSearchFindsTheCellAtEveryBoundary) {
+  // Weights summing to 8: the CDF is exact in float (0, 1/8, 1/8, 1/8, 4/8, 6/8, 6/8, 1), so
+  // the cell of u is known: the last i with cdf[i] <= u, zero-width cells skipped. Checked at
+  // every multiple of 1/64 (all boundaries included) and just below each.
+  Distribution1D d({1, 0, 0, 3, 2, 0, 2});
+  const float cdf[8] = {0, 0.125f, 0.125f, 0.125f, 0.5f, 0.75f, 0.75f, 1};
+  auto expected = [&](float u) {
+    int i = 0;
+    for (int k = 0; k < 7; ++k)
+      if (cdf[k] <= u) i = k;
+    return i;
+  };
+  for (int k = 0; k < 64; ++k)
+    for (float u : {k / 64.0f, std::nextafter(k / 64.0f, 0.0f), std::nextafter(k / 64.0f, 1.0f)}) {
+      if (!(u >= 0 && u < 1)) continue;
+      float prob;
+      EXPECT_EQ(d.sample_discrete(u, prob), expected(u)) << u;
+    }
+  float prob;
+  EXPECT_EQ(d.sample_discrete(0x1.fffffep-1f, prob), 6);
+  EXPECT_FLOAT_EQ(prob, 0.25f);
 }
 
 TEST(Distribution1D, AllZeroIsUniform) {

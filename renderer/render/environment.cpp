@@ -9,7 +9,7 @@
 namespace lobe::render {
 
 EnvironmentLight::EnvironmentLight(std::vector<float> rgb, int w, int h, float rotation_deg)
-    : rgb_(std::move(rgb)), w_(w), h_(h) {
+    : w_(w), h_(h) {
   float r = rotation_deg * kPi / 180.0f;
   cos_r_ = std::cos(r), sin_r_ = std::sin(r);
   // Sampling weight: luminance times sin(theta) (the solid angle of a texel's row).
@@ -19,18 +19,26 @@ EnvironmentLight::EnvironmentLight(std::vector<float> rgb, int w, int h, float r
   for (int y = 0; y < h; ++y) {
     float s = std::sin(kPi * (y + 0.5f) / float(h));
     for (int x = 0; x < w; ++x) {
-      const float* p = &rgb_[(size_t(y) * w + x) * 3];
+      const float* p = &rgb[(size_t(y) * w + x) * 3];
       float l = std::max(0.0f, luminance({p[0], p[1], p[2]}));
       // Keep a small floor so every direction with radiance can be sampled.
       f[size_t(y) * w + x] =
           (l > 0 || p[0] > 0 || p[1] > 0 || p[2] > 0) ? std::max(l, 1e-6f) * s : 0;
       lum_sum += double(l) * s;
       weight_sum += s;
-      constant_ &= p[0] == rgb_[0] && p[1] == rgb_[1] && p[2] == rgb_[2];
+      constant_ &= p[0] == rgb[0] && p[1] == rgb[1] && p[2] == rgb[2];
     }
   }
   avg_lum_ = weight_sum > 0 ? float(lum_sum / weight_sum) : 0;
+  if (constant_ && !rgb.empty()) color_ = {rgb[0], rgb[1], rgb[2]};
   dist_ = Distribution2D(f, w, h);
+  tex_.resize(size_t(w) * h * 4);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      size_t i = size_t(y) * w + x;
+      for (int c = 0; c < 3; ++c) tex_[i * 4 + c] = rgb[i * 3 + c];
+      tex_[i * 4 + 3] = dist_.pdf_cell(x, y);
+    }
 }
 
 EnvironmentLight EnvironmentLight::from_function(const std::function<Color3(const Vec3&)>& radiance,
@@ -66,30 +74,71 @@ void EnvironmentLight::dir_to_uv(const Vec3& dw, float& u, float& v) const {
   u = u - std::floor(u);
 }
 
-Color3 EnvironmentLight::eval(const Vec3& dir) const {
-  if (!valid()) return {};
+Color3 EnvironmentLight::eval_table(const Vec3& dir) const {
   float u, v;
   dir_to_uv(dir, u, v);
-  int x = std::clamp(int(u * w_), 0, w_ - 1), y = std::clamp(int(v * h_), 0, h_ - 1);
-  const float* p = &rgb_[(size_t(y) * w_ + x) * 3];
+  const float* p = texel(u, v);
   return {p[0], p[1], p[2]};
 }
 
+// sin(theta) of a direction: theta is measured from +Y, which the rotation keeps.
+static float sin_theta(const Vec3& d) { return std::sqrt(std::max(0.0f, 1 - d.y * d.y)); }
+
 float EnvironmentLight::pdf(const Vec3& dir) const {
   if (!valid()) return 0;
+  if (constant_) return 1 / (4 * kPi);
   float u, v;
   dir_to_uv(dir, u, v);
-  float st = std::sin(v * kPi);
-  if (!(st > 0)) return 0;
-  return dist_.pdf(u, v) / (2 * kPi * kPi * st);
+  return table_pdf(texel(u, v), sin_theta(dir));
+}
+
+Color3 EnvironmentLight::eval_pdf(const Vec3& dir, const Vec3& n, float& pdf) const {
+  if (constant_) {
+    pdf = std::max(0.0f, dot(dir, n)) * kInvPi;
+    return color_;
+  }
+  if (!valid()) {
+    pdf = 0;
+    return {};
+  }
+  float u, v;
+  dir_to_uv(dir, u, v);
+  const float* p = texel(u, v);
+  pdf = table_pdf(p, sin_theta(dir));
+  return {p[0], p[1], p[2]};
 }
 
 Vec3 EnvironmentLight::sample(float u1, float u2, float& pdf) const {
+  if (constant_) {
+    pdf = 1 / (4 * kPi);
+    return square_to_uniform_sphere(u1, u2);
+  }
   float u, v, p;
   dist_.sample(u1, u2, u, v, p);
   float st = std::sin(v * kPi);
   pdf = st > 0 ? p / (2 * kPi * kPi * st) : 0;
   return uv_to_dir(u, v);
+}
+
+Vec3 EnvironmentLight::sample(const Vec3& n, float u1, float u2, float& pdf, Color3& L) const {
+  if (constant_) {
+    Vec3 l = square_to_cosine_hemisphere(u1, u2);
+    pdf = l.z * kInvPi;
+    L = color_;
+    return Frame(n).to_world(l);
+  }
+  float u, v, p;
+  dist_.sample(u1, u2, u, v, p);
+  const float* t = texel(u, v);
+  L = {t[0], t[1], t[2]};
+  float st = std::sin(v * kPi);
+  pdf = st > 0 ? p / (2 * kPi * kPi * st) : 0;
+  return uv_to_dir(u, v);
+}
+
+float EnvironmentLight::pdf(const Vec3& dir, const Vec3& n) const {
+  if (!constant_) return pdf(dir);
+  return std::max(0.0f, dot(dir, n)) * kInvPi;
 }
 
 } // namespace lobe::render

@@ -6,14 +6,21 @@
 // Radiance lookups read the same table the distribution was built from, so lookup and pdf
 // agree exactly and MIS weights are consistent.
 //
+// A table whose texels are all equal (a constant environment, or a background shader that
+// returns one colour) skips the table: eval is the colour, and sampling is uniform over the
+// sphere, or cosine-weighted about a surface normal when one is given (pdf cos/pi on its
+// hemisphere, 0 below), with exact pdfs; the expected image is the same.
+//
 // Mapping (after rotating by -rotation about +Y): v = theta/pi with theta measured from +Y
 // (row 0 is straight up), u = 0.5 + atan2(x, -z) / (2 pi) (the image centre looks down -Z).
 #pragma once
 
 #include "distribution.h"
+#include "sampling.h"
 
 #include "lobe/vec.h"
 
+#include <algorithm>
 #include <functional>
 #include <vector>
 
@@ -29,9 +36,18 @@ public:
                                         int h, float rotation_deg);
 
   bool valid() const { return w_ > 0; }
-  Color3 eval(const Vec3& dir) const;
+  Color3 eval(const Vec3& dir) const {
+    return constant_ ? color_ : (valid() ? eval_table(dir) : Color3{});
+  }
   float pdf(const Vec3& dir) const;                  // solid-angle density of sample()
   Vec3 sample(float u1, float u2, float& pdf) const; // direction towards the environment
+  // As seen from a surface with unit normal `n` (on the side the light is wanted): a constant
+  // environment is sampled cosine-weighted about n; a table as above (n unused). `L` gets the
+  // radiance of the sampled texel (no second lookup).
+  Vec3 sample(const Vec3& n, float u1, float u2, float& pdf, Color3& L) const;
+  float pdf(const Vec3& dir, const Vec3& n) const; // solid-angle density of sample(n, ...)
+  // eval(dir) and pdf(dir, n) with one direction-to-texel mapping.
+  Color3 eval_pdf(const Vec3& dir, const Vec3& n, float& pdf) const;
   float average_luminance() const { return avg_lum_; }
   bool is_constant() const { return constant_; }
 
@@ -39,11 +55,24 @@ public:
   void dir_to_uv(const Vec3& d, float& u, float& v) const;
 
 private:
-  std::vector<float> rgb_;
+  Color3 eval_table(const Vec3& dir) const;
+  // A texel: radiance r, g, b and the distribution's density over the unit square there (one
+  // cache line holds what eval and pdf read).
+  const float* texel(float u, float v) const {
+    int x = std::min(std::max(int(u * w_), 0), w_ - 1),
+        y = std::min(std::max(int(v * h_), 0), h_ - 1);
+    return &tex_[(size_t(y) * w_ + x) * 4];
+  }
+  static float table_pdf(const float* t, float sin_theta) {
+    return sin_theta > 0 ? t[3] / (2 * kPi * kPi * sin_theta) : 0;
+  }
+
+  std::vector<float> tex_; // w x h texels of 4 floats (see texel())
   int w_ = 0, h_ = 0;
   float cos_r_ = 1, sin_r_ = 0;
   float avg_lum_ = 0;
   bool constant_ = false;
+  Color3 color_; // the colour of a constant table
   Distribution2D dist_;
 };
 

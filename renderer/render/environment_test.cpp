@@ -57,6 +57,24 @@ TEST(Environment, PdfIntegratesToOneAndMatchesSample) {
   }
 }
 
+TEST(Environment, TableSampleWithNormalReturnsTheTexelAndEvalPdfAgrees) {
+  EnvironmentLight env = gradient_env(25);
+  const Vec3 n{0, 1, 0};
+  Sampler s(2, 7, 3);
+  for (int i = 0; i < 500; ++i) {
+    float p, q;
+    Color3 L;
+    Vec3 d = env.sample(n, s.next(), s.next(), p, L);
+    ASSERT_GT(p, 0);
+    EXPECT_NEAR(env.pdf(d), p, 2e-3 * p);
+    Color3 e = env.eval_pdf(d, n, q);
+    EXPECT_FLOAT_EQ(q, env.pdf(d));
+    EXPECT_FLOAT_EQ(e.x, env.eval(d).x);
+    // The texel sampled is the one the direction maps back to (up to texel-edge rounding).
+    EXPECT_NEAR(L.x, e.x, 0.05f * e.x);
+  }
+}
+
 TEST(Environment, ImportanceSampledIrradianceMatchesClosedForm) {
   // Irradiance at an upward-facing point: integral over the upper hemisphere of
   // (1 + 3 cos^2) cos dw = pi + 3 * 2pi/4 = 2.5 pi (red channel).
@@ -80,6 +98,65 @@ TEST(Environment, ConstantIsExact) {
   EXPECT_TRUE(env.is_constant());
   EXPECT_NEAR(env.pdf(normalize(Vec3{0.3f, 0.01f, 0.8f})), 1 / (4 * M_PI), 2e-3 / (4 * M_PI));
   EXPECT_FLOAT_EQ(env.eval({1, 0, 0}).y, 0.5f);
+}
+
+TEST(Environment, ConstantSamplerPdfsAreClosedFormsAndIntegrateToOne) {
+  // The constant fast path: uniform over the sphere without a normal (pdf 1/(4 pi)), cosine-
+  // weighted about a normal n with one (pdf max(cos, 0)/pi); both integrate to one and the pdf
+  // each sample reports is the closed form at its direction.
+  EnvironmentLight env(std::vector<float>(3, 0.7f), 1, 1, 0);
+  ASSERT_TRUE(env.is_constant());
+  const Vec3 n = normalize(Vec3{0.3f, -0.5f, 0.8f});
+  Sampler s(3, 1, 4);
+  double sum_u = 0, sum_c = 0, above = 0;
+  const int n_mc = 200000;
+  for (int i = 0; i < n_mc; ++i) {
+    Vec3 d = square_to_uniform_sphere(s.next(), s.next()); // Monte Carlo over the sphere
+    sum_u += env.pdf(d);
+    sum_c += env.pdf(d, n);
+  }
+  EXPECT_NEAR(sum_u / n_mc * 4 * M_PI, 1.0, 1e-6);
+  EXPECT_NEAR(sum_c / n_mc * 4 * M_PI, 1.0, 0.01); // cos/pi over the sphere: standard error 0.4%
+  double cos_sum = 0;
+  for (int i = 0; i < 20000; ++i) {
+    float pu, pc;
+    Vec3 du = env.sample(s.next(), s.next(), pu);
+    EXPECT_NEAR(length(du), 1.0f, 1e-5);
+    EXPECT_FLOAT_EQ(pu, float(1 / (4 * M_PI)));
+    Color3 L;
+    Vec3 dc = env.sample(n, s.next(), s.next(), pc, L);
+    EXPECT_FLOAT_EQ(L.y, 0.7f);
+    EXPECT_NEAR(length(dc), 1.0f, 1e-5);
+    float c = dot(dc, n);
+    above += c >= 0;
+    cos_sum += c;
+    EXPECT_NEAR(pc, std::max(c, 0.0f) / M_PI, 1e-5);
+    EXPECT_NEAR(env.pdf(dc, n), pc, 1e-6);
+  }
+  EXPECT_EQ(above, 20000); // never below the surface
+  // E[cos] under the cosine density: integral of cos^2/pi over the hemisphere = 2/3.
+  EXPECT_NEAR(cos_sum / 20000, 2.0 / 3.0, 0.01);
+  EXPECT_FLOAT_EQ(env.eval(normalize(Vec3{-1, 2, 3})).x, 0.7f);
+}
+
+TEST(Environment, ConstantIrradianceIsPiTimesRadiance) {
+  // Irradiance of a constant radiance L on a surface: pi L, estimated from either sampler.
+  EnvironmentLight env(std::vector<float>(3, 0.7f), 1, 1, 0);
+  const Vec3 n = normalize(Vec3{-0.2f, 0.9f, 0.1f});
+  Sampler s(8, 2, 1);
+  double sum_u = 0, sum_c = 0;
+  const int n_mc = 100000;
+  for (int i = 0; i < n_mc; ++i) {
+    float p;
+    Vec3 d = env.sample(s.next(), s.next(), p);
+    sum_u += env.eval(d).x * std::max(0.0f, dot(d, n)) / p;
+    Color3 L;
+    d = env.sample(n, s.next(), s.next(), p, L);
+    if (p > 0) sum_c += L.x * dot(d, n) / p;
+  }
+  EXPECT_NEAR(sum_u / n_mc, M_PI * 0.7, 0.01 * M_PI * 0.7);
+  // Cosine sampling cancels the cosine: every sample is exactly pi L.
+  EXPECT_NEAR(sum_c / n_mc, M_PI * 0.7, 1e-4);
 }
 
 TEST(Sky, SunDiskDeliversItsIrradiance) {

@@ -27,6 +27,9 @@ struct SurfaceHit {
   Vec3 dPdu, dPdv;
 };
 
+// Scenes with more mesh triangles than this build their BVH at Embree's MEDIUM quality.
+constexpr size_t kMediumBuildTriangles = 200000;
+
 Vec3 offset_ray_origin(const Vec3& p, const Vec3& ng, const Vec3& dir);
 
 class Geometry {
@@ -40,9 +43,22 @@ public:
   std::string build(const std::vector<scene::Shape>& shapes);
 
   bool intersect(const Ray& ray, SurfaceHit& hit) const;
+  // intersect() in its two halves (timed apart by --stats): Embree's traversal, then the
+  // surface data at the hit it found.
+  struct RawHit {
+    float t = 0, u = 0, v = 0;
+    unsigned geom = RTC_INVALID_GEOMETRY_ID;
+    int prim = -1;
+  };
+  bool traverse(const Ray& ray, RawHit& raw) const;
+  void complete(const Ray& ray, const RawHit& raw, SurfaceHit& hit) const;
   bool occluded(const Vec3& org, const Vec3& dir, float tmax) const;
   // Raw traversal only (no surface data), for benchmarks: Embree's own speed.
   bool intersect_raw(const Ray& ray, float& t) const;
+
+  // Per shape: whether surface() computes a mesh's dPdu/dPdv (0: left zero, for materials that
+  // read neither tangents nor derivatives). Unset: always.
+  void set_tangents_needed(std::vector<char> needed) { tangents_ = std::move(needed); }
 
   // Surface data at (shape, prim, barycentric u, v) as intersect() fills it.
   void surface(int shape, int prim, float bu, float bv, SurfaceHit& hit) const;
@@ -60,6 +76,7 @@ private:
   const std::vector<scene::Shape>* shapes_ = nullptr;
   std::vector<scene::Mesh> meshes_; // per shape; quads converted, spheres empty
   std::vector<int> geom_to_shape_;
+  std::vector<char> tangents_;
   Vec3 center_;
   float radius_ = 1;
 };

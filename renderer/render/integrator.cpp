@@ -5,9 +5,36 @@
 #include "lobe/context.h"
 
 #include <chrono>
+#if defined(__x86_64__) || defined(__i386__)
+#include <x86intrin.h>
+#endif
 
 namespace lobe::render {
 namespace {
+
+uint64_t ticks() {
+#if defined(__x86_64__) || defined(__i386__)
+  return __rdtsc();
+#else
+  return uint64_t(std::chrono::steady_clock::now().time_since_epoch().count());
+#endif
+}
+
+// Attributes the time since the previous lap to a phase; does nothing for untimed paths.
+class Laps {
+public:
+  explicit Laps(PhaseTicks* p) : p_(p), t_(p ? ticks() : 0) {}
+  void operator()(uint64_t PhaseTicks::*phase) {
+    if (!p_) return;
+    uint64_t n = ticks();
+    p_->*phase += n - t_;
+    t_ = n;
+  }
+
+private:
+  PhaseTicks* p_;
+  uint64_t t_;
+};
 
 struct Vertex {
   SurfaceHit hit;
@@ -22,13 +49,20 @@ float weight_bsdf_hit(Strategy s, bool after_delta, float bsdf_pdf, float light_
   return power_heuristic(bsdf_pdf, light_pdf);
 }
 
+// Scales `c` down to luminance `cap` when above it (cap 0: unchanged).
+Color3 clamped(const Color3& c, float cap) {
+  if (!(cap > 0)) return c;
+  float l = luminance(c);
+  return l > cap ? c * (cap / l) : c;
+}
+
 } // namespace
 
 // Shades `hit` seen along `dir` and flattens its closure into `bsdf`.
 // `path_length`: distance travelled from the camera (0 for light-sample points: no footprint).
 static void shade_into(const RenderScene& scene, const SurfaceHit& hit, const Vec3& dir,
                        int raytype, ShadingContext& ctx, Bsdf& bsdf, TraceCounters& c, bool timed,
-                       float path_length = 0) {
+                       Laps& lap, float path_length = 0) {
   ShaderGlobals sg;
   Footprint fp;
   fp.angle = scene.camera().pixel_spread();
@@ -46,14 +80,18 @@ static void shade_into(const RenderScene& scene, const SurfaceHit& hit, const Ve
     c.stopped = scene.stop_reason(ctx, scene.material_index(hit.shape), "rendering");
   // Messages from shader code (a missing texture...), collected per thread, reported after.
   if (!ctx.output.empty()) collect_messages(ctx, scene.material_index(hit.shape), c.messages);
+  lap(&PhaseTicks::shade);
   bsdf.build(sg.Ci, -dir, hit.Ng, scene.closure_kernels(hit.shape));
+  lap(&PhaseTicks::bsdf);
   ++c.shades;
   if (timed)
     c.shade_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingContext& ctx,
-                             ShadingContext& light_ctx, TraceCounters& c) const {
+                             ShadingContext& light_ctx, TraceCounters& c, bool timed) const {
+  Laps lap(timed ? &c.phases : nullptr);
+  using P = PhaseTicks;
   const LightSet& lights = scene_.lights();
   const Geometry& geo = scene_.geometry();
   PathResult out;
@@ -61,29 +99,43 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
   Ray ray = camera_ray;
   bool after_delta = true; // the camera ray counts as delta: emission seen directly has weight 1
   float prev_pdf = 0;
-  Vec3 prev_p;
+  Vec3 prev_p, prev_n; // the previous vertex and its normal on the side of the sampled ray
   int raytype = kRayCamera;
   float path_length = 0; // distance from the camera along the path (for ray footprints)
   Vertex v;
   for (int depth = 0;; ++depth) {
     ++c.rays;
-    if (!geo.intersect(ray, v.hit)) {
-      if (const EnvironmentLight* env = lights.environment()) {
-        float w =
-            weight_bsdf_hit(strategy_, after_delta, prev_pdf, lights.pdf_environment(ray.dir));
-        out.L += beta * env->eval(ray.dir) * w;
+    Geometry::RawHit raw;
+    lap(&P::other);
+    bool found = geo.traverse(ray, raw);
+    lap(&P::traverse);
+    if (!found) {
+      if (lights.environment()) {
+        float lp;
+        Color3 Le = lights.environment_hit(ray.dir, prev_n, lp);
+        Color3 c = beta * Le * weight_bsdf_hit(strategy_, after_delta, prev_pdf, lp);
+        out.L += depth >= 2 ? clamped(c, clamp_) : c;
       }
+      lap(&P::lights);
       break;
     }
+    geo.complete(ray, raw, v.hit);
+    lap(&P::hit);
     path_length += v.hit.t;
-    shade_into(scene_, v.hit, ray.dir, raytype, ctx, v.bsdf, c, time_, path_length);
+    shade_into(scene_, v.hit, ray.dir, raytype, ctx, v.bsdf, c, time_, lap, path_length);
     const Vec3 wo = -ray.dir;
+    // The shading normal on the viewer's side: the hemisphere the environment is sampled over.
+    const Vec3 n_lit = dot(v.hit.N, wo) < 0 ? -v.hit.N : v.hit.N;
     if (!is_zero(v.bsdf.emission)) {
       float lp = lights.is_emitter(v.hit.shape) ? lights.pdf_area(prev_p, v.hit) : 0;
-      out.L += beta * v.bsdf.emission * weight_bsdf_hit(strategy_, after_delta, prev_pdf, lp);
+      Color3 c = beta * v.bsdf.emission * weight_bsdf_hit(strategy_, after_delta, prev_pdf, lp);
+      out.L += depth >= 2 ? clamped(c, clamp_) : c;
+      lap(&P::lights);
     }
     if (depth == 0) {
+      lap(&P::other);
       out.albedo = v.bsdf.albedo(wo) + v.bsdf.emission;
+      lap(&P::bsdf);
       out.normal = v.hit.N;
       out.depth = v.hit.t;
     }
@@ -110,8 +162,12 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
     if (strategy_ != Strategy::BsdfOnly && v.bsdf.has_non_delta()) {
       float us = sampler.next(), u1 = sampler.next(), u2 = sampler.next();
       LightSample ls;
-      if (lights.sample(v.hit.P, us, u1, u2, ls)) {
+      lap(&P::other);
+      bool sampled = lights.sample(v.hit.P, n_lit, us, u1, u2, ls);
+      lap(&P::lights);
+      if (sampled) {
         BsdfEval f = v.bsdf.eval(wo, ls.wi);
+        lap(&P::bsdf);
         if (!is_zero(f.value)) {
           Color3 Le = ls.L;
           bool delta = ls.kind == LightSample::Kind::Point;
@@ -119,29 +175,40 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
             Bsdf eb;
             // Not `ctx`: shading resets the arena, which holds the closure (and lobe
             // parameters) of the vertex being lit, still needed for the BSDF sample below.
-            shade_into(scene_, ls.surface, ls.wi, kRayShadow, light_ctx, eb, c, time_);
+            lap(&P::other);
+            shade_into(scene_, ls.surface, ls.wi, kRayShadow, light_ctx, eb, c, time_, lap);
             Le = eb.emission;
           }
           Vec3 org = offset_ray_origin(v.hit.P, v.hit.Ng, ls.wi);
           float tmax = ls.kind == LightSample::Kind::Environment ? 1e30f : ls.dist * (1 - 1e-4f);
           ++c.shadow_rays;
-          if (!is_zero(Le) && !geo.occluded(org, ls.wi, tmax)) {
+          bool visible = false;
+          if (!is_zero(Le)) {
+            lap(&P::other);
+            visible = !geo.occluded(org, ls.wi, tmax);
+            lap(&P::traverse);
+          }
+          if (visible) {
             float w =
                 (delta || strategy_ == Strategy::LightOnly) ? 1 : power_heuristic(ls.pdf, f.pdf);
-            out.L += beta * f.value * Le * (w / ls.pdf);
+            Color3 c = beta * f.value * Le * (w / ls.pdf);
+            out.L += depth >= 1 ? clamped(c, clamp_) : c;
           }
         }
       }
     }
 
     // Continue the path by sampling the BSDF.
+    lap(&P::other);
     auto s = v.bsdf.sample(wo, sampler.next3());
+    lap(&P::bsdf);
     if (!s) break;
     beta *= s->weight;
     if (is_zero(beta) || !is_finite(beta)) break;
     after_delta = (s->flags & kLobeSpecular) != 0;
     prev_pdf = s->pdf;
     prev_p = v.hit.P;
+    prev_n = n_lit;
     raytype = after_delta ? (s->flags & kLobeTransmit ? kRayRefraction : kRayReflection)
                           : (s->flags & kLobeDiffuse ? kRayDiffuse : kRayGlossy);
     ray = Ray{offset_ray_origin(v.hit.P, v.hit.Ng, s->wi), s->wi};
@@ -151,6 +218,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
       beta = beta / q;
     }
   }
+  lap(&P::other);
+  if (timed) ++c.phases.paths;
   return out;
 }
 

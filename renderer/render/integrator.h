@@ -25,12 +25,31 @@ struct PathResult {
   float depth = 0;
 };
 
+// Where a path's time goes (RenderOptions::profile, `lobe render --stats`): timestamp-counter
+// ticks per phase, summed over the paths traced with timing on (a fixed subset of samples, so
+// the clock reads cost next to nothing). Phases partition each timed path.
+struct PhaseTicks {
+  uint64_t traverse = 0; // Embree closest-hit and occlusion queries
+  uint64_t hit = 0;      // surface data at each hit (position, normals, uv, tangents)
+  uint64_t shade = 0;    // fill_globals and Material::shade (the shader code)
+  uint64_t bsdf = 0;     // Bsdf::build, eval, sample and albedo
+  uint64_t lights = 0;   // light selection and sampling, environment lookups, MIS pdfs
+  uint64_t other = 0;    // the rest of the integrator (throughput, roulette, ray set-up)
+  uint64_t paths = 0;
+  uint64_t total() const { return traverse + hit + shade + bsdf + lights + other; }
+  void add(const PhaseTicks& o) {
+    traverse += o.traverse, hit += o.hit, shade += o.shade, bsdf += o.bsdf, lights += o.lights;
+    other += o.other, paths += o.paths;
+  }
+};
+
 // Per-thread counters (summed by the renderer).
 struct TraceCounters {
   uint64_t rays = 0;        // closest-hit queries
   uint64_t shadow_rays = 0; // occlusion queries
   uint64_t shades = 0;      // Material::shade calls
   double shade_seconds = 0; // time inside Material::shade + Bsdf::build (when timed)
+  PhaseTicks phases;        // time split of the timed paths (RenderOptions::profile)
   ShaderMessages messages;  // what shader code reported (texture errors, error(), printf)
   // The first shade stopped in a loop (ShadingContext::stopped) past max_loop_iterations:
   // RenderScene::stop_reason's text; the renderer then stops.
@@ -44,15 +63,22 @@ public:
 
   // `ctx` holds the closures of the path's vertices; `light_ctx` is where emitters are shaded
   // for next-event estimation, so that shading a light never resets the arena holding the
-  // closure of the point it lights. One pair per thread.
+  // closure of the point it lights. One pair per thread. `timed`: add this path's time split
+  // to counters.phases.
+  // Luminance cap on each contribution of light reaching the path after its first bounce
+  // (NEE from the second vertex on, emission and environment found by the second and later
+  // BSDF rays); 0: none. Biased (loses the energy above the cap); direct light is exact.
+  void set_clamp(float c) { clamp_ = c; }
+
   PathResult trace(const Ray& camera_ray, Sampler& sampler, ShadingContext& ctx,
-                   ShadingContext& light_ctx, TraceCounters& counters) const;
+                   ShadingContext& light_ctx, TraceCounters& counters, bool timed = false) const;
 
 private:
   const RenderScene& scene_;
   int max_depth_;
   Strategy strategy_;
   bool time_;
+  float clamp_ = 0;
 };
 
 } // namespace lobe::render

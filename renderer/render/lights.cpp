@@ -55,7 +55,8 @@ void LightSet::build(const Geometry& geo, const std::vector<scene::Light>& light
   if (count_) select_ = Distribution1D(power);
 }
 
-bool LightSet::sample(const Vec3& p, float u_select, float u1, float u2, LightSample& out) const {
+bool LightSet::sample(const Vec3& p, const Vec3& n, float u_select, float u1, float u2,
+                      LightSample& out) const {
   if (!count_) return false;
   float prob;
   int i = select_.sample_discrete(u_select, prob);
@@ -87,9 +88,8 @@ bool LightSet::sample(const Vec3& p, float u_select, float u1, float u2, LightSa
   }
   float pdf;
   out.kind = LightSample::Kind::Environment;
-  out.wi = env_->sample(u1, u2, pdf);
+  out.wi = env_->sample(n, u1, u2, pdf, out.L);
   out.dist = std::numeric_limits<float>::infinity();
-  out.L = env_->eval(out.wi);
   out.pdf = pdf * prob;
   return out.pdf > 0;
 }
@@ -152,9 +152,19 @@ float LightSet::pdf_area(const Vec3& p, const SurfaceHit& hit) const {
   return select_.discrete_prob(int(points_.size()) + i) * area_density(areas_[i], p, hit);
 }
 
-float LightSet::pdf_environment(const Vec3& dir) const {
+float LightSet::pdf_environment(const Vec3& dir, const Vec3& n) const {
   if (!env_) return 0;
-  return select_.discrete_prob(count_ - 1) * env_->pdf(dir);
+  return select_.discrete_prob(count_ - 1) * env_->pdf(dir, n);
+}
+
+Color3 LightSet::environment_hit(const Vec3& dir, const Vec3& n, float& pdf) const {
+  if (!env_) {
+    pdf = 0;
+    return {};
+  }
+  Color3 L = env_->eval_pdf(dir, n, pdf);
+  pdf *= select_.discrete_prob(count_ - 1);
+  return L;
 }
 
 } // namespace lobe::render

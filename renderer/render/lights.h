@@ -39,11 +39,17 @@ public:
              const std::vector<Emitter>& emitters, const EnvironmentLight* env);
   bool empty() const { return count_ == 0; }
 
-  // Samples one light as seen from `p`; false if nothing can be sampled.
-  bool sample(const Vec3& p, float u_select, float u1, float u2, LightSample& out) const;
+  // Samples one light as seen from `p` on a surface of unit normal `n` (turned towards the
+  // side being lit; the environment may sample its hemisphere); false if nothing can be sampled.
+  bool sample(const Vec3& p, const Vec3& n, float u_select, float u1, float u2,
+              LightSample& out) const;
   // Selection x solid-angle density of reaching emitter point `hit` from `p` by sample().
   float pdf_area(const Vec3& p, const SurfaceHit& hit) const;
-  float pdf_environment(const Vec3& dir) const;
+  // Selection x density of sample() from a point of normal `n` reaching the environment along
+  // `dir`.
+  float pdf_environment(const Vec3& dir, const Vec3& n) const;
+  // The environment's radiance along `dir` and pdf_environment(dir, n), with one lookup.
+  Color3 environment_hit(const Vec3& dir, const Vec3& n, float& pdf) const;
   bool is_emitter(int shape) const {
     return shape >= 0 && shape < int(shape_to_area_.size()) && shape_to_area_[shape] >= 0;
   }

@@ -3,12 +3,14 @@
 
 #include "lobe/context.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <mutex>
 
@@ -46,7 +48,8 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
         Sampler sampler(pixel, uint64_t(s), opt.seed);
         float jx = sampler.next(), jy = sampler.next(), l1 = sampler.next(), l2 = sampler.next();
         Ray ray = scene.camera().generate(x + jx, y + jy, l1, l2);
-        PathResult r = pt.trace(ray, sampler, ts.ctx, ts.light_ctx, ts.counters);
+        bool timed = opt.profile && (pixel + uint64_t(s)) % kProfileEvery == 0;
+        PathResult r = pt.trace(ray, sampler, ts.ctx, ts.light_ctx, ts.counters, timed);
         if (!ts.counters.stopped.empty()) { // a runaway shader: the render stops (not counted)
           halt.store(true);
           return;
@@ -89,6 +92,7 @@ image::Image render_image(const RenderScene& scene, int width, int height, const
                           RenderStats* stats) {
   auto t0 = std::chrono::steady_clock::now();
   PathTracer pt(scene, opt.max_depth, opt.strategy, opt.time_shading);
+  pt.set_clamp(opt.clamp);
   std::vector<Accum> acc(size_t(width) * height);
   tbb::enumerable_thread_specific<ThreadState> states;
   int tiles = ((width + kTile - 1) / kTile) * ((height + kTile - 1) / kTile);
@@ -121,12 +125,49 @@ image::Image render_image(const RenderScene& scene, int width, int height, const
       stats->counters.shadow_rays += ts.counters.shadow_rays;
       stats->counters.shades += ts.counters.shades;
       stats->counters.shade_seconds += ts.counters.shade_seconds;
+      stats->counters.phases.add(ts.counters.phases);
       merge_messages(ts.counters.messages, stats->counters.messages);
       if (stats->stopped.empty()) stats->stopped = ts.counters.stopped;
     }
     stats->cancelled = cancel && cancel->load();
   }
   return resolve(acc, width, height, opt.aovs);
+}
+
+// Embree alone: camera rays, then one cosine-distributed bounce from each first hit.
+double raw_traversal_rate(const RenderScene& s, int w, int h, int spp, int threads,
+                          uint64_t& rays_out) {
+  std::vector<Ray> rays;
+  rays.reserve(size_t(w) * h * spp * 2);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int k = 0; k < spp; ++k) {
+        Sampler smp(uint64_t(y) * w + x, k, 99);
+        Ray r = s.camera().generate(x + smp.next(), y + smp.next(), 0.5f, 0.5f);
+        rays.push_back(r);
+        SurfaceHit hit;
+        if (!s.geometry().intersect(r, hit)) continue;
+        Frame f(dot(hit.Ng, r.dir) < 0 ? hit.Ng : -hit.Ng);
+        float u1 = smp.next(), u2 = smp.next(), rr = std::sqrt(u1), phi = 2 * kPi * u2;
+        Vec3 d = f.to_world({rr * std::cos(phi), rr * std::sin(phi), std::sqrt(1 - u1)});
+        rays.push_back({offset_ray_origin(hit.P, hit.Ng, d), d});
+      }
+  std::atomic<uint64_t> hits{0};
+  tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
+  auto t0 = std::chrono::steady_clock::now();
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 4096), [&](auto r) {
+      uint64_t n = 0;
+      for (size_t i = r.begin(); i < r.end(); ++i) {
+        float t;
+        n += s.geometry().intersect_raw(rays[i], t);
+      }
+      hits += n;
+    });
+  });
+  double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  rays_out = rays.size();
+  return double(rays.size()) / sec;
 }
 
 double rel_mse(const image::Image& x, const image::Image& ref) {

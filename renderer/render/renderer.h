@@ -24,7 +24,13 @@ struct RenderOptions {
   Strategy strategy = Strategy::Mis;
   bool aovs = true;          // albedo, normal and depth channels
   bool time_shading = false; // measure time inside materials (small overhead)
+  // Time split of one path in kProfileEvery (RenderStats::counters.phases; `lobe render
+  // --stats`): a few timestamp reads per vertex on those paths only.
+  bool profile = false;
+  float clamp = 0; // Settings::clamp: luminance cap on indirect contributions (0: none; biased)
 };
+
+constexpr int kProfileEvery = 8;
 
 struct RenderStats {
   double seconds = 0;
@@ -45,6 +51,12 @@ using ProgressFn = std::function<void(uint64_t done, uint64_t total)>;
 image::Image render_image(const RenderScene& scene, int width, int height, const RenderOptions& opt,
                           const std::atomic<bool>* cancel, const ProgressFn& progress,
                           RenderStats* stats);
+
+// Embree's own speed on this scene: camera rays (spp per pixel), then one cosine-distributed
+// bounce from each first hit, traced with closest-hit queries only (no surface data, no
+// shading) on `threads` (0: all cores). Rays per second; `rays_out`: how many were traced.
+double raw_traversal_rate(const RenderScene& scene, int width, int height, int spp, int threads,
+                          uint64_t& rays_out);
 
 // relMSE = mean over pixels and RGB of (x - r)^2 / (r^2 + 0.01), the metric in bench/ and
 // tests (BSDF_NOTES.md); both images must have the same size, first three channels compared.

@@ -82,6 +82,13 @@ inline void square_to_disk(float u1, float u2, float& x, float& y) {
   y = r * std::sin(phi);
 }
 
+// Cosine-weighted direction on the hemisphere around +Z (Malley's method); pdf z / pi.
+inline Vec3 square_to_cosine_hemisphere(float u1, float u2) {
+  float x, y;
+  square_to_disk(u1, u2, x, y);
+  return {x, y, std::sqrt(std::max(0.0f, 1 - x * x - y * y))};
+}
+
 // Power heuristic (beta = 2) for the strategy with pdf `a` against one with pdf `b`.
 inline float power_heuristic(float a, float b) {
   if (!(a > 0)) return 0;

@@ -234,6 +234,11 @@ std::string RenderScene::compile_materials(const MaterialCompiler& compile) {
     shape_reads_.push_back(shape_material_.back()->globals_read());
     shape_kernels_.push_back(use_kernels_ ? shape_material_.back()->closure_kernels() : nullptr);
   }
+  // Triangle tangents only for materials that read them (or screen derivatives built on them).
+  std::vector<char> tangents;
+  for (uint64_t r : shape_reads_)
+    tangents.push_back((r & (tangent_bits() | derivative_bits())) != 0);
+  geo_.set_tangents_needed(std::move(tangents));
   return "";
 }
 
@@ -245,11 +250,9 @@ std::string RenderScene::build_environment() {
   case scene::Environment::Kind::None:
     return "";
   case scene::Environment::Kind::Constant: {
-    // 64 x 32 texels rather than one: rows let the sampler follow sin(theta), so a constant
-    // environment is sampled almost uniformly over the sphere.
-    std::vector<float> rgb(64 * 32 * 3);
-    for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = e.color[int(i % 3)] * k;
-    env_ = EnvironmentLight(std::move(rgb), 64, 32, 0);
+    // One texel: a constant table takes EnvironmentLight's constant path (no table lookups,
+    // cosine-weighted light samples about the normal).
+    env_ = EnvironmentLight({e.color.x * k, e.color.y * k, e.color.z * k}, 1, 1, 0);
     return "";
   }
   case scene::Environment::Kind::Map: {
@@ -392,6 +395,11 @@ std::string RenderScene::setup(const scene::SceneDesc& desc, const MaterialCompi
   desc_ = desc;
   camera_ = Camera(desc_.camera, width, height);
   services_ = SceneServices(desc_.camera, width, height, &geo_);
+  using clock = std::chrono::steady_clock;
+  auto since = [](clock::time_point t) {
+    return std::chrono::duration<double>(clock::now() - t).count();
+  };
+  auto t0 = clock::now();
   if (std::string e = geo_.build(desc_.shapes); !e.empty()) return desc_.path + ": " + e;
   shape_area_.clear();
   for (size_t i = 0; i < desc_.shapes.size(); ++i) {
@@ -407,14 +415,19 @@ std::string RenderScene::setup(const scene::SceneDesc& desc, const MaterialCompi
     }
     shape_area_.push_back(area);
   }
+  stats_.geometry_seconds = since(t0);
   if (std::string e = compile_materials(compile); !e.empty()) return e;
   if (cancelled()) return "interrupted (Ctrl-C) after compiling the materials";
+  t0 = clock::now();
   if (std::string e = build_environment(); !e.empty()) return e;
+  stats_.environment_seconds = since(t0);
   if (cancelled()) return "interrupted (Ctrl-C) after tabulating the background";
+  t0 = clock::now();
   std::vector<LightSet::Emitter> emitters;
   if (std::string e = find_emitters(emitters, stats_.messages); !e.empty()) return e;
   stats_.emitters = static_cast<int>(emitters.size());
   lights_.build(geo_, desc_.lights, emitters, env_.valid() ? &env_ : nullptr);
+  stats_.lights_seconds = since(t0);
   return "";
 }
 

@@ -49,7 +49,10 @@ void collect_messages(ShadingContext& ctx, int material, ShaderMessages& out);
 void merge_messages(const ShaderMessages& from, ShaderMessages& into);
 
 struct SetupStats {
-  double compile_seconds = 0; // wall time of the parallel compile of all used materials
+  double compile_seconds = 0;     // wall time of the parallel compile of all used materials
+  double geometry_seconds = 0;    // Embree scene build (BVH) and shape areas
+  double environment_seconds = 0; // environment table (image, sky or background shader)
+  double lights_seconds = 0;      // emitter probes and the light set
   int materials_compiled = 0;
   int emitters = 0;
   int closure_kernels = 0;           // materials whose closures run as JIT-compiled kernels

@@ -4,8 +4,10 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
-#include <map>
 #include <tuple>
+#include <unordered_map>
+#include <utility>
+#include <vector>
 
 namespace lobe::scene {
 
@@ -38,7 +40,6 @@ std::string load_obj(const std::string& path, Mesh& mesh) {
   }
   const auto& a = reader.GetAttrib();
   bool has_n = !a.normals.empty(), has_uv = !a.texcoords.empty();
-  std::map<std::tuple<int, int, int>, uint32_t> remap;
   mesh = Mesh{};
   // tinyobjloader resolves relative (negative) indices but does not check the range.
   const size_t nv = a.vertices.size() / 3, nn = a.normals.size() / 3, nt = a.texcoords.size() / 2;
@@ -46,6 +47,24 @@ std::string load_obj(const std::string& path, Mesh& mesh) {
     return path + ": face " + what + " index " + std::to_string(i < 0 ? i : i + 1) +
            " out of range (" + std::to_string(n) + " " + plural + ")";
   };
+  // Vertex of each distinct (position, normal, uv) triple, numbered in order of first use.
+  // Most files use one normal/uv per position: the first vertex made from each position is
+  // found through an array; triples that differ from it go to a hash map.
+  constexpr uint32_t kNone = ~0u;
+  std::vector<uint32_t> first(nv, kNone);
+  std::vector<std::pair<int, int>> made; // (normal, uv) of each vertex made
+  struct KeyHash {
+    size_t operator()(const std::tuple<int, int, int>& k) const {
+      uint64_t h = uint64_t(uint32_t(std::get<0>(k))) * 0x9e3779b97f4a7c15ull;
+      h ^= (uint64_t(uint32_t(std::get<1>(k))) + 0x7f4a7c15u) * 0xbf58476d1ce4e5b9ull;
+      h ^= (uint64_t(uint32_t(std::get<2>(k))) + 0x94d049bbu) * 0x94d049bb133111ebull;
+      return size_t(h ^ (h >> 31));
+    }
+  };
+  std::unordered_map<std::tuple<int, int, int>, uint32_t, KeyHash> others;
+  size_t total = 0;
+  for (const auto& shape : reader.GetShapes()) total += shape.mesh.indices.size();
+  mesh.indices.reserve(total);
   for (const auto& shape : reader.GetShapes()) {
     for (const auto& idx : shape.mesh.indices) {
       if (idx.vertex_index < 0 || size_t(idx.vertex_index) >= nv)
@@ -54,33 +73,36 @@ std::string load_obj(const std::string& path, Mesh& mesh) {
         return bad("normal", idx.normal_index, nn, "normals");
       if (has_uv && idx.texcoord_index >= 0 && size_t(idx.texcoord_index) >= nt)
         return bad("texcoord", idx.texcoord_index, nt, "texcoords");
-      auto key = std::make_tuple(idx.vertex_index, has_n ? idx.normal_index : -1,
-                                 has_uv ? idx.texcoord_index : -1);
-      auto it = remap.find(key);
-      if (it == remap.end()) {
+      const int ni = has_n ? idx.normal_index : -1, ti = has_uv ? idx.texcoord_index : -1;
+      uint32_t& f = first[size_t(idx.vertex_index)];
+      uint32_t* slot = &f;
+      if (f != kNone && made[f] != std::make_pair(ni, ti))
+        slot = &others.try_emplace(std::make_tuple(idx.vertex_index, ni, ti), kNone).first->second;
+      if (*slot == kNone) {
         uint32_t v = static_cast<uint32_t>(mesh.positions.size());
         const float* p = &a.vertices[3 * size_t(idx.vertex_index)];
         mesh.positions.push_back({p[0], p[1], p[2]});
         if (has_n) {
           Vec3 n{0, 0, 0};
-          if (idx.normal_index >= 0) {
-            const float* q = &a.normals[3 * size_t(idx.normal_index)];
+          if (ni >= 0) {
+            const float* q = &a.normals[3 * size_t(ni)];
             n = {q[0], q[1], q[2]};
           }
           mesh.normals.push_back(n);
         }
         if (has_uv) {
           float u = 0, w = 0;
-          if (idx.texcoord_index >= 0) {
-            u = a.texcoords[2 * size_t(idx.texcoord_index)];
-            w = a.texcoords[2 * size_t(idx.texcoord_index) + 1];
+          if (ti >= 0) {
+            u = a.texcoords[2 * size_t(ti)];
+            w = a.texcoords[2 * size_t(ti) + 1];
           }
           mesh.uvs.push_back(u);
           mesh.uvs.push_back(w);
         }
-        it = remap.emplace(key, v).first;
+        made.emplace_back(ni, ti);
+        *slot = v;
       }
-      mesh.indices.push_back(it->second);
+      mesh.indices.push_back(*slot);
     }
   }
   if (mesh.indices.empty()) return path + ": OBJ file has no faces";

@@ -33,6 +33,28 @@ TEST(MeshIo, ObjQuadIsTriangulatedWithNormals) {
   ASSERT_EQ(m.uvs.size(), 8u);
 }
 
+TEST(MeshIo, ObjSharedPositionsSplitByNormalAndUv) {
+  // Two triangles share positions 1 and 3; the second uses another normal for 1 and another uv
+  // for 3, and repeats (2, n1, t2) exactly. Distinct (position, normal, uv) triples in order of
+  // first use: (1,1,1) (2,1,2) (3,1,3) | (1,2,1) (3,1,4); (2,1,2) is vertex 1 again.
+  std::string path = write_file("split.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                             "vn 0 0 1\nvn 0 0 -1\n"
+                                             "vt 0 0\nvt 1 0\nvt 0 1\nvt 0.5 0.5\n"
+                                             "f 1/1/1 2/2/1 3/3/1\n"
+                                             "f 1/1/2 3/4/1 2/2/1\n");
+  Mesh m;
+  ASSERT_EQ(load_mesh(path, m), "");
+  ASSERT_EQ(m.positions.size(), 5u);
+  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 1}));
+  ASSERT_EQ(m.normals.size(), 5u);
+  EXPECT_FLOAT_EQ(m.normals[3].z, -1.0f); // position 1 with normal 2
+  EXPECT_FLOAT_EQ(m.positions[3].x, 0.0f);
+  EXPECT_FLOAT_EQ(m.positions[4].y, 1.0f); // position 3 with uv 4
+  ASSERT_EQ(m.uvs.size(), 10u);
+  EXPECT_FLOAT_EQ(m.uvs[8], 0.5f);
+  EXPECT_FLOAT_EQ(m.uvs[2 * 2 + 1], 1.0f); // vertex 2 keeps uv 3 = (0, 1)
+}
+
 TEST(MeshIo, AsciiPly) {
   std::string path =
       write_file("a.ply", "ply\nformat ascii 1.0\ncomment hi\n"

@@ -95,6 +95,10 @@ struct Settings {
   int max_depth = 8; // scattering events; 0: only what the camera sees (emission, background)
   uint64_t seed = 0;
   float exposure = 0;
+  // Luminance cap on each indirect contribution (light reaching a path after its first
+  // bounce; 0: none). Biased: removes fireflies from caustic paths (e.g. a diffuse surface
+  // seeing the sun in a glossy metal) at the cost of energy; direct light is never clamped.
+  float clamp = 0;
   std::string output;
 };
 

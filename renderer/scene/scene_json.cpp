@@ -71,7 +71,7 @@ private:
   Settings settings(const json& j) {
     const std::string p = "/settings";
     r_.object(j, p);
-    r_.check_keys(j, p, {"resolution", "spp", "max_depth", "seed", "exposure", "output"});
+    r_.check_keys(j, p, {"resolution", "spp", "max_depth", "seed", "exposure", "clamp", "output"});
     Settings s;
     if (j.contains("resolution")) {
       const json& res = j.at("resolution");
@@ -90,6 +90,9 @@ private:
       s.seed = static_cast<uint64_t>(v.get<long long>());
     }
     r_.opt(j, p, "exposure", s.exposure, &JsonReader::number);
+    r_.opt(j, p, "clamp", s.clamp, &JsonReader::number);
+    if (!(s.clamp >= 0) || !std::isfinite(s.clamp))
+      r_.fail(p + "/clamp", "expected a finite number >= 0 (0: no clamp)");
     r_.opt(j, p, "output", s.output, &JsonReader::string);
     return s;
   }

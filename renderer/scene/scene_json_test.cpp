@@ -97,6 +97,8 @@ TEST(SceneJson, ErrorsNamePointerAndExpectation) {
   EXPECT_NE(
       error_of(R"({"settings": {"spp": 0}})").find("/settings/spp: expected an integer in [1,"),
       std::string::npos);
+  EXPECT_EQ(error_of(R"({"settings": {"clamp": -1}})"),
+            "t.json: /settings/clamp: expected a finite number >= 0 (0: no clamp)");
   EXPECT_NE(error_of(R"({"camera": {"fvo": 3}})").find("/camera/fvo: unknown key"),
             std::string::npos);
   EXPECT_NE(error_of(R"({"shapes": [{"type": "cone"}]})").find("/shapes/0/type: expected"),
