@@ -2,7 +2,9 @@
 // with bitcode, ns per eval() and per sample() through the native library (closures::eval /
 // closures::sample, the C++ compiled by the project's compiler) and through closure kernels
 // (the same C++ compiled by clang-19 to bitcode, linked into a JIT module with a dispatcher
-// over the ids and inlined; runtime/jit/closure_kernels.h). Then a two-lobe material's Bsdf
+// over the ids and inlined; runtime/jit/closure_kernels.h), each set up and evaluated per call
+// (eval/, sample/) and set up once, then evaluated per call (eval_prepared/, sample_prepared/:
+// what a Bsdf does at a shading point). Then a two-lobe material's Bsdf
 // (diffuse + GGX dielectric) evaluated and sampled both ways. Inputs: 1024 direction pairs
 // above the surface and 1024 random triples, the first quick configuration of each closure
 // (plus dielectric_bsdf_aniso: roughness (0.3, 0.05), whose compensation reads the 5-D table).
@@ -93,6 +95,38 @@ void BM_SampleJit(benchmark::State& state, int id, closures::Params p) {
   }
 }
 
+// Set up once, then evaluated or sampled per call (what a Bsdf does at a shading point:
+// Bsdf::build sets each lobe up, its eval and sample read the state).
+void BM_Prepared(benchmark::State& state, int id, closures::Params p, bool jit, bool sample) {
+  const Inputs& in = inputs();
+  alignas(Bsdf::kLobeStateAlign) unsigned char st[Bsdf::kLobeStateBytes];
+  if (jit)
+    g_kernels.setup(id, p.data(), st);
+  else
+    closures::setup(id, p.data(), st);
+  size_t k = 0;
+  for (auto _ : state) {
+    const Vec3& wo = in.dirs[k & 1023];
+    if (sample && jit) {
+      BsdfSample s;
+      int ok = g_kernels.sample(id, st, &wo, &in.us[(k + 3) & 1023], 0, &s);
+      benchmark::DoNotOptimize(ok);
+      benchmark::DoNotOptimize(s);
+    } else if (sample) {
+      auto s = closures::sample_prepared(id, st, wo, in.us[(k + 3) & 1023]);
+      benchmark::DoNotOptimize(s);
+    } else if (jit) {
+      BsdfEval e;
+      g_kernels.eval(id, st, &wo, &in.dirs[(k + 7) & 1023], 0, &e);
+      benchmark::DoNotOptimize(e);
+    } else {
+      BsdfEval e = closures::eval_prepared(id, st, wo, in.dirs[(k + 7) & 1023]);
+      benchmark::DoNotOptimize(e);
+    }
+    ++k;
+  }
+}
+
 // A diffuse + rough dielectric material flattened into a Bsdf, with or without kernels.
 struct Material2 {
   closures::Params a{"diffuse"}, b{"dielectric_bsdf"};
@@ -162,6 +196,14 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("eval/jit/" + key).c_str(), BM_EvalJit, id, p);
     benchmark::RegisterBenchmark(("sample/native/" + key).c_str(), BM_SampleNative, id, p);
     benchmark::RegisterBenchmark(("sample/jit/" + key).c_str(), BM_SampleJit, id, p);
+    benchmark::RegisterBenchmark(("eval_prepared/native/" + key).c_str(), BM_Prepared, id, p, false,
+                                 false);
+    benchmark::RegisterBenchmark(("eval_prepared/jit/" + key).c_str(), BM_Prepared, id, p, true,
+                                 false);
+    benchmark::RegisterBenchmark(("sample_prepared/native/" + key).c_str(), BM_Prepared, id, p,
+                                 false, true);
+    benchmark::RegisterBenchmark(("sample_prepared/jit/" + key).c_str(), BM_Prepared, id, p, true,
+                                 true);
   };
   for (int id : ids) {
     std::string key = all[size_t(id)].key;

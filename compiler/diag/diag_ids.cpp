@@ -142,7 +142,9 @@ const Row kTable[] = {
         "unsized arrays of structs with array fields are not supported"),
     ROW(err_lower_metadata_not_const, Error, "metadata '%0' is not a constant"),
     ROW(err_lower_break_outside_loop, Error, "break or continue outside a loop"),
-    ROW(err_lower_no_body, Error, "call to a function without a body"),
+    // oslc 1.13 for `float f(float x);` called as f(1): `p.osl:3: error: non-void function "f"
+    // had no 'return' statement.` (a void one it accepts: the call does nothing).
+    ROW(err_lower_no_body, Error, "non-void function '%0' had no 'return' statement"),
     ROW(err_lower_no_opcode, Error, "no IR opcode for the builtin '%0'"),
     ROW(err_lower_internal, Error, "internal: %0"),
     ROW(err_lower_invalid_ir, Error, "internal error: invalid IR: %0"),

@@ -134,8 +134,11 @@ void Lowerer::stmt(const ast::Stmt* s) {
 std::vector<int> Lowerer::call_user(const ast::FunctionDecl* f,
                                     const std::vector<const ast::Expr*>& args,
                                     const ast::Node* where) {
+  // As oslc 1.13: a call of a void function without a body does nothing; of a non-void one,
+  // it is an error at the call (oslc reports it only where the function is called).
+  if (f && !f->body && f->return_type.is_void()) return {};
   if (!f || !f->body) {
-    error(where, diag::DiagId::err_lower_no_body);
+    error(where, diag::DiagId::err_lower_no_body, {f ? f->name : std::string("?")});
     return {};
   }
   // Evaluate the arguments first, then bind them (an argument may call the same function).
@@ -342,7 +345,9 @@ int Lowerer::call(const ast::CallExpr* c, int hint) {
     if (f && !f->body) {
       if (f->return_type.is_closure())
         return call_closure(c, f->name, hint, ir::Opcode::DeclaredClosure);
-      return call_builtin(c, hint);
+      // A prototype of a builtin (with [[ int builtin = 1 ]] or of an IR opcode's name) is the
+      // builtin; any other function without a body has nothing to run (call_user says so).
+      if (f->is_builtin || ir::opcode_from_name(c->name)) return call_builtin(c, hint);
     }
     std::vector<const ast::Expr*> args;
     for (const auto& a : c->args) args.push_back(a.get());

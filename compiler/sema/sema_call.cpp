@@ -3,6 +3,7 @@
 // them (overload.h); if none of them exists or fits, the closure registry is tried.
 #include "sema/sema_impl.h"
 
+#include "closure_call.h"
 #include "closure_registry.h"
 
 #include <algorithm>
@@ -500,59 +501,47 @@ void Sema::struct_constructor(ast::CallExpr* e, const ast::StructDecl* s) {
   }
 }
 
-// A closure call: positional arguments by the registry entry's parameter types (the cheapest
-// overload wins), then `"keyword", value` pairs; an unknown keyword is an error and the last
+// A closure call: the registry's entry of that name it binds to (registry/closure_call.h: the
+// cheapest whose positional arguments convert), its positional arguments converted to the
+// parameter types, then `"keyword", value` pairs; an unknown keyword is an error and the last
 // of duplicated keywords wins.
 bool Sema::closure_call(ast::CallExpr* e) {
-  const registry::ClosureEntry* best = nullptr;
-  int best_cost = 1 << 30;
-  std::vector<const registry::ClosureEntry*> entries;
-  for (const auto& c : opts_.closures) {
-    if (e->name != c.name) continue;
-    entries.push_back(&c);
-    size_t npos =
-        size_t(std::count_if(c.params.begin(), c.params.end(), [](auto& p) { return !p.keyword; }));
-    if (e->args.size() < npos || (e->args.size() - npos) % 2) continue;
-    int cost = 0;
-    for (size_t i = 0; i < npos && cost >= 0; ++i) {
-      int k = conversion_cost(e->args[i]->type, type_of(c.params[i].type),
-                              is_zero_literal(e->args[i].get()));
-      cost = k == kNoConversion ? -1 : cost + k;
-    }
-    for (size_t i = npos; i < e->args.size() && cost >= 0; i += 2)
-      if (!e->args[i]->type.is_string()) cost = -1;
-    if (cost >= 0 && cost < best_cost) {
-      best = &c;
-      best_cost = cost;
-    }
-  }
-  if (!best) {
+  registry::CallArgs args;
+  args.count = e->args.size();
+  args.cost = [&](size_t i, registry::ArgType t) {
+    int k = conversion_cost(e->args[i]->type, type_of(t), is_zero_literal(e->args[i].get()));
+    return k == kNoConversion ? registry::kNoFit : k;
+  };
+  args.is_string = [&](size_t i) { return e->args[i]->type.is_string(); };
+  args.literal = [&](size_t i) -> std::optional<std::string_view> {
+    if (auto* s = ast::as<ast::StringLit>(e->args[i].get())) return s->value;
+    return std::nullopt;
+  };
+  registry::ClosureMatch m = registry::match_closure_call(opts_.closures, e->name, args);
+  if (!m.entry) {
     error(DiagId::err_no_matching_call, e->name_range, {e->name, arg_types(e->args)});
-    for (auto* c : entries) error(DiagId::note_candidate, e->name_range, {closure_signature(*c)});
+    for (auto* c : m.candidates)
+      error(DiagId::note_candidate, e->name_range, {closure_signature(*c)});
     return false;
   }
+  const registry::ClosureEntry* best = m.entry;
   e->callee.kind = ast::CalleeKind::Closure;
   e->callee.closure = best;
   e->type = t_closure();
-  size_t npos = size_t(
-      std::count_if(best->params.begin(), best->params.end(), [](auto& p) { return !p.keyword; }));
-  e->num_positional = int(npos);
-  for (size_t i = 0; i < npos; ++i) coerce(e->args[i], type_of(best->params[i].type));
-  for (size_t i = npos; i + 1 < e->args.size(); i += 2) {
-    auto* name = ast::as<ast::StringLit>(e->args[i].get());
-    if (!name) {
-      error(DiagId::err_keyword_name, e->args[i]->range, {e->name});
+  e->num_positional = int(m.positional);
+  for (size_t i = 0; i < m.positional; ++i) coerce(e->args[i], type_of(best->params[i].type));
+  for (const registry::KeywordArg& kw : m.keywords) {
+    if (kw.param == registry::kNameNotLiteral) {
+      error(DiagId::err_keyword_name, e->args[kw.name_arg]->range, {e->name});
       continue;
     }
-    int index = -1;
-    for (size_t p = 0; p < best->params.size(); ++p)
-      if (best->params[p].keyword && name->value == best->params[p].name) index = int(p);
-    if (index < 0) {
+    auto* name = static_cast<ast::StringLit*>(e->args[kw.name_arg].get());
+    if (kw.param == registry::kUnknownKeyword) {
       error(DiagId::err_unknown_keyword, name->range, {name->value, e->name});
       continue;
     }
-    ExprPtr& value = e->args[i + 1];
-    Type pt = type_of(best->params[size_t(index)].type);
+    ExprPtr& value = e->args[kw.name_arg + 1];
+    Type pt = type_of(best->params[size_t(kw.param)].type);
     if (!assignable(pt, value->type)) {
       error(DiagId::err_keyword_type, value->range,
             {name->value, e->name, tname(pt), tname(value->type)});
@@ -560,11 +549,11 @@ bool Sema::closure_call(ast::CallExpr* e) {
     }
     coerce(value, pt);
     auto it = std::find_if(e->keywords.begin(), e->keywords.end(),
-                           [&](const ast::KeywordArg& k) { return k.param_index == index; });
+                           [&](const ast::KeywordArg& k) { return k.param_index == kw.param; });
     if (it != e->keywords.end())
       it->value = value.get(); // the last one wins
     else
-      e->keywords.push_back({name->value, index, value.get()});
+      e->keywords.push_back({name->value, kw.param, value.get()});
   }
   return true;
 }

@@ -25,6 +25,7 @@
 // Interface (Lobe shadeop style): lobe_gabor(x[nin], dx[nin], dy[nin], nin, period or null,
 // options, out[nout], odx[nout], ody[nout], nout) with nin 1..4 and nout 1 or 3.
 #include "hashword.h"
+#include "shadeop_decls.h"
 #include "shadeops.h"
 
 #include <cmath>

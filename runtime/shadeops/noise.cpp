@@ -10,6 +10,7 @@
 // runtime/shadeops/noise_reference.py is an independent Python transcription used to derive the
 // expected values in the tests.
 #include "hashword.h"
+#include "shadeop_decls.h"
 #include "shadeops.h"
 
 #include "lobe/context.h"
@@ -377,11 +378,6 @@ D simplex(const float* x, int n, uint32_t seed) {
 } // namespace
 
 extern "C" {
-
-// Gabor noise (gabor.cpp).
-void lobe_gabor(const float* x, const float* dx, const float* dy, int nin, const float* period,
-                const lobe::shadeops::GaborOptions* opt, float* out, float* odx, float* ody,
-                int nout);
 
 // out[nout] = noise of `kind` at x[nin] (optionally periodic), evaluated as OSL does. With dx
 // null, OSL's value-only code path; otherwise dx[nin] and dy[nin] are the inputs' screen

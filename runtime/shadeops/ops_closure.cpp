@@ -4,6 +4,7 @@
 // run time never reaches the renderer.
 #include "lobe/context.h"
 #include "lobe/shading.h"
+#include "shadeop_decls.h"
 
 #include <cstring>
 

@@ -4,6 +4,7 @@
 #include "color_system.h"
 #include "lobe/context.h"
 #include "lobe/shading.h"
+#include "shadeop_decls.h"
 
 #include <algorithm>
 #include <string>

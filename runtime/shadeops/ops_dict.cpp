@@ -5,6 +5,7 @@
 #include "env.h"
 #include "lobe/context.h"
 #include "lobe/detail/dictionary.h"
+#include "shadeop_decls.h"
 #include "typed_value.h"
 
 #include <cctype>

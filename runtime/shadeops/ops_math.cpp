@@ -8,6 +8,8 @@
 //                                                              value, d/dx, d/dy of those
 // and lobe_hash, hash() of numbers.
 // (Plain C++ over the header, so it can be compiled to bitcode for inlining as it is.)
+#include "shadeop_decls.h"
+#include "shadeop_sig.h"
 #include "shadeops.h"
 
 #include "hashword.h"
@@ -51,11 +53,15 @@ template <Fn f> void add_entries(std::vector<ShadeOpSymbol>& out) {
   constexpr const math::FnInfo& info = math::kFns[size_t(f)];
   static_assert(info.fn == f, "kFns is in enum order");
   if constexpr (info.arity == 1) {
-    out.push_back({math_shadeop(f, MathForm::Value), addr(&unary_value<f>), "ffi"});
-    out.push_back({math_shadeop(f, MathForm::Slope), addr(&unary_slope<f>), "ffi"});
+    out.push_back({math_shadeop(f, MathForm::Value), addr(&unary_value<f>),
+                   shadeop_sig<decltype(&unary_value<f>)>});
+    out.push_back({math_shadeop(f, MathForm::Slope), addr(&unary_slope<f>),
+                   shadeop_sig<decltype(&unary_slope<f>)>});
   } else {
-    out.push_back({math_shadeop(f, MathForm::Value), addr(&binary_value<f>), "fffi"});
-    out.push_back({math_shadeop(f, MathForm::Dual), addr(&binary_dual<f>), "vpppi"});
+    out.push_back({math_shadeop(f, MathForm::Value), addr(&binary_value<f>),
+                   shadeop_sig<decltype(&binary_value<f>)>});
+    out.push_back({math_shadeop(f, MathForm::Dual), addr(&binary_dual<f>),
+                   shadeop_sig<decltype(&binary_dual<f>)>});
   }
 }
 

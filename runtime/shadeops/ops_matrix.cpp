@@ -4,6 +4,7 @@
 // (RendererServices::get_matrix) answers any other name first; without an answer "camera",
 // "screen", "raster" and "NDC" are identity too (documented in docs/runtime.md). An unknown
 // space name is an error and gives the identity.
+#include "shadeop_decls.h"
 #include "shadeops.h"
 
 #include "lobe/context.h"

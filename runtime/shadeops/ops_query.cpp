@@ -6,6 +6,7 @@
 #include "lobe/context.h"
 #include "lobe/detail/messages.h"
 #include "lobe/renderer_services.h"
+#include "shadeop_decls.h"
 #include "typed_value.h"
 
 #include <algorithm>

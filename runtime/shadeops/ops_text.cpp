@@ -3,6 +3,7 @@
 #include "env.h"
 #include "format.h"
 #include "lobe/context.h"
+#include "shadeop_decls.h"
 
 #include <OpenImageIO/strutil.h>
 

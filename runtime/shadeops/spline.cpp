@@ -2,6 +2,8 @@
 // there are (n - 4) / s + 1 segments; x in [0,1] (clamped) picks segment k and the four knots
 // starting at k*s, weighted by the basis matrix (rows: x^3, x^2, x, 1). "linear" interpolates
 // knots[k+1]..knots[k+2]; "constant" returns knots[k+1]. Unknown bases behave as catmull-rom.
+#include "shadeop_decls.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>

@@ -7,6 +7,7 @@
 #include "env.h"
 #include "lobe/context.h"
 #include "oiio_module.h"
+#include "shadeop_decls.h"
 #include "shadeops.h"
 #include "typed_value.h"
 

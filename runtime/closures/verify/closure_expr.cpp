@@ -1,6 +1,8 @@
-// Tokenizer, argument parser and overload resolution for closure call expressions.
+// Tokenizer and argument parser for closure call expressions; which closure the call binds to
+// is the registry's match (registry/closure_call.h), the one the type checker uses.
 #include "closure_expr.h"
 
+#include "closure_call.h"
 #include "closure_registry.h"
 
 #include <cctype>
@@ -159,66 +161,110 @@ std::string type_name(ArgType t) {
   return "?";
 }
 
+// Whether a literal of `a`'s kind can set a parameter of type `t` (a number sets an int only
+// when it is whole; a number sets a color as a grey). Closure parameters are accepted here and
+// refused by bind() with their own message.
+bool fits(ArgType t, const Arg& a) {
+  switch (t) {
+  case ArgType::Int:
+    return a.kind == Arg::Number && a.number == static_cast<int>(a.number);
+  case ArgType::Float:
+    return a.kind == Arg::Number;
+  case ArgType::Color:
+    return a.kind == Arg::Number || a.kind == Arg::Triple;
+  case ArgType::Vector:
+    return a.kind == Arg::Triple;
+  case ArgType::String:
+    return a.kind == Arg::String;
+  case ArgType::Closure:
+    return true;
+  }
+  return false;
+}
+
 // Stores one argument into the block; an error if its type does not fit the parameter.
 std::optional<ExprError> bind(const registry::ClosureParam& p, const Arg& a, ParsedClosure& pc) {
-  auto mismatch = [&] {
+  if (!fits(p.type, a))
     return ExprError{a.pos, std::string("'") + p.name + "' expects " + type_name(p.type)};
-  };
   switch (p.type) {
   case ArgType::Int:
-    if (a.kind != Arg::Number || a.number != static_cast<int>(a.number)) return mismatch();
     pc.params.set(p.name, static_cast<int>(a.number));
-    return std::nullopt;
+    break;
   case ArgType::Float:
-    if (a.kind != Arg::Number) return mismatch();
     pc.params.set(p.name, static_cast<float>(a.number));
-    return std::nullopt;
+    break;
   case ArgType::Color:
   case ArgType::Vector:
-    if (a.kind == Arg::Number && p.type == ArgType::Color) {
+    if (a.kind == Arg::Number) {
       float v = static_cast<float>(a.number);
       pc.params.set(p.name, Vec3{v, v, v});
-      return std::nullopt;
+    } else {
+      pc.params.set(p.name, a.triple);
     }
-    if (a.kind != Arg::Triple) return mismatch();
-    pc.params.set(p.name, a.triple);
-    return std::nullopt;
+    break;
   case ArgType::String:
-    if (a.kind != Arg::String) return mismatch();
     // The library reads a distribution by its first letter: anything but these is a mistake.
     if (std::string_view(p.name) == "distribution" && a.text != "ggx" && a.text != "beckmann")
       return ExprError{a.pos, "unknown distribution \"" + a.text + "\" (\"ggx\" or \"beckmann\")"};
     pc.strings->push_back(a.text);
     pc.params.set(p.name, pc.strings->back().c_str());
-    return std::nullopt;
+    break;
   case ArgType::Closure:
     return ExprError{a.pos, "closure arguments are not supported here"};
   }
-  return mismatch();
+  return std::nullopt;
 }
 
-// Binds all arguments against one registry entry.
-std::optional<ExprError> bind_entry(const registry::ClosureEntry& e, const std::vector<Arg>& args,
-                                    size_t close_pos, ParsedClosure& pc) {
-  std::vector<const registry::ClosureParam*> positional;
-  for (const auto& p : e.params)
-    if (!p.keyword) positional.push_back(&p);
-  if (args.size() < positional.size())
-    return ExprError{close_pos, std::string(e.name) + " expects " +
-                                    std::to_string(positional.size()) + " arguments, got " +
-                                    std::to_string(args.size())};
-  for (size_t k = 0; k < positional.size(); ++k)
-    if (auto err = bind(*positional[k], args[k], pc)) return err;
-  for (size_t k = positional.size(); k < args.size(); k += 2) {
-    const Arg& name = args[k];
-    if (name.kind != Arg::String)
-      return ExprError{name.pos, "too many arguments (keywords are \"name\", value pairs)"};
-    const registry::ClosureParam* kw = nullptr;
-    for (const auto& p : e.params)
-      if (p.keyword && name.text == p.name) kw = &p;
-    if (!kw) return ExprError{name.pos, "unknown keyword \"" + name.text + "\" for " + e.name};
-    if (k + 1 >= args.size()) return ExprError{close_pos, "keyword without a value"};
-    if (auto err = bind(*kw, args[k + 1], pc)) return err;
+// The registry's match of the call (registry/closure_call.h), asked about literal arguments.
+registry::ClosureMatch match(const std::string& name, const std::vector<Arg>& args) {
+  registry::CallArgs ca;
+  ca.count = args.size();
+  ca.cost = [&](size_t i, ArgType t) { return fits(t, args[i]) ? 0 : registry::kNoFit; };
+  ca.is_string = [&](size_t i) { return args[i].kind == Arg::String; };
+  ca.literal = [&](size_t i) -> std::optional<std::string_view> {
+    if (args[i].kind != Arg::String) return std::nullopt;
+    return args[i].text;
+  };
+  return registry::match_closure_call(registry::closures(), name, ca);
+}
+
+// The located error for a call no entry fits.
+ExprError no_fit(const registry::ClosureMatch& m, const std::string& name,
+                 const std::vector<Arg>& args, size_t name_pos, size_t close_pos) {
+  const registry::ClosureEntry* e = m.problem_entry;
+  using P = registry::CallProblem;
+  switch (m.problem) {
+  case P::TooFewArguments:
+    return {close_pos, std::string(e->name) + " expects " +
+                           std::to_string(registry::positional_count(*e)) + " arguments, got " +
+                           std::to_string(args.size())};
+  case P::ArgumentType: {
+    const Arg& a = args[m.problem_arg];
+    const registry::ClosureParam& p = e->params[m.problem_arg];
+    return {a.pos, std::string("'") + p.name + "' expects " + type_name(p.type)};
+  }
+  case P::KeywordName:
+    return {args[m.problem_arg].pos, "too many arguments (keywords are \"name\", value pairs)"};
+  case P::KeywordWithoutValue:
+    return {close_pos, "keyword without a value"};
+  case P::UnknownClosure:
+  case P::None:
+    break;
+  }
+  return {name_pos, "unknown closure '" + name + "'"};
+}
+
+// Stores the matched call's arguments into a block for its entry.
+std::optional<ExprError> bind_match(const registry::ClosureMatch& m, const std::vector<Arg>& args,
+                                    ParsedClosure& pc) {
+  const registry::ClosureEntry& e = *m.entry;
+  for (size_t k = 0; k < m.positional; ++k)
+    if (auto err = bind(e.params[k], args[k], pc)) return err;
+  for (const registry::KeywordArg& kw : m.keywords) {
+    const Arg& name = args[kw.name_arg];
+    if (kw.param < 0)
+      return ExprError{name.pos, "unknown keyword \"" + name.text + "\" for " + e.name};
+    if (auto err = bind(e.params[size_t(kw.param)], args[kw.name_arg + 1], pc)) return err;
   }
   return std::nullopt;
 }
@@ -251,28 +297,22 @@ ExprResult parse_closure_expr(std::string_view text) {
   std::vector<Arg> args;
   if (auto e = parser.parse_call(name, name_pos, args, close_pos)) return {std::nullopt, *e};
   expand_stdosl_forms(name, args);
-  std::optional<ExprError> first_error;
-  for (const registry::ClosureEntry& e : registry::closures()) {
-    if (name != e.name) continue;
-    ParsedClosure pc{e.key, closures::Params(e.key), 1.0,
-                     std::make_shared<std::deque<std::string>>()};
-    std::optional<ExprError> err = bind_entry(e, args, close_pos, pc);
-    if (!err) {
-      if (e.flags & registry::kTransmit)
-        for (const auto& p : e.params)
-          if (p.type == ArgType::Float &&
-              (std::string_view(p.name) == "ior" || std::string_view(p.name) == "eta")) {
-            float v;
-            std::memcpy(
-                &v, pc.params.data() + registry::param_offset(e.params, &p - e.params.data()), 4);
-            pc.eta_below = v;
-          }
-      return {std::move(pc), {}};
-    }
-    if (!first_error || err->pos > first_error->pos) first_error = err;
-  }
-  if (!first_error) return {std::nullopt, {name_pos, "unknown closure '" + name + "'"}};
-  return {std::nullopt, *first_error};
+  registry::ClosureMatch m = match(name, args);
+  if (!m.entry) return {std::nullopt, no_fit(m, name, args, name_pos, close_pos)};
+  const registry::ClosureEntry& e = *m.entry;
+  ParsedClosure pc{e.key, closures::Params(e.key), 1.0,
+                   std::make_shared<std::deque<std::string>>()};
+  if (auto err = bind_match(m, args, pc)) return {std::nullopt, *err};
+  if (e.flags & registry::kTransmit)
+    for (const auto& p : e.params)
+      if (p.type == ArgType::Float &&
+          (std::string_view(p.name) == "ior" || std::string_view(p.name) == "eta")) {
+        float v;
+        std::memcpy(&v, pc.params.data() + registry::param_offset(e.params, &p - e.params.data()),
+                    4);
+        pc.eta_below = v;
+      }
+  return {std::move(pc), {}};
 }
 
 } // namespace lobe::verify

@@ -112,10 +112,12 @@ struct alignas(8) ClosureComponent : ClosureNode {
 };
 static_assert(sizeof(ClosureComponent) == 16);
 
-// A closure the shader declares itself, `closure color name(...) [[ int builtin = 1 ]]`, as
-// OSL lets renderers add closures: it is no registry entry, so it carries a description of its
-// arguments (the positional ones in order, then the keywords the call gave, each once). A
-// renderer implements it by name or reports it by name. The description is owned by the
+// A closure the shader declares itself, `closure color name(...) [[ int builtin = 1 ]]`, that
+// no registry entry implements: it carries a description of its arguments (the positional ones
+// in order, then the keywords the call gave, each once), so a renderer can at least report it
+// by name. A renderer implements such a closure by registering it (lobe/closure_plugin.h,
+// register_closure) before compiling: the prototype then resolves to the registry entry and
+// the shader builds a ClosureComponent instead of this node. The description is owned by the
 // ShadingSystem and outlives every closure pointing at it.
 struct DeclaredClosureArg {
   enum class Base : uint8_t { Int, Float, Triple, Matrix, String, Closure };

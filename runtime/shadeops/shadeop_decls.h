@@ -1,0 +1,128 @@
+// The shadeops' C prototypes, one per function, as defined in this folder: table.cpp takes
+// each address and derives its signature string from the type (shadeop_sig), and every
+// defining file includes this header, so a definition that drifts from its prototype does not
+// compile (two extern "C" declarations of one name with different types are an error).
+#pragma once
+
+#include <cstdint>
+
+namespace lobe {
+struct ShaderGlobals;
+struct ClosureNode;
+struct DeclaredClosureInfo;
+struct TraceOptions;
+namespace shadeops {
+struct RuntimeEnv;
+struct TextureArgs;
+struct GaborOptions;
+} // namespace shadeops
+} // namespace lobe
+
+extern "C" {
+void lobe_printf(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* fmt,
+                 const char* codes, const void* const* args);
+const char* lobe_format(lobe::shadeops::RuntimeEnv* env, const char* fmt, const char* codes,
+                        const void* const* args);
+void lobe_warning(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* shader,
+                  const char* fmt, const char* codes, const void* const* args);
+void lobe_error(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* shader,
+                const char* fmt, const char* codes, const void* const* args);
+void lobe_range_error(lobe::ShaderGlobals* sg, int index, int length, const char* what,
+                      const char* file, int line, const char* where);
+int64_t lobe_loop_check(lobe::ShaderGlobals* sg, int64_t* count, int64_t chunk, int64_t limit,
+                        const char* shader, const char* where, const char* file, int line);
+void lobe_naninf_check(lobe::ShaderGlobals* sg, const float* vals, int ncomps, int derivs,
+                       int first, int count, const char* symbol, const char* file, int line,
+                       const char* opname);
+void lobe_uninit_check(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, void* vals,
+                       int kind, int first, int count, const char* type, const char* symbol,
+                       const char* file, int line, const char* where, int opnum, const char* opname,
+                       int argnum);
+void lobe_fprintf(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* file,
+                  const char* fmt, const char* codes, const void* const* args);
+const char* lobe_concat(lobe::shadeops::RuntimeEnv* env, const char* a, const char* b);
+int lobe_strlen(const char* s);
+const char* lobe_substr(lobe::shadeops::RuntimeEnv* env, const char* s, int start, int len);
+int lobe_startswith(const char* s, const char* prefix);
+int lobe_endswith(const char* s, const char* suffix);
+int lobe_stoi(const char* s);
+float lobe_stof(const char* s);
+int lobe_getchar(const char* s, int i);
+int lobe_strhash(const char* s);
+int32_t lobe_hash(const uint32_t* words, int32_t n);
+int lobe_regex(const char* s, const char* pattern, int full_match);
+int lobe_regex_results(const char* s, const char* pattern, int full_match, int* results, int n);
+int lobe_split(lobe::shadeops::RuntimeEnv* env, const char* s, const char* sep, int maxsplit,
+               const char** results, int n);
+int lobe_dict_find(lobe::ShaderGlobals* sg, const char* dict, const char* query);
+int lobe_dict_find_node(lobe::ShaderGlobals* sg, int node, const char* query);
+int lobe_dict_next(lobe::ShaderGlobals* sg, int node);
+int lobe_dict_value(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, int node,
+                    const char* attribute, int code, int derivs, void* dest);
+int lobe_pointcloud(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* function);
+const lobe::ClosureNode* lobe_closure_component(lobe::ShaderGlobals* sg, int id, const void* block,
+                                                int block_size);
+const lobe::ClosureNode* lobe_closure_add(lobe::ShaderGlobals* sg, const lobe::ClosureNode* a,
+                                          const lobe::ClosureNode* b);
+const lobe::ClosureNode* lobe_closure_declared(lobe::ShaderGlobals* sg,
+                                               const lobe::DeclaredClosureInfo* info,
+                                               const void* block);
+const lobe::ClosureNode* lobe_closure_mul(lobe::ShaderGlobals* sg, const lobe::ClosureNode* c,
+                                          const float* w);
+void lobe_mat_mul(float* dst, const float* a, const float* b);
+void lobe_mat_inverse(float* dst, const float* src);
+void lobe_mat_div(float* dst, const float* a, const float* b);
+void lobe_mat_transpose(float* dst, const float* m);
+float lobe_mat_det(const float* m);
+int lobe_get_matrix(lobe::ShaderGlobals* sg, const char* from, const char* to, float* dst);
+void lobe_space_matrix(lobe::ShaderGlobals* sg, const char* space, float* dst);
+void lobe_transform(float* dst, const float* m, const float* p, int kind);
+void lobe_transformc(lobe::ShaderGlobals* sg, const void* cs, const char* from, const char* to,
+                     float* dst, const float* src);
+void lobe_transformc_d(lobe::ShaderGlobals* sg, const void* cs, const char* from, const char* to,
+                       float* dst, const float* src);
+void lobe_color_from(lobe::ShaderGlobals* sg, const void* cs, const char* space, float* dst,
+                     const float* src);
+float lobe_transformu_scale(lobe::ShaderGlobals* sg, const char* from, const char* to,
+                            const char* file, int line);
+void lobe_wavelength_color(const void* cs, float* dst, float lambda_nm);
+void lobe_blackbody(const void* cs, float* dst, float kelvin);
+void lobe_noise(int kind, const float* x, int nin, const float* period, float* out, int nout,
+                float* grad);
+void lobe_noise_named(lobe::ShaderGlobals* sg, const char* name, const float* x, int nin,
+                      const float* period, float* out, int nout, float* grad, const char* file,
+                      int line);
+void lobe_noise_d(int kind, const float* x, const float* dx, const float* dy, int nin,
+                  const float* period, float* out, float* odx, float* ody, int nout);
+void lobe_noise_named_d(lobe::ShaderGlobals* sg, const char* name, const float* x, const float* dx,
+                        const float* dy, int nin, const float* period, const void* gabor_opts,
+                        float* out, float* odx, float* ody, int nout, const char* file, int line);
+void lobe_gabor(const float* x, const float* dx, const float* dy, int nin, const float* period,
+                const lobe::shadeops::GaborOptions* opt, float* out, float* odx, float* ody,
+                int nout);
+void lobe_spline(const char* basis, float x, const float* knots, int nknots, int comps, float* out,
+                 float* dout);
+void lobe_texture(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* file,
+                  float s, float t, float dsdx, float dtdx, float dsdy, float dtdy, int n,
+                  float* out, float* dds, float* ddt, const lobe::shadeops::TextureArgs* a);
+int lobe_getattribute(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* object,
+                      const char* name, int index, int code, int derivs, void* dest,
+                      const char* shadername, const char* layername, const char* groupname);
+int lobe_get_userdata(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* name,
+                      int code, int derivs, void* dest);
+void lobe_setmessage(lobe::ShaderGlobals* sg, const char* name, int code, const void* src,
+                     const char* file, int line, int layer);
+int lobe_getmessage(lobe::ShaderGlobals* sg, const char* source, const char* name, int code,
+                    int derivs, void* dest, const char* file, int line, int layer);
+int lobe_gettextureinfo(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* file,
+                        int udim, float s, float t, const char* query, int code, void* dest);
+int lobe_trace(lobe::ShaderGlobals* sg, const float* p, const float* dpdx, const float* dpdy,
+               const float* r, const float* drdx, const float* drdy, const lobe::TraceOptions* opt);
+void lobe_texture3d(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* file,
+                    const float* p, const float* dpdx, const float* dpdy, const float* dpdz, int n,
+                    float* out, const lobe::shadeops::TextureArgs* a);
+void lobe_environment(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* file,
+                      const float* r, const float* drdx, const float* drdy, const float* unused,
+                      int n, float* out, const lobe::shadeops::TextureArgs* a);
+float lobe_splineinverse(const char* basis, float y, const float* knots, int nknots);
+}
