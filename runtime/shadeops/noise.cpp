@@ -335,8 +335,9 @@ constexpr SimplexDim kSimplexDim[3] = {{0.366025403f, 0.211324865f, 64.0f},
 // OSL's simplexnoise2/3/4 in its float operation order: skew x onto the integer lattice to find
 // the cell, rank the offsets from the cell origin, and step from the origin along the largest
 // offset first, one coordinate per corner, to the opposite cell corner.
-// N = 2..4, known at compile time (the loops over coordinates and corners unroll).
-template <int N> LOBE_VARIANT D simplex_n(const float* x, uint32_t seed) {
+// N = 2..4, known at compile time (the loops over coordinates and corners unroll); the partials
+// only when kPartials (the value is the same either way).
+template <int N, bool kPartials> LOBE_VARIANT D simplex_n(const float* x, uint32_t seed) {
   constexpr int n = N;
   const SimplexDim& k = kSimplexDim[n - 2];
   float s = x[0];
@@ -374,28 +375,30 @@ template <int N> LOBE_VARIANT D simplex_n(const float* x, uint32_t seed) {
     for (int a = 1; a < n; ++a) dot += g[a] * d[a];
     float t2 = inside ? tc * tc : 0.0f, t4 = t2 * t2, t3dot = t2 * tc * dot;
     nc[c] = inside ? t4 * dot : 0.0f;
-    for (int a = 0; a < n; ++a) {
-      dd[a] += t3dot * d[a];
-      gt[a] += t4 * g[a];
-    }
+    if constexpr (kPartials)
+      for (int a = 0; a < n; ++a) {
+        dd[a] += t3dot * d[a];
+        gt[a] += t4 * g[a];
+      }
   }
   float total = nc[0];
   for (int c = 1; c <= n; ++c) total += nc[c];
   D r = dconst(k.scale * total);
-  for (int a = 0; a < n; ++a) r.d[a] = k.scale * (gt[a] - 8.0f * dd[a]);
+  if constexpr (kPartials)
+    for (int a = 0; a < n; ++a) r.d[a] = k.scale * (gt[a] - 8.0f * dd[a]);
   return r;
 }
 
-D simplex(const float* x, int n, uint32_t seed) {
+template <bool kPartials> D simplex(const float* x, int n, uint32_t seed) {
   switch (n) {
   case 1:
     return simplex1(x[0], seed);
   case 2:
-    return simplex_n<2>(x, seed);
+    return simplex_n<2, kPartials>(x, seed);
   case 3:
-    return simplex_n<3>(x, seed);
+    return simplex_n<3, kPartials>(x, seed);
   default:
-    return simplex_n<4>(x, seed);
+    return simplex_n<4, kPartials>(x, seed);
   }
 }
 
@@ -462,7 +465,7 @@ void lobe_noise_d(int kind, const float* x, const float* dx, const float* dy, in
   }
   if (simplex_kind) {
     for (int j = 0; j < nout; ++j) {
-      D r = simplex(x, nin, uint32_t(j));
+      D r = dx ? simplex<true>(x, nin, uint32_t(j)) : simplex<false>(x, nin, uint32_t(j));
       if (unsigned_kind) { // OSL's usimplex: 0.5 * (n + 1), partials times 0.5
         r.v = 0.5f * (r.v + 1.0f);
         for (int k = 0; k < nin; ++k) r.d[k] *= 0.5f;
