@@ -36,7 +36,7 @@ cmake --install "$build" --prefix "$tmp/prefix" >"$tmp/install.log" || {
 prefix=$tmp/prefix
 libdir=$(dirname "$(find "$prefix" -name 'liblobe.so' | head -1)")
 [ -n "$libdir" ] || fail "no liblobe.so installed"
-for f in "$libdir/lobe/liblobe_oiio.so" "$libdir/lobe/lobe_closures.bc" \
+for f in "$libdir/lobe/liblobe_oiio.so" "$libdir/lobe/lobe_closures.bc" "$libdir/lobe/lobe_shadeops.bc" \
   "$libdir/cmake/Lobe/LobeConfig.cmake" "$libdir/cmake/Lobe/LobeConfigVersion.cmake" \
   "$prefix/share/lobe/shaders/matte.osl" "$prefix/share/lobe/shaders/stdosl.h"; do
   [ -f "$f" ] || fail "not installed: ${f#"$prefix"/}"

@@ -13,6 +13,10 @@ so that the load of a shared machine falls on both alike, and medians are report
 and OSL/Lobe ratios (above 1: Lobe is faster). Without OSL_BIN only Lobe's figures are printed.
 
   python3 bench/osl_compare/run.py --lobe build/lobe [--reps 5] [--res 1024] [-k NAME] [--csv F]
+                                   [--base OTHER_LOBE]
+
+--base runs a second lobe binary (e.g. a copy of main's) interleaved with the others, and prints
+its table too, so a change is measured before and after in one session.
 
 Nothing here is asserted: the figures are reported (issue notes, bench/README.md).
 """
@@ -102,10 +106,13 @@ def main():
     ap.add_argument("--res", type=int, default=1024)
     ap.add_argument("-k", dest="only", action="append", help="run only cases containing NAME")
     ap.add_argument("--csv", help="write the medians as CSV")
+    ap.add_argument("--base", help="a second lobe binary, measured interleaved (before/after)")
     a = ap.parse_args()
     lobe = os.path.abspath(a.lobe)
     osl_bin = os.environ.get("OSL_BIN")
     tools = [("lobe", [lobe, "shade"])]
+    if a.base:
+        tools.append(("base", [os.path.abspath(a.base), "shade"]))
     if osl_bin:
         tools.insert(0, ("osl", [os.path.join(osl_bin, "testshade")]))
     cases = {n: c for n, c in CASES.items() if not a.only or any(k in n for k in a.only)}
@@ -142,27 +149,34 @@ def main():
             row[tool + "_wall_s"] = med(name, tool, "wall")
         rows.append(row)
 
-    print("\nmedians of %d runs, %dx%d grid%s" % (a.reps, a.res, a.res,
-                                                  "" if osl_bin else " (OSL_BIN not set)"))
-    if osl_bin:
-        hdr = "%-18s %10s %10s %6s | %9s %9s %6s | %8s %8s %6s" % (
-            "case", "osl 1x1", "lobe 1x1", "ratio", "osl ns/pt", "lobe", "ratio",
-            "osl wall", "lobe", "ratio")
-        print(hdr)
-        print("-" * len(hdr))
-        for r in rows:
-            def ratio(o, l):
-                return r["osl_" + o] / r["lobe_" + l] if r["lobe_" + l] > 0 else float("inf")
-            print("%-18s %8.0fms %8.0fms %6.2f | %9.1f %9.1f %6.2f | %7.2fs %7.2fs %6.2f" % (
-                r["case"], r["osl_latency_ms"], r["lobe_latency_ms"],
-                ratio("latency_ms", "latency_ms"), r["osl_ns_per_point_1t"],
-                r["lobe_ns_per_point_1t"], ratio("ns_per_point_1t", "ns_per_point_1t"),
-                r["osl_wall_s"], r["lobe_wall_s"], ratio("wall_s", "wall_s")))
-    else:
-        print("%-18s %10s %12s %10s" % ("case", "1x1", "ns/pt (1t)", "wall"))
-        for r in rows:
-            print("%-18s %8.0fms %12.1f %9.2fs" % (r["case"], r["lobe_latency_ms"],
-                                                   r["lobe_ns_per_point_1t"], r["lobe_wall_s"]))
+    def table(lobe_tool):
+        print("\n%s: medians of %d runs, %dx%d grid%s" % (
+            dict(tools)[lobe_tool][0], a.reps, a.res, a.res, "" if osl_bin else " (OSL_BIN not set)"))
+        if osl_bin:
+            hdr = "%-18s %10s %10s %6s | %9s %9s %6s | %8s %8s %6s" % (
+                "case", "osl 1x1", "lobe 1x1", "ratio", "osl ns/pt", "lobe", "ratio",
+                "osl wall", "lobe", "ratio")
+            print(hdr)
+            print("-" * len(hdr))
+            for r in rows:
+                def ratio(o, l):
+                    return (r["osl_" + o] / r[lobe_tool + "_" + l] if r[lobe_tool + "_" + l] > 0
+                            else float("inf"))
+                print("%-18s %8.0fms %8.0fms %6.2f | %9.1f %9.1f %6.2f | %7.2fs %7.2fs %6.2f" % (
+                    r["case"], r["osl_latency_ms"], r[lobe_tool + "_latency_ms"],
+                    ratio("latency_ms", "latency_ms"), r["osl_ns_per_point_1t"],
+                    r[lobe_tool + "_ns_per_point_1t"], ratio("ns_per_point_1t", "ns_per_point_1t"),
+                    r["osl_wall_s"], r[lobe_tool + "_wall_s"], ratio("wall_s", "wall_s")))
+        else:
+            print("%-18s %10s %12s %10s" % ("case", "1x1", "ns/pt (1t)", "wall"))
+            for r in rows:
+                print("%-18s %8.0fms %12.1f %9.2fs" % (
+                    r["case"], r[lobe_tool + "_latency_ms"], r[lobe_tool + "_ns_per_point_1t"],
+                    r[lobe_tool + "_wall_s"]))
+
+    if a.base:
+        table("base")
+    table("lobe")
     if a.csv:
         with open(a.csv, "w", newline="") as f:
             w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))

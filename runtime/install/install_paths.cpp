@@ -67,6 +67,18 @@ std::string closures_bitcode() {
   return tried.empty() ? "lobe_closures.bc" : tried.front();
 }
 
+std::string shadeops_bitcode() {
+  if (const char* env = std::getenv("LOBE_SHADEOPS_BC"); env && *env) return env;
+  std::vector<std::string> tried;
+  for (const fs::path& d : private_folders()) tried.push_back((d / "lobe_shadeops.bc").string());
+#ifndef LOBE_INSTALL_RELATIVE_ONLY
+  tried.push_back(LOBE_BUILD_SHADEOPS_BC);
+#endif
+  for (const std::string& p : tried)
+    if (exists(p)) return p;
+  return tried.empty() ? "lobe_shadeops.bc" : tried.front();
+}
+
 } // namespace install
 
 const char* version() { return LOBE_VERSION_TEXT; }

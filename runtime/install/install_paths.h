@@ -25,4 +25,8 @@ std::vector<std::string> oiio_module_candidates();
 // tree's that exists (else the first place looked, for the error message).
 std::string closures_bitcode();
 
+// The shadeop bitcode (noise, math; inlined into shaders at -O2): $LOBE_SHADEOPS_BC when set
+// ("off" disables it), else the first of <libdir>/lobe and the build tree's that exists.
+std::string shadeops_bitcode();
+
 } // namespace lobe::install

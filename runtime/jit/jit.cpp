@@ -2,6 +2,7 @@
 #include "jit.h"
 
 #include "energy_dielectric.h"
+#include "shadeop_bitcode.h"
 #include "shadeops.h"
 
 #include <llvm/Config/llvm-config.h>
@@ -136,7 +137,8 @@ void Jit::configure(llvm::Module& module) const {
 // -O0: SROA only (turns the symbol allocas into SSA values; no other transformation).
 // -O1: a short function pipeline suited to shader code (straight-line, alloca-heavy, calls
 // into shadeops): SROA makes SSA, then CSE, combining, CFG clean-up, GVN and dead code.
-// -O2: LLVM's full per-module O2 pipeline (adds inlining, loop passes, vectorisation).
+// -O2: LLVM's full per-module O2 pipeline (adds inlining, loop passes, vectorisation), after
+// linking in the bitcode of the pure shadeops the module calls.
 void Jit::optimize(llvm::Module& module, int opt_level) const {
   // A TargetMachine of its own (the cost model is not thread-safe), so runs go in parallel.
   auto own = s_->jtmb->createTargetMachine();
@@ -158,6 +160,9 @@ void Jit::optimize(llvm::Module& module, int opt_level) const {
   pb.registerLoopAnalyses(lam);
   pb.crossRegisterProxies(lam, fam, cgam, mam);
   if (opt_level >= 2) {
+    // The pure shadeops the module calls, from bitcode, so that the inliner below specialises
+    // them on their arguments (shadeop_bitcode.h); the same bits as the out-of-line calls.
+    link_shadeop_bitcode(module);
     llvm::ModulePassManager mpm = pb.buildPerModuleDefaultPipeline(llvm::OptimizationLevel::O2);
     mpm.run(module, mam);
     return;

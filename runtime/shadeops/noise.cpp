@@ -22,6 +22,16 @@
 #include <limits>
 #include <type_traits>
 
+// Bitcode builds (lobe_shadeops.bc) keep each noise variant a function of its own, so that
+// lobe_noise_d stays a small dispatcher the JIT inlines into a shader, where the call's constants
+// select one variant (runtime/jit/shadeop_bitcode.h; the JIT lets its inliner take the variant
+// too). Native builds leave the choice to the compiler.
+#ifdef LOBE_BITCODE
+#define LOBE_VARIANT __attribute__((noinline))
+#else
+#define LOBE_VARIANT
+#endif
+
 namespace {
 
 // ---- OSL's inthash: Bob Jenkins' lookup3 hashword with initval 13 (runtime/mathlib) ----
@@ -157,7 +167,8 @@ template <class T> inline T grad(uint32_t hash, const T& x, const T& y, const T&
 // each w face, then w; 4-D with derivatives: w, then z, x, y. The corners are numbered with bit
 // k for axis k. Every channel goes through the same operations in the same order as a scalar
 // evaluation would, so the results are bit for bit those of one call per channel.
-template <class T, int N> void perlin(const T* xin, const int* period, int nout, T* out) {
+template <class T, int N>
+LOBE_VARIANT void perlin(const T* xin, const int* period, int nout, T* out) {
   int X[N];
   T f[N], u[N];
   for (int k = 0; k < N; ++k) {
@@ -197,7 +208,7 @@ template <class T, int N> void perlin(const T* xin, const int* period, int nout,
     }
     // x then y over the four (x, y) corners at v[0..3] (index = x + 2 y).
     auto xy = [&](const T* v) {
-      return lerp(lerp(v[0], v[1], u[0]), lerp(v[2], v[3], u[0]), u[1]);
+      return lerp(lerp(v[0], v[1], u[0]), lerp(v[2], v[3], u[0]), u[N > 1 ? 1 : 0]);
     };
     if constexpr (N == 1) {
       out[j] = 0.2500f * lerp(g[0], g[1], u[0]);
@@ -288,7 +299,7 @@ const float* simplex_grad(const int* c, int n, uint32_t seed) {
 // OSL's simplexnoise1: corners floor(x) and floor(x) + 1, gradients +-1..8 (grad1), scale 0.36.
 // The derivative is summed in OSL's (Gustavson's sdnoise1) order: -8 * (t0^3 g0 x0^2 + t1^3 g1
 // x1^2) + (t0^4 g0 + t1^4 g1), times the scale.
-D simplex1(float x, uint32_t seed) {
+LOBE_VARIANT D simplex1(float x, uint32_t seed) {
   int i0 = ifloor(x);
   float x0 = x - float(i0), x1 = x0 - 1.0f;
   float g[2], t[2], t2[2], t4[2], xx[2], n[2];
@@ -325,8 +336,10 @@ constexpr SimplexDim kSimplexDim[3] = {{0.366025403f, 0.211324865f, 64.0f},
 // OSL's simplexnoise2/3/4 in its float operation order: skew x onto the integer lattice to find
 // the cell, rank the offsets from the cell origin, and step from the origin along the largest
 // offset first, one coordinate per corner, to the opposite cell corner.
-D simplex(const float* x, int n, uint32_t seed) {
-  if (n == 1) return simplex1(x[0], seed);
+// N = 2..4, known at compile time (the loops over coordinates and corners unroll); the partials
+// only when kPartials (the value is the same either way).
+template <int N, bool kPartials> LOBE_VARIANT D simplex_n(const float* x, uint32_t seed) {
+  constexpr int n = N;
   const SimplexDim& k = kSimplexDim[n - 2];
   float s = x[0];
   for (int a = 1; a < n; ++a) s += x[a];
@@ -363,16 +376,31 @@ D simplex(const float* x, int n, uint32_t seed) {
     for (int a = 1; a < n; ++a) dot += g[a] * d[a];
     float t2 = inside ? tc * tc : 0.0f, t4 = t2 * t2, t3dot = t2 * tc * dot;
     nc[c] = inside ? t4 * dot : 0.0f;
-    for (int a = 0; a < n; ++a) {
-      dd[a] += t3dot * d[a];
-      gt[a] += t4 * g[a];
-    }
+    if constexpr (kPartials)
+      for (int a = 0; a < n; ++a) {
+        dd[a] += t3dot * d[a];
+        gt[a] += t4 * g[a];
+      }
   }
   float total = nc[0];
   for (int c = 1; c <= n; ++c) total += nc[c];
   D r = dconst(k.scale * total);
-  for (int a = 0; a < n; ++a) r.d[a] = k.scale * (gt[a] - 8.0f * dd[a]);
+  if constexpr (kPartials)
+    for (int a = 0; a < n; ++a) r.d[a] = k.scale * (gt[a] - 8.0f * dd[a]);
   return r;
+}
+
+template <bool kPartials> D simplex(const float* x, int n, uint32_t seed) {
+  switch (n) {
+  case 1:
+    return simplex1(x[0], seed);
+  case 2:
+    return simplex_n<2, kPartials>(x, seed);
+  case 3:
+    return simplex_n<3, kPartials>(x, seed);
+  default:
+    return simplex_n<4, kPartials>(x, seed);
+  }
 }
 
 } // namespace
@@ -433,7 +461,7 @@ void lobe_noise_d(int kind, const float* x, const float* dx, const float* dy, in
   }
   if (simplex_kind) {
     for (int j = 0; j < nout; ++j) {
-      D r = simplex(x, nin, uint32_t(j));
+      D r = dx ? simplex<true>(x, nin, uint32_t(j)) : simplex<false>(x, nin, uint32_t(j));
       if (unsigned_kind) { // OSL's usimplex: 0.5 * (n + 1), partials times 0.5
         r.v = 0.5f * (r.v + 1.0f);
         for (int k = 0; k < nin; ++k) r.d[k] *= 0.5f;

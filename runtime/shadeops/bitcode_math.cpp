@@ -1,0 +1,61 @@
+// The math shadeops (ops_math.cpp) as C-ABI definitions by name, for the shadeop bitcode only
+// (lobe_shadeops.bc, runtime/jit/shadeop_bitcode.h): ops_math.cpp registers template
+// instances under names built at run time, which bitcode cannot carry, so the same one-line
+// wrappers of runtime/mathlib/mathops.h are spelled out here per math::Fn. The names and
+// signatures are the table's (shadeops.h, math_shadeop); the JIT links a function from the
+// bitcode only where its type matches the shader's declaration.
+#include "hashword.h"
+#include "mathops.h"
+
+#include <cstdint>
+
+using lobe::math::Dual;
+using lobe::math::Fn;
+using lobe::math::MathMode;
+
+#define LOBE_UNARY(name, F)                                                                        \
+  float lobe_math_##name(float x, int32_t mode) {                                                  \
+    return lobe::math::value1(Fn::F, MathMode(mode), x);                                           \
+  }                                                                                                \
+  float lobe_math_##name##_slope(float x, int32_t mode) {                                          \
+    return lobe::math::slope1(Fn::F, MathMode(mode), x);                                           \
+  }
+#define LOBE_BINARY(name, F)                                                                       \
+  float lobe_math_##name(float a, float b, int32_t mode) {                                         \
+    return lobe::math::value2(Fn::F, MathMode(mode), a, b);                                        \
+  }                                                                                                \
+  void lobe_math_##name##_dual(float* out, const float* a, const float* b, int32_t mode) {         \
+    Dual r = lobe::math::dual2(Fn::F, MathMode(mode), {a[0], a[1], a[2]}, {b[0], b[1], b[2]});     \
+    out[0] = r.v, out[1] = r.dx, out[2] = r.dy;                                                    \
+  }
+
+extern "C" {
+LOBE_UNARY(sin, Sin)
+LOBE_UNARY(cos, Cos)
+LOBE_UNARY(tan, Tan)
+LOBE_UNARY(asin, Asin)
+LOBE_UNARY(acos, Acos)
+LOBE_UNARY(atan, Atan)
+LOBE_UNARY(sinh, Sinh)
+LOBE_UNARY(cosh, Cosh)
+LOBE_UNARY(tanh, Tanh)
+LOBE_UNARY(exp, Exp)
+LOBE_UNARY(exp2, Exp2)
+LOBE_UNARY(expm1, Expm1)
+LOBE_UNARY(log, Log)
+LOBE_UNARY(log2, Log2)
+LOBE_UNARY(log10, Log10)
+LOBE_UNARY(logb, Logb)
+LOBE_UNARY(cbrt, Cbrt)
+LOBE_UNARY(erf, Erf)
+LOBE_UNARY(erfc, Erfc)
+LOBE_BINARY(atan2, Atan2)
+LOBE_BINARY(pow, Pow)
+LOBE_BINARY(fmod, Fmod)
+
+// hash() of numbers (ops_math.cpp's lobe_hash).
+int32_t lobe_hash(const uint32_t* words, int32_t n) { return lobe::math::osl_hash(words, n); }
+}
+
+// Every math::Fn has a row above (a new one must be added here too; the JIT then links it).
+static_assert(std::size(lobe::math::kFns) == 22, "bitcode_math.cpp lists every math::Fn");
