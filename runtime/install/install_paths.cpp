@@ -55,28 +55,41 @@ std::vector<std::string> oiio_module_candidates() {
   return tried;
 }
 
-std::string closures_bitcode() {
-  if (const char* env = std::getenv("LOBE_CLOSURES_BC"); env && *env) return env;
+namespace {
+
+// A private file: $<env> when set, else the first of <libdir>/lobe/<file> and `build_path` (the
+// build tree's, outside the installed library) that exists, else the first place looked (for
+// the error message).
+std::string private_file(const char* env, const char* file, const char* build_path) {
+  if (const char* e = std::getenv(env); e && *e) return e;
   std::vector<std::string> tried;
-  for (const fs::path& d : private_folders()) tried.push_back((d / "lobe_closures.bc").string());
+  for (const fs::path& d : private_folders()) tried.push_back((d / file).string());
 #ifndef LOBE_INSTALL_RELATIVE_ONLY
-  tried.push_back(LOBE_BUILD_CLOSURES_BC);
+  tried.push_back(build_path);
+#else
+  (void)build_path;
 #endif
   for (const std::string& p : tried)
     if (exists(p)) return p;
-  return tried.empty() ? "lobe_closures.bc" : tried.front();
+  return tried.empty() ? file : tried.front();
+}
+
+#ifdef LOBE_INSTALL_RELATIVE_ONLY
+constexpr const char* kBuildClosuresBc = "";
+constexpr const char* kBuildShadeopsBc = "";
+#else
+constexpr const char* kBuildClosuresBc = LOBE_BUILD_CLOSURES_BC;
+constexpr const char* kBuildShadeopsBc = LOBE_BUILD_SHADEOPS_BC;
+#endif
+
+} // namespace
+
+std::string closures_bitcode() {
+  return private_file("LOBE_CLOSURES_BC", "lobe_closures.bc", kBuildClosuresBc);
 }
 
 std::string shadeops_bitcode() {
-  if (const char* env = std::getenv("LOBE_SHADEOPS_BC"); env && *env) return env;
-  std::vector<std::string> tried;
-  for (const fs::path& d : private_folders()) tried.push_back((d / "lobe_shadeops.bc").string());
-#ifndef LOBE_INSTALL_RELATIVE_ONLY
-  tried.push_back(LOBE_BUILD_SHADEOPS_BC);
-#endif
-  for (const std::string& p : tried)
-    if (exists(p)) return p;
-  return tried.empty() ? "lobe_shadeops.bc" : tried.front();
+  return private_file("LOBE_SHADEOPS_BC", "lobe_shadeops.bc", kBuildShadeopsBc);
 }
 
 } // namespace install
