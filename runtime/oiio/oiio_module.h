@@ -6,9 +6,9 @@
 //
 // The module is found, in order, at $LOBE_OIIO_MODULE; beside the binary (or plugin library)
 // that contains this loader; in the installed <libdir>/lobe relative to it; at the build
-// location (runtime/install/install_paths.h). When none loads, module() returns null and `why` says what was tried; callers turn
-// that into their own error (a texture lookup fails as a missing file does, an image write
-// names the file).
+// location (runtime/install/install_paths.h). When none loads, module() returns null and `why` says
+// what was tried; callers turn that into their own error (a texture lookup fails as a missing file
+// does, an image write names the file).
 //
 // The interface is C++ (std::string, std::vector): the module is built with the project, by the
 // same compiler against the same standard library, and kAbi is checked on load.

@@ -4,8 +4,9 @@
 // followed by the parameter types: v void, i int32, l int64, f float, p pointer, derived from
 // the function's C type (shadeop_sig.h; the prototypes are shadeop_decls.h, which every
 // defining file includes). Codegen declares functions from this table and the JIT resolves
-// them from it (an absolute-symbol map: no dlsym), so a shadeop is declared exactly once. Pointer arguments carry triples/matrices
-// (float*, components in order), strings (interned const char*) and contexts.
+// them from it (an absolute-symbol map: no dlsym), so a shadeop is declared exactly once. Pointer
+// arguments carry triples/matrices (float*, components in order), strings (interned const char*)
+// and contexts.
 #pragma once
 
 #include <cstdint>
