@@ -12,6 +12,7 @@
 #include <llvm/IR/Verifier.h>
 #include <llvm/Support/raw_ostream.h>
 
+#include <algorithm>
 #include <limits>
 
 namespace lobe::codegen {
@@ -133,19 +134,19 @@ void LayerEmitter::init_params() {
   // Without useparam ops (IR written by hand) the connections are fetched here, but only
   // those of params something reads (an op, or a downstream layer through a connection from
   // the param): as OSL, an upstream layer whose value nothing reads does not run.
-  bool lazy = false;
+  const auto& ops = shader().ops;
+  if (std::any_of(ops.begin(), ops.end(),
+                  [](const ir::Op& op) { return op.opcode == ir::Opcode::UseParam; }))
+    return; // the useparam ops fetch them where they are first read
   std::vector<bool> read(syms.size(), false);
-  for (const ir::Op& op : shader().ops) {
-    lazy |= op.opcode == ir::Opcode::UseParam;
+  for (const ir::Op& op : ops)
     for (size_t a = 0; a < op.args.size(); ++a)
       if (ir::op_reads(op, int(a))) read[size_t(op.args[a])] = true;
-  }
   for (const LayerPlan& lp : group_.layers)
     for (const ConnectionPlan& c : lp.connections)
       if (c.src_layer == layer_) read[size_t(c.src_symbol)] = true;
-  if (!lazy)
-    for (const ConnectionPlan& c : plan().connections)
-      if (read[size_t(c.dst_symbol)]) run_useparam(c.dst_symbol);
+  for (const ConnectionPlan& c : plan().connections)
+    if (read[size_t(c.dst_symbol)]) run_useparam(c.dst_symbol);
 }
 
 // Runs the upstream layer if it has not run yet and copies the connected value, once.
