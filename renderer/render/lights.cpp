@@ -152,11 +152,6 @@ float LightSet::pdf_area(const Vec3& p, const SurfaceHit& hit) const {
   return select_.discrete_prob(int(points_.size()) + i) * area_density(areas_[i], p, hit);
 }
 
-float LightSet::pdf_environment(const Vec3& dir, const Vec3& n) const {
-  if (!env_) return 0;
-  return select_.discrete_prob(count_ - 1) * env_->pdf(dir, n);
-}
-
 Color3 LightSet::environment_hit(const Vec3& dir, const Vec3& n, float& pdf) const {
   if (!env_) {
     pdf = 0;

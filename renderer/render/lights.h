@@ -45,10 +45,8 @@ public:
               LightSample& out) const;
   // Selection x solid-angle density of reaching emitter point `hit` from `p` by sample().
   float pdf_area(const Vec3& p, const SurfaceHit& hit) const;
-  // Selection x density of sample() from a point of normal `n` reaching the environment along
-  // `dir`.
-  float pdf_environment(const Vec3& dir, const Vec3& n) const;
-  // The environment's radiance along `dir` and pdf_environment(dir, n), with one lookup.
+  // The environment's radiance along `dir` and, in `pdf`, the selection x density of sample()
+  // from a point of normal `n` reaching it along `dir` (EnvironmentLight::pdf), with one lookup.
   Color3 environment_hit(const Vec3& dir, const Vec3& n, float& pdf) const;
   bool is_emitter(int shape) const {
     return shape >= 0 && shape < int(shape_to_area_.size()) && shape_to_area_[shape] >= 0;
