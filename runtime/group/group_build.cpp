@@ -212,7 +212,7 @@ std::vector<ir::ConstValue> convert_const(const std::vector<ir::ConstValue>& v,
                                           const ir::Type& from, const ir::Type& to) {
   using ir::BaseType;
   if (from.arraylen != to.arraylen) return {};
-  bool same = from.base == to.base || (from.is_triple() && to.is_triple());
+  bool same = same_kind(from, to);
   if (same) return v;
   if (from.is_array() || v.size() != 1) return {};
   float f = from.base == BaseType::Int ? float(v[0].i) : v[0].f;
@@ -265,8 +265,7 @@ KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool run
     k.value = convert_const(src.init, src.type, s.type);
   } else if (src.kind == SymKind::Global && !written_globals.count(op.args[1]) &&
              !src.type.is_array() && !s.type.is_array() &&
-             src.type.components() == s.type.components() &&
-             (src.type.base == s.type.base || (src.type.is_triple() && s.type.is_triple()))) {
+             src.type.components() == s.type.components() && same_kind(src.type, s.type)) {
     k.global = src.name;
   }
   return k;
@@ -432,7 +431,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         } else {
           const ir::Symbol& g = src.symbols[size_t(src.find_symbol(k.global))];
           if (g.type.components() != dsym.type.components() || dsym.type.is_array() ||
-              !(g.type.base == dsym.type.base || (g.type.is_triple() && dsym.type.is_triple())))
+              !same_kind(g.type, dsym.type))
             continue;
           dsym.kind = SymKind::Global;
           dsym.name = k.global;

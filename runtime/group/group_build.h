@@ -49,4 +49,7 @@ struct ValueFit {
 };
 ValueFit fit_instance_value(const InstanceValue& v, const ir::Type& param);
 
+// The same kind of value: one base type, or both triples (color, point, vector, normal).
+bool same_kind(const ir::Type& a, const ir::Type& b);
+
 } // namespace lobe::group

@@ -25,10 +25,6 @@ std::vector<std::string> value_words(const InstanceValue& v, bool commas) {
   return out;
 }
 
-bool same_kind(const ir::Type& a, const ir::Type& b) {
-  return a.base == b.base || (a.is_triple() && b.is_triple());
-}
-
 // The declared type of a typed instance value, as IR; nullopt for an unknown name. "T[]" has
 // arraylen -1: as many elements as the value gives.
 std::optional<ir::Type> declared_type(const std::string& name) {
@@ -146,6 +142,10 @@ ValueFit fit_instance_value(const InstanceValue& v, const ir::Type& param) {
                 ir::to_string(param) + "', received '" + ir::to_string(*t) + "')";
   }
   return r;
+}
+
+bool same_kind(const ir::Type& a, const ir::Type& b) {
+  return a.base == b.base || (a.is_triple() && b.is_triple());
 }
 
 } // namespace lobe::group
