@@ -24,6 +24,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -184,12 +185,15 @@ private:
   ShadingSystem ss_;
   std::shared_ptr<const Material> mat_;
   std::vector<Output> outputs_;
-  std::vector<std::vector<Said>> said_;   // per iteration and point, in order
+  // What the points said, keyed by iteration * points + point; in order once sorted (stably:
+  // one point's messages come from one thread, in order).
+  std::vector<std::pair<size_t, Said>> said_;
   std::vector<std::string> pixel_blocks_; // --print, per point of the last iteration
   // Bounded execution: `stopped_`: a shade was stopped in a loop (its error is in its point's
   // messages; g_cancel is set too); `shaded_` counts the points that finished.
   std::atomic<bool> stopped_{false};
   std::atomic<size_t> shaded_{0};
+  size_t shaded_iterations_ = 0; // shade_grid calls so far
 };
 
 bool Shade::compile(const ShaderGroup& g, std::shared_ptr<const Material>& out) {
@@ -216,10 +220,10 @@ bool Shade::resolve_outputs() {
     if (out.layer.empty()) continue;
     outputs_.push_back(std::move(out));
   }
-  // What the grid will cost, checked before any of it is allocated: per point its messages
-  // (per iteration), its --print block, and each output's pixel (image and written copy).
+  // What the grid will cost, checked before any of it is allocated: per point its --print
+  // block and each output's pixel (image and written copy). Messages cost what they say.
   double points = double(job_.xres) * double(job_.yres);
-  double per_point = double(sizeof(std::vector<Said>)) * std::max(1, job_.iters);
+  double per_point = 0;
   if (job_.print) per_point += sizeof(std::string) + 64;
   for (const Output& o : outputs_)
     if (!o.closure && o.type.base != DataType::Base::String)
@@ -268,23 +272,39 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
   grid.vary_udxdy = job_.vary_udxdy;
   grid.vary_vdxdy = job_.vary_vdxdy;
   ShadeServices services(job_.userdata, job_.xres, job_.yres);
-  size_t points = size_t(job_.xres) * size_t(job_.yres), first = said_.size();
-  said_.resize(first + points);
+  size_t points = size_t(job_.xres) * size_t(job_.yres), first = shaded_iterations_ * points;
+  ++shaded_iterations_;
   if (last_iteration && job_.print) pixel_blocks_.assign(points, "");
+  // Each output looked up once: where `m` keeps it (offset into m.output_data) and its size.
+  struct Slot {
+    bool read = false;
+    size_t offset = 0, bytes = 0;
+  };
+  std::vector<Slot> slots(outputs_.size());
+  for (size_t i = 0; i < outputs_.size(); ++i) {
+    const Output& o = outputs_[i];
+    if (o.closure || o.type.base == DataType::Base::String) continue;
+    if (auto info = m.output_info(o.layer, o.spec.var))
+      slots[i] = {!info->closure, info->offset, info->type.bytes()};
+  }
   tbb::enumerable_thread_specific<ShadingContext> contexts;
   tbb::enumerable_thread_specific<std::vector<unsigned char>> scratch;
+  tbb::enumerable_thread_specific<std::vector<std::pair<size_t, Said>>> said;
   auto shade_row = [&](int y) {
     ShadingContext& ctx = contexts.local();
     std::vector<unsigned char>& bytes = scratch.local();
+    std::vector<std::pair<size_t, Said>>& row_said = said.local();
+    size_t key = 0; // the point being shaded, for its messages
     ctx.renderer = &services;
     ctx.cancel = &g_cancel;
+    ctx.report = [&row_said, &key](ShadingContext::MessageKind k, const std::string& t) {
+      row_said.push_back({key, {k, t}});
+    };
+    size_t finished = 0;
     for (int x = 0; x < job_.xres; ++x) {
-      if (g_cancel.load(std::memory_order_relaxed)) return;
+      if (g_cancel.load(std::memory_order_relaxed)) break;
       size_t p = size_t(y) * size_t(job_.xres) + size_t(x);
-      std::vector<Said>& said = said_[first + p];
-      ctx.report = [&said](ShadingContext::MessageKind k, const std::string& t) {
-        said.push_back({k, t});
-      };
+      key = first + p;
       ctx.reset();
       ShaderGlobals sg = group::grid_globals(grid, x, y, &ctx);
       m.shade(sg);
@@ -292,29 +312,42 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
         // Past max_loop_iterations (the error is in this point's messages), or cancelled.
         if (ctx.errors) stopped_.store(true);
         g_cancel.store(true);
-        return;
+        break;
       }
-      shaded_.fetch_add(1, std::memory_order_relaxed);
+      ++finished;
       if (!last_iteration) continue;
       std::string block;
       if (job_.print) block = "Pixel (" + std::to_string(x) + ", " + std::to_string(y) + "):\n";
-      for (Output& o : outputs_) {
-        if (o.closure || !m.read_output_bytes(ctx, o.layer, o.spec.var, bytes)) continue;
-        if (o.type.base == DataType::Base::String) continue;
-        if (job_.print) block += "  " + o.spec.var + " : " + value_text(o.type, bytes) + "\n";
+      const unsigned char* data = m.output_data(ctx);
+      for (size_t i = 0; i < outputs_.size(); ++i) {
+        Output& o = outputs_[i];
+        const unsigned char* value;
+        if (data && slots[i].read) {
+          value = data + slots[i].offset;
+        } else {
+          if (o.closure || !m.read_output_bytes(ctx, o.layer, o.spec.var, bytes)) continue;
+          if (o.type.base == DataType::Base::String) continue;
+          value = bytes.data();
+        }
+        if (job_.print) {
+          bytes.assign(value, value + o.type.bytes());
+          block += "  " + o.spec.var + " : " + value_text(o.type, bytes) + "\n";
+        }
         float* px = o.img.pixel(x, y);
         for (int c = 0; c < o.img.nchannels(); ++c) {
           if (o.type.base == DataType::Base::Int) {
             int32_t v;
-            std::memcpy(&v, bytes.data() + 4 * size_t(c), 4);
+            std::memcpy(&v, value + 4 * size_t(c), 4);
             px[c] = float(v);
           } else {
-            std::memcpy(&px[c], bytes.data() + 4 * size_t(c), 4);
+            std::memcpy(&px[c], value + 4 * size_t(c), 4);
           }
         }
       }
       if (job_.print) pixel_blocks_[p] = std::move(block);
     }
+    shaded_.fetch_add(finished, std::memory_order_relaxed);
+    ctx.report = nullptr; // it refers to this row's locals
   };
   auto all_rows = [&] { tbb::parallel_for(0, job_.yres, [&](int y) { shade_row(y); }); };
   if (job_.threads > 0) {
@@ -323,6 +356,9 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
   } else {
     all_rows();
   }
+  for (auto& part : said) said_.insert(said_.end(), part.begin(), part.end());
+  std::stable_sort(said_.begin(), said_.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
 }
 
 int Shade::write_outputs() {
@@ -454,8 +490,7 @@ int Shade::run() {
   std::fflush(stdout);
   for (const std::string& b : pixel_blocks_) std::fputs(b.c_str(), stdout);
   Journal journal(job_.error_repeats);
-  for (const std::vector<Said>& point : said_)
-    for (const Said& s : point) journal.print(s);
+  for (const auto& [point, s] : said_) journal.print(s);
   std::fflush(stdout);
   if (job_.outputs.size() == 1 && job_.outputs[0].file == "null") std::printf("\n");
   size_t total = size_t(job_.xres) * size_t(job_.yres) * size_t(std::max(1, job_.iters));

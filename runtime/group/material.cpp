@@ -75,6 +75,7 @@ std::optional<Material::OutputInfo> MaterialImpl::output_info(const std::string&
   const ir::Type& t = it->second.type;
   OutputInfo info;
   info.closure = t.base == ir::BaseType::Closure;
+  info.offset = it->second.offset;
   using B = DataType::Base;
   switch (t.base) {
   case ir::BaseType::Int:
@@ -106,6 +107,10 @@ std::optional<Material::OutputInfo> MaterialImpl::output_info(const std::string&
   return info;
 }
 
+const unsigned char* MaterialImpl::output_data(const ShadingContext& ctx) const {
+  return ctx.groupdata_owner == this ? ctx.groupdata.data() : groupdata_.data();
+}
+
 bool MaterialImpl::read_output_bytes(const ShadingContext& ctx, const std::string& layer,
                                      const std::string& param,
                                      std::vector<unsigned char>& dst) const {
@@ -114,8 +119,7 @@ bool MaterialImpl::read_output_bytes(const ShadingContext& ctx, const std::strin
   const ir::Type& t = it->second.type;
   size_t scalar = t.base == ir::BaseType::String ? sizeof(const char*) : 4;
   size_t n = size_t(t.components()) * size_t(std::max(1, t.arraylen)) * scalar;
-  const unsigned char* gd =
-      (ctx.groupdata_owner == this ? ctx.groupdata.data() : groupdata_.data()) + it->second.offset;
+  const unsigned char* gd = output_data(ctx) + it->second.offset;
   dst.assign(gd, gd + n);
   return true;
 }

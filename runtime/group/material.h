@@ -40,6 +40,7 @@ public:
   std::optional<OutputInfo> output_info(const std::string& layer,
                                         const std::string& param) const override;
   size_t groupdata_bytes() const override { return groupdata_.size(); }
+  const unsigned char* output_data(const ShadingContext& ctx) const override;
   bool read_output_bytes(const ShadingContext& ctx, const std::string& layer,
                          const std::string& param, std::vector<unsigned char>& dst) const override;
   const CompileStats& stats() const override { return stats_; }
@@ -84,6 +85,9 @@ public:
     return m_->output_info(layer, param);
   }
   size_t groupdata_bytes() const override { return m_->groupdata_bytes(); }
+  const unsigned char* output_data(const ShadingContext& ctx) const override {
+    return m_->output_data(ctx);
+  }
   bool read_output_bytes(const ShadingContext& ctx, const std::string& layer,
                          const std::string& param, std::vector<unsigned char>& dst) const override {
     return m_->read_output_bytes(ctx, layer, param, dst);

@@ -161,9 +161,12 @@ public:
   // An output parameter of a layer: its type, or nullopt when the layer has no output
   // parameter of that name. `closure`: a closure output (its value is a pointer into the
   // shading context, not data to copy).
+  // `offset`: where the value lives in output_data() (type.bytes() bytes, stored as
+  // read_output_bytes() gives them).
   struct OutputInfo {
     DataType type;
     bool closure = false;
+    size_t offset = 0;
   };
   virtual std::optional<OutputInfo> output_info(const std::string& layer,
                                                 const std::string& param) const {
@@ -180,6 +183,16 @@ public:
     (void)param;
     (void)dst;
     return false;
+  }
+  // The storage read_output_bytes() reads: after the most recent shade() with `ctx` (or, if
+  // `ctx` has shaded another material since, the values before any shade), an output's value is
+  // at output_data(ctx) + output_info(...)->offset. Valid until `ctx` shades again. Lets a
+  // caller that reads the same outputs at every point look each up once (output_info) instead
+  // of by name per point. Null when the material does not expose its storage (then use
+  // read_output_bytes).
+  virtual const unsigned char* output_data(const ShadingContext& ctx) const {
+    (void)ctx;
+    return nullptr;
   }
   // Bytes of per-shade group data (layer parameters and outputs), for testshade's
   // --print-groupdata.
