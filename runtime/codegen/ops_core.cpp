@@ -79,18 +79,15 @@ void matrix_arith(LayerEmitter& e, const ir::Op& op) {
     e.store(op.args[0], r);
     return;
   }
-  if (op.opcode == ir::Opcode::Div && !am && bm) { // float / matrix = diag(float) * inverse(matrix)
-    Val a = e.load_as(op, 1, BaseType::Matrix, false),
-        b = e.load_as(op, 2, BaseType::Matrix, false);
-    std::vector<llvm::Value*> ac, bc;
-    for (int i = 0; i < 16; ++i) {
-      ac.push_back(a[size_t(i)].v);
-      bc.push_back(b[size_t(i)].v);
-    }
+  if (op.opcode == ir::Opcode::Div && !am && bm) { // float / matrix = float * inverse(matrix)
+    llvm::Value* a = e.load_as(op, 1, BaseType::Float, false)[0].v;
+    Val b = e.load_as(op, 2, BaseType::Matrix, false);
+    std::vector<llvm::Value*> bc;
+    for (const Dual& d : b) bc.push_back(d.v);
     llvm::Value* out = e.spill(std::vector<llvm::Value*>(16, e.fconst(0)));
-    e.call("lobe_mat_div", {out, e.spill(ac), e.spill(bc)});
+    e.call("lobe_mat_inverse", {out, e.spill(bc)});
     Val r;
-    for (llvm::Value* v : e.reload(out, 16)) r.push_back(Dual{v});
+    for (llvm::Value* v : e.reload(out, 16)) r.push_back(Dual{e.b().CreateFMul(a, v)});
     e.store(op.args[0], r);
     return;
   }

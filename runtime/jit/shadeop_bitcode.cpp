@@ -43,11 +43,10 @@ const std::string& bitcode_bytes() {
 }
 
 // The shadeops worth linking: pure functions of their arguments on the hot path whose calls
-// carry constants to specialise on (noise) or that are small (math, hash). The matrix shadeops
-// stay out of line: inlined, their double-precision elimination added compile time (1x1
-// matrix_transform 110 -> 197 ms) and no speed.
+// carry constants to specialise on (noise) or that are small (math, hash, matrix).
 bool linkable(llvm::StringRef name) {
-  return name.starts_with("lobe_math_") || name == "lobe_noise_d" || name == "lobe_noise" ||
+  return name.starts_with("lobe_math_") || name == "lobe_mat_mul" || name == "lobe_transform" ||
+         name == "lobe_mat_transpose" || name == "lobe_noise_d" || name == "lobe_noise" ||
          name == "lobe_hash";
 }
 

@@ -6,6 +6,7 @@
 // bitcode only where its type matches the shader's declaration.
 #include "hashword.h"
 #include "mathops.h"
+#include "matrix44.h"
 
 #include <cstdint>
 
@@ -55,6 +56,20 @@ LOBE_BINARY(fmod, Fmod)
 
 // hash() of numbers (ops_math.cpp's lobe_hash).
 int32_t lobe_hash(const uint32_t* words, int32_t n) { return lobe::math::osl_hash(words, n); }
+
+// The pure matrix ops (ops_matrix.cpp's, same names and signatures).
+void lobe_mat_mul(float* dst, const float* a, const float* b) { lobe::math::mat_mul(dst, a, b); }
+void lobe_mat_inverse(float* dst, const float* src) { lobe::math::mat_invert(dst, src); }
+void lobe_mat_div(float* dst, const float* a, const float* b) {
+  float inv[16];
+  lobe::math::mat_invert(inv, b);
+  lobe::math::mat_mul(dst, a, inv);
+}
+void lobe_mat_transpose(float* dst, const float* m) { lobe::math::mat_transpose(dst, m); }
+float lobe_mat_det(const float* m) { return lobe::math::mat_det(m); }
+void lobe_transform(float* dst, const float* m, const float* p, int32_t kind) {
+  lobe::math::mat_transform(dst, m, p, kind);
+}
 }
 
 // Every math::Fn has a row above (a new one must be added here too; the JIT then links it).

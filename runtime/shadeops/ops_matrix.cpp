@@ -4,6 +4,7 @@
 // (RendererServices::get_matrix) answers any other name first; without an answer "camera",
 // "screen", "raster" and "NDC" are identity too (documented in docs/runtime.md). An unknown
 // space name is an error and gives the identity.
+#include "matrix44.h"
 #include "shadeop_decls.h"
 #include "shadeops.h"
 
@@ -13,67 +14,26 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <string_view>
 
 using lobe::ShaderGlobals;
 
 namespace {
 
-void identity(float* m) {
-  for (int i = 0; i < 16; ++i) m[i] = (i % 5 == 0) ? 1.0f : 0.0f;
-}
-
-void matmul(float* dst, const float* a, const float* b) {
-  float r[16];
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) {
-      double s = 0;
-      for (int k = 0; k < 4; ++k) s += double(a[i * 4 + k]) * b[k * 4 + j];
-      r[i * 4 + j] = float(s);
-    }
-  std::memcpy(dst, r, sizeof r);
-}
-
-// Gauss-Jordan with partial pivoting in double; a singular matrix inverts to all zeros.
-bool invert(float* dst, const float* src) {
-  double a[4][8];
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 8; ++j) a[i][j] = j < 4 ? src[i * 4 + j] : (j - 4 == i ? 1.0 : 0.0);
-  for (int c = 0; c < 4; ++c) {
-    int p = c;
-    for (int r = c + 1; r < 4; ++r)
-      if (std::fabs(a[r][c]) > std::fabs(a[p][c])) p = r;
-    if (a[p][c] == 0.0) {
-      std::memset(dst, 0, 16 * sizeof(float));
-      return false;
-    }
-    for (int j = 0; j < 8; ++j) std::swap(a[c][j], a[p][j]);
-    double inv = 1.0 / a[c][c];
-    for (int j = 0; j < 8; ++j) a[c][j] *= inv;
-    for (int r = 0; r < 4; ++r)
-      if (r != c) {
-        double f = a[r][c];
-        for (int j = 0; j < 8; ++j) a[r][j] -= f * a[c][j];
-      }
-  }
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) dst[i * 4 + j] = float(a[i][j + 4]);
-  return true;
-}
-
-double det3(double a, double b, double c, double d, double e, double f, double g, double h,
-            double i) {
-  return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g);
-}
+using lobe::math::mat_identity;
+using lobe::math::mat_invert;
+using lobe::math::mat_is_identity;
+using lobe::math::mat_mul;
 
 // space -> common; false for an unknown name. The renderer answers first (any name but
 // "common" and "world").
 bool space_to_common(const ShaderGlobals* sg, const char* space, float* m) {
-  std::string s = space;
-  identity(m);
+  std::string_view s = space;
+  mat_identity(m);
   if (s == "common" || s == "world") return true;
   if (sg && sg->context && sg->context->renderer && sg->context->renderer->get_matrix(*sg, s, m))
     return true;
-  identity(m);
+  mat_identity(m);
   if (s == "camera" || s == "screen" || s == "raster" || s == "NDC" || s == "rgb") return true;
   if (s == "object") {
     if (sg && sg->object2common) std::memcpy(m, sg->object2common, 16 * sizeof(float));
@@ -96,34 +56,16 @@ void unknown_space(ShaderGlobals* sg, const char* space) {
 
 extern "C" {
 
-void lobe_mat_mul(float* dst, const float* a, const float* b) { matmul(dst, a, b); }
-void lobe_mat_inverse(float* dst, const float* src) { invert(dst, src); }
+void lobe_mat_mul(float* dst, const float* a, const float* b) { mat_mul(dst, a, b); }
+void lobe_mat_inverse(float* dst, const float* src) { mat_invert(dst, src); }
 // a / b = a * inverse(b)
 void lobe_mat_div(float* dst, const float* a, const float* b) {
   float inv[16];
-  invert(inv, b);
-  matmul(dst, a, inv);
+  mat_invert(inv, b);
+  mat_mul(dst, a, inv);
 }
-void lobe_mat_transpose(float* dst, const float* m) {
-  float r[16];
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) r[i * 4 + j] = m[j * 4 + i];
-  std::memcpy(dst, r, sizeof r);
-}
-float lobe_mat_det(const float* m) {
-  double d = 0;
-  for (int c = 0; c < 4; ++c) {
-    double minor[9];
-    int k = 0;
-    for (int i = 1; i < 4; ++i)
-      for (int j = 0; j < 4; ++j)
-        if (j != c) minor[k++] = m[i * 4 + j];
-    double s = det3(minor[0], minor[1], minor[2], minor[3], minor[4], minor[5], minor[6], minor[7],
-                    minor[8]);
-    d += (c % 2 ? -1.0 : 1.0) * m[c] * s;
-  }
-  return float(d);
-}
+void lobe_mat_transpose(float* dst, const float* m) { lobe::math::mat_transpose(dst, m); }
+float lobe_mat_det(const float* m) { return lobe::math::mat_det(m); }
 
 // The matrix transforming points from space `from` to space `to`; returns 0 on an unknown name.
 int lobe_get_matrix(ShaderGlobals* sg, const char* from, const char* to, float* dst) {
@@ -132,8 +74,13 @@ int lobe_get_matrix(ShaderGlobals* sg, const char* from, const char* to, float* 
   if (!ok) unknown_space(sg, from);
   bool ok2 = space_to_common(sg, to, b);
   if (!ok2) unknown_space(sg, to);
-  invert(binv, b);
-  matmul(dst, a, binv);
+  // To "common" or "world" (or any space that is the identity): its inverse is the identity
+  // exactly, so the inversion is skipped; the product still runs (it maps -0 to +0, as always).
+  if (mat_is_identity(b))
+    mat_identity(binv);
+  else
+    mat_invert(binv, b);
+  mat_mul(dst, a, binv);
   return ok && ok2;
 }
 
@@ -144,23 +91,7 @@ void lobe_space_matrix(ShaderGlobals* sg, const char* space, float* dst) {
 
 // kind: 0 point (with translation and projective divide), 1 vector, 2 normal.
 void lobe_transform(float* dst, const float* m, const float* p, int kind) {
-  float x = p[0], y = p[1], z = p[2];
-  if (kind == 2) {
-    float inv[16];
-    invert(inv, m);
-    // n * transpose(inverse(M)): row i of the inverse dotted with n.
-    for (int i = 0; i < 3; ++i) dst[i] = x * inv[i * 4] + y * inv[i * 4 + 1] + z * inv[i * 4 + 2];
-    return;
-  }
-  float r[3];
-  for (int j = 0; j < 3; ++j) r[j] = x * m[j] + y * m[4 + j] + z * m[8 + j];
-  if (kind == 0) {
-    float w = x * m[3] + y * m[7] + z * m[11] + m[15];
-    for (int j = 0; j < 3; ++j) r[j] += m[12 + j];
-    if (w != 1.0f && w != 0.0f)
-      for (float& c : r) c /= w;
-  }
-  std::memcpy(dst, r, sizeof r);
+  lobe::math::mat_transform(dst, m, p, kind);
 }
 
 // transformu's scale from unit `from` to unit `to` (shadeops.h, unit_scale), for names known
