@@ -200,6 +200,15 @@ TEST_F(Groups, CacheHitsAndReadOutput) {
   EXPECT_EQ(out[0], 7.0f);
   ASSERT_TRUE(b.mat->read_output(ctx, "u", "Cout", out));
   EXPECT_EQ(out, (std::vector<float>{3, 6, 9}));
+  // The same values through output_data at output_info's offset (looked up once, then read by
+  // pointer at every point, as lobe shade does).
+  auto info = b.mat->output_info("u", "Cout");
+  ASSERT_TRUE(info);
+  const unsigned char* data = b.mat->output_data(ctx);
+  ASSERT_NE(data, nullptr);
+  float cout[3];
+  std::memcpy(cout, data + info->offset, sizeof cout);
+  EXPECT_EQ(std::vector<float>(cout, cout + 3), (std::vector<float>{3, 6, 9}));
   EXPECT_FALSE(b.mat->read_output(ctx, "d", "nope", out));
   GroupRun o2 = run_group(ss, text, true, 2);
   ASSERT_TRUE(o2.mat);
