@@ -24,7 +24,7 @@ Loaded load() {
   for (const std::string& path : tried) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) continue;
-    void* h = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    void* h = dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
     if (!h) {
       errors += std::string("; ") + dlerror();
       continue;
