@@ -155,8 +155,10 @@ int run_render(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "jit", "native"}));
   app.add_option("--closures", a.closures,
                  "closure evaluation for JIT materials: jit (kernels compiled from the closure "
-                 "library's bitcode, inlined per material) or native")
-      ->check(CLI::IsMember({"jit", "native"}));
+                 "library's bitcode, inlined per material, on a background thread while the "
+                 "render starts on the native library: same bits), jit-setup (kernels compiled "
+                 "before rendering) or native")
+      ->check(CLI::IsMember({"jit", "jit-setup", "native"}));
   app.add_option("--strategy", a.strategy, "light transport: mis, bsdf or light")
       ->check(CLI::IsMember({"mis", "bsdf", "light"}));
   app.add_option("--colorspace", a.colorspace,
@@ -235,7 +237,9 @@ int run_render(int argc, char** argv) {
     std::fprintf(stderr, "ERROR: %s\n", e.c_str());
   backend.set_max_loop_iterations(a.max_loop_iterations);
   lobe::render::RenderScene scene;
-  scene.use_closure_kernels(a.closures == "jit");
+  scene.set_kernel_mode(a.closures == "native"      ? lobe::render::KernelMode::Native
+                        : a.closures == "jit-setup" ? lobe::render::KernelMode::AtSetup
+                                                    : lobe::render::KernelMode::Background);
   scene.set_cancel(&g_cancel);
   // Ctrl-C from here on stops at the next stage (or loop check) and says where.
   std::signal(SIGINT, on_sigint);
@@ -273,6 +277,9 @@ int run_render(int argc, char** argv) {
       &stats);
   std::signal(SIGINT, SIG_DFL);
   bar.finish();
+  // The stats below count the kernels that came into use.
+  for (const std::string& w : scene.finish_kernels())
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
 
   // Shader run-time messages (a texture that cannot be read, error()...), once each with a
   // count, after the progress bar.
@@ -306,14 +313,22 @@ int run_render(int argc, char** argv) {
     if (st.clamp > 0) // biased: always said
       std::snprintf(spp + std::strlen(spp), sizeof spp - std::strlen(spp),
                     ", indirect light clamped at %g", st.clamp);
+    // When the kernels came into use: "" (at set-up or not at all), else after how long.
+    char ready[96] = "";
+    double rs = scene.stats().kernels_ready_seconds;
+    if (rs > 0)
+      std::snprintf(ready, sizeof ready, ", in use %.2fs into the render", rs);
+    else if (rs < 0)
+      std::snprintf(ready, sizeof ready, ", the render ended before all were compiled");
     std::fprintf(stderr,
                  "%s%s: %dx%d, %s, %s materials (%d compiled in %.2fs, %d with closure "
-                 "kernels, %d from the cache, setup %.2fs), render %.2fs, %.2f Mrays/s\n",
+                 "kernels%s, %d from the cache, setup %.2fs), render %.2fs, %.2f Mrays/s\n",
                  stats.cancelled ? "interrupted: wrote the finished samples to " : "wrote ",
                  out.c_str(), st.width, st.height, spp, backend.name().c_str(),
                  scene.stats().materials_compiled, scene.stats().compile_seconds,
-                 scene.stats().closure_kernels, scene.stats().closure_kernels_cached, setup_s,
-                 stats.seconds, stats.seconds > 0 ? double(rays) / stats.seconds / 1e6 : 0.0);
+                 scene.stats().closure_kernels, ready, scene.stats().closure_kernels_cached,
+                 setup_s, stats.seconds,
+                 stats.seconds > 0 ? double(rays) / stats.seconds / 1e6 : 0.0);
   }
   if (a.stats) print_stats(scene, desc, load_s, setup_s, stats, st, a.threads);
   return stats.cancelled ? 130 : 0;

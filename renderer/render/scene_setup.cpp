@@ -11,6 +11,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -197,20 +198,9 @@ std::string RenderScene::compile_materials(const MaterialCompiler& compile) {
     materials_[todo[i]] = compile(m, err);
     if (!materials_[todo[i]])
       errors[i] = m.where + ": material '" + m.name + "': " + err;
-    else if (use_kernels_)
+    else if (kernel_mode_ == KernelMode::AtSetup)
       materials_[todo[i]]->closure_kernels(); // compiled here, in parallel
   });
-  for (int mi : todo) {
-    if (!materials_[mi] || !use_kernels_) continue;
-    if (materials_[mi]->closure_kernels()) {
-      ++stats_.closure_kernels;
-      stats_.closure_kernels_cached += materials_[mi]->closure_kernels_cached();
-    }
-    std::string ke = materials_[mi]->closure_kernels_error();
-    if (!ke.empty())
-      stats_.warnings.push_back("material '" + desc_.materials[mi].name +
-                                "': closure kernels unavailable, native closures used: " + ke);
-  }
   stats_.compile_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   stats_.materials_compiled = static_cast<int>(todo.size());
@@ -228,11 +218,18 @@ std::string RenderScene::compile_materials(const MaterialCompiler& compile) {
     default_material_ = compile(grey, err);
     if (!default_material_) return "default material (matte, Cs 0.5): " + err;
   }
+  shape_kernels_ = std::make_unique<std::atomic<const ClosureKernels*>[]>(desc_.shapes.size());
   for (const scene::Shape& s : desc_.shapes) {
     shape_material_.push_back(s.material >= 0 ? materials_[s.material].get()
                                               : default_material_.get());
     shape_reads_.push_back(shape_material_.back()->globals_read());
-    shape_kernels_.push_back(use_kernels_ ? shape_material_.back()->closure_kernels() : nullptr);
+    shape_kernels_[shape_material_.size() - 1].store(nullptr);
+  }
+  if (kernel_mode_ == KernelMode::AtSetup) {
+    KernelStats k;
+    compile_kernels(nullptr, k);
+    merge(k);
+    stats_.kernels_ready_seconds = 0;
   }
   // Triangle tangents only for materials that read them (or screen derivatives built on them).
   std::vector<char> tangents;
@@ -240,6 +237,45 @@ std::string RenderScene::compile_materials(const MaterialCompiler& compile) {
     tangents.push_back((r & (tangent_bits() | derivative_bits())) != 0);
   geo_.set_tangents_needed(std::move(tangents));
   return "";
+}
+
+void RenderScene::compile_kernels(const std::atomic<bool>* stop, KernelStats& out) {
+  std::vector<const Material*> used;
+  for (const Material* m : shape_material_)
+    if (std::find(used.begin(), used.end(), m) == used.end()) used.push_back(m);
+  for (const Material* m : used) {
+    if (stop && stop->load()) return;
+    const ClosureKernels* k = m->closure_kernels();
+    if (k) {
+      ++out.kernels;
+      out.cached += m->closure_kernels_cached();
+      for (size_t s = 0; s < shape_material_.size(); ++s)
+        if (shape_material_[s] == m) shape_kernels_[s].store(k, std::memory_order_release);
+    }
+    std::string ke = m->closure_kernels_error();
+    if (!ke.empty()) {
+      std::string name = "default";
+      for (size_t i = 0; i < materials_.size(); ++i)
+        if (materials_[i].get() == m) name = desc_.materials[i].name;
+      out.warnings.push_back("material '" + name +
+                             "': closure kernels unavailable, native closures used: " + ke);
+    }
+  }
+}
+
+void RenderScene::merge(const KernelStats& k) {
+  stats_.closure_kernels += k.kernels;
+  stats_.closure_kernels_cached += k.cached;
+  stats_.warnings.insert(stats_.warnings.end(), k.warnings.begin(), k.warnings.end());
+  stats_.kernels_ready_seconds = k.ready_seconds;
+}
+
+std::vector<std::string> RenderScene::finish_kernels() {
+  if (!kernel_thread_.joinable()) return {};
+  stop_kernels_.store(true);
+  kernel_thread_.join();
+  merge(kernel_stats_);
+  return kernel_stats_.warnings;
 }
 
 std::string RenderScene::build_environment() {
@@ -428,6 +464,17 @@ std::string RenderScene::setup(const scene::SceneDesc& desc, const MaterialCompi
   stats_.emitters = static_cast<int>(emitters.size());
   lights_.build(geo_, desc_.lights, emitters, env_.valid() ? &env_ : nullptr);
   stats_.lights_seconds = since(t0);
+  if (kernel_mode_ == KernelMode::Background) {
+    // One thread, one material at a time: the render keeps the cores; finish_kernels() waits
+    // for at most the material being compiled.
+    setup_done_ = clock::now();
+    kernel_thread_ = std::thread([this] {
+      compile_kernels(&stop_kernels_, kernel_stats_);
+      if (!stop_kernels_.load())
+        kernel_stats_.ready_seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_done_).count();
+    });
+  }
   return "";
 }
 

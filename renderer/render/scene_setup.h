@@ -4,6 +4,8 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
+#include <thread>
 
 #include "camera.h"
 #include "environment.h"
@@ -55,18 +57,39 @@ struct SetupStats {
   double lights_seconds = 0;      // emitter probes and the light set
   int materials_compiled = 0;
   int emitters = 0;
-  int closure_kernels = 0;           // materials whose closures run as JIT-compiled kernels
-  int closure_kernels_cached = 0;    // of those, kernels read from the disk cache
+  int closure_kernels = 0;        // materials whose closures run as JIT-compiled kernels
+  int closure_kernels_cached = 0; // of those, kernels read from the disk cache
+  // Seconds from the end of setup() until every material's kernels were in use (background
+  // compile; 0 when compiled at setup or not used); < 0: the render ended first (the rest ran
+  // on the native library).
+  double kernels_ready_seconds = 0;
   std::vector<std::string> warnings; // e.g. closure kernels that failed to compile
   ShaderMessages messages;           // from shading at setup (emitter probes, background table)
 };
 
+// When the materials' closure kernels (Material::closure_kernels()) are compiled: never (the
+// native closure library), in parallel during setup(), or on a background thread after it while
+// the render starts on the native library; each shape switches to its kernels as they are ready.
+// Native and kernels compute the same bits (tests/closures/jit_kernels_test.cpp), so the image
+// does not depend on when the switch happens.
+enum class KernelMode { Native, AtSetup, Background };
+
 class RenderScene {
 public:
-  // Whether materials evaluate their closures through their JIT-compiled closure kernels
-  // (Material::closure_kernels(), compiled in parallel at setup) or the native library.
-  // Set before setup(); on by default.
-  void use_closure_kernels(bool on) { use_kernels_ = on; }
+  RenderScene() = default;
+  RenderScene(const RenderScene&) = delete;
+  RenderScene& operator=(const RenderScene&) = delete;
+  ~RenderScene() { finish_kernels(); }
+  // How materials evaluate their closures. Set before setup(); Background by default.
+  void set_kernel_mode(KernelMode m) { kernel_mode_ = m; }
+  void use_closure_kernels(bool on) {
+    kernel_mode_ = on ? KernelMode::AtSetup : KernelMode::Native;
+  }
+  // Background mode: stops compiling kernels (after the material being compiled, if any),
+  // waits for the thread and completes stats() (closure_kernels, kernels_ready_seconds,
+  // warnings). Called by the destructor; call it when the render is done to report the stats.
+  // Returns the warnings the background compile added (kernels that failed to compile).
+  std::vector<std::string> finish_kernels();
   // Set (by a Ctrl-C handler) to stop setup between stages and shaders in their loops; setup()
   // then returns "interrupted (Ctrl-C) while <stage>". Set before setup(); null: never.
   void set_cancel(const std::atomic<bool>* cancel) { cancel_ = cancel; }
@@ -94,7 +117,9 @@ public:
   // What the shape's material reads (Material::globals_read bits, kGlobalFields order).
   uint64_t globals_read(int shape) const { return shape_reads_[shape]; }
   // The closure kernels of a shape's material (null: the native closure library).
-  const ClosureKernels* closure_kernels(int shape) const { return shape_kernels_[shape]; }
+  const ClosureKernels* closure_kernels(int shape) const {
+    return shape_kernels_[size_t(shape)].load(std::memory_order_acquire);
+  }
   const SetupStats& stats() const { return stats_; }
   // Scene material of a shape (-1: the default grey matte).
   int material_index(int shape) const { return desc_.shapes[size_t(shape)].material; }
@@ -112,6 +137,17 @@ public:
 
 private:
   std::string compile_materials(const MaterialCompiler& compile);
+  // What compile_kernels found, merged into stats_ by the thread that owns stats_.
+  struct KernelStats {
+    int kernels = 0, cached = 0;
+    std::vector<std::string> warnings;
+    double ready_seconds = -1;
+  };
+  // Compiles (or reads from the cache) the kernels of every used material and publishes them to
+  // the shapes that use it. Runs in setup() or on kernel_thread_ (then `out` is kernel_stats_,
+  // which nothing else touches until the thread is joined).
+  void compile_kernels(const std::atomic<bool>* stop, KernelStats& out);
+  void merge(const KernelStats& k);
   std::string build_environment();
   std::string find_emitters(std::vector<LightSet::Emitter>& out, ShaderMessages& messages) const;
   bool cancelled() const { return cancel_ && cancel_->load(); }
@@ -126,8 +162,12 @@ private:
   std::vector<const Material*> shape_material_;
   std::vector<uint64_t> shape_reads_;
   std::vector<float> shape_area_;
-  std::vector<const ClosureKernels*> shape_kernels_;
-  bool use_kernels_ = true;
+  std::unique_ptr<std::atomic<const ClosureKernels*>[]> shape_kernels_; // per shape
+  KernelMode kernel_mode_ = KernelMode::Background;
+  std::thread kernel_thread_;
+  std::atomic<bool> stop_kernels_{false};
+  KernelStats kernel_stats_;
+  std::chrono::steady_clock::time_point setup_done_;
   const std::atomic<bool>* cancel_ = nullptr;
   std::shared_ptr<const Material> default_material_;
   SetupStats stats_;

@@ -11,6 +11,7 @@
 
 #include <unistd.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -221,4 +222,62 @@ surface ud_matte(color Cs = 0.75 [[ int lockgeom = 0 ]], float locked = 1) {
   m = mean_of("", R"("Cs": [0.1, 0.2])", e);
   EXPECT_NEAR(m, 0.75, 4 * e + 1e-6);
   std::filesystem::remove_all(dir);
+}
+
+// The closure kernels compute the native library's bits (jit_kernels_test), so when a shape
+// switches from native closures to its kernels cannot show in the image: the built-in
+// preview's materials (diffuse, oren-nayar, layered dielectric, conductor, glass) render to
+// the same pixels with kernels off, compiled at set-up, and compiled in the background while
+// the render runs; finish_kernels() then counts the kernels that came into use.
+TEST(JitMaterials, KernelModesRenderTheSamePixels) {
+  if (!MaterialBackend::jit_available()) GTEST_SKIP() << "this build has no JIT";
+  const std::string json = R"({
+    "camera": {"eye": [0, 2, 7], "look_at": [0, 0.5, 0], "fov": 35},
+    "materials": {"matte": {"shader": "matte", "params": {"Cs": 0.6, "roughness": 0.5}},
+                  "plastic": {"shader": "plastic", "params": {"Cs": 0.3}},
+                  "metal": {"shader": "metal"},
+                  "glass": {"shader": "glass"}},
+    "shapes": [{"type": "quad", "corner": [-4, 0, 4], "edge_x": [8, 0, 0], "edge_y": [0, 0, -8],
+                "material": "matte"},
+               {"type": "sphere", "center": [-1.5, 0.6, 0], "radius": 0.6, "material": "plastic"},
+               {"type": "sphere", "center": [0, 0.6, 0], "radius": 0.6, "material": "metal"},
+               {"type": "sphere", "center": [1.5, 0.6, 0], "radius": 0.6, "material": "glass"}],
+    "environment": {"type": "constant", "color": 0.8}
+  })";
+  ::setenv("LOBE_CACHE_DIR", "off", 1); // every kernel compiled here, none read from a cache
+  MaterialBackend jit("jit");
+  auto render_with = [&](KernelMode mode, int& kernels) {
+    std::string e;
+    auto desc = scene::parse_json_scene(json, "modes.json", e);
+    EXPECT_TRUE(desc) << e;
+    RenderScene s;
+    s.set_kernel_mode(mode);
+    EXPECT_EQ(s.setup(*desc, jit.compiler(), 48, 32), "");
+    RenderOptions opt;
+    opt.spp = 16;
+    opt.max_depth = 6;
+    image::Image img = test::render(s, 48, 32, opt).img;
+    EXPECT_TRUE(s.finish_kernels().empty());
+    kernels = s.stats().closure_kernels;
+    return img;
+  };
+  int k_native = -1, k_setup = -1, k_background = -1;
+  image::Image native = render_with(KernelMode::Native, k_native);
+  image::Image setup = render_with(KernelMode::AtSetup, k_setup);
+  image::Image background = render_with(KernelMode::Background, k_background);
+  ::unsetenv("LOBE_CACHE_DIR");
+  EXPECT_EQ(k_native, 0);
+  EXPECT_EQ(k_setup, 4); // the four materials, each with BSDF closures
+  std::printf("kernels in use: at set-up %d, in the background %d\n", k_setup, k_background);
+  EXPECT_GE(k_background, 0);
+  EXPECT_LE(k_background, 4);
+  ASSERT_EQ(native.pixels.size(), setup.pixels.size());
+  ASSERT_EQ(native.pixels.size(), background.pixels.size());
+  size_t differ_setup = 0, differ_background = 0;
+  for (size_t i = 0; i < native.pixels.size(); ++i) {
+    differ_setup += std::memcmp(&native.pixels[i], &setup.pixels[i], sizeof(float)) != 0;
+    differ_background += std::memcmp(&native.pixels[i], &background.pixels[i], sizeof(float)) != 0;
+  }
+  EXPECT_EQ(differ_setup, 0u);
+  EXPECT_EQ(differ_background, 0u);
 }
