@@ -2,6 +2,7 @@
 #include "format.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -28,28 +29,9 @@ ArgDesc next_arg(std::string_view codes, size_t& pos) {
 
 int components(char code) { return code == 't' ? 3 : (code == 'm' ? 16 : 1); }
 
-std::string printf1(const std::string& spec, double v) {
+// C's printf of one value with `spec`, truncated to 511 characters.
+template <class T> std::string printf1(const std::string& spec, T v) {
   char buf[512];
-  std::snprintf(buf, sizeof buf, spec.c_str(), v);
-  return buf;
-}
-std::string printf1(const std::string& spec, int v) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, spec.c_str(), v);
-  return buf;
-}
-std::string printf1(const std::string& spec, unsigned v) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, spec.c_str(), v);
-  return buf;
-}
-std::string printf1(const std::string& spec, long long v) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, spec.c_str(), v);
-  return buf;
-}
-std::string printf1(const std::string& spec, const char* v) {
-  char buf[4096];
   std::snprintf(buf, sizeof buf, spec.c_str(), v);
   return buf;
 }
@@ -122,29 +104,51 @@ std::string format_scalar(const RuntimeEnv& env, const std::string& head, char c
   return printf1(head + (int_conv && length ? 'g' : 'f'), v);
 }
 
-// Formats a whole argument: every component of every element, space-separated.
-std::string format_arg(const RuntimeEnv& env, const std::string& head, char conv, bool length,
-                       ArgDesc d, const void* p) {
+// The conversions shaders use most, a bare "%d" of an int or "%s" of a string (no flags,
+// width, precision or length), appended without snprintf or temporaries; false for any other,
+// which takes the general path. The text is the general path's: "%d" (and every conversion
+// but %x, %X and %o) of an int is its decimal, "%s" of a string the string itself.
+bool append_bare(std::string& out, char conv, char code, const void* p) {
+  if (code == 's') {
+    const char* s = *static_cast<const char* const*>(p);
+    out += s ? s : "";
+    return true;
+  }
+  if (code != 'i' || conv == 'x' || conv == 'X' || conv == 'o') return false;
+  char buf[16];
+  auto r = std::to_chars(buf, buf + sizeof buf, *static_cast<const int32_t*>(p));
+  out.append(buf, r.ptr);
+  return true;
+}
+
+// Appends a whole argument: every component of every element, space-separated. `head` is the
+// spec without its length modifier and conversion ("%08.3").
+void append_arg(std::string& out, const RuntimeEnv& env, std::string_view head, char conv,
+                bool length, ArgDesc d, const void* p) {
   size_t stride = (d.code == 's' || d.code == 'c') ? sizeof(void*) : 4;
   int n = components(d.code) * d.count;
-  std::string out;
+  bool bare = head.size() == 1;
+  std::string spec;
   for (int k = 0; k < n; ++k) {
     if (k) out += ' ';
-    out += format_scalar(env, head, conv, length, d.code, static_cast<const char*>(p) + k * stride);
+    const void* c = static_cast<const char*>(p) + k * stride;
+    if (bare && append_bare(out, conv, d.code, c)) continue;
+    if (spec.empty()) spec = head;
+    out += format_scalar(env, spec, conv, length, d.code, c);
   }
-  return out;
 }
 
 } // namespace
 
-std::string format_values(const RuntimeEnv& env, std::string_view fmt, std::string_view codes,
-                          const void* const* args) {
-  std::string out;
+void append_formatted(std::string& out, const RuntimeEnv& env, std::string_view fmt,
+                      std::string_view codes, const void* const* args) {
   size_t argpos = 0;
   int argi = 0;
   for (size_t i = 0; i < fmt.size(); ++i) {
-    if (fmt[i] != '%') {
-      out += fmt[i];
+    if (fmt[i] != '%') { // a run of plain text, up to the next conversion
+      size_t next = std::min(fmt.find('%', i), fmt.size());
+      out.append(fmt.substr(i, next - i));
+      i = next - 1;
       continue;
     }
     if (i + 1 < fmt.size() && fmt[i + 1] == '%') {
@@ -154,10 +158,10 @@ std::string format_values(const RuntimeEnv& env, std::string_view fmt, std::stri
     }
     // %[flags][width][.precision][length]conversion
     size_t j = i + 1;
-    std::string head = "%";
     while (j < fmt.size() &&
            std::string_view("-+ #0123456789.*").find(fmt[j]) != std::string_view::npos)
-      head += fmt[j++];
+      ++j;
+    std::string_view head = fmt.substr(i, j - i);
     size_t length_at = j;
     while (j < fmt.size() && std::string_view("hlLqjzt").find(fmt[j]) != std::string_view::npos)
       ++j; // length modifiers are meaningless for shader types
@@ -171,10 +175,16 @@ std::string format_values(const RuntimeEnv& env, std::string_view fmt, std::stri
     if (d.code == 0) {
       out += fmt.substr(i, j - i + 1); // more conversions than arguments: print them verbatim
     } else {
-      out += format_arg(env, head, conv, length, d, args[argi++]);
+      append_arg(out, env, head, conv, length, d, args[argi++]);
     }
     i = j;
   }
+}
+
+std::string format_values(const RuntimeEnv& env, std::string_view fmt, std::string_view codes,
+                          const void* const* args) {
+  std::string out;
+  append_formatted(out, env, fmt, codes, args);
   return out;
 }
 

@@ -16,5 +16,8 @@ namespace lobe::shadeops {
 
 std::string format_values(const RuntimeEnv& env, std::string_view fmt, std::string_view codes,
                           const void* const* args);
+// The same text, appended to `out` (which a caller may reuse to keep its capacity).
+void append_formatted(std::string& out, const RuntimeEnv& env, std::string_view fmt,
+                      std::string_view codes, const void* const* args);
 
 } // namespace lobe::shadeops
