@@ -104,6 +104,17 @@ std::string format_scalar(const RuntimeEnv& env, const std::string& head, char c
   return printf1(head + (int_conv && length ? 'g' : 'f'), v);
 }
 
+// A flag, width or precision character of a conversion spec: one of "-+ #0123456789.*".
+bool is_spec_char(char c) {
+  return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == ' ' || c == '#' || c == '.' ||
+         c == '*';
+}
+
+// A length modifier: one of "hlLqjzt".
+bool is_length_char(char c) {
+  return c == 'h' || c == 'l' || c == 'L' || c == 'q' || c == 'j' || c == 'z' || c == 't';
+}
+
 // The conversions shaders use most, a bare "%d" of an int or "%s" of a string (no flags,
 // width, precision or length), appended without snprintf or temporaries; false for any other,
 // which takes the general path. The text is the general path's: "%d" (and every conversion
@@ -117,14 +128,16 @@ bool append_bare(std::string& out, char conv, char code, const void* p) {
   if (code != 'i' || conv == 'x' || conv == 'X' || conv == 'o') return false;
   char buf[16];
   auto r = std::to_chars(buf, buf + sizeof buf, *static_cast<const int32_t*>(p));
-  out.append(buf, r.ptr);
+  out.append(buf, size_t(r.ptr - buf));
   return true;
 }
 
 // Appends a whole argument: every component of every element, space-separated. `head` is the
 // spec without its length modifier and conversion ("%08.3").
-void append_arg(std::string& out, const RuntimeEnv& env, std::string_view head, char conv,
-                bool length, ArgDesc d, const void* p) {
+// Out of line: its general path's temporaries would burden the bare conversions' caller.
+__attribute__((noinline)) void append_arg(std::string& out, const RuntimeEnv& env,
+                                          std::string_view head, char conv, bool length, ArgDesc d,
+                                          const void* p) {
   size_t stride = (d.code == 's' || d.code == 'c') ? sizeof(void*) : 4;
   int n = components(d.code) * d.count;
   bool bare = head.size() == 1;
@@ -138,10 +151,53 @@ void append_arg(std::string& out, const RuntimeEnv& env, std::string_view head, 
   }
 }
 
+// The whole format when it is plain text and bare conversions of scalars the bare path takes
+// ("tile_%d_%d", "%s_%s"), built in a stack buffer and appended once; false, having appended
+// nothing, when it holds anything else (flags, arrays, floats, a missing argument, more than
+// the buffer holds), which the general loop then formats.
+bool append_all_bare(std::string& out, std::string_view fmt, std::string_view codes,
+                     const void* const* args) {
+  char buf[256];
+  size_t n = 0, argi = 0;
+  for (size_t i = 0; i < fmt.size(); ++i) {
+    char c = fmt[i];
+    if (c == '%') {
+      if (i + 1 == fmt.size()) return false;
+      c = fmt[++i];
+      if (c != '%') { // a conversion: c is its character
+        char code = argi < codes.size() ? codes[argi] : 0;
+        if (argi + 1 < codes.size() && codes[argi + 1] == '{') return false; // an array
+        if (code == 'i' && (c == 'd' || c == 'i')) {
+          if (n + 11 > sizeof buf) return false;
+          n = size_t(
+              std::to_chars(buf + n, buf + sizeof buf, *static_cast<const int32_t*>(args[argi]))
+                  .ptr -
+              buf);
+        } else if (code == 's' && c == 's') {
+          const char* s = *static_cast<const char* const*>(args[argi]);
+          size_t len = s ? std::strlen(s) : 0;
+          if (len > sizeof buf - n) return false;
+          std::memcpy(buf + n, s, len);
+          n += len;
+        } else {
+          return false;
+        }
+        ++argi;
+        continue;
+      }
+    }
+    if (n == sizeof buf) return false;
+    buf[n++] = c;
+  }
+  out.append(buf, n);
+  return true;
+}
+
 } // namespace
 
 void append_formatted(std::string& out, const RuntimeEnv& env, std::string_view fmt,
                       std::string_view codes, const void* const* args) {
+  if (append_all_bare(out, fmt, codes, args)) return;
   size_t argpos = 0;
   int argi = 0;
   for (size_t i = 0; i < fmt.size(); ++i) {
@@ -158,12 +214,10 @@ void append_formatted(std::string& out, const RuntimeEnv& env, std::string_view 
     }
     // %[flags][width][.precision][length]conversion
     size_t j = i + 1;
-    while (j < fmt.size() &&
-           std::string_view("-+ #0123456789.*").find(fmt[j]) != std::string_view::npos)
-      ++j;
+    while (j < fmt.size() && is_spec_char(fmt[j])) ++j;
     std::string_view head = fmt.substr(i, j - i);
     size_t length_at = j;
-    while (j < fmt.size() && std::string_view("hlLqjzt").find(fmt[j]) != std::string_view::npos)
+    while (j < fmt.size() && is_length_char(fmt[j]))
       ++j; // length modifiers are meaningless for shader types
     bool length = j > length_at;
     if (j >= fmt.size()) {
@@ -174,6 +228,8 @@ void append_formatted(std::string& out, const RuntimeEnv& env, std::string_view 
     ArgDesc d = next_arg(codes, argpos);
     if (d.code == 0) {
       out += fmt.substr(i, j - i + 1); // more conversions than arguments: print them verbatim
+    } else if (head.size() == 1 && d.count == 1 && append_bare(out, conv, d.code, args[argi])) {
+      ++argi;
     } else {
       append_arg(out, env, head, conv, length, d, args[argi++]);
     }
