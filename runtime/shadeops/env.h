@@ -30,6 +30,8 @@ class StringTable {
 public:
   StringTable();
   const char* intern(std::string_view s);
+  // Unique among all tables ever made: names this table in per-thread caches of its strings.
+  uint64_t serial() const { return serial_; }
 
 private:
   struct Hash {
@@ -38,8 +40,8 @@ private:
       return std::hash<std::string_view>{}(s);
     }
   };
-  // Unique among all tables ever made, so that a thread's remembered strings are told apart
-  // from those of another table, even one since destroyed at the same address.
+  // Tells a thread's remembered strings apart from those of another table, even one since
+  // destroyed at the same address.
   const uint64_t serial_;
   std::mutex mutex_;
   // Node-based: element addresses are stable.

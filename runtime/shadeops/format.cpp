@@ -2,7 +2,9 @@
 #include "format.h"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -242,6 +244,53 @@ std::string format_values(const RuntimeEnv& env, std::string_view fmt, std::stri
   std::string out;
   append_formatted(out, env, fmt, codes, args);
   return out;
+}
+
+namespace {
+// A remembered format (format_interned): `serial` names the string table (0: empty slot).
+struct FormatMemo {
+  uint64_t serial = 0;
+  const char* fmt = nullptr;
+  std::string fmt_text;
+  int count = 0;
+  std::array<int32_t, kMemoInts> ints{};
+  const char* result = nullptr;
+};
+constexpr size_t kFormatMemoSlots = 256;
+} // namespace
+
+const char* format_interned(RuntimeEnv& env, const char* fmt, const char* codes,
+                            const void* const* args) {
+  thread_local std::string text; // keeps its capacity
+  // The memo's key: up to kMemoInts scalar ints ("", "i", "ii", ...) and the format.
+  int count = 0;
+  std::array<int32_t, kMemoInts> ints{};
+  while (count < kMemoInts && codes[count] == 'i' && codes[count + 1] != '{') {
+    ints[size_t(count)] = *static_cast<const int32_t*>(args[count]);
+    ++count;
+  }
+  FormatMemo* memo = nullptr;
+  if (codes[count] == 0) {
+    thread_local std::array<FormatMemo, kFormatMemoSlots> memos;
+    uint64_t h = uint64_t(uintptr_t(fmt)) * 0x9E3779B97F4A7C15ull;
+    for (int k = 0; k < count; ++k) h = (h ^ uint32_t(ints[size_t(k)])) * 0x9E3779B97F4A7C15ull;
+    memo = &memos[(h >> 32) % kFormatMemoSlots];
+    if (memo->serial == env.strings.serial() && memo->fmt == fmt && memo->count == count &&
+        memo->ints == ints && memo->fmt_text == fmt)
+      return memo->result;
+  }
+  text.clear();
+  append_formatted(text, env, fmt, codes, args);
+  const char* result = env.strings.intern(text);
+  if (memo) {
+    memo->serial = env.strings.serial();
+    memo->fmt = fmt;
+    memo->fmt_text = fmt;
+    memo->count = count;
+    memo->ints = ints;
+    memo->result = result;
+  }
+  return result;
 }
 
 } // namespace lobe::shadeops

@@ -39,13 +39,9 @@ void lobe_printf(ShaderGlobals* sg, RuntimeEnv* env, const char* fmt, const char
   send(sg, lobe::shadeops::format_values(*env, fmt, codes, args));
 }
 
-// The text is built in a per-thread buffer, which keeps its capacity: only the interner copies.
 const char* lobe_format(RuntimeEnv* env, const char* fmt, const char* codes,
                         const void* const* args) {
-  thread_local std::string text;
-  text.clear();
-  lobe::shadeops::append_formatted(text, *env, fmt, codes, args);
-  return env->strings.intern(text);
+  return lobe::shadeops::format_interned(*env, fmt, codes, args);
 }
 
 // warning() and error() from a shader, worded as OSL words them: "Shader warning [shader]:
