@@ -181,8 +181,11 @@ const char* lobe_substr(RuntimeEnv* env, const char* s, int start, int len) {
   return env->strings.intern(std::string_view(s + start, size_t(len)));
 }
 
+// Byte by byte: prefixes are short, shorter than strlen + strncmp's two calls.
 int lobe_startswith(const char* s, const char* prefix) {
-  return std::strncmp(s, prefix, std::strlen(prefix)) == 0;
+  for (; *prefix; ++s, ++prefix)
+    if (*s != *prefix) return 0;
+  return 1;
 }
 
 int lobe_endswith(const char* s, const char* suffix) {

@@ -50,7 +50,7 @@ private:
       std::unordered_map<std::string, std::unique_ptr<std::regex>, TextHash, std::equal_to<>>;
   struct Answer {
     uint64_t generation = 0;              // of the patterns (0: empty slot)
-    const std::string* pattern = nullptr; // its key in patterns_
+    const std::string* pattern = nullptr; // its key in patterns_ (alive in its generation)
     std::string subject;
     bool full = false;
     int result = 0;
