@@ -177,7 +177,8 @@ bool append_all_bare(std::string& out, std::string_view fmt, std::string_view co
               buf);
         } else if (code == 's' && c == 's') {
           const char* s = *static_cast<const char* const*>(args[argi]);
-          size_t len = s ? std::strlen(s) : 0;
+          if (!s) s = "";
+          size_t len = std::strlen(s);
           if (len > sizeof buf - n) return false;
           std::memcpy(buf + n, s, len);
           n += len;
