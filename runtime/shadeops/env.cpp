@@ -1,11 +1,38 @@
-// StringTable: interning behind a mutex (shader code interns only when it builds new strings).
+// StringTable: interning behind a mutex, with each thread's recent strings in front of it.
 #include "env.h"
+
+#include <array>
 
 namespace lobe::shadeops {
 
+namespace {
+std::atomic<uint64_t> next_table_serial{1};
+
+// A thread's recently interned strings: a slot per hash value modulo kRecentSlots, a new string
+// replacing the one in its slot. `serial` names the table (0: empty slot).
+constexpr size_t kRecentSlots = 256;
+struct Recent {
+  uint64_t serial = 0;
+  const char* text = nullptr;
+  size_t size = 0;
+};
+} // namespace
+
+StringTable::StringTable() : serial_(next_table_serial.fetch_add(1, std::memory_order_relaxed)) {}
+
 const char* StringTable::intern(std::string_view s) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return strings_.emplace(s).first->c_str();
+  thread_local std::array<Recent, kRecentSlots> recent;
+  Recent& r = recent[Hash{}(s) % kRecentSlots];
+  if (r.serial == serial_ && std::string_view(r.text, r.size) == s) return r.text;
+  const char* text;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = strings_.find(s);
+    if (it == strings_.end()) it = strings_.emplace(s).first;
+    text = it->c_str();
+  }
+  r = {serial_, text, s.size()};
+  return text;
 }
 
 const DeclaredClosureInfo* DeclaredClosureTable::get(const char* name,

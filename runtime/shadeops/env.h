@@ -7,6 +7,7 @@
 #include "lobe/shading.h"
 
 #include <atomic>
+#include <cstdint>
 #include <deque>
 #include <map>
 #include <memory>
@@ -22,13 +23,29 @@ namespace lobe::shadeops {
 inline constexpr const char* kUninitializedString = "!!!uninitialized!!!";
 
 // Thread-safe string interner: equal strings give the same pointer, valid for the table's life.
+// Shaders intern at every point that builds a string (format, concat, substr), mostly the same
+// few strings: each thread remembers the strings it interned last, one per slot of a small table
+// indexed by hash, so that interning one of them again takes no lock and allocates nothing.
 class StringTable {
 public:
+  StringTable();
   const char* intern(std::string_view s);
+  // Unique among all tables ever made: names this table in per-thread caches of its strings.
+  uint64_t serial() const { return serial_; }
 
 private:
+  struct Hash {
+    using is_transparent = void; // finds a string_view without making a std::string
+    size_t operator()(std::string_view s) const noexcept {
+      return std::hash<std::string_view>{}(s);
+    }
+  };
+  // Tells a thread's remembered strings apart from those of another table, even one since
+  // destroyed at the same address.
+  const uint64_t serial_;
   std::mutex mutex_;
-  std::unordered_set<std::string> strings_; // node-based: element addresses are stable
+  // Node-based: element addresses are stable.
+  std::unordered_set<std::string, Hash, std::equal_to<>> strings_;
 };
 
 // Descriptions of shader-declared closures (lobe/shading.h), one per distinct name and argument

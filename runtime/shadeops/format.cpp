@@ -2,6 +2,9 @@
 #include "format.h"
 
 #include <algorithm>
+#include <array>
+#include <charconv>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -28,28 +31,9 @@ ArgDesc next_arg(std::string_view codes, size_t& pos) {
 
 int components(char code) { return code == 't' ? 3 : (code == 'm' ? 16 : 1); }
 
-std::string printf1(const std::string& spec, double v) {
+// C's printf of one value with `spec`, truncated to 511 characters.
+template <class T> std::string printf1(const std::string& spec, T v) {
   char buf[512];
-  std::snprintf(buf, sizeof buf, spec.c_str(), v);
-  return buf;
-}
-std::string printf1(const std::string& spec, int v) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, spec.c_str(), v);
-  return buf;
-}
-std::string printf1(const std::string& spec, unsigned v) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, spec.c_str(), v);
-  return buf;
-}
-std::string printf1(const std::string& spec, long long v) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, spec.c_str(), v);
-  return buf;
-}
-std::string printf1(const std::string& spec, const char* v) {
-  char buf[4096];
   std::snprintf(buf, sizeof buf, spec.c_str(), v);
   return buf;
 }
@@ -122,29 +106,108 @@ std::string format_scalar(const RuntimeEnv& env, const std::string& head, char c
   return printf1(head + (int_conv && length ? 'g' : 'f'), v);
 }
 
-// Formats a whole argument: every component of every element, space-separated.
-std::string format_arg(const RuntimeEnv& env, const std::string& head, char conv, bool length,
-                       ArgDesc d, const void* p) {
+// A flag, width or precision character of a conversion spec: one of "-+ #0123456789.*".
+bool is_spec_char(char c) {
+  return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == ' ' || c == '#' || c == '.' ||
+         c == '*';
+}
+
+// A length modifier: one of "hlLqjzt".
+bool is_length_char(char c) {
+  return c == 'h' || c == 'l' || c == 'L' || c == 'q' || c == 'j' || c == 'z' || c == 't';
+}
+
+// The conversions shaders use most, a bare "%d" of an int or "%s" of a string (no flags,
+// width, precision or length), appended without snprintf or temporaries; false for any other,
+// which takes the general path. The text is the general path's: "%d" (and every conversion
+// but %x, %X and %o) of an int is its decimal, "%s" of a string the string itself.
+bool append_bare(std::string& out, char conv, char code, const void* p) {
+  if (code == 's') {
+    const char* s = *static_cast<const char* const*>(p);
+    out += s ? s : "";
+    return true;
+  }
+  if (code != 'i' || conv == 'x' || conv == 'X' || conv == 'o') return false;
+  char buf[16];
+  auto r = std::to_chars(buf, buf + sizeof buf, *static_cast<const int32_t*>(p));
+  out.append(buf, size_t(r.ptr - buf));
+  return true;
+}
+
+// Appends a whole argument: every component of every element, space-separated. `head` is the
+// spec without its length modifier and conversion ("%08.3").
+// Out of line: its general path's temporaries would burden the bare conversions' caller.
+__attribute__((noinline)) void append_arg(std::string& out, const RuntimeEnv& env,
+                                          std::string_view head, char conv, bool length, ArgDesc d,
+                                          const void* p) {
   size_t stride = (d.code == 's' || d.code == 'c') ? sizeof(void*) : 4;
   int n = components(d.code) * d.count;
-  std::string out;
+  bool bare = head.size() == 1;
+  std::string spec;
   for (int k = 0; k < n; ++k) {
     if (k) out += ' ';
-    out += format_scalar(env, head, conv, length, d.code, static_cast<const char*>(p) + k * stride);
+    const void* c = static_cast<const char*>(p) + k * stride;
+    if (bare && append_bare(out, conv, d.code, c)) continue;
+    if (spec.empty()) spec = head;
+    out += format_scalar(env, spec, conv, length, d.code, c);
   }
-  return out;
+}
+
+// The whole format when it is plain text and bare conversions of scalars the bare path takes
+// ("tile_%d_%d", "%s_%s"), built in a stack buffer and appended once; false, having appended
+// nothing, when it holds anything else (flags, arrays, floats, a missing argument, more than
+// the buffer holds), which the general loop then formats.
+bool append_all_bare(std::string& out, std::string_view fmt, std::string_view codes,
+                     const void* const* args) {
+  char buf[256];
+  size_t n = 0, argi = 0;
+  for (size_t i = 0; i < fmt.size(); ++i) {
+    char c = fmt[i];
+    if (c == '%') {
+      if (i + 1 == fmt.size()) return false;
+      c = fmt[++i];
+      if (c != '%') { // a conversion: c is its character
+        char code = argi < codes.size() ? codes[argi] : 0;
+        if (argi + 1 < codes.size() && codes[argi + 1] == '{') return false; // an array
+        if (code == 'i' && (c == 'd' || c == 'i')) {
+          if (n + 11 > sizeof buf) return false;
+          n = size_t(
+              std::to_chars(buf + n, buf + sizeof buf, *static_cast<const int32_t*>(args[argi]))
+                  .ptr -
+              buf);
+        } else if (code == 's' && c == 's') {
+          const char* s = *static_cast<const char* const*>(args[argi]);
+          if (!s) s = "";
+          size_t len = std::strlen(s);
+          if (len > sizeof buf - n) return false;
+          std::memcpy(buf + n, s, len);
+          n += len;
+        } else {
+          return false;
+        }
+        ++argi;
+        continue;
+      }
+    }
+    if (n == sizeof buf) return false;
+    buf[n++] = c;
+  }
+  out.append(buf, n);
+  return true;
 }
 
 } // namespace
 
-std::string format_values(const RuntimeEnv& env, std::string_view fmt, std::string_view codes,
-                          const void* const* args) {
-  std::string out;
+void append_formatted(std::string& out, const RuntimeEnv& env, std::string_view fmt,
+                      std::string_view codes, const void* const* args) {
+  if (append_all_bare(out, fmt, codes, args)) return;
   size_t argpos = 0;
   int argi = 0;
   for (size_t i = 0; i < fmt.size(); ++i) {
-    if (fmt[i] != '%') {
-      out += fmt[i];
+    if (fmt[i] != '%') { // a run of plain text, up to the next conversion
+      size_t next = std::min(fmt.find('%', i), fmt.size());
+      out.append(fmt.substr(i, next - i));
+      i = next - 1;
       continue;
     }
     if (i + 1 < fmt.size() && fmt[i + 1] == '%') {
@@ -154,12 +217,10 @@ std::string format_values(const RuntimeEnv& env, std::string_view fmt, std::stri
     }
     // %[flags][width][.precision][length]conversion
     size_t j = i + 1;
-    std::string head = "%";
-    while (j < fmt.size() &&
-           std::string_view("-+ #0123456789.*").find(fmt[j]) != std::string_view::npos)
-      head += fmt[j++];
+    while (j < fmt.size() && is_spec_char(fmt[j])) ++j;
+    std::string_view head = fmt.substr(i, j - i);
     size_t length_at = j;
-    while (j < fmt.size() && std::string_view("hlLqjzt").find(fmt[j]) != std::string_view::npos)
+    while (j < fmt.size() && is_length_char(fmt[j]))
       ++j; // length modifiers are meaningless for shader types
     bool length = j > length_at;
     if (j >= fmt.size()) {
@@ -170,12 +231,67 @@ std::string format_values(const RuntimeEnv& env, std::string_view fmt, std::stri
     ArgDesc d = next_arg(codes, argpos);
     if (d.code == 0) {
       out += fmt.substr(i, j - i + 1); // more conversions than arguments: print them verbatim
+    } else if (head.size() == 1 && d.count == 1 && append_bare(out, conv, d.code, args[argi])) {
+      ++argi;
     } else {
-      out += format_arg(env, head, conv, length, d, args[argi++]);
+      append_arg(out, env, head, conv, length, d, args[argi++]);
     }
     i = j;
   }
+}
+
+std::string format_values(const RuntimeEnv& env, std::string_view fmt, std::string_view codes,
+                          const void* const* args) {
+  std::string out;
+  append_formatted(out, env, fmt, codes, args);
   return out;
+}
+
+namespace {
+// A remembered format (format_interned): `serial` names the string table (0: empty slot).
+struct FormatMemo {
+  uint64_t serial = 0;
+  const char* fmt = nullptr;
+  std::string fmt_text;
+  int count = 0;
+  std::array<int32_t, kMemoInts> ints{};
+  const char* result = nullptr;
+};
+constexpr size_t kFormatMemoSlots = 256;
+} // namespace
+
+const char* format_interned(RuntimeEnv& env, const char* fmt, const char* codes,
+                            const void* const* args) {
+  thread_local std::string text; // keeps its capacity
+  // The memo's key: up to kMemoInts scalar ints ("", "i", "ii", ...) and the format.
+  int count = 0;
+  std::array<int32_t, kMemoInts> ints{};
+  while (count < kMemoInts && codes[count] == 'i' && codes[count + 1] != '{') {
+    ints[size_t(count)] = *static_cast<const int32_t*>(args[count]);
+    ++count;
+  }
+  FormatMemo* memo = nullptr;
+  if (codes[count] == 0) {
+    thread_local std::array<FormatMemo, kFormatMemoSlots> memos;
+    uint64_t h = uint64_t(uintptr_t(fmt)) * 0x9E3779B97F4A7C15ull;
+    for (int k = 0; k < count; ++k) h = (h ^ uint32_t(ints[size_t(k)])) * 0x9E3779B97F4A7C15ull;
+    memo = &memos[(h >> 32) % kFormatMemoSlots];
+    if (memo->serial == env.strings.serial() && memo->fmt == fmt && memo->count == count &&
+        memo->ints == ints && memo->fmt_text == fmt)
+      return memo->result;
+  }
+  text.clear();
+  append_formatted(text, env, fmt, codes, args);
+  const char* result = env.strings.intern(text);
+  if (memo) {
+    memo->serial = env.strings.serial();
+    memo->fmt = fmt;
+    memo->fmt_text = fmt;
+    memo->count = count;
+    memo->ints = ints;
+    memo->result = result;
+  }
+  return result;
 }
 
 } // namespace lobe::shadeops

@@ -16,5 +16,16 @@ namespace lobe::shadeops {
 
 std::string format_values(const RuntimeEnv& env, std::string_view fmt, std::string_view codes,
                           const void* const* args);
+// The same text, appended to `out` (which a caller may reuse to keep its capacity).
+void append_formatted(std::string& out, const RuntimeEnv& env, std::string_view fmt,
+                      std::string_view codes, const void* const* args);
+
+// The same text interned in env.strings (format()). Formats of up to kMemoInts int arguments
+// ("tile_%d_%d") are remembered per thread, one per slot of a table indexed by the format's
+// address and the values, checked against the format's text, the values and the table
+// (StringTable::serial), so that asking again returns the interned string without formatting.
+inline constexpr int kMemoInts = 4;
+const char* format_interned(RuntimeEnv& env, const char* fmt, const char* codes,
+                            const void* const* args);
 
 } // namespace lobe::shadeops

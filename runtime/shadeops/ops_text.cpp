@@ -3,6 +3,7 @@
 #include "env.h"
 #include "format.h"
 #include "lobe/context.h"
+#include "regex_cache.h"
 #include "shadeop_decls.h"
 
 #include <OpenImageIO/strutil.h>
@@ -31,28 +32,6 @@ void send(ShaderGlobals* sg, const std::string& text) {
 }
 } // namespace
 
-namespace {
-// Compiling a std::regex costs about 100 microseconds, matching a short string a few hundred
-// nanoseconds: a shader calls regex_search with the same few patterns at every point, so each
-// thread keeps the patterns it has compiled (an invalid pattern as null: it matches nothing).
-// The cache is dropped whole when it reaches kRegexCacheSize patterns, which only a shader
-// building patterns from varying text would do.
-constexpr size_t kRegexCacheSize = 64;
-
-const std::regex* compiled_regex(const char* pattern) {
-  thread_local std::unordered_map<std::string, std::unique_ptr<std::regex>> cache;
-  auto it = cache.find(pattern);
-  if (it != cache.end()) return it->second.get();
-  if (cache.size() >= kRegexCacheSize) cache.clear();
-  std::unique_ptr<std::regex> re;
-  try {
-    re = std::make_unique<std::regex>(pattern);
-  } catch (...) {
-  }
-  return cache.emplace(pattern, std::move(re)).first->second.get();
-}
-} // namespace
-
 extern "C" {
 
 void lobe_printf(ShaderGlobals* sg, RuntimeEnv* env, const char* fmt, const char* codes,
@@ -62,7 +41,7 @@ void lobe_printf(ShaderGlobals* sg, RuntimeEnv* env, const char* fmt, const char
 
 const char* lobe_format(RuntimeEnv* env, const char* fmt, const char* codes,
                         const void* const* args) {
-  return env->strings.intern(lobe::shadeops::format_values(*env, fmt, codes, args));
+  return lobe::shadeops::format_interned(*env, fmt, codes, args);
 }
 
 // warning() and error() from a shader, worded as OSL words them: "Shader warning [shader]:
@@ -184,7 +163,9 @@ void lobe_uninit_check(ShaderGlobals* sg, RuntimeEnv* env, void* vals, int kind,
 }
 
 const char* lobe_concat(RuntimeEnv* env, const char* a, const char* b) {
-  return env->strings.intern(std::string(a) + b);
+  thread_local std::string text; // keeps its capacity
+  text.assign(a).append(b);
+  return env->strings.intern(text);
 }
 
 int lobe_strlen(const char* s) { return int(std::strlen(s)); }
@@ -197,11 +178,14 @@ const char* lobe_substr(RuntimeEnv* env, const char* s, int start, int len) {
   if (start > n) start = n;
   if (len < 0) len = 0;
   if (len > n - start) len = n - start;
-  return env->strings.intern(std::string(s + start, size_t(len)));
+  return env->strings.intern(std::string_view(s + start, size_t(len)));
 }
 
+// Byte by byte: prefixes are short, shorter than strlen + strncmp's two calls.
 int lobe_startswith(const char* s, const char* prefix) {
-  return std::strncmp(s, prefix, std::strlen(prefix)) == 0;
+  for (; *prefix; ++s, ++prefix)
+    if (*s != *prefix) return 0;
+  return 1;
 }
 
 int lobe_endswith(const char* s, const char* suffix) {
@@ -261,15 +245,9 @@ int lobe_split(RuntimeEnv* env, const char* s, const char* sep, int maxsplit, co
 }
 
 // regex_search / regex_match (ECMAScript syntax); an invalid pattern matches nothing.
-// std::regex throws on bad patterns: caught in compiled_regex, never inside LLVM frames.
+// std::regex throws on bad patterns: caught in RegexCache, never inside LLVM frames.
 int lobe_regex(const char* s, const char* pattern, int full_match) {
-  const std::regex* re = compiled_regex(pattern);
-  if (!re) return 0;
-  try {
-    return full_match ? std::regex_match(s, *re) : std::regex_search(s, *re);
-  } catch (...) { // std::regex_error from the matcher (complexity, stack)
-    return 0;
-  }
+  return lobe::shadeops::RegexCache::local().matches(s, pattern, full_match != 0);
 }
 
 // regex_search / regex_match (subject, int results[n], pattern): results[2k], results[2k+1] are
@@ -279,7 +257,7 @@ int lobe_regex(const char* s, const char* pattern, int full_match) {
 int lobe_regex_results(const char* s, const char* pattern, int full_match, int* results, int n) {
   int matched = 0, nsub = 0;
   std::cmatch m;
-  if (const std::regex* re = compiled_regex(pattern)) {
+  if (const std::regex* re = lobe::shadeops::RegexCache::local().compiled(pattern)) {
     try {
       matched = full_match ? std::regex_match(s, m, *re) : std::regex_search(s, m, *re);
       nsub = matched ? int(m.size()) : 0;

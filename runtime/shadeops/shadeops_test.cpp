@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@ using namespace lobe;
 using namespace lobe::shadeops;
 
 extern "C" {
+const char* lobe_format(RuntimeEnv*, const char*, const char*, const void* const*);
 const char* lobe_substr(RuntimeEnv*, const char*, int, int);
 const char* lobe_concat(RuntimeEnv*, const char*, const char*);
 int lobe_regex(const char*, const char*, int);
@@ -61,6 +63,54 @@ TEST(Format, ArraysAndConversions) {
   const void* args[] = {a, &n};
   // %d of a float truncates, %g of an int promotes.
   EXPECT_EQ(format_values(env, "[%g] %g %d", "f{3}i", args), "[1 2 3.5] 7 %d");
+}
+
+// format() of ints is remembered per thread: asked again, or after more formats than the memo
+// holds, it gives the same interned string, read from the format's text (not its address) and
+// interned in the asking table (not one since destroyed).
+TEST(Format, InternedIntFormatsRemembered) {
+  RuntimeEnv env;
+  for (int round = 0; round < 2; ++round)
+    for (int a = 0; a < 40; ++a)
+      for (int b = -3; b < 17; b += 4) {
+        const void* args[] = {&a, &b};
+        std::string want = "tile_" + std::to_string(a) + "_" + std::to_string(b);
+        const char* got = lobe_format(&env, "tile_%d_%d", "ii", args);
+        EXPECT_STREQ(got, want.c_str());
+        EXPECT_EQ(got, env.strings.intern(want));
+      }
+  int five = 5;
+  const void* one[] = {&five};
+  char fmt[8] = "a%d";
+  EXPECT_STREQ(lobe_format(&env, fmt, "i", one), "a5");
+  fmt[0] = 'b'; // the same address, another text
+  EXPECT_STREQ(lobe_format(&env, fmt, "i", one), "b5");
+  EXPECT_STREQ(lobe_format(&env, "none", "", nullptr), "none");
+  const void* two[] = {&five, &five};
+  EXPECT_STREQ(lobe_format(&env, "%x|%5d", "ii", two), "5|    5");
+  int a = 7, b = 8;
+  const void* ab[] = {&a, &b};
+  for (int round = 0; round < 3; ++round) { // a table destroyed, another made, maybe in its place
+    auto other = std::make_unique<RuntimeEnv>();
+    const char* got = lobe_format(other.get(), "tile_%d_%d", "ii", ab);
+    EXPECT_STREQ(got, "tile_7_8");
+    EXPECT_EQ(got, other->strings.intern("tile_7_8"));
+    EXPECT_NE(got, env.strings.intern("tile_7_8"));
+  }
+}
+
+// What the memo does not take is formatted as before: strings, arrays, more than four ints.
+TEST(Format, InternedOtherFormats) {
+  RuntimeEnv env;
+  const char* s = env.strings.intern("ab");
+  int i[5] = {1, 2, 3, 4, 5};
+  const void* mixed[] = {&s, &i[0]};
+  EXPECT_STREQ(lobe_format(&env, "%s_%d", "si", mixed), "ab_1");
+  const void* array[] = {i};
+  EXPECT_STREQ(lobe_format(&env, "[%d]", "i{3}", array), "[1 2 3]");
+  const void* five[] = {&i[0], &i[1], &i[2], &i[3], &i[4]};
+  EXPECT_STREQ(lobe_format(&env, "%d%d%d%d%d", "iiiii", five), "12345");
+  EXPECT_STREQ(lobe_format(&env, "%d%d%d%d", "iiii", five), "1234");
 }
 
 TEST(Strings, InternedAndSubstr) {
