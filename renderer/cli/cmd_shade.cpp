@@ -297,6 +297,7 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
     size_t key = 0; // the point being shaded, for its messages
     ctx.renderer = &services;
     ctx.cancel = &g_cancel;
+    group::GridGlobals globals(grid, &ctx);
     ctx.report = [&row_said, &key](ShadingContext::MessageKind k, const std::string& t) {
       row_said.push_back({key, {k, t}});
     };
@@ -306,7 +307,7 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
       size_t p = size_t(y) * size_t(job_.xres) + size_t(x);
       key = first + p;
       ctx.reset();
-      ShaderGlobals sg = group::grid_globals(grid, x, y, &ctx);
+      ShaderGlobals sg = globals.at(x, y);
       m.shade(sg);
       if (ctx.stopped) {
         // Past max_loop_iterations (the error is in this point's messages), or cancelled.

@@ -22,7 +22,24 @@ void coord(bool center, int i, int n, float& t, float& dt) {
 } // namespace
 
 ShaderGlobals grid_globals(const GridSpec& g, int x, int y, ShadingContext* ctx) {
-  ShaderGlobals sg{};
+  return GridGlobals(g, ctx).at(x, y);
+}
+
+GridGlobals::GridGlobals(const GridSpec& g, ShadingContext* ctx) : g_(g) {
+  ShaderGlobals& sg = shared_;
+  sg.dPdx = {g.scale_u / float(std::max(1, g.width - 1)), 0, 0};
+  sg.dPdy = {0, g.scale_v / float(std::max(1, g.height - 1)), 0};
+  sg.N = sg.Ng = {0, 0, 1};
+  sg.dPdu = {1, 0, 0};
+  sg.dPdv = {0, 1, 0};
+  sg.surfacearea = 1;
+  sg.raytype = g.raytype;
+  sg.context = ctx;
+}
+
+ShaderGlobals GridGlobals::at(int x, int y) const {
+  const GridSpec& g = g_;
+  ShaderGlobals sg = shared_;
   coord(g.center, x, g.width, sg.u, sg.dudx);
   coord(g.center, y, g.height, sg.v, sg.dvdy);
   sg.u = g.scale_u * sg.u + g.offset_u;
@@ -30,8 +47,6 @@ ShaderGlobals grid_globals(const GridSpec& g, int x, int y, ShadingContext* ctx)
   sg.dudx *= g.scale_u;
   sg.dvdy *= g.scale_v;
   sg.P = {sg.u, sg.v, 1};
-  sg.dPdx = {g.scale_u / float(std::max(1, g.width - 1)), 0, 0};
-  sg.dPdy = {0, g.scale_v / float(std::max(1, g.height - 1)), 0};
   if (g.vary_pdxdy) {
     sg.dPdx = {1 - sg.u, 1 - sg.v, sg.u * 0.5f};
     sg.dPdy = {1 - sg.v, 1 - sg.u, sg.v * 0.5f};
@@ -44,12 +59,6 @@ ShaderGlobals grid_globals(const GridSpec& g, int x, int y, ShadingContext* ctx)
     sg.dvdx = 1 - sg.v;
     sg.dvdy = sg.v;
   }
-  sg.N = sg.Ng = {0, 0, 1};
-  sg.dPdu = {1, 0, 0};
-  sg.dPdv = {0, 1, 0};
-  sg.surfacearea = 1;
-  sg.raytype = g.raytype;
-  sg.context = ctx;
   return sg;
 }
 

@@ -24,6 +24,18 @@ struct GridSpec {
 
 ShaderGlobals grid_globals(const GridSpec& g, int x, int y, ShadingContext* ctx);
 
+// The same, for shading a whole grid: the fields every point shares are set up once, and
+// at(x, y) fills in the rest (grid_globals's values, bit for bit).
+class GridGlobals {
+public:
+  GridGlobals(const GridSpec& g, ShadingContext* ctx);
+  ShaderGlobals at(int x, int y) const;
+
+private:
+  GridSpec g_;
+  ShaderGlobals shared_{};
+};
+
 // RayType bit for a name ("camera", "shadow", ...); 0 (no type) for an unknown name, as
 // testshade: every raytype() is then 0.
 int32_t raytype_from_name(const std::string& name);
