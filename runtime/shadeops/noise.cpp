@@ -23,6 +23,10 @@
 #include <type_traits>
 #include <utility>
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <xmmintrin.h>
+#endif
+
 // Bitcode builds (lobe_shadeops.bc) keep each noise variant a function of its own, so that
 // lobe_noise_d stays a small dispatcher the JIT inlines into a shader, where the call's constants
 // select one variant (runtime/jit/shadeop_bitcode.h; the JIT lets its inliner take the variant
@@ -82,8 +86,13 @@ inline float bits_to_01(uint32_t bits) {
 
 // OSL's float -> int conversions, with the result x86 gives (and OSL, built for x86, returns)
 // where C++ leaves it undefined: a NaN, or a value outside the int range, converts to INT_MIN.
+// On x86 that is what cvttss2si does, so the range test is the instruction's own.
 inline int to_int(float f) {
+#if defined(__x86_64__) || defined(__i386__)
+  return _mm_cvtt_ss2si(_mm_set_ss(f));
+#else
   return f >= -2147483648.0f && f < 2147483648.0f ? int(f) : std::numeric_limits<int>::min();
+#endif
 }
 // OIIO::ifloor: int(floor(x)).
 inline int ifloor(float x) { return to_int(std::floor(x)); }
