@@ -69,14 +69,6 @@ void strip_attributes(llvm::Function& f) {
   if (inline_variants) f.removeFnAttr(llvm::Attribute::NoInline);
 }
 
-// Simplex noise (noise.cpp's simplex1 and simplex_n<N, partials>) stays scalar code: the
-// vectorizers pack its corners into vector lanes that the gradient-table lookups then take apart
-// again, which measured slower than the scalar code (bench/osl_compare simplex, one thread,
-// 512x512: 990 -> 725 ns a point). noimplicitfloat keeps both vectorizers off a function; the
-// variants are not inlined (LOBE_VARIANT), so it stays on them and off the shader that calls
-// them (with LOBE_SHADEOPS_INLINE=all it would spread to the caller).
-bool keep_scalar(llvm::StringRef name) { return name.contains("simplex"); }
-
 // Dispatchers over their constant arguments: always inlined, so the call's constants pick one
 // variant (kind, dimension, channels, derivatives or not) and the rest folds away.
 bool dispatcher(llvm::StringRef name) { return name == "lobe_noise_d" || name == "lobe_noise"; }
@@ -122,7 +114,6 @@ int link_shadeop_bitcode(llvm::Module& module) {
     if (f.isDeclaration() && !resolvable(f)) return 0; // would not resolve in the JIT
     strip_attributes(f);
     if (f.isDeclaration()) continue;
-    if (keep_scalar(f.getName())) f.addFnAttr(llvm::Attribute::NoImplicitFloat);
     if (dispatcher(f.getName())) f.addFnAttr(llvm::Attribute::AlwaysInline);
     f.setComdat(nullptr);
     bool entry = false;
