@@ -10,27 +10,34 @@
 
 namespace lobe::math {
 
-inline uint32_t rotl32(uint32_t x, int k) { return (x << k) | (x >> (32 - k)); }
+// lookup3's mix() and final() are templates over the word type U: uint32_t, or lanes of words (a
+// GCC/Clang vector of uint32_t, e.g. the corners of a noise cell hashed at once), whose
+// operations wrap lane by lane as uint32_t does. They work in place, with the rotations written
+// out, so that no function passes or returns a vector by value (an ABI that differs between
+// SSE and AVX builds).
 
 // lookup3's mix(): three words in, three words out, every input bit affecting every output.
-inline void lookup3_mix(uint32_t& a, uint32_t& b, uint32_t& c) {
-  a -= c, a ^= rotl32(c, 4), c += b;
-  b -= a, b ^= rotl32(a, 6), a += c;
-  c -= b, c ^= rotl32(b, 8), b += a;
-  a -= c, a ^= rotl32(c, 16), c += b;
-  b -= a, b ^= rotl32(a, 19), a += c;
-  c -= b, c ^= rotl32(b, 4), b += a;
+template <class U> inline void lookup3_mix(U& a, U& b, U& c) {
+  a -= c, a ^= (c << 4) | (c >> 28), c += b;
+  b -= a, b ^= (a << 6) | (a >> 26), a += c;
+  c -= b, c ^= (b << 8) | (b >> 24), b += a;
+  a -= c, a ^= (c << 16) | (c >> 16), c += b;
+  b -= a, b ^= (a << 19) | (a >> 13), a += c;
+  c -= b, c ^= (b << 4) | (b >> 28), b += a;
 }
 
 // lookup3's final(): the last mixing of (a, b, c), result in c.
+template <class U> inline void lookup3_final_in_place(U& a, U& b, U& c) {
+  c ^= b, c -= (b << 14) | (b >> 18);
+  a ^= c, a -= (c << 11) | (c >> 21);
+  b ^= a, b -= (a << 25) | (a >> 7);
+  c ^= b, c -= (b << 16) | (b >> 16);
+  a ^= c, a -= (c << 4) | (c >> 28);
+  b ^= a, b -= (a << 14) | (a >> 18);
+  c ^= b, c -= (b << 24) | (b >> 8);
+}
 inline uint32_t lookup3_final(uint32_t a, uint32_t b, uint32_t c) {
-  c ^= b, c -= rotl32(b, 14);
-  a ^= c, a -= rotl32(c, 11);
-  b ^= a, b -= rotl32(a, 25);
-  c ^= b, c -= rotl32(b, 16);
-  a ^= c, a -= rotl32(c, 4);
-  b ^= a, b -= rotl32(a, 14);
-  c ^= b, c -= rotl32(b, 24);
+  lookup3_final_in_place(a, b, c);
   return c;
 }
 

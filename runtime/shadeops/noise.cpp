@@ -21,6 +21,11 @@
 #include <cstring>
 #include <limits>
 #include <type_traits>
+#include <utility>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <xmmintrin.h>
+#endif
 
 // Bitcode builds (lobe_shadeops.bc) keep each noise variant a function of its own, so that
 // lobe_noise_d stays a small dispatcher the JIT inlines into a shader, where the call's constants
@@ -36,20 +41,39 @@ namespace {
 
 // ---- OSL's inthash: Bob Jenkins' lookup3 hashword with initval 13 (runtime/mathlib) ----
 
-// inthash<N>(k) for N in 1..5, with N known at compile time (the gradient-noise corners: the
-// hash inlines and the corner loop unrolls). The same words as math::hashword(k, N, 13).
-template <int N> inline uint32_t inthash_n(const uint32_t* k) {
+// Lanes of 32-bit words (GCC/Clang vector extension): the corners of a noise cell, hashed at
+// once. The operations wrap lane by lane as uint32_t does, so each lane is the scalar hash.
+template <int L> struct Lanes { typedef uint32_t type __attribute__((vector_size(4 * L))); };
+
+// u = {0, 1, .., L - 1}.
+template <class U, uint32_t... I>
+inline void lane_indices(U& u, std::integer_sequence<uint32_t, I...>) {
+  u = U{I...};
+}
+
+// inthash<N> of the 2^N corners of the cell at X (one lane per corner, bit k of the lane index
+// for axis k: key X[k] or X1[k]), N in 1..4 known at compile time. The same words as
+// math::hashword(key, N, 13) corner by corner.
+template <int N> inline void corner_hashes(const uint32_t* X, const uint32_t* X1, uint32_t* h) {
+  constexpr int kCorners = 1 << N;
+  using U = typename Lanes<kCorners>::type;
+  U lane, key[N];
+  lane_indices(lane, std::make_integer_sequence<uint32_t, kCorners>());
+  for (int k = 0; k < N; ++k) {
+    U x0 = U{} + X[k], x1 = U{} + X1[k], on = U{} - ((lane >> k) & 1u); // ~0 where bit k is set
+    key[k] = x0 ^ ((x0 ^ x1) & on);
+  }
   constexpr uint32_t start = 0xdeadbeefu + (uint32_t(N) << 2) + 13u;
-  uint32_t a = start, b = start, c = start;
-  a += k[0];
-  if constexpr (N > 1) b += k[1];
-  if constexpr (N > 2) c += k[2];
+  U a = U{} + start, b = a, c = a;
+  a += key[0];
+  if constexpr (N > 1) b += key[1];
+  if constexpr (N > 2) c += key[2];
   if constexpr (N > 3) {
     lobe::math::lookup3_mix(a, b, c);
-    a += k[3];
-    if constexpr (N > 4) b += k[4];
+    a += key[3];
   }
-  return lobe::math::lookup3_final(a, b, c);
+  lobe::math::lookup3_final_in_place(a, b, c);
+  for (int i = 0; i < kCorners; ++i) h[i] = c[i];
 }
 
 // inthash<N>(k) for N in 1..5.
@@ -62,8 +86,13 @@ inline float bits_to_01(uint32_t bits) {
 
 // OSL's float -> int conversions, with the result x86 gives (and OSL, built for x86, returns)
 // where C++ leaves it undefined: a NaN, or a value outside the int range, converts to INT_MIN.
+// On x86 that is what cvttss2si does, so the range test is the instruction's own.
 inline int to_int(float f) {
+#if defined(__x86_64__) || defined(__i386__)
+  return _mm_cvtt_ss2si(_mm_set_ss(f));
+#else
   return f >= -2147483648.0f && f < 2147483648.0f ? int(f) : std::numeric_limits<int>::min();
+#endif
 }
 // OIIO::ifloor: int(floor(x)).
 inline int ifloor(float x) { return to_int(std::floor(x)); }
@@ -180,16 +209,23 @@ LOBE_VARIANT void perlin(const T* xin, const int* period, int nout, T* out) {
       f[k] = xin[k] - float(X[k]);
     u[k] = fade(f[k]);
   }
+  // The corner keys per axis: X and X + 1, or with a period p imod(X, p) and imod(X + 1, p),
+  // one modulo per axis rather than per corner (X + 1 never overflows: lobe_noise_d passes
+  // |x| < 2^31, so X is at most 2^31 - 128).
+  uint32_t K0[N], K1[N];
+  for (int k = 0; k < N; ++k) {
+    if (period) {
+      int w = imod(X[k], period[k]);
+      K0[k] = uint32_t(w);
+      K1[k] = uint32_t(w + 1 == period[k] ? 0 : w + 1);
+    } else {
+      K0[k] = uint32_t(X[k]);
+      K1[k] = uint32_t(X[k]) + 1u;
+    }
+  }
   constexpr int kCorners = 1 << N;
   uint32_t h[kCorners];
-  for (int bits = 0; bits < kCorners; ++bits) {
-    uint32_t key[N];
-    for (int k = 0; k < N; ++k) {
-      int c = int(uint32_t(X[k]) + uint32_t((bits >> k) & 1)); // X + 1 wraps at INT_MAX, as OSL
-      key[k] = uint32_t(period ? imod(c, period[k]) : c);
-    }
-    h[bits] = inthash_n<N>(key);
-  }
+  corner_hashes<N>(K0, K1, h);
   for (int j = 0; j < nout; ++j) {
     const int shift = nout == 1 ? 0 : 8 * j;
     T g[kCorners];
