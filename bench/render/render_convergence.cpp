@@ -140,7 +140,7 @@ int main(int argc, char** argv) {
   MaterialBackend backend(o.materials, {std::filesystem::absolute(o.scene).parent_path().string()},
                           native_compiler());
   RenderScene s;
-  s.use_closure_kernels(o.closures == "jit");
+  s.set_kernel_mode(o.closures == "jit" ? KernelMode::AtSetup : KernelMode::Native);
   if (std::string e = s.setup(*desc, backend.compiler(), o.width, o.height); !e.empty()) {
     std::fprintf(stderr, "%s\n", e.c_str());
     return 1;

@@ -275,17 +275,12 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
   size_t points = size_t(job_.xres) * size_t(job_.yres), first = shaded_iterations_ * points;
   ++shaded_iterations_;
   if (last_iteration && job_.print) pixel_blocks_.assign(points, "");
-  // Each output looked up once: where `m` keeps it (offset into m.output_data) and its size.
-  struct Slot {
-    bool read = false;
-    size_t offset = 0, bytes = 0;
-  };
-  std::vector<Slot> slots(outputs_.size());
+  // Each output looked up once: where `m` keeps it (an offset into m.output_data).
+  std::vector<std::optional<size_t>> offsets(outputs_.size());
   for (size_t i = 0; i < outputs_.size(); ++i) {
     const Output& o = outputs_[i];
     if (o.closure || o.type.base == DataType::Base::String) continue;
-    if (auto info = m.output_info(o.layer, o.spec.var))
-      slots[i] = {!info->closure, info->offset, info->type.bytes()};
+    if (auto info = m.output_info(o.layer, o.spec.var)) offsets[i] = info->offset;
   }
   tbb::enumerable_thread_specific<ShadingContext> contexts;
   tbb::enumerable_thread_specific<std::vector<unsigned char>> scratch;
@@ -323,8 +318,8 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
       for (size_t i = 0; i < outputs_.size(); ++i) {
         Output& o = outputs_[i];
         const unsigned char* value;
-        if (data && slots[i].read) {
-          value = data + slots[i].offset;
+        if (data && offsets[i]) {
+          value = data + *offsets[i];
         } else {
           if (o.closure || !m.read_output_bytes(ctx, o.layer, o.spec.var, bytes)) continue;
           if (o.type.base == DataType::Base::String) continue;

@@ -223,13 +223,12 @@ std::string RenderScene::compile_materials(const MaterialCompiler& compile) {
     shape_material_.push_back(s.material >= 0 ? materials_[s.material].get()
                                               : default_material_.get());
     shape_reads_.push_back(shape_material_.back()->globals_read());
-    shape_kernels_[shape_material_.size() - 1].store(nullptr);
   }
   if (kernel_mode_ == KernelMode::AtSetup) {
     KernelStats k;
     compile_kernels(nullptr, k);
+    k.ready_seconds = 0; // in use from the first sample
     merge(k);
-    stats_.kernels_ready_seconds = 0;
   }
   // Triangle tangents only for materials that read them (or screen derivatives built on them).
   std::vector<char> tangents;
@@ -239,12 +238,12 @@ std::string RenderScene::compile_materials(const MaterialCompiler& compile) {
   return "";
 }
 
-void RenderScene::compile_kernels(const std::atomic<bool>* stop, KernelStats& out) {
+bool RenderScene::compile_kernels(const std::atomic<bool>* stop, KernelStats& out) {
   std::vector<const Material*> used;
   for (const Material* m : shape_material_)
     if (std::find(used.begin(), used.end(), m) == used.end()) used.push_back(m);
   for (const Material* m : used) {
-    if (stop && stop->load()) return;
+    if (stop && stop->load()) return false;
     const ClosureKernels* k = m->closure_kernels();
     if (k) {
       ++out.kernels;
@@ -261,6 +260,7 @@ void RenderScene::compile_kernels(const std::atomic<bool>* stop, KernelStats& ou
                              "': closure kernels unavailable, native closures used: " + ke);
     }
   }
+  return true;
 }
 
 void RenderScene::merge(const KernelStats& k) {
@@ -467,12 +467,9 @@ std::string RenderScene::setup(const scene::SceneDesc& desc, const MaterialCompi
   if (kernel_mode_ == KernelMode::Background) {
     // One thread, one material at a time: the render keeps the cores; finish_kernels() waits
     // for at most the material being compiled.
-    setup_done_ = clock::now();
-    kernel_thread_ = std::thread([this] {
-      compile_kernels(&stop_kernels_, kernel_stats_);
-      if (!stop_kernels_.load())
-        kernel_stats_.ready_seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_done_).count();
+    kernel_thread_ = std::thread([this, since, start = clock::now()] {
+      if (compile_kernels(&stop_kernels_, kernel_stats_))
+        kernel_stats_.ready_seconds = since(start);
     });
   }
   return "";

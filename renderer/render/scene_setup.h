@@ -82,9 +82,6 @@ public:
   ~RenderScene() { finish_kernels(); }
   // How materials evaluate their closures. Set before setup(); Background by default.
   void set_kernel_mode(KernelMode m) { kernel_mode_ = m; }
-  void use_closure_kernels(bool on) {
-    kernel_mode_ = on ? KernelMode::AtSetup : KernelMode::Native;
-  }
   // Background mode: stops compiling kernels (after the material being compiled, if any),
   // waits for the thread and completes stats() (closure_kernels, kernels_ready_seconds,
   // warnings). Called by the destructor; call it when the render is done to report the stats.
@@ -144,9 +141,9 @@ private:
     double ready_seconds = -1;
   };
   // Compiles (or reads from the cache) the kernels of every used material and publishes them to
-  // the shapes that use it. Runs in setup() or on kernel_thread_ (then `out` is kernel_stats_,
-  // which nothing else touches until the thread is joined).
-  void compile_kernels(const std::atomic<bool>* stop, KernelStats& out);
+  // the shapes that use it; false if `stop` ended it early. Runs in setup() or on kernel_thread_
+  // (then `out` is kernel_stats_, which nothing else touches until the thread is joined).
+  bool compile_kernels(const std::atomic<bool>* stop, KernelStats& out);
   void merge(const KernelStats& k);
   std::string build_environment();
   std::string find_emitters(std::vector<LightSet::Emitter>& out, ShaderMessages& messages) const;
@@ -167,7 +164,6 @@ private:
   std::thread kernel_thread_;
   std::atomic<bool> stop_kernels_{false};
   KernelStats kernel_stats_;
-  std::chrono::steady_clock::time_point setup_done_;
   const std::atomic<bool>* cancel_ = nullptr;
   std::shared_ptr<const Material> default_material_;
   SetupStats stats_;

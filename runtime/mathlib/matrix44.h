@@ -105,6 +105,13 @@ inline bool mat_invert(float* dst, const float* src) {
   return true;
 }
 
+// dst = a / b = a * inverse(b) (dst may be a or b).
+inline void mat_div(float* dst, const float* a, const float* b) {
+  float inv[16];
+  mat_invert(inv, b);
+  mat_mul(dst, a, inv);
+}
+
 inline void mat_transpose(float* dst, const float* m) {
   float r[16];
   for (int i = 0; i < 4; ++i)

@@ -32,6 +32,13 @@ void expect_bits(const float* got, const float* want, int n) {
   for (int i = 0; i < n; ++i) EXPECT_EQ(got[i], want[i]) << "element " << i;
 }
 
+// p transformed by m as a point (kind 0), vector (1) or normal (2) is `want`.
+void expect_transform(const float* m, const float* p, int kind, const float* want) {
+  float got[3];
+  mat_transform(got, m, p, kind);
+  expect_bits(got, want, 3);
+}
+
 TEST(Matrix44, ProductIsOsls) {
   const float want[16] = {0.863880038f,  0.0744000003f, 0.313800037f,  -0.0360000022f,
                           -0.154800028f, 1.68550014f,   -0.456400037f, 0.00999999978f,
@@ -79,15 +86,10 @@ TEST(Matrix44, TransformsAreOsls) {
   const float vector[3] = {0.711000025f, 1.16299999f, 1.93410003f};
   const float normal[3] = {10.3996925f, 3.83352757f, -4.26474667f};
   const float normal_affine[3] = {-0.989766717f, 1.79370356f, 5.68176174f};
-  float got[3];
-  mat_transform(got, kM, kP, 0);
-  expect_bits(got, point, 3);
-  mat_transform(got, kM, kP, 1);
-  expect_bits(got, vector, 3);
-  mat_transform(got, kM, kP, 2);
-  expect_bits(got, normal, 3);
-  mat_transform(got, kR, kP, 2);
-  expect_bits(got, normal_affine, 3);
+  expect_transform(kM, kP, 0, point);
+  expect_transform(kM, kP, 1, vector);
+  expect_transform(kM, kP, 2, normal);
+  expect_transform(kR, kP, 2, normal_affine);
 }
 
 // OSL: 1 / matrix(0), the inverse of a singular affine matrix, of a singular general matrix,
@@ -108,13 +110,9 @@ TEST(Matrix44, EdgeCasesAreOsls) {
   const float w0[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0};
   const float w2[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 6, 7, 2};
   const float p[3] = {1, 2, 3}, origin[3] = {0, 0, 0}, halved[3] = {3, 4, 5};
-  float q[3];
-  mat_transform(q, w0, p, 0);
-  expect_bits(q, origin, 3);
-  mat_transform(q, w2, p, 0);
-  expect_bits(q, halved, 3);
-  mat_transform(q, singular_affine, p, 2);
-  expect_bits(q, p, 3);
+  expect_transform(w0, p, 0, origin);
+  expect_transform(w2, p, 0, halved);
+  expect_transform(singular_affine, p, 2, p);
   EXPECT_EQ(mat_det(singular_affine), 0.0f);
   EXPECT_EQ(mat_det(zero), 0.0f);
 }

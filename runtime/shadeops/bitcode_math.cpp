@@ -60,11 +60,7 @@ int32_t lobe_hash(const uint32_t* words, int32_t n) { return lobe::math::osl_has
 // The pure matrix ops (ops_matrix.cpp's, same names and signatures).
 void lobe_mat_mul(float* dst, const float* a, const float* b) { lobe::math::mat_mul(dst, a, b); }
 void lobe_mat_inverse(float* dst, const float* src) { lobe::math::mat_invert(dst, src); }
-void lobe_mat_div(float* dst, const float* a, const float* b) {
-  float inv[16];
-  lobe::math::mat_invert(inv, b);
-  lobe::math::mat_mul(dst, a, inv);
-}
+void lobe_mat_div(float* dst, const float* a, const float* b) { lobe::math::mat_div(dst, a, b); }
 void lobe_mat_transpose(float* dst, const float* m) { lobe::math::mat_transpose(dst, m); }
 float lobe_mat_det(const float* m) { return lobe::math::mat_det(m); }
 void lobe_transform(float* dst, const float* m, const float* p, int32_t kind) {

@@ -22,7 +22,7 @@ StringTable::StringTable() : serial_(next_table_serial.fetch_add(1, std::memory_
 
 const char* StringTable::intern(std::string_view s) {
   thread_local std::array<Recent, kRecentSlots> recent;
-  Recent& r = recent[Hash{}(s) % kRecentSlots];
+  Recent& r = recent[TextHash{}(s) % kRecentSlots];
   if (r.serial == serial_ && std::string_view(r.text, r.size) == s) return r.text;
   const char* text;
   {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "lobe/shading.h"
+#include "text_hash.h"
 
 #include <atomic>
 #include <cstdint>
@@ -34,18 +35,12 @@ public:
   uint64_t serial() const { return serial_; }
 
 private:
-  struct Hash {
-    using is_transparent = void; // finds a string_view without making a std::string
-    size_t operator()(std::string_view s) const noexcept {
-      return std::hash<std::string_view>{}(s);
-    }
-  };
   // Tells a thread's remembered strings apart from those of another table, even one since
   // destroyed at the same address.
   const uint64_t serial_;
   std::mutex mutex_;
   // Node-based: element addresses are stable.
-  std::unordered_set<std::string, Hash, std::equal_to<>> strings_;
+  std::unordered_set<std::string, TextHash, std::equal_to<>> strings_;
 };
 
 // Descriptions of shader-declared closures (lobe/shading.h), one per distinct name and argument

@@ -58,12 +58,7 @@ extern "C" {
 
 void lobe_mat_mul(float* dst, const float* a, const float* b) { mat_mul(dst, a, b); }
 void lobe_mat_inverse(float* dst, const float* src) { mat_invert(dst, src); }
-// a / b = a * inverse(b)
-void lobe_mat_div(float* dst, const float* a, const float* b) {
-  float inv[16];
-  mat_invert(inv, b);
-  mat_mul(dst, a, inv);
-}
+void lobe_mat_div(float* dst, const float* a, const float* b) { lobe::math::mat_div(dst, a, b); }
 void lobe_mat_transpose(float* dst, const float* m) { lobe::math::mat_transpose(dst, m); }
 float lobe_mat_det(const float* m) { return lobe::math::mat_det(m); }
 
@@ -74,8 +69,9 @@ int lobe_get_matrix(ShaderGlobals* sg, const char* from, const char* to, float* 
   if (!ok) unknown_space(sg, from);
   bool ok2 = space_to_common(sg, to, b);
   if (!ok2) unknown_space(sg, to);
-  // To "common" or "world" (or any space that is the identity): its inverse is the identity
-  // exactly, so the inversion is skipped; the product still runs (it maps -0 to +0, as always).
+  // To "common" or "world" (or any space that is the identity): the inversion is skipped and
+  // the identity used (the float inverse would give it too, but with -0 in the translation row);
+  // the product still runs.
   if (mat_is_identity(b))
     mat_identity(binv);
   else

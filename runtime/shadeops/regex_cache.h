@@ -13,6 +13,8 @@
 // for any strings, interned or not.
 #pragma once
 
+#include "text_hash.h"
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -40,12 +42,6 @@ public:
   int matches(const char* s, const char* pattern, bool full);
 
 private:
-  struct TextHash {
-    using is_transparent = void; // finds a string_view without making a std::string
-    size_t operator()(std::string_view s) const noexcept {
-      return std::hash<std::string_view>{}(s);
-    }
-  };
   using Patterns =
       std::unordered_map<std::string, std::unique_ptr<std::regex>, TextHash, std::equal_to<>>;
   struct Answer {
