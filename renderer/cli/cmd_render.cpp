@@ -6,8 +6,8 @@
 
 #include "default_scene.h"
 #include "image.h"
+#include "lobe/memory.h"
 #include "material_backend.h"
-#include "memory_check.h"
 #include "native_materials.h"
 #include "renderer.h"
 #include "scene.h"
@@ -219,7 +219,7 @@ int run_render(int argc, char** argv) {
     double bytes = double(st.width) * double(st.height) * (44 + 2 * 4 * channels);
     std::string setting = (a.res.size() == 2 ? "--res " : "resolution ") +
                           std::to_string(st.width) + " " + std::to_string(st.height);
-    if (std::string e = lobe::cli::check_memory(setting, bytes, "the image and its samples");
+    if (std::string e = lobe::check_memory(setting, bytes, "the image and its samples");
         !e.empty()) {
       std::fprintf(stderr, "lobe render: %s\n", e.c_str());
       return 1;

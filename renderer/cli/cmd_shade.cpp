@@ -14,8 +14,8 @@
 
 #include "grid.h"
 #include "image.h"
+#include "lobe/memory.h"
 #include "lobe/shadingsys.h"
-#include "memory_check.h"
 #include "shade_args.h"
 #include "shade_services.h"
 #include "shader_source.h"

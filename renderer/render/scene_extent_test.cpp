@@ -41,3 +41,18 @@ TEST(SceneExtent, FarOrNonFinitePositionsAreNamed) {
   d.lights.push_back(l);
   EXPECT_NE(render::check_scene_extent(d).find("s.json: /lights/0: position"), std::string::npos);
 }
+
+// geometry_bytes: the figure set-up checks against the memory before building. Two meshes of 2
+// and 1 triangles (4 and 3 vertices) and a sphere (no mesh): 3 x 256 + 7 x 64 = 1216 bytes.
+TEST(SceneMemory, GeometryBytesCountTrianglesAndVertices) {
+  scene::SceneDesc d;
+  scene::Shape a, b, sphere;
+  a.kind = b.kind = scene::Shape::Kind::Mesh;
+  a.mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+  a.mesh.indices = {0, 1, 2, 1, 3, 2};
+  b.mesh.positions = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
+  b.mesh.indices = {0, 1, 2};
+  sphere.radius = 1;
+  d.shapes = {a, b, sphere};
+  EXPECT_EQ(render::geometry_bytes(d), 3 * 256.0 + 7 * 64.0);
+}

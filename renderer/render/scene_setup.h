@@ -28,6 +28,10 @@ namespace lobe::render {
 // 1e15 of the origin, the range single-precision ray tracing can resolve; else the first one
 // that is not, with its place. RenderScene::setup checks this first.
 std::string check_scene_extent(const scene::SceneDesc& desc);
+// Bytes the scene's meshes will take once built (their copies and Embree's BVH): 256 a triangle
+// and 64 a vertex (scene_setup.cpp says where the figures come from). Set-up refuses a scene
+// whose meshes need more than the memory available (lobe/memory.h), before building anything.
+double geometry_bytes(const scene::SceneDesc& desc);
 
 // Turns one scene material into a compiled Material: the CLI passes one backed by the JIT's
 // ShadingSystem (MaterialBackend), tests pass the native twins (renderer/native). Must be

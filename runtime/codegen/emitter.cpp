@@ -32,7 +32,10 @@ size_t scalar_bytes(const ir::Symbol& s) {
 } // namespace
 
 size_t storage_bytes(const ir::Symbol& s) {
-  return size_t(planes_of(s) * elements_of(s) * s.type.components()) * scalar_bytes(s);
+  // In size_t throughout: a huge array must not wrap (build_group checks the sizes against
+  // kMaxLocalBytes and kMaxGroupBytes before anything is laid out).
+  return size_t(planes_of(s)) * size_t(elements_of(s)) * size_t(s.type.components()) *
+         scalar_bytes(s);
 }
 size_t storage_offset(const ir::Symbol& s, int plane, int elem, int comp) {
   size_t idx = size_t((plane * elements_of(s) + elem) * s.type.components() + comp);

@@ -4,6 +4,7 @@
 #include "env.h"
 #include "ir/edit.h"
 #include "ir/opcodes.h"
+#include "lobe/memory.h"
 #include "lobe/shading.h"
 #include "passes/derivs.h"
 #include "passes/optimize.h"
@@ -69,6 +70,33 @@ struct Link { // a resolved connection, by names
 
 bool is_param(const ir::Symbol& s) {
   return s.kind == SymKind::Param || s.kind == SymKind::OutputParam;
+}
+
+// "" when the layers' storage fits codegen::kMaxLocalBytes (all layers together), else the
+// error, naming the largest symbol and its place. Summed in double: an array of 2^31 elements
+// with derivatives must not wrap.
+std::string check_storage(const std::vector<std::unique_ptr<ir::Shader>>& shaders,
+                          const std::vector<std::string>& layer_names) {
+  double total = 0, largest = -1;
+  const ir::Symbol* big = nullptr;
+  size_t big_layer = 0;
+  for (size_t li = 0; li < shaders.size(); ++li)
+    for (const ir::Symbol& s : shaders[li]->symbols) {
+      if (s.kind == SymKind::Const) continue;
+      double b = double(codegen::storage_bytes(s));
+      total += b;
+      if (b > largest) largest = b, big = &s, big_layer = li;
+    }
+  if (!big || total <= double(codegen::kMaxLocalBytes)) return "";
+  std::string where = "shader '" + shaders[big_layer]->name + "' (layer '" +
+                      layer_names[big_layer] + "'";
+  if (big->loc.line > 0)
+    where.append(", ").append(big->loc.file).append(":").append(std::to_string(big->loc.line));
+  return "the material's variables need " + format_bytes(total) +
+         " of stack while it shades, more than the limit of " +
+         format_bytes(double(codegen::kMaxLocalBytes)) + "; the largest is '" + big->name + "' (" +
+         ir::to_string(big->type) + (big->derivs ? " with derivatives" : "") + ", " +
+         format_bytes(largest) + ") in " + where + ")";
 }
 
 // A param the renderer may bind to user data: `[[ int lockgeom = 0 ]]` in the shader, unless
@@ -527,6 +555,10 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
   }
   out.plan.loop_count_offset = int(off); // the shade's loop iterations (codegen.h)
   off += 8;
+  if (std::string e = check_storage(out.shaders, out.layer_names); !e.empty()) {
+    diags.push_back(err(e, "storage_size"));
+    return false;
+  }
   out.groupdata.assign(off, 0);
   out.plan.group_name = group.name;
   for (size_t i = 0; i < n; ++i) {

@@ -2,6 +2,7 @@
 // the Api of oiio_module.h. Loaded on first use by oiio_loader.cpp; nothing else links
 // OpenImageIO.
 #include "oiio_module.h"
+#include "lobe/memory.h"
 #include "shadeops.h"
 
 #include <Imath/ImathVec.h>
@@ -9,6 +10,10 @@
 #include <OpenImageIO/texture.h>
 
 #include <iterator>
+#include <mutex>
+#include <string>
+#include <unordered_map>
+#include <utility>
 
 namespace OIIO = OIIO_NAMESPACE;
 using lobe::shadeops::TextureArgs;
@@ -51,17 +56,65 @@ OIIO::TextureOpt options(const TextureArgs* a) {
   return opt;
 }
 
-bool texture(void* ts, const char* file, const TextureArgs* a, float s, float t, float dsdx,
+// The refusal of the last lookup on this thread that `fits` stopped (texture_error reports it).
+thread_local std::string t_refused;
+
+// Bounded memory for textures. OpenImageIO reads a tiled file a tile at a time into its cache
+// (256 MB by default), but an untiled one is a single tile: the whole image is read, as floats,
+// and automip builds its MIP levels beside it. So on the first lookup of a file its header is
+// read and an untiled image that cannot fit in the memory (lobe/memory.h) is refused, with the
+// figure, instead of failing an allocation inside OpenImageIO (which throws through the shader
+// and aborts the process). The verdict is kept per file name; each thread also remembers the
+// last name it passed, by pointer (shader strings are interned, so a pointer is one name), which
+// keeps the check off the per-lookup path.
+bool fits(OIIO::TextureSystem* ts, const char* file) {
+  thread_local const char* last_passed = nullptr;
+  if (file == last_passed) return true;
+  static std::mutex mutex;
+  static std::unordered_map<std::string, std::string> verdicts;
+  std::string refusal;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    auto [it, added] = verdicts.try_emplace(file);
+    if (added) {
+      // Null for a file that cannot be opened: the lookup then fails with OpenImageIO's error.
+      const OIIO::ImageSpec* spec = ts->imagespec(OIIO::ustring(file));
+      if (!spec) ts->geterror(); // cleared: the lookup reports it as its own
+      // OpenImageIO reports an untiled file as one tile the size of the image.
+      if (spec && (spec->tile_width <= 0 ||
+                   (spec->tile_width >= spec->width && spec->tile_height >= spec->height))) {
+        double bytes = double(spec->width) * double(spec->height) * double(spec->depth) *
+                       double(spec->nchannels) * 4 * 4 / 3;
+        it->second = check_memory(
+            std::string(file) + " (" + std::to_string(spec->width) + "x" +
+                std::to_string(spec->height) + ", " + std::to_string(spec->nchannels) +
+                " channels, not tiled)",
+            bytes, "read whole into the texture cache, with its MIP levels");
+      }
+    }
+    refusal = it->second;
+  }
+  if (refusal.empty()) {
+    last_passed = file;
+    return true;
+  }
+  t_refused = std::move(refusal);
+  return false;
+}
+
+bool texture(void* tsv, const char* file, const TextureArgs* a, float s, float t, float dsdx,
              float dtdx, float dsdy, float dtdy, int n, float* out, float* dds, float* ddt) {
+  OIIO::TextureSystem* ts = ts_of(tsv);
+  if (!fits(ts, file)) return false;
   OIIO::TextureOpt opt = options(a);
-  return ts_of(ts)->texture(OIIO::ustring(file), opt, s, t, dsdx, dtdx, dsdy, dtdy, n, out, dds,
-                            ddt);
+  return ts->texture(OIIO::ustring(file), opt, s, t, dsdx, dtdx, dsdy, dtdy, n, out, dds, ddt);
 }
 
 Imath::V3f v3(const float* p) { return Imath::V3f(p[0], p[1], p[2]); }
 
 bool texture3d(void* ts, const char* file, const TextureArgs* a, const float* p, const float* dpdx,
                const float* dpdy, const float* dpdz, int n, float* out) {
+  if (!fits(ts_of(ts), file)) return false;
   OIIO::TextureOpt opt = options(a);
   return ts_of(ts)->texture3d(OIIO::ustring(file), opt, v3(p), v3(dpdx), v3(dpdy), v3(dpdz), n,
                               out);
@@ -69,6 +122,7 @@ bool texture3d(void* ts, const char* file, const TextureArgs* a, const float* p,
 
 bool environment(void* ts, const char* file, const TextureArgs* a, const float* r,
                  const float* drdx, const float* drdy, int n, float* out) {
+  if (!fits(ts_of(ts), file)) return false;
   OIIO::TextureOpt opt = options(a);
   return ts_of(ts)->environment(OIIO::ustring(file), opt, v3(r), v3(drdx), v3(drdy), n, out);
 }
@@ -95,7 +149,10 @@ int texture_info(void* tsv, const char* file, bool udim, float s, float t, const
   return -1;
 }
 
-std::string texture_error(void* ts) { return ts_of(ts)->geterror(); }
+std::string texture_error(void* ts) {
+  if (!t_refused.empty()) return std::exchange(t_refused, std::string());
+  return ts_of(ts)->geterror();
+}
 
 OIIO::TypeDesc type_of(Pixel p) {
   switch (p) {
@@ -141,6 +198,17 @@ std::string read(const std::string& path, ImageData& img) {
   img.height = spec.height;
   img.channels = spec.channelnames;
   img.channels.resize(size_t(spec.nchannels));
+  // The file says how big it is: checked against the memory before the pixels are allocated.
+  double bytes = double(spec.width) * double(spec.height) * double(spec.nchannels) * 4;
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    return path + ": the image has no pixels (" + std::to_string(spec.width) + "x" +
+           std::to_string(spec.height) + ", " + std::to_string(spec.nchannels) + " channels)";
+  if (std::string e = check_memory(path + " (" + std::to_string(spec.width) + "x" +
+                                       std::to_string(spec.height) + ", " +
+                                       std::to_string(spec.nchannels) + " channels)",
+                                   bytes, "its pixels as floats");
+      !e.empty())
+    return e;
   img.pixels.assign(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels), 0.0f);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
     return path + ": read failed: " + in->geterror();

@@ -187,6 +187,69 @@ TEST(ReliabilityShade, HugeGridIsRefusedWithTheFigure) {
   EXPECT_NE(r.out.find("lobe shade: "), std::string::npos) << r.out;
 }
 
+// A shader whose variables cannot fit on a shading thread's stack (a 10^9-element local array:
+// 4 GB of floats; OSL 1.13's testshade crashes with SIGSEGV on it) is refused when the material
+// is built, naming the array, its size and its line; an array within the limit shades. The same
+// check guards lobe render's set-up (one build path).
+TEST(ReliabilityShade, HugeLocalArrayIsAnErrorNotAStackOverflow) {
+  fs::path d = temp_dir("shade_array");
+  write_file(d / "big.osl",
+             "shader big(output float f = 0) {\n"
+             "  float a[1000000000];\n"
+             "  a[int(u * 7)] = u;\n"
+             "  f = a[int(v * 3)];\n"
+             "}\n");
+  CmdResult r = run_cmd("cd '" + d.string() + "' && " + exe() + " shade -g 2 2 big -o f null");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("the material's variables need 4.0 GB of stack while it shades, more "
+                       "than the limit of 1.0 MB; the largest is 'a' (float[1000000000], 4.0 GB) "
+                       "in shader 'big' (layer 'big_0', big.osl:2)"),
+            std::string::npos)
+      << r.out;
+  // 10^4 floats (40 kB) are fine: f = a[0] = u at u = 0 and 1 (-g 2 1).
+  write_file(d / "ok.osl",
+             "shader ok(output float f = 0) {\n"
+             "  float a[10000];\n"
+             "  a[int(u * 7)] = u;\n"
+             "  f = a[int(u * 7)];\n"
+             "  printf(\"%g\\n\", f);\n"
+             "}\n");
+  r = run_cmd("cd '" + d.string() + "' && " + exe() + " shade -g 2 1 ok -o f null");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("0\n1\n"), std::string::npos) << r.out;
+}
+
+// An image whose header claims more pixels than the memory can hold (a 10^6 x 10^6 PPM: 12 TB
+// as floats) is refused before its pixels are allocated, naming the file and the figure.
+TEST(ReliabilityRender, HugeImageIsRefusedWithTheFigure) {
+  fs::path d = temp_dir("render_image");
+  write_file(d / "big.ppm", "P6\n1000000 1000000\n255\n\x01\x02\x03");
+  write_file(d / "s.json",
+             "{\"camera\": {\"eye\": [0, 0, 5], \"look_at\": [0, 0, 0], \"fov\": 40},\n"
+             " \"settings\": {\"resolution\": [8, 8], \"spp\": 1},\n"
+             " \"environment\": {\"type\": \"map\", \"file\": \"big.ppm\"}}\n");
+  CmdResult r = run_cmd("cd '" + d.string() + "' && " + exe() +
+                        " render s.json -o out.exr --progress none");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("big.ppm (1000000x1000000, 3 channels) needs about 12.0 TB of memory "
+                       "(its pixels as floats)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_FALSE(fs::exists(d / "out.exr"));
+  // The same file as a texture: OpenImageIO would read it whole (it is not tiled) and its failed
+  // allocation would abort the process (OSL's testshade runs out of memory on it); the lookup
+  // is refused with the figure (x 4/3 for the MIP levels) and gives 0, an error as testshade
+  // reports texture errors (exit status 0).
+  write_file(d / "tex.osl", "shader tex(output color c = 1) { c = texture(\"big.ppm\", u, v); }\n");
+  r = run_cmd("cd '" + d.string() + "' && " + exe() + " shade -g 2 2 tex -o c null");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("ERROR: texture \"big.ppm\": big.ppm (1000000x1000000, 3 channels, not "
+                       "tiled) needs about 16.0 TB of memory (read whole into the texture cache, "
+                       "with its MIP levels)"),
+            std::string::npos)
+      << r.out;
+}
+
 TEST(ReliabilityRender, EndlessLoopAtSetupIsAnError) {
   fs::path d = temp_dir("render_setup_loop");
   write_file(d / "endless.osl", kEndless);

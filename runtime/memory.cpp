@@ -1,21 +1,16 @@
-// Bounded memory for the commands: a size the user sets (a grid, a resolution) is turned into
-// the bytes it will cost before anything is allocated, and refused when that exceeds what the
-// process can have: the smaller of the physical memory and what the address-space and data
-// limits (ulimit -v, ulimit -d) leave above the memory already in use.
-#pragma once
+// Bounded memory (lobe/memory.h): what the process may still allocate, and the check.
+#include "lobe/memory.h"
 
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include <cstdint>
 #include <cstdio>
 #include <fstream>
-#include <string>
 
-namespace lobe::cli {
+namespace lobe {
 
 // Bytes this process may still allocate (an estimate; UINT64_MAX when nothing limits it).
-inline uint64_t available_memory_bytes() {
+uint64_t available_memory_bytes() {
   uint64_t avail = UINT64_MAX;
   long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
   if (pages > 0 && page > 0) avail = uint64_t(pages) * uint64_t(page);
@@ -37,7 +32,7 @@ inline uint64_t available_memory_bytes() {
 }
 
 // "12.3 GB" (powers of 1000; B, kB, MB, GB, TB).
-inline std::string format_bytes(double bytes) {
+std::string format_bytes(double bytes) {
   const char* units[] = {"B", "kB", "MB", "GB", "TB", "PB", "EB"};
   int u = 0;
   while (bytes >= 1000 && u < 6) bytes /= 1000, ++u;
@@ -48,7 +43,7 @@ inline std::string format_bytes(double bytes) {
 
 // "" when `bytes` fits in the available memory; else the error, naming `setting` (e.g.
 // "-g 100000 100000") and both figures.
-inline std::string check_memory(const std::string& setting, double bytes, const char* what) {
+std::string check_memory(const std::string& setting, double bytes, const char* what) {
   uint64_t avail = available_memory_bytes();
   if (avail == UINT64_MAX || bytes <= double(avail)) return "";
   return setting + " needs about " + format_bytes(bytes) + " of memory (" + what +
@@ -56,4 +51,4 @@ inline std::string check_memory(const std::string& setting, double bytes, const 
          " available (physical memory, ulimit -v and -d); use a smaller size";
 }
 
-} // namespace lobe::cli
+} // namespace lobe
