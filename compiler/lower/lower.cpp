@@ -300,6 +300,10 @@ bool Lowerer::const_values(const ast::Expr* e, const ir::Type& t,
       if (!const_values(x.get(), elem, xv)) return false;
       v.insert(v.end(), xv.begin(), xv.end());
     }
+    // A sized array given fewer values than its length: the rest are zero (and "" for
+    // strings), as oslc fills them (`float p[4] = {1}` is [1 0 0 0]).
+    if (t.arraylen > 0 && v.size() < size_t(t.arraylen) * size_t(elem.components()))
+      v.resize(size_t(t.arraylen) * size_t(elem.components()));
     out = v;
     return true;
   }
