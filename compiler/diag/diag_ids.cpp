@@ -86,6 +86,9 @@ const Row kTable[] = {
     ROW(err_bad_binary, Error, "invalid operands to binary '%0' ('%1' and '%2')"),
     ROW(err_bad_unary, Error, "invalid operand to unary '%0' ('%1')"),
     ROW(err_cannot_assign, Error, "cannot assign '%0' to '%1'"),
+    // oslc's words: a float assigned to an int variable truncates (calls, returns and
+    // initialiser-list elements stay errors, as in oslc).
+    ROW(warn_lose_precision, Warning, "Assignment may lose precision: %0 %1 = %2"),
     ROW(err_not_assignable, Error, "expression is not assignable"),
     ROW(warn_write_nonoutput_param, Warning, "cannot write to non-output parameter \"%0\""),
     ROW(warn_write_nonoutput_param_arg, Warning,

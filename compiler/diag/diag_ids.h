@@ -84,6 +84,7 @@ enum class DiagId : uint16_t {
   err_bad_binary,
   err_bad_unary,
   err_cannot_assign,
+  warn_lose_precision,
   err_not_assignable,
   warn_write_nonoutput_param,
   warn_write_nonoutput_param_arg,

@@ -383,6 +383,16 @@ int Lowerer::assign(const ast::AssignExpr* a, int hint) {
   int cur = load(dst, a);
   int rhs = rvalue(a->rhs.get());
   int res = dst.whole() ? dst.sym : temp(lt);
+  if (a->lhs->type.is_int() && a->rhs->type.is_float()) {
+    // `i op= f`: i = int(float(i) op f), as oslc computes it (sema warned).
+    int fcur = temp(ir::Type{ir::BaseType::Float});
+    emit(ir::Opcode::Assign, {fcur, cur}, 1, a);
+    int fres = temp(ir::Type{ir::BaseType::Float});
+    emit(binop_opcode(a->op), {fres, fcur, rhs}, 1, a);
+    emit(ir::Opcode::Assign, {res, fres}, 1, a);
+    store(dst, res, a);
+    return res;
+  }
   emit(binop_opcode(a->op), {res, cur, rhs}, 1, a);
   store(dst, res, a);
   return res;

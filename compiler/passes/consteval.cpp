@@ -216,9 +216,8 @@ std::optional<Values> convert_const(const Type& from, const Values& v, const Typ
   if (from.base == BaseType::Int && to.base == BaseType::Float)
     return Values{ConstValue::of_float(float(v[0].i))};
   if (from.base == BaseType::Float && to.base == BaseType::Int) {
-    float f = v[0].f;
-    if (!(std::fabs(f) < 2147483648.0f)) return std::nullopt; // undefined in C++: leave it
-    return Values{ConstValue::of_int(int32_t(f))};
+    // NaN and out of range: INT_MIN, as at run time (math::cvtt, x86's cvttss2si, OSL's).
+    return Values{ConstValue::of_int(math::cvtt(v[0].f))};
   }
   if (to.is_triple()) {
     if (from.is_triple()) return v;

@@ -302,7 +302,7 @@ void Sema::var_decl(ast::VarDecl* v) {
         v->type.arraylen = v->init->type.arraylen;
     } else {
       expr(v->init, &v->type);
-      convert(v->init, v->type);
+      convert_assign(v->init, v->type, v->name);
     }
   }
   if (v->type.arraylen < 0 && v->storage == ast::Storage::Local) {

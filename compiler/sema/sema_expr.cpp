@@ -91,6 +91,21 @@ void Sema::convert(ExprPtr& e, const Type& to) {
   coerce(e, to);
 }
 
+void Sema::convert_assign(ExprPtr& e, const Type& to, const std::string& name) {
+  if (e->type.is_float() && to.is_int()) {
+    error(DiagId::warn_lose_precision, e->range, {"int", name, "float"});
+    coerce(e, to);
+    return;
+  }
+  convert(e, to);
+}
+
+// The name oslc gives an assignment's target in its warnings: a plain variable's, else none.
+static std::string target_name(const ast::Expr* lhs) {
+  auto* id = ast::as<ast::IdentExpr>(lhs);
+  return id ? id->name : "";
+}
+
 void Sema::coerce(ExprPtr& e, const Type& to) {
   if (e->type == to || e->type.is_error() || to.is_error()) return;
   if (to.is_unsized_array()) { // an unsized parameter: the argument's length, its element type
@@ -342,7 +357,7 @@ void Sema::assign(ast::AssignExpr* e) {
       init_list(e->rhs, lt);
     } else {
       expr(e->rhs, &lt);
-      convert(e->rhs, lt);
+      convert_assign(e->rhs, lt, target_name(e->lhs.get()));
     }
     return;
   }
@@ -397,6 +412,13 @@ void Sema::assign(ast::AssignExpr* e) {
   }
   if (!ok) {
     fail();
+    return;
+  }
+  // `i op= f` with an int i and a float f is `i = int(i op f)`, computed in float, with
+  // oslc's warning (lowering computes it so).
+  if (lt.is_int() && rt.is_float() && e->op != Op::BitAnd && e->op != Op::BitOr &&
+      e->op != Op::BitXor && e->op != Op::Shl && e->op != Op::Shr) {
+    error(DiagId::warn_lose_precision, e->range, {"int", target_name(e->lhs.get()), "float"});
     return;
   }
   convert(e->rhs, lt);
