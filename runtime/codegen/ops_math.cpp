@@ -33,7 +33,7 @@ llvm::Value* fdiv(LayerEmitter& e, llvm::Value* a, llvm::Value* b) {
 }
 
 llvm::Value* math_mode(LayerEmitter& e) {
-  return e.iconst(int(e.group().fast_math ? math::MathMode::Fast : math::MathMode::Exact));
+  return e.iconst(int(e.group().fast_math ? math::MathMode::FastJit : math::MathMode::Exact));
 }
 
 } // namespace
@@ -41,6 +41,17 @@ llvm::Value* math_mode(LayerEmitter& e) {
 // A call of a math shadeop; value and slope functions read nothing but their arguments, so
 // LLVM may share, hoist or drop them.
 llvm::Value* call_math(LayerEmitter& e, math::Fn f, MathForm form, std::vector<llvm::Value*> args) {
+  // Constant arguments (a literal at -O0, where nothing was specialised): the value OSL gets,
+  // whose LLVM folds such a call with its multiply-adds unfused (llvm.fmuladd folds as a
+  // product and a sum), as its optimiser and Lobe's folder compute (math::MathMode::Fast).
+  auto* a = llvm::dyn_cast<llvm::ConstantFP>(args[0]);
+  auto* b = args.size() > 1 ? llvm::dyn_cast<llvm::ConstantFP>(args[1]) : nullptr;
+  if (form == MathForm::Value && a && (args.size() == 1 || b)) {
+    math::MathMode m = e.group().fast_math ? math::MathMode::Fast : math::MathMode::Exact;
+    float x = a->getValueAPF().convertToFloat();
+    return e.fconst(b ? math::value2(f, m, x, b->getValueAPF().convertToFloat())
+                      : math::value1(f, m, x));
+  }
   const char* name = shadeops::math_shadeop(f, form);
   llvm::FunctionCallee callee = e.shadeop(name);
   if (auto* fn = llvm::dyn_cast<llvm::Function>(callee.getCallee()); fn && form != MathForm::Dual) {

@@ -1,12 +1,20 @@
 // The math builtins' semantics, one definition for the constant folder
-// (compiler/passes/consteval.cpp) and the run-time shadeops (runtime/shadeops/ops_math.cpp),
-// so a value is the same whether it was folded or computed, at any optimisation level.
+// (compiler/passes/consteval.cpp) and the run-time shadeops (runtime/shadeops/ops_math.cpp).
 //
-// Two modes (CompileOptions::fast_math):
-//   Fast   (default) OSL 1.13's values: OIIO's fast-math functions (fastmath.h) with nothing
-//          fused, which is what OSL's constant folder computes; OSL's JIT fuses their
-//          multiply-adds, a few ulp away (docs/language.md, "Math").
-//   Exact  the C library's functions (libm), with the same domain rules.
+// Three modes:
+//   Fast     OIIO's fast-math functions (fastmath.h) with nothing fused: what OSL 1.13
+//            computes for constant arguments — its optimiser (liboslexec is built for plain
+//            x86-64) and LLVM's folding of its shadeops (llvm.fmuladd folds unfused) — and
+//            what Lobe's folder and code generator compute for them.
+//   FastJit  the same functions with every multiply-add fused: what OSL's JIT computes for
+//            values known only while shading (its shadeops are clang bitcode compiled for the
+//            host, which has FMA), a few ulp from Fast (hundreds near a zero of cos); Lobe's
+//            shadeops compute it. As in OSL, a parameter's value is a constant when the
+//            material is specialised (-O1, -O2) and a shading-time value at -O0, so math on
+//            parameters can differ in the last bits between -O0 and -O2 (docs/language.md).
+//   Exact    the C library's functions (libm), with the same domain rules
+//            (CompileOptions::fast_math = false).
+// (docs/language.md, "Math".)
 // Domain rules, both modes: log/log2/log10 clamp x to [FLT_MIN, FLT_MAX] (NaN to FLT_MIN);
 // asin/acos clamp to [-1, 1]; pow is OIIO's safe_pow (x^0 = 1, 0^y = 0, x^1 = x, a negative x
 // needs an integer y else 0) with magnitudes at most FLT_MAX; sqrt(x < 0) = 0,
@@ -26,7 +34,7 @@
 
 namespace lobe::math {
 
-enum class MathMode : int32_t { Fast = 0, Exact = 1 };
+enum class MathMode : int32_t { Fast = 0, Exact = 1, FastJit = 2 };
 
 // The builtins computed by formula. Run time: out-of-line shadeops lobe_math_<name> (value),
 // lobe_math_<name>_slope (unary derivative factor), lobe_math_<name>_dual (binary partials).
@@ -206,10 +214,14 @@ template <class L> float apply2(Fn f, float a, float b) {
 }
 
 inline float value1(Fn f, MathMode m, float x) {
-  return m == MathMode::Fast ? apply1<FastLib<false>>(f, x) : apply1<LibmLib>(f, x);
+  return m == MathMode::Fast      ? apply1<FastLib<false>>(f, x)
+         : m == MathMode::FastJit ? apply1<FastLib<true>>(f, x)
+                                  : apply1<LibmLib>(f, x);
 }
 inline float value2(Fn f, MathMode m, float a, float b) {
-  return m == MathMode::Fast ? apply2<FastLib<false>>(f, a, b) : apply2<LibmLib>(f, a, b);
+  return m == MathMode::Fast      ? apply2<FastLib<false>>(f, a, b)
+         : m == MathMode::FastJit ? apply2<FastLib<true>>(f, a, b)
+                                  : apply2<LibmLib>(f, a, b);
 }
 
 // ---- derivatives ------------------------------------------------------------------------------
@@ -268,7 +280,7 @@ template <class L> float slope_of(Fn f, float x) {
 }
 
 inline float slope1(Fn f, MathMode m, float x) {
-  return m == MathMode::Fast ? slope_of<FastLib<true>>(f, x) : slope_of<LibmLib>(f, x);
+  return m != MathMode::Exact ? slope_of<FastLib<true>>(f, x) : slope_of<LibmLib>(f, x);
 }
 
 struct Dual {
@@ -307,7 +319,7 @@ template <class L> Dual pow_dual(const Dual& u, const Dual& v) {
 // A binary function with its partials; the value is value2's except for pow (pow_dual). fmod
 // passes a's partials on.
 inline Dual dual2(Fn f, MathMode m, const Dual& a, const Dual& b) {
-  bool fast = m == MathMode::Fast;
+  bool fast = m != MathMode::Exact;
   if (f == Fn::Pow) return fast ? pow_dual<FastLib<false>>(a, b) : pow_dual<LibmLib>(a, b);
   float value = value2(f, m, a.v, b.v);
   switch (f) {
