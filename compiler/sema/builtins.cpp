@@ -60,10 +60,13 @@ void math(Builder& b) {
   b.add("log", t_float(), {t_float(), t_float()});
   b.generic("smoothstep", 3);
   for (Type t : Builder::kTriples) b.add("smoothstep", t, {t_float(), t_float(), t});
+  // As stdosl.h declares them: no int form (select(1, 2, c) is a float), an int or float
+  // condition for every type, a triple condition per component for triples.
   b.add("select", t_float(), {t_float(), t_float(), t_float()});
-  b.add("select", t_int(), {t_int(), t_int(), t_int()});
+  b.add("select", t_float(), {t_float(), t_float(), t_int()});
   for (Type t : Builder::kTriples) {
     b.add("select", t, {t, t, t_float()});
+    b.add("select", t, {t, t, t_int()});
     b.add("select", t, {t, t, t});
   }
   for (const char* f : {"isnan", "isinf", "isfinite"}) b.add(f, t_int(), {t_float()});
