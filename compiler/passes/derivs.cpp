@@ -18,6 +18,21 @@ static bool can_carry(const Symbol& s) {
   return b == BaseType::Float || s.type.is_triple();
 }
 
+static bool is_string(const Shader& sh, int sym) {
+  return sh.symbols[size_t(sym)].type.base == BaseType::String;
+}
+
+// Gabor noise filters over its position's footprint, so it reads the position's derivatives
+// (as OSL's does): noise/pnoise whose kind is "gabor", or a kind known only while shading.
+// The position is every operand after the kind up to the first keyword.
+static bool reads_position_derivs(const Shader& sh, const Op& op) {
+  if ((op.opcode != Opcode::Noise && op.opcode != Opcode::PNoise) || op.args.size() < 3 ||
+      !is_string(sh, op.args[1]))
+    return false;
+  const Symbol& kind = sh.symbols[size_t(op.args[1])];
+  return kind.kind != SymKind::Const || (!kind.init.empty() && kind.init[0].s == "gabor");
+}
+
 bool analyze_derivatives(Shader& sh) {
   std::vector<bool> need(sh.symbols.size(), false);
   auto mark = [&](int sym) {
@@ -29,6 +44,8 @@ bool analyze_derivatives(Shader& sh) {
     const ir::OpcodeInfo* info = &ir::info(op.opcode);
     for (size_t i = 0; i < op.args.size() && i < 32; ++i)
       if ((info->derivs >> i) & 1u) mark(op.args[i]);
+    if (reads_position_derivs(sh, op))
+      for (size_t i = 2; i < op.args.size() && !is_string(sh, op.args[i]); ++i) mark(op.args[i]);
   }
   for (bool grew = true; grew;) {
     grew = false;
