@@ -213,7 +213,8 @@ ast::DeclPtr Parser::global_declaration() {
   return nullptr;
 }
 
-// shader-declaration: shader-type IDENT metadata? '(' shader-params? ')' compound
+// shader-declaration: shader-type IDENT metadata? '(' shader-params? ')' metadata? compound
+// (the shader's metadata may come before the parameters or after them, as oslc takes it)
 std::unique_ptr<ast::ShaderDecl> Parser::shader_declaration() {
   auto s = std::make_unique<ast::ShaderDecl>();
   Token kw = take();
@@ -244,6 +245,7 @@ std::unique_ptr<ast::ShaderDecl> Parser::shader_declaration() {
     if (!accept(Tok::Comma)) break; // a trailing comma is allowed
   }
   if (!expect(Tok::RParen, "')' or ',' after a shader parameter")) return nullptr;
+  if (!metadata(s->metadata)) return nullptr;
   s->body = compound();
   if (!s->body) return nullptr;
   s->range = SourceRange(kw.range.begin, prev().range.end);
