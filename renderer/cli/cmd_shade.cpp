@@ -85,15 +85,26 @@ std::string shader_name(std::string s) {
   return s;
 }
 
-void print_diagnostics(const DiagnosticList& diags, bool notes) {
+// `group`: the group's name, which testshade prints after a connection error.
+void print_diagnostics(const DiagnosticList& diags, bool notes, const std::string& group = "") {
+  bool connect_error = false;
+  for (const Diagnostic& d : diags) // testshade has printed its "Connect ..." lines by then
+    if (d.id.rfind("connect_", 0) == 0) std::fflush(stdout);
   for (const Diagnostic& d : diags) {
     if (d.severity == Diagnostic::Severity::Note && !notes) continue;
     std::string t = d.text;
-    // Group-level warnings print as testshade prints them: "WARNING: ...".
+    // Group-level warnings print as testshade prints them: "WARNING: ...", and so do
+    // connection errors (OSL's ConnectShaders words, "ERROR: ...").
     if (d.severity == Diagnostic::Severity::Warning && t.rfind("warning: ", 0) == 0)
       t = "WARNING: " + t.substr(9);
+    if (d.severity == Diagnostic::Severity::Error && d.id.rfind("connect_", 0) == 0 &&
+        t.rfind("error: ", 0) == 0) {
+      t = "ERROR: " + t.substr(7);
+      connect_error = true;
+    }
     std::fprintf(stderr, "%s%s", t.c_str(), !t.empty() && t.back() == '\n' ? "" : "\n");
   }
+  if (connect_error && !group.empty()) std::fprintf(stderr, "        group: %s\n", group.c_str());
 }
 
 // The group as -v prints it (in OSL's group-text form).
@@ -199,7 +210,7 @@ private:
 bool Shade::compile(const ShaderGroup& g, std::shared_ptr<const Material>& out) {
   DiagnosticList diags;
   out = ss_.compile(g, diags);
-  print_diagnostics(diags, job_.verbose || !out);
+  print_diagnostics(diags, job_.verbose || !out, g.name);
   return out != nullptr;
 }
 

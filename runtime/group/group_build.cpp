@@ -99,6 +99,33 @@ std::string check_storage(const std::vector<std::unique_ptr<ir::Shader>>& shader
          format_bytes(largest) + ") in " + where + ")";
 }
 
+// The type a connection end carries: the symbol's, less the array for an element and the
+// triple for a component.
+ir::Type endpoint_type(const ir::Shader& sh, const Endpoint& e) {
+  ir::Type t = sh.symbols[size_t(sh.find_symbol(e.symbol))].type;
+  if (e.elem >= 0) t.arraylen = 0;
+  if (e.comp >= 0 && (t.is_triple() || t.base == ir::BaseType::Matrix))
+    t = ir::Type{ir::BaseType::Float, 0};
+  return t;
+}
+
+// OSL's rule for a connection src -> dst: the same type (any two triples count as the same,
+// closures and arrays of equal length too), or a number into a float, triple or matrix. (A
+// float into an int, a triple into a float, arrays of other lengths, strings and numbers are
+// refused.)
+bool connectable(const ir::Type& src, const ir::Type& dst) {
+  using B = ir::BaseType;
+  if (src.is_array() != dst.is_array()) return false;
+  // An unsized array (`float a[]`) takes the connected array's length.
+  if (src.is_array() && (src.base != dst.base || (src.arraylen != dst.arraylen &&
+                                                   src.arraylen >= 0 && dst.arraylen >= 0)))
+    return false;
+  if (src.base == dst.base || (src.is_triple() && dst.is_triple())) return true;
+  bool number = src.base == B::Float || src.base == B::Int;
+  bool float_based = dst.base == B::Float || dst.is_triple() || dst.base == B::Matrix;
+  return !src.is_array() && number && float_based;
+}
+
 // A param the renderer may bind to user data: `[[ int lockgeom = 0 ]]` in the shader, unless
 // the instance value says otherwise (`lockgeom` of InstanceValue, -1: as the shader says).
 bool interpolated(const ir::Symbol& s, int instance_lockgeom, bool lockgeom_default) {
@@ -358,26 +385,55 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
 
   // Connections, by names.
   std::vector<Link> links;
+  // Errors worded as OSL's ConnectShaders words them (testshade prints them so).
   for (const Connection& c : group.connections) {
     auto si = layer_index.find(c.src_layer), di = layer_index.find(c.dst_layer);
     if (si == layer_index.end() || di == layer_index.end()) {
-      diags.push_back(err("connect " + c.src_layer + "." + c.src_param + " " + c.dst_layer + "." +
-                              c.dst_param + ": no such layer",
+      diags.push_back(err(si == layer_index.end()
+                              ? "ConnectShaders: source layer \"" + c.src_layer + "\" not found"
+                              : "ConnectShaders: destination layer \"" + c.dst_layer +
+                                    "\" not found",
                           "connect_layer"));
       return false;
     }
     if (si->second >= di->second) {
-      diags.push_back(err("connect " + c.src_layer + " -> " + c.dst_layer +
-                              ": the source layer must come first",
+      diags.push_back(err("ConnectShaders: destination layer must follow source layer (tried to "
+                          "connect " +
+                              c.src_layer + "." + c.src_param + " -> " + c.dst_layer + "." +
+                              c.dst_param + ")",
                           "connect_order"));
       return false;
     }
-    auto src = resolve(*sources[size_t(si->second)], c.src_param);
-    auto dst = resolve(*sources[size_t(di->second)], c.dst_param);
-    if (src.empty() || dst.empty() || src.size() != dst.size()) {
-      diags.push_back(err("connect " + c.src_layer + "." + c.src_param + " " + c.dst_layer + "." +
-                              c.dst_param + ": no such parameter (or mismatched structs)",
+    const ir::Shader& src_sh = *sources[size_t(si->second)];
+    const ir::Shader& dst_sh = *sources[size_t(di->second)];
+    auto src = resolve(src_sh, c.src_param);
+    auto dst = resolve(dst_sh, c.dst_param);
+    auto type_of = [](const ir::Shader& sh, const std::map<std::string, Endpoint>& ends) {
+      if (ends.empty()) return std::string("unknown");
+      if (ends.size() > 1 || !ends.count("")) return std::string("struct");
+      return ir::to_string(endpoint_type(sh, ends.at("")));
+    };
+    if (src.empty() || dst.empty()) {
+      const bool src_missing = src.empty();
+      const std::string& layer = src_missing ? c.src_layer : c.dst_layer;
+      const std::string& param = src_missing ? c.src_param : c.dst_param;
+      diags.push_back(err("ConnectShaders: \"" + param + "\" is not a parameter or global of layer \"" +
+                              layer + "\" (shader \"" + (src_missing ? src_sh : dst_sh).name + "\")",
                           "connect_param"));
+      diags.push_back(err("ConnectShaders: cannot connect a " + type_of(src_sh, src) + " (" +
+                              c.src_param + ") to a " + type_of(dst_sh, dst) + " (" +
+                              c.dst_param + "), invalid connection",
+                          "connect_param"));
+      return false;
+    }
+    bool fits = src.size() == dst.size();
+    if (fits && src.size() == 1 && src.count("") && dst.count(""))
+      fits = connectable(endpoint_type(src_sh, src.at("")), endpoint_type(dst_sh, dst.at("")));
+    if (!fits) {
+      diags.push_back(err("ConnectShaders: cannot connect a " + type_of(src_sh, src) + " (" +
+                              c.src_param + ") to a " + type_of(dst_sh, dst) + " (" +
+                              c.dst_param + ")",
+                          "connect_type"));
       return false;
     }
     for (auto& [suffix, e] : src) {

@@ -125,7 +125,7 @@ TEST(RenderCli, JitErrorsAreReportedAsTheyAre) {
   CmdResult r = render(scene.string() + " -o " + (d / "o.png").string());
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.out, "lobe render: " + scene.string() +
-                       ": /materials/m: material 'm': connect g.x h.y: no such layer\n");
+                       ": /materials/m: material 'm': ConnectShaders: destination layer \"h\" not found\n");
   r = render("--materials native " + scene.string() + " -o " + (d / "o.png").string());
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.out, "lobe render: " + scene.string() +

@@ -60,6 +60,33 @@ TEST(ShadeCli, ConnectionsAreAnnouncedAndFollowed) {
             "0\n\n");
 }
 
+// Connections OSL refuses are refused with its ConnectShaders words, its group line and exit
+// status 1 (Lobe used to connect them and shade garbage); a number into a triple connects.
+// Expected: OSL 1.13.12, `oslc connect_types_src.osl connect_types_dst.osl; testshade -g 1 1
+// -layer A connect_types_src -layer B connect_types_dst -connect A X B Y` (stdout, then stderr).
+TEST(ShadeCli, ConnectionsOfTypesOslRefusesAreErrors) {
+  auto connect = [](const std::string& src, const std::string& dst) {
+    return run_cmd(std::string("cd ") + LOBE_SHADE_CORPUS + "/layers && { " + LOBE_EXE +
+                   " shade -g 1 1 -layer A connect_types_src -layer B connect_types_dst -connect A " +
+                   src + " B " + dst + " 2>&1; echo \"rc $?\"; }");
+  };
+  const std::string group = "        group: unnamed_group_1\n";
+  EXPECT_EQ(connect("f", "i"), "Connect A.f to B.i\nERROR: ConnectShaders: cannot connect a float "
+                               "(f) to a int (i)\n" + group + "rc 1\n");
+  EXPECT_EQ(connect("c", "f"), "Connect A.c to B.f\nERROR: ConnectShaders: cannot connect a color "
+                               "(c) to a float (f)\n" + group + "rc 1\n");
+  EXPECT_EQ(connect("a3", "a2"), "Connect A.a3 to B.a2\nERROR: ConnectShaders: cannot connect a "
+                                 "float[3] (a3) to a float[2] (a2)\n" + group + "rc 1\n");
+  EXPECT_EQ(connect("s", "f"), "Connect A.s to B.f\nERROR: ConnectShaders: cannot connect a string "
+                               "(s) to a float (f)\n" + group + "rc 1\n");
+  EXPECT_EQ(connect("nosuch", "f"),
+            "Connect A.nosuch to B.f\nERROR: ConnectShaders: \"nosuch\" is not a parameter or "
+            "global of layer \"A\" (shader \"connect_types_src\")\nERROR: ConnectShaders: cannot "
+            "connect a unknown (nosuch) to a float (f), invalid connection\n" + group + "rc 1\n");
+  EXPECT_EQ(connect("i", "c"),
+            "Connect A.i to B.c\nf 0 i 0 c 3 3 3 s  a3 0 0 0 p 0 0 0 m 0 a2 0 0\n\nrc 0\n");
+}
+
 // A layer runs if something downstream reads a connected output, or if it has a renderer output
 // (-o, by default Cout): upstream_color has a Cout, so it runs unless -o names another layer's.
 TEST(ShadeCli, LayersRunAsTestshadeRunsThem) {
