@@ -307,8 +307,20 @@ int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
   }
   for (size_t i = 0; i < npos; ++i)
     if (!is_out[i]) args.push_back(rvalue(c->args[i].get()));
+  // A texture lookup's "alpha" keyword names a variable the lookup writes (the channel after
+  // the result's).
+  bool texture = *code == ir::Opcode::Texture || *code == ir::Opcode::Texture3d ||
+                 *code == ir::Opcode::Environment;
   for (const ast::KeywordArg& k : c->keywords) {
     args.push_back(ir::intern_string(sh_, k.name));
+    if (texture && k.name == "alpha" && k.value->lvalue) {
+      LRef r = lvalue(k.value)[0];
+      int s = r.whole() ? r.sym : temp(irtype(k.value->type, c));
+      if (!r.whole()) copy_back.push_back({r, s});
+      mask |= 1u << args.size();
+      args.push_back(s);
+      continue;
+    }
     args.push_back(rvalue(k.value));
   }
   emit(*code, args, mask, c);

@@ -719,10 +719,26 @@ llvm::Value* texture_args(LayerEmitter& e, const ir::Op& op, size_t first) {
       for (size_t k = 0; k < 3; ++k)
         B.CreateStore(c[k].v, at(offsetof(TextureArgs, missing) + 4 * k));
       B.CreateStore(e.iconst(1), at(offsetof(TextureArgs, has_missing)));
+    } else if (kw == "missingalpha") {
+      B.CreateStore(e.load_as(op, v, BaseType::Float, false)[0].v,
+                    at(offsetof(TextureArgs, missing) + 4 * 3));
     }
-    // "alpha", "missingalpha", "time", "subimage": not supported, ignored
+    // "alpha": the lookup's extra channel (alpha_operand); "time", "subimage": ignored
   }
   return block;
+}
+
+// The operand a texture lookup's "alpha" keyword writes (lowering marks it written), or -1.
+int alpha_operand(LayerEmitter& e, const ir::Op& op, size_t first) {
+  for (size_t i = first; i + 1 < op.args.size(); i += 2)
+    if (op.writes(int(i + 1)) && const_string(e.arg(op, int(i))) == "alpha") return int(i + 1);
+  return -1;
+}
+
+// Stores a lookup's extra channel into the "alpha" operand `alpha` of `op`.
+void store_alpha(LayerEmitter& e, const ir::Op& op, int alpha, const Dual& a) {
+  int sym = op.args[size_t(alpha)];
+  e.store(sym, e.convert(Val{a}, BaseType::Float, e.sym(sym).type.base));
 }
 
 // texture a "file" s t [dsdx dtdx dsdy dtdy] "kw" v...; derivatives of the result follow s, t.
@@ -742,26 +758,35 @@ void op_texture(LayerEmitter& e, const ir::Op& op) {
     dsdy = e.load_as(op, 6, BaseType::Float, false)[0].v;
     dtdy = e.load_as(op, 7, BaseType::Float, false)[0].v;
   }
-  llvm::Value* args = texture_args(e, op, explicit_d ? 8 : 4);
-  llvm::Value* out = e.spill(std::vector<llvm::Value*>(size_t(n), e.fconst(0)));
+  size_t first = explicit_d ? 8 : 4;
+  llvm::Value* args = texture_args(e, op, first);
+  // With "alpha", one channel more: the one after the result's.
+  int alpha = alpha_operand(e, op, first);
+  derivs = derivs || (alpha >= 0 && e.wants_derivs(op.args[size_t(alpha)]));
+  int nc = n + (alpha >= 0 ? 1 : 0);
+  llvm::Value* out = e.spill(std::vector<llvm::Value*>(size_t(nc), e.fconst(0)));
   llvm::Value* null = llvm::ConstantPointerNull::get(B.getPtrTy());
-  llvm::Value* dds = derivs ? e.spill(std::vector<llvm::Value*>(size_t(n), e.fconst(0))) : null;
-  llvm::Value* ddt = derivs ? e.spill(std::vector<llvm::Value*>(size_t(n), e.fconst(0))) : null;
+  llvm::Value* dds = derivs ? e.spill(std::vector<llvm::Value*>(size_t(nc), e.fconst(0))) : null;
+  llvm::Value* ddt = derivs ? e.spill(std::vector<llvm::Value*>(size_t(nc), e.fconst(0))) : null;
   e.call("lobe_texture", {e.sg(), e.env_ptr(), e.load(op.args[1])[0].v, s.v, t.v, dsdx, dtdx, dsdy,
-                          dtdy, e.iconst(n), out, dds, ddt, args});
-  std::vector<llvm::Value*> ov = e.reload(out, n), gs, gt;
+                          dtdy, e.iconst(nc), out, dds, ddt, args});
+  std::vector<llvm::Value*> ov = e.reload(out, nc), gs, gt;
   if (derivs) {
-    gs = e.reload(dds, n);
-    gt = e.reload(ddt, n);
+    gs = e.reload(dds, nc);
+    gt = e.reload(ddt, nc);
   }
   Val r;
-  for (int c = 0; c < n; ++c) {
+  for (int c = 0; c < nc; ++c) {
     Dual rc{ov[size_t(c)]};
     if (derivs) { // d/dx = d/ds * ds/dx + d/dt * dt/dx
       rc.dx = B.CreateFAdd(B.CreateFMul(gs[size_t(c)], dsdx), B.CreateFMul(gt[size_t(c)], dtdx));
       rc.dy = B.CreateFAdd(B.CreateFMul(gs[size_t(c)], dsdy), B.CreateFMul(gt[size_t(c)], dtdy));
     }
     r.push_back(rc);
+  }
+  if (alpha >= 0) {
+    store_alpha(e, op, alpha, r.back());
+    r.pop_back();
   }
   e.store(op.args[0], e.convert(r, n == 1 ? BaseType::Float : BaseType::Color, d.type.base));
 }
@@ -790,13 +815,20 @@ void op_texture3d(LayerEmitter& e, const ir::Op& op) {
     dy = comps(4);
     if (nderivs == 3) dz = comps(5);
   }
-  llvm::Value* args = texture_args(e, op, explicit_d ? 3 + nderivs : 3);
-  llvm::Value* out = e.spill(std::vector<llvm::Value*>(size_t(n), e.fconst(0)));
+  size_t first = explicit_d ? 3 + nderivs : 3;
+  llvm::Value* args = texture_args(e, op, first);
+  int alpha = alpha_operand(e, op, first);
+  int nc = n + (alpha >= 0 ? 1 : 0);
+  llvm::Value* out = e.spill(std::vector<llvm::Value*>(size_t(nc), e.fconst(0)));
   e.call(op.opcode == ir::Opcode::Texture3d ? "lobe_texture3d" : "lobe_environment",
          {e.sg(), e.env_ptr(), e.load(op.args[1])[0].v, e.spill(v), e.spill(dx), e.spill(dy),
-          e.spill(dz), e.iconst(n), out, args});
+          e.spill(dz), e.iconst(nc), out, args});
   Val r;
-  for (llvm::Value* x : e.reload(out, n)) r.push_back(Dual{x});
+  for (llvm::Value* x : e.reload(out, nc)) r.push_back(Dual{x});
+  if (alpha >= 0) {
+    store_alpha(e, op, alpha, r.back());
+    r.pop_back();
+  }
   e.store(op.args[0], e.convert(r, n == 1 ? BaseType::Float : BaseType::Color, d.type.base));
 }
 
