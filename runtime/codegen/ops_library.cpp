@@ -494,18 +494,23 @@ void op_spline(LayerEmitter& e, const ir::Op& op) {
   }
   llvm::Value* out = e.spill(std::vector<llvm::Value*>(size_t(comps), e.fconst(0)));
   bool chain = derivs && (x.dx || x.dy);
-  llvm::Value* dout = chain ? e.spill(std::vector<llvm::Value*>(size_t(comps), e.fconst(0)))
-                            : llvm::ConstantPointerNull::get(B.getPtrTy());
-  e.call("lobe_spline", {e.load(op.args[1])[0].v, x.v, knots, nk, e.iconst(comps), out, dout});
-  std::vector<llvm::Value*> ov = e.reload(out, comps), dv;
-  if (chain) dv = e.reload(dout, comps);
-  DualOps d(e);
+  llvm::Value* null = llvm::ConstantPointerNull::get(B.getPtrTy());
+  auto zeros = [&] { return e.spill(std::vector<llvm::Value*>(size_t(comps), e.fconst(0))); };
+  llvm::Value* odx = chain ? zeros() : null;
+  llvm::Value* ody = chain ? zeros() : null;
+  e.call("lobe_spline", {e.load(op.args[1])[0].v, x.v, x.dx ? x.dx : e.fconst(0),
+                         x.dy ? x.dy : e.fconst(0), knots, nk, e.iconst(comps), out, odx, ody});
+  std::vector<llvm::Value*> ov = e.reload(out, comps), gx, gy;
+  if (chain) {
+    gx = e.reload(odx, comps);
+    gy = e.reload(ody, comps);
+  }
   Val r;
   for (int c = 0; c < comps; ++c) {
     Dual rc{ov[size_t(c)]};
     if (chain) {
-      rc.dx = d.scale(x.dx, dv[size_t(c)]);
-      rc.dy = d.scale(x.dy, dv[size_t(c)]);
+      rc.dx = gx[size_t(c)];
+      rc.dy = gy[size_t(c)];
     }
     r.push_back(rc);
   }
