@@ -1,7 +1,8 @@
-// spline() and splineinverse(): OSL's cubic bases over a knot vector. With step s and n knots,
-// there are (n - 4) / s + 1 segments; x in [0,1] (clamped) picks segment k and the four knots
-// starting at k*s, weighted by the basis matrix (rows: x^3, x^2, x, 1). "linear" interpolates
-// knots[k+1]..knots[k+2]; "constant" returns knots[k+1]. Unknown bases behave as catmull-rom.
+// spline() and splineinverse(): OSL's cubic bases over a knot vector, computed as OSL 1.13
+// computes them (bit for bit against testshade: tests/shade/spline_osl.osl). With step s and n
+// knots there are (n - 4) / s + 1 segments; x in [0,1] (clamped) picks segment k and the four
+// knots starting at k*s, whose combination by the basis matrix gives the segment's cubic.
+// "constant" returns knots[k+1]. Unknown bases behave as catmull-rom.
 #include "shadeop_decls.h"
 
 #include <algorithm>
