@@ -48,42 +48,100 @@ Val load3(LayerEmitter& e, const ir::Op& op, int i) {
   return e.load_as(op, i, BaseType::Vector, e.wants_derivs(op.args[0]));
 }
 
+// Without derivatives OSL computes dot, cross, length, distance and normalize in its shadeops
+// (Imath's formulas, clang bitcode), whose multiply-adds clang contracts into llvm.fmuladd: fused
+// on the host (FMA) and unfused when LLVM folds constants. The same here: a*b + c*d is
+// fmuladd(a, b, c*d), and a*b - c*d fmuladd(a, b, -(c*d)), as clang forms them from the left.
+// With derivatives OSL's dual arithmetic rounds every product and sum (dot3, cross3).
+llvm::Value* fmuladd(LayerEmitter& e, llvm::Value* a, llvm::Value* b, llvm::Value* c) {
+  return e.b().CreateIntrinsic(llvm::Intrinsic::fmuladd, {e.b().getFloatTy()}, {a, b, c});
+}
+llvm::Value* dot_fused(LayerEmitter& e, const Val& a, const Val& b) {
+  auto& B = e.b();
+  return fmuladd(e, a[2].v, b[2].v, fmuladd(e, a[0].v, b[0].v, B.CreateFMul(a[1].v, b[1].v)));
+}
+Val cross_fused(LayerEmitter& e, const Val& a, const Val& b) {
+  auto& B = e.b();
+  auto term = [&](int i, int j) { // a[i] b[j] - a[j] b[i]
+    return fmuladd(e, a[size_t(i)].v, b[size_t(j)].v,
+                   B.CreateFNeg(B.CreateFMul(a[size_t(j)].v, b[size_t(i)].v)));
+  };
+  return {Dual{term(1, 2)}, Dual{term(2, 0)}, Dual{term(0, 1)}};
+}
+// sqrt of a squared length: 0 where it is not positive (and NaN), as sqrt_dual.
+llvm::Value* sqrt_pos(LayerEmitter& e, llvm::Value* x) {
+  auto& B = e.b();
+  llvm::Value* pos = B.CreateFCmpOGT(x, e.fconst(0));
+  return B.CreateSelect(
+      pos, B.CreateUnaryIntrinsic(llvm::Intrinsic::sqrt, B.CreateSelect(pos, x, e.fconst(0))),
+      e.fconst(0));
+}
+
 void op_dot(LayerEmitter& e, const ir::Op& op) {
   DualOps d(e);
-  e.store(op.args[0], Val{dot3(d, load3(e, op, 1), load3(e, op, 2))});
+  Val a = load3(e, op, 1), b = load3(e, op, 2);
+  e.store(op.args[0],
+          Val{e.wants_derivs(op.args[0]) ? dot3(d, a, b) : Dual{dot_fused(e, a, b)}});
 }
 void op_cross(LayerEmitter& e, const ir::Op& op) {
   DualOps d(e);
-  e.store(op.args[0], cross3(d, load3(e, op, 1), load3(e, op, 2)));
+  Val a = load3(e, op, 1), b = load3(e, op, 2);
+  e.store(op.args[0], e.wants_derivs(op.args[0]) ? cross3(d, a, b) : cross_fused(e, a, b));
 }
 void op_length(LayerEmitter& e, const ir::Op& op) {
   DualOps d(e);
   Val a = load3(e, op, 1);
+  if (!e.wants_derivs(op.args[0])) {
+    e.store(op.args[0], Val{Dual{sqrt_pos(e, dot_fused(e, a, a))}});
+    return;
+  }
   e.store(op.args[0], Val{sqrt_dual(e, d, dot3(d, a, a))});
 }
+// distance(a, b), and distance(a, b, q) from q to the segment a-b as stdosl.h defines it:
+// d = b - a; 0-length: |q - a|; else t = dot(q - a, d) / dot(d, d) and |q - (a + clamp(t) d)|.
 void op_distance(LayerEmitter& e, const ir::Op& op) {
   DualOps d(e);
-  Val a = load3(e, op, 1), b = load3(e, op, 2), diff(3);
-  if (op.args.size() == 4) { // distance from point q to segment a-b
-    Val q = load3(e, op, 3), ab(3), aq(3);
-    for (size_t i = 0; i < 3; ++i) {
-      ab[i] = d.sub(b[i], a[i]);
-      aq[i] = d.sub(q[i], a[i]);
-    }
-    Dual t = d.div(dot3(d, aq, ab), dot3(d, ab, ab));
-    auto& B = e.b();
-    t = d.select(B.CreateFCmpOLT(t.v, e.fconst(0)), d.constant(0), t);
-    t = d.select(B.CreateFCmpOGT(t.v, e.fconst(1)), d.constant(1), t);
-    for (size_t i = 0; i < 3; ++i) diff[i] = d.sub(aq[i], d.mul(t, ab[i]));
-  } else {
-    for (size_t i = 0; i < 3; ++i) diff[i] = d.sub(a[i], b[i]);
+  auto& B = e.b();
+  bool derivs = e.wants_derivs(op.args[0]);
+  auto dot = [&](const Val& x, const Val& y) {
+    return derivs ? dot3(d, x, y) : Dual{dot_fused(e, x, y)};
+  };
+  auto length = [&](const Val& x) {
+    return derivs ? sqrt_dual(e, d, dot3(d, x, x)) : Dual{sqrt_pos(e, dot_fused(e, x, x))};
+  };
+  auto minus = [&](const Val& x, const Val& y) {
+    Val r(3);
+    for (size_t i = 0; i < 3; ++i) r[i] = d.sub(x[i], y[i]);
+    return r;
+  };
+  Val a = load3(e, op, 1), b = load3(e, op, 2);
+  if (op.args.size() != 4) {
+    e.store(op.args[0], Val{length(minus(a, b))});
+    return;
   }
-  e.store(op.args[0], Val{sqrt_dual(e, d, dot3(d, diff, diff))});
+  Val q = load3(e, op, 3), seg = minus(b, a);
+  Dual dd = dot(seg, seg);
+  Dual t = d.div(dot(minus(q, a), seg), dd);
+  t = d.select(B.CreateFCmpOLT(t.v, e.fconst(0)), d.constant(0), t);
+  t = d.select(B.CreateFCmpOGT(t.v, e.fconst(1)), d.constant(1), t);
+  Val p(3);
+  for (size_t i = 0; i < 3; ++i) p[i] = d.add(a[i], d.mul(t, seg[i]));
+  Dual far = length(minus(q, p)), near = length(minus(q, a));
+  e.store(op.args[0], Val{d.select(B.CreateFCmpOEQ(dd.v, e.fconst(0)), near, far)});
 }
 void op_normalize(LayerEmitter& e, const ir::Op& op) {
   DualOps d(e);
   Val a = load3(e, op, 1), r;
-  Dual len = sqrt_dual(e, d, dot3(d, a, a));
+  bool derivs = e.wants_derivs(op.args[0]);
+  Dual len = derivs ? sqrt_dual(e, d, dot3(d, a, a)) : Dual{sqrt_pos(e, dot_fused(e, a, a))};
+  if (!derivs) { // OSL: each component times the reciprocal length (0 for a zero vector)
+    auto& B = e.b();
+    llvm::Value* inv = B.CreateSelect(B.CreateFCmpOEQ(len.v, e.fconst(0)), e.fconst(0),
+                                      B.CreateFDiv(e.fconst(1), len.v));
+    for (const Dual& c : a) r.push_back(Dual{B.CreateFMul(c.v, inv)});
+    e.store(op.args[0], r);
+    return;
+  }
   for (const Dual& c : a) r.push_back(d.div(c, len)); // 0 for a zero vector
   e.store(op.args[0], r);
 }
@@ -234,20 +292,19 @@ void op_deriv(LayerEmitter& e, const ir::Op& op) {
   if (o == ir::Opcode::Dx || o == ir::Opcode::Dy || o == ir::Opcode::Dz) {
     for (const Dual& c : x)
       r.push_back(Dual{o == ir::Opcode::Dx ? dxv(c) : o == ir::Opcode::Dy ? dyv(c) : e.fconst(0)});
-  } else if (o == ir::Opcode::FilterWidth) {
-    for (const Dual& c : x) {
-      Dual fx{dxv(c)}, fy{dyv(c)};
-      r.push_back(sqrt_dual(e, d, d.add(d.mul(fx, fx), d.mul(fy, fy))));
-    }
-  } else {
+  } else if (o == ir::Opcode::FilterWidth) { // sqrt(dx dx + dy dy), contracted as OSL's
+    for (const Dual& c : x)
+      r.push_back(
+          Dual{sqrt_pos(e, fmuladd(e, dxv(c), dxv(c), e.b().CreateFMul(dyv(c), dyv(c))))});
+  } else { // OSL's shadeops: Imath's cross and length, contracted (dot_fused, cross_fused)
     Val px, py;
     for (const Dual& c : x) {
       px.push_back(Dual{dxv(c)});
       py.push_back(Dual{dyv(c)});
     }
-    Val n = cross3(d, px, py);
+    Val n = cross_fused(e, px, py);
     if (o == ir::Opcode::Area) {
-      r = Val{sqrt_dual(e, d, dot3(d, n, n))};
+      r = Val{Dual{sqrt_pos(e, dot_fused(e, n, n))}};
     } else {
       llvm::Value* flip = e.b().CreateLoad(
           e.i32(), e.b().CreateConstInBoundsGEP1_64(e.b().getInt8Ty(), e.sg(),
