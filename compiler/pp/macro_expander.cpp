@@ -81,10 +81,15 @@ bool Preprocessor::try_expand(const PPToken& t, Input& in) {
   if (t.kind != PPKind::Ident) return false;
   if (t.text == "__LINE__" || t.text == "__FILE__") {
     PPToken r = t;
-    auto p = sm_.presumed(t.from_macro ? t.exp_loc : t.loc);
+    diag::SourceLoc at = t.from_macro ? t.exp_loc : t.loc;
+    auto p = sm_.presumed(at);
     r.kind = t.text == "__LINE__" ? PPKind::Number : PPKind::String;
     if (t.text == "__LINE__") {
-      r.text = std::to_string(p.line);
+      // oslc reads the main file after a line of its own (the #include of stdosl.h), so its
+      // __LINE__ there is one more than the line (diagnostics still name the line itself);
+      // in an included file it is the line. Lobe's __LINE__ is oslc's.
+      bool main_file = !sm_.include_loc(at).valid();
+      r.text = std::to_string(p.line + (main_file ? 1 : 0));
     } else {
       r.text.assign(1, '"');
       r.text.append(p.file).push_back('"');
