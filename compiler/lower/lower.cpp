@@ -111,25 +111,19 @@ int Lowerer::new_symbol(const std::string& name, const ir::Type& t, SymKind k,
   return int(sh_.symbols.size()) - 1;
 }
 
+// Every temporary is a symbol of its own, never reused for another expression: derivatives are
+// tracked per symbol (passes/derivs.h), so a temporary shared by an expression that needs
+// derivatives and one that does not would give the second derivatives too — and change its
+// value where OSL's derivative forms compute differently (pow: u * u^(v-1)). oslc gives each
+// temporary its own symbol as well. LLVM keeps them in registers.
 int Lowerer::temp(const ir::Type& t) {
-  auto it = free_temps_.find(ir::to_string(t));
-  int s;
-  if (it != free_temps_.end()) {
-    s = it->second;
-    free_temps_.erase(it);
-  } else {
-    s = new_symbol("$t" + std::to_string(next_temp_++), t, SymKind::Temp, nullptr);
-  }
+  int s = new_symbol("$t" + std::to_string(next_temp_++), t, SymKind::Temp, nullptr);
   live_temps_.push_back(s);
   return s;
 }
 
 void Lowerer::temp_release(size_t mark) {
-  while (live_temps_.size() > mark) {
-    int s = live_temps_.back();
-    live_temps_.pop_back();
-    free_temps_.emplace(ir::to_string(sh_.symbols[s].type), s);
-  }
+  if (live_temps_.size() > mark) live_temps_.resize(mark);
 }
 
 int Lowerer::here() {

@@ -114,7 +114,6 @@ public:
   int errors_ = 0; // reported by lowering
   std::unordered_map<const ast::VarDecl*, std::vector<int>> vars_;
   std::map<std::string, int> name_counts_;
-  std::multimap<std::string, int> free_temps_; // keyed by type string
   std::vector<int> live_temps_;
   int next_temp_ = 0;
   std::set<int> used_params_; // params announced by useparam in the current block
