@@ -89,6 +89,22 @@ static ir::ShaderType shader_type(ast::ShaderType t) {
   return ir::ShaderType::Shader;
 }
 
+// The shader's constants and parameter defaults with -0 read as +0, as OSL's do: oslc writes
+// them to its .oso, and a constant or default of -0 comes back from it as 0 (`printf("%g",
+// -0.0)` prints 0 in OSL 1.13.12). A -0 computed while shading, or folded by the runtime's
+// optimiser, stays -0.
+static void positive_zeros(ir::Shader& sh) {
+  for (ir::Symbol& s : sh.symbols) {
+    bool constant = s.kind == ir::SymKind::Const || s.kind == ir::SymKind::Param ||
+                    s.kind == ir::SymKind::OutputParam;
+    bool floats = s.type.base == ir::BaseType::Float || s.type.is_triple() ||
+                  s.type.base == ir::BaseType::Matrix;
+    if (!constant || !floats) continue;
+    for (ir::ConstValue& c : s.init)
+      if (c.f == 0.0f) c.f = 0.0f;
+  }
+}
+
 LowerResult Lowerer::run() {
   LowerResult res;
   const ast::ShaderDecl* sd = tu_.shader();
@@ -152,6 +168,7 @@ LowerResult Lowerer::run() {
   stmt(sd->body.get());
   if (errors_ > 0) return res;
   if (opt_.optimize) passes::optimize(sh_, {.math = {opt_.fast_math}});
+  positive_zeros(sh_);
   passes::analyze_derivatives(sh_);
   for (const std::string& e : ir::verify(sh_)) {
     where_ = nullptr;
