@@ -117,13 +117,7 @@ int Lowerer::new_symbol(const std::string& name, const ir::Type& t, SymKind k,
 // value where OSL's derivative forms compute differently (pow: u * u^(v-1)). oslc gives each
 // temporary its own symbol as well. LLVM keeps them in registers.
 int Lowerer::temp(const ir::Type& t) {
-  int s = new_symbol("$t" + std::to_string(next_temp_++), t, SymKind::Temp, nullptr);
-  live_temps_.push_back(s);
-  return s;
-}
-
-void Lowerer::temp_release(size_t mark) {
-  if (live_temps_.size() > mark) live_temps_.resize(mark);
+  return new_symbol("$t" + std::to_string(next_temp_++), t, SymKind::Temp, nullptr);
 }
 
 int Lowerer::here() {

@@ -151,12 +151,10 @@ LowerResult Lowerer::run() {
     for (size_t i = 0; i < syms.size(); ++i) {
       if (!sh_.symbols[size_t(syms[i])].init.empty()) continue;
       int begin = here();
-      size_t mark = temp_mark();
       std::vector<LRef> dst;
       for (size_t j = 0; j < syms.size(); ++j)
         dst.push_back(LRef{j == i ? syms[j] : temp(sh_.symbols[size_t(syms[j])].type)});
       store_init(dst, p->type, p->init.get());
-      temp_release(mark);
       sh_.symbols[size_t(syms[i])].init_begin = begin;
       sh_.symbols[size_t(syms[i])].init_end = here();
     }

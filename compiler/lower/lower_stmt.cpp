@@ -16,7 +16,6 @@ using S = ast::StmtKind;
 
 void Lowerer::stmt(const ast::Stmt* s) {
   if (!s) return;
-  size_t mark = temp_mark();
   const ast::Node* saved = where_;
   where_ = s;
   switch (s->kind) {
@@ -72,11 +71,7 @@ void Lowerer::stmt(const ast::Stmt* s) {
     loops_.push_back({});
     stmt(body);
     int cont = here();
-    if (step) {
-      size_t m = temp_mark();
-      rvalue(step);
-      temp_release(m);
-    }
+    if (step) rvalue(step);
     emit(ir::Opcode::Br, {}, 0, s, {top});
     int end = here();
     if (j >= 0) sh_.ops[size_t(j)].jumps[1] = end;
@@ -128,7 +123,6 @@ void Lowerer::stmt(const ast::Stmt* s) {
     break;
   }
   where_ = saved;
-  temp_release(mark);
 }
 
 std::vector<int> Lowerer::call_user(const ast::FunctionDecl* f,
@@ -313,7 +307,7 @@ int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
                  *code == ir::Opcode::Environment;
   for (const ast::KeywordArg& k : c->keywords) {
     args.push_back(ir::intern_string(sh_, k.name));
-    if (texture && k.name == "alpha" && k.value->lvalue) {
+    if (texture && k.name == "alpha" && k.value->lvalue && args.size() < 32) {
       LRef r = lvalue(k.value)[0];
       int s = r.whole() ? r.sym : temp(irtype(k.value->type, c));
       if (!r.whole()) copy_back.push_back({r, s});

@@ -103,10 +103,6 @@ public:
   int call_arith(const ast::CallExpr* c, int hint); // builtins lowered to arithmetic, or -2
   int floor_mod(const ast::CallExpr* c, int hint);  // OSL mod(): a - b*floor(a/b)
 
-  // Temporaries allocated since a statement began are free again when it ends.
-  size_t temp_mark() const { return live_temps_.size(); }
-  void temp_release(size_t mark);
-
   const ast::TranslationUnit& tu_;
   LowerOptions opt_;
   ir::Shader sh_;
@@ -114,7 +110,6 @@ public:
   int errors_ = 0; // reported by lowering
   std::unordered_map<const ast::VarDecl*, std::vector<int>> vars_;
   std::map<std::string, int> name_counts_;
-  std::vector<int> live_temps_;
   int next_temp_ = 0;
   std::set<int> used_params_; // params announced by useparam in the current block
   const ast::Node* where_ = nullptr;

@@ -24,7 +24,6 @@ static bool is_string(const Shader& sh, int sym) {
 
 // Gabor noise filters over its position's footprint, so it reads the position's derivatives
 // (as OSL's does): noise/pnoise whose kind is "gabor", or a kind known only while shading.
-// The position is every operand after the kind up to the first keyword.
 static bool reads_position_derivs(const Shader& sh, const Op& op) {
   if ((op.opcode != Opcode::Noise && op.opcode != Opcode::PNoise) || op.args.size() < 3 ||
       !is_string(sh, op.args[1]))
@@ -44,8 +43,14 @@ bool analyze_derivatives(Shader& sh) {
     const ir::OpcodeInfo* info = &ir::info(op.opcode);
     for (size_t i = 0; i < op.args.size() && i < 32; ++i)
       if ((info->derivs >> i) & 1u) mark(op.args[i]);
-    if (reads_position_derivs(sh, op))
-      for (size_t i = 2; i < op.args.size() && !is_string(sh, op.args[i]); ++i) mark(op.args[i]);
+    if (reads_position_derivs(sh, op)) {
+      // The position: the operands after the kind up to the first keyword — for pnoise the
+      // first half of them (the periods follow).
+      size_t end = 2;
+      while (end < op.args.size() && !is_string(sh, op.args[end])) ++end;
+      if (op.opcode == Opcode::PNoise) end = 2 + (end - 2) / 2;
+      for (size_t i = 2; i < end; ++i) mark(op.args[i]);
+    }
   }
   for (bool grew = true; grew;) {
     grew = false;

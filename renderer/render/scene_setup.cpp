@@ -429,7 +429,7 @@ std::string check_scene_extent(const scene::SceneDesc& d) {
 // Embree's acceleration structure and the render's own copies of a mesh, per triangle and per
 // vertex, measured: `/usr/bin/time -f %M lobe render spheres.json --res 16 16 --spp 1` on
 // bench/embree_compare's scene (524 290 triangles, 262 276 vertices) peaks at 292 MB resident,
-// the same scene without its mesh at 189 MB: 106 MB, about 200 bytes a triangle with its share
+// the same scene without its mesh at 189 MB: 103 MB, about 196 bytes a triangle with its share
 // of vertices. The estimate rounds up to 256 a triangle and 64 a vertex (151 MB there).
 constexpr double kBytesPerTriangle = 256, kBytesPerVertex = 64;
 

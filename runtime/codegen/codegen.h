@@ -86,12 +86,13 @@ struct GroupPlan {
 constexpr int64_t kLoopChunk = 1 << 16;
 
 // Bounded memory. Every symbol but a constant has storage on the shading thread's stack while
-// its layer runs (parameters are copied in from group data), and connected layers call each
-// other, so the limit is on all layers together: a quarter of the 4 MiB stack of a TBB worker
-// thread, which is where `lobe shade` and `lobe render` shade. It bounds the group data (one
-// copy per shading thread) too, which holds only the parameters. build_group refuses a material
-// past it with an error naming the largest symbol (a shader declaring `float a[1000000000]`
-// would otherwise overflow the stack at its first shade, as it does in OSL).
+// its layer runs (parameters are copied in from group data); scalars, triples and matrices end
+// up in registers once LLVM promotes them, arrays stay in memory. Connected layers call each
+// other, so the limit is on the arrays of all layers together: a quarter of the 4 MiB stack of
+// a TBB worker thread, which is where `lobe shade` and `lobe render` shade. build_group refuses
+// a material past it with an error naming the largest array (a shader declaring
+// `float a[1000000000]` would otherwise overflow the stack at its first shade, as it does in
+// OSL); the same bound keeps array parameters' group data (one copy per thread) in check.
 constexpr size_t kMaxLocalBytes = size_t(1) << 20;
 
 // Storage size in bytes of a symbol (all planes), as laid out in group data and allocas.

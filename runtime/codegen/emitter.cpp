@@ -32,8 +32,8 @@ size_t scalar_bytes(const ir::Symbol& s) {
 } // namespace
 
 size_t storage_bytes(const ir::Symbol& s) {
-  // In size_t throughout: a huge array must not wrap (build_group checks the sizes against
-  // kMaxLocalBytes and kMaxGroupBytes before anything is laid out).
+  // In size_t throughout: a huge array must not wrap (build_group checks the arrays against
+  // kMaxLocalBytes before anything is laid out).
   return size_t(planes_of(s)) * size_t(elements_of(s)) * size_t(s.type.components()) *
          scalar_bytes(s);
 }

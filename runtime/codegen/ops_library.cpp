@@ -680,6 +680,7 @@ void op_setmessage(LayerEmitter& e, const ir::Op& op) {
 llvm::Value* texture_args(LayerEmitter& e, const ir::Op& op, size_t first) {
   using shadeops::TextureArgs;
   auto& B = e.b();
+  const int channels = e.arg(op, 0).type.components(); // the result's
   auto* block =
       e.entry_alloca(llvm::ArrayType::get(B.getInt8Ty(), sizeof(TextureArgs)), 1, "texargs");
   auto at = [&](size_t off) { return B.CreateConstInBoundsGEP1_64(B.getInt8Ty(), block, off); };
@@ -694,6 +695,8 @@ llvm::Value* texture_args(LayerEmitter& e, const ir::Op& op, size_t first) {
                   at(offsetof(TextureArgs, wrap) + sizeof(char*) * k));
   B.CreateStore(llvm::ConstantPointerNull::get(B.getPtrTy()), at(offsetof(TextureArgs, interp)));
   B.CreateStore(e.iconst(0), at(offsetof(TextureArgs, has_missing)));
+  for (size_t k = 0; k < 4; ++k)
+    B.CreateStore(e.fconst(0), at(offsetof(TextureArgs, missing) + 4 * k));
   for (size_t i = first; i + 1 < op.args.size(); i += 2) {
     std::string kw = const_string(e.arg(op, int(i)));
     int v = int(i + 1);
@@ -719,14 +722,15 @@ llvm::Value* texture_args(LayerEmitter& e, const ir::Op& op, size_t first) {
                     at(offsetof(TextureArgs, firstchannel)));
     else if (kw == "interp")
       B.CreateStore(e.load(op.args[size_t(v)])[0].v, at(offsetof(TextureArgs, interp)));
-    else if (kw == "missingcolor") {
+    else if (kw == "missingcolor") { // the result's channels (the first for a float)
       Val c = e.load_as(op, v, BaseType::Color, false);
-      for (size_t k = 0; k < 3; ++k)
+      for (size_t k = 0; k < size_t(channels) && k < 3; ++k)
         B.CreateStore(c[k].v, at(offsetof(TextureArgs, missing) + 4 * k));
       B.CreateStore(e.iconst(1), at(offsetof(TextureArgs, has_missing)));
-    } else if (kw == "missingalpha") {
+    } else if (kw == "missingalpha") { // the channel after them; a missing file is no error
       B.CreateStore(e.load_as(op, v, BaseType::Float, false)[0].v,
-                    at(offsetof(TextureArgs, missing) + 4 * 3));
+                    at(offsetof(TextureArgs, missing) + 4 * size_t(std::min(channels, 3))));
+      B.CreateStore(e.iconst(1), at(offsetof(TextureArgs, has_missing)));
     }
     // "alpha": the lookup's extra channel (alpha_operand); "time", "subimage": ignored
   }

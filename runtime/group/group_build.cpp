@@ -34,24 +34,36 @@ struct Endpoint {
 };
 
 // "c[1]", "a[2][0]", "s.a", or a whole struct "s" (one endpoint per field, keyed by the
-// field's suffix). Empty result: not found.
+// field's suffix). Empty result: not found — also for an index that is not a number in range
+// (an element of a sized array, a component of a triple or matrix; none on a scalar).
 std::map<std::string, Endpoint> resolve(const ir::Shader& sh, const std::string& path) {
   std::map<std::string, Endpoint> out;
   size_t br = path.find('[');
   std::string base = path.substr(0, br);
   std::vector<int> idx;
-  for (size_t p = br; p != std::string::npos && p < path.size(); p = path.find('[', p + 1))
-    idx.push_back(std::atoi(path.c_str() + p + 1));
+  for (size_t p = br; p != std::string::npos && p < path.size(); p = path.find('[', p + 1)) {
+    size_t close = path.find(']', p);
+    std::string digits = path.substr(p + 1, close == std::string::npos ? 0 : close - p - 1);
+    if (digits.empty() || digits.size() > 9 ||
+        digits.find_first_not_of("0123456789") != std::string::npos)
+      return out;
+    idx.push_back(std::stoi(digits));
+  }
   int s = sh.find_symbol(base);
   if (s >= 0) {
     const ir::Symbol& sym = sh.symbols[size_t(s)];
     Endpoint e{base};
+    size_t next = 0;
     if (sym.type.is_array() && !idx.empty()) {
-      e.elem = idx[0];
-      if (idx.size() > 1) e.comp = idx[1];
-    } else if (!idx.empty()) {
-      e.comp = idx[0];
+      if (sym.type.arraylen > 0 && idx[0] >= sym.type.arraylen) return out;
+      e.elem = idx[next++];
     }
+    if (next < idx.size()) {
+      int comps = sym.type.base == ir::BaseType::Matrix ? 16 : sym.type.is_triple() ? 3 : 0;
+      if (idx[next] >= comps) return out;
+      e.comp = idx[next++];
+    }
+    if (next < idx.size()) return out;
     out[""] = e;
     return out;
   }
@@ -72,9 +84,9 @@ bool is_param(const ir::Symbol& s) {
   return s.kind == SymKind::Param || s.kind == SymKind::OutputParam;
 }
 
-// "" when the layers' storage fits codegen::kMaxLocalBytes (all layers together), else the
-// error, naming the largest symbol and its place. Summed in double: an array of 2^31 elements
-// with derivatives must not wrap.
+// "" when the layers' arrays fit codegen::kMaxLocalBytes (all layers together), else the
+// error, naming the largest and its place. Summed in double: an array of 2^31 elements with
+// derivatives must not wrap.
 std::string check_storage(const std::vector<std::unique_ptr<ir::Shader>>& shaders,
                           const std::vector<std::string>& layer_names) {
   double total = 0, largest = -1;
@@ -82,7 +94,7 @@ std::string check_storage(const std::vector<std::unique_ptr<ir::Shader>>& shader
   size_t big_layer = 0;
   for (size_t li = 0; li < shaders.size(); ++li)
     for (const ir::Symbol& s : shaders[li]->symbols) {
-      if (s.kind == SymKind::Const) continue;
+      if (s.kind == SymKind::Const || !s.type.is_array()) continue;
       double b = double(codegen::storage_bytes(s));
       total += b;
       if (b > largest) largest = b, big = &s, big_layer = li;
@@ -92,7 +104,7 @@ std::string check_storage(const std::vector<std::unique_ptr<ir::Shader>>& shader
                       layer_names[big_layer] + "'";
   if (big->loc.line > 0)
     where.append(", ").append(big->loc.file).append(":").append(std::to_string(big->loc.line));
-  return "the material's variables need " + format_bytes(total) +
+  return "the material's arrays need " + format_bytes(total) +
          " of stack while it shades, more than the limit of " +
          format_bytes(double(codegen::kMaxLocalBytes)) + "; the largest is '" + big->name + "' (" +
          ir::to_string(big->type) + (big->derivs ? " with derivatives" : "") + ", " +
@@ -110,15 +122,16 @@ ir::Type endpoint_type(const ir::Shader& sh, const Endpoint& e) {
 }
 
 // OSL's rule for a connection src -> dst: the same type (any two triples count as the same,
-// closures and arrays of equal length too), or a number into a float, triple or matrix. (A
-// float into an int, a triple into a float, arrays of other lengths, strings and numbers are
-// refused.)
+// for arrays of them too; closures, and arrays of equal length), or a number into a float,
+// triple or matrix. (A float into an int, a triple into a float, arrays of other lengths,
+// strings and numbers are refused.)
 bool connectable(const ir::Type& src, const ir::Type& dst) {
   using B = ir::BaseType;
   if (src.is_array() != dst.is_array()) return false;
   // An unsized array (`float a[]`) takes the connected array's length.
-  if (src.is_array() && (src.base != dst.base || (src.arraylen != dst.arraylen &&
-                                                   src.arraylen >= 0 && dst.arraylen >= 0)))
+  bool same_base = src.base == dst.base || (src.is_triple() && dst.is_triple());
+  if (src.is_array() && (!same_base || (src.arraylen != dst.arraylen && src.arraylen >= 0 &&
+                                        dst.arraylen >= 0)))
     return false;
   if (src.base == dst.base || (src.is_triple() && dst.is_triple())) return true;
   bool number = src.base == B::Float || src.base == B::Int;
@@ -408,9 +421,14 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     const ir::Shader& dst_sh = *sources[size_t(di->second)];
     auto src = resolve(src_sh, c.src_param);
     auto dst = resolve(dst_sh, c.dst_param);
-    auto type_of = [](const ir::Shader& sh, const std::map<std::string, Endpoint>& ends) {
+    // A whole struct's fields carry its type's name (Symbol::struct_name).
+    auto struct_of = [](const ir::Shader& sh, const std::map<std::string, Endpoint>& ends) {
+      if (ends.empty() || (ends.size() == 1 && ends.count(""))) return std::string();
+      return sh.symbols[size_t(sh.find_symbol(ends.begin()->second.symbol))].struct_name;
+    };
+    auto type_of = [&](const ir::Shader& sh, const std::map<std::string, Endpoint>& ends) {
       if (ends.empty()) return std::string("unknown");
-      if (ends.size() > 1 || !ends.count("")) return std::string("struct");
+      if (ends.size() > 1 || !ends.count("")) return "struct " + struct_of(sh, ends);
       return ir::to_string(endpoint_type(sh, ends.at("")));
     };
     if (src.empty() || dst.empty()) {
@@ -426,7 +444,8 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
                           "connect_param"));
       return false;
     }
-    bool fits = src.size() == dst.size();
+    // Structs connect only to the same struct type, as in OSL.
+    bool fits = src.size() == dst.size() && struct_of(src_sh, src) == struct_of(dst_sh, dst);
     if (fits && src.size() == 1 && src.count("") && dst.count(""))
       fits = connectable(endpoint_type(src_sh, src.at("")), endpoint_type(dst_sh, dst.at("")));
     if (!fits) {
@@ -441,6 +460,15 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       if (d == dst.end()) {
         diags.push_back(err("connect: struct field '" + suffix + "' missing in " + c.dst_param,
                             "connect_param"));
+        return false;
+      }
+      if (!connectable(endpoint_type(src_sh, e), endpoint_type(dst_sh, d->second))) {
+        diags.push_back(err("ConnectShaders: cannot connect a " +
+                                ir::to_string(endpoint_type(src_sh, e)) + " (" + c.src_param +
+                                suffix + ") to a " +
+                                ir::to_string(endpoint_type(dst_sh, d->second)) + " (" +
+                                c.dst_param + suffix + ")",
+                            "connect_type"));
         return false;
       }
       links.push_back({si->second, di->second, e, d->second});

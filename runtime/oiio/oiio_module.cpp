@@ -9,6 +9,7 @@
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
 
+#include <algorithm>
 #include <iterator>
 #include <mutex>
 #include <string>
@@ -60,42 +61,57 @@ OIIO::TextureOpt options(const TextureArgs* a) {
 thread_local std::string t_refused;
 
 // Bounded memory for textures. OpenImageIO reads a tiled file a tile at a time into its cache
-// (256 MB by default), but an untiled one is a single tile: the whole image is read, as floats,
-// and automip builds its MIP levels beside it. So on the first lookup of a file its header is
-// read and an untiled image that cannot fit in the memory (lobe/memory.h) is refused, with the
-// figure, instead of failing an allocation inside OpenImageIO (which throws through the shader
-// and aborts the process). The verdict is kept per file name; each thread also remembers the
-// last name it passed, by pointer (shader strings are interned, so a pointer is one name), which
-// keeps the check off the per-lookup path.
+// (256 MB by default), but an untiled one is a single tile: the whole image is read, in its own
+// pixel format, and automip builds its MIP levels beside it. So on the first lookup of a file
+// its header is read and an untiled image that cannot fit in the memory (lobe/memory.h) is
+// refused, with the figure, instead of failing an allocation inside OpenImageIO (which throws
+// through the shader and aborts the process). The verdict is kept per file name; each thread
+// remembers the last few names it passed (by pointer, confirmed by content), which keeps the
+// shared table and its lock off the per-lookup path.
+std::string texture_verdict(OIIO::TextureSystem* ts, const char* file) {
+  // Null for a file that cannot be opened: the lookup then fails with OpenImageIO's error.
+  const OIIO::ImageSpec* spec = ts->imagespec(OIIO::ustring(file));
+  if (!spec) {
+    ts->geterror(); // cleared: the lookup reports it as its own
+    return "";
+  }
+  // OpenImageIO reports an untiled file as one tile the size of the image.
+  if (spec->tile_width > 0 && (spec->tile_width < spec->width || spec->tile_height < spec->height))
+    return "";
+  double bytes = double(spec->width) * double(spec->height) * double(std::max(spec->depth, 1)) *
+                 double(spec->nchannels) * double(spec->format.size()) * 4 / 3;
+  return check_memory(std::string(file) + " (" + std::to_string(spec->width) + "x" +
+                          std::to_string(spec->height) + ", " + std::to_string(spec->nchannels) +
+                          " channels, not tiled)",
+                      bytes, "read whole into the texture cache, with its MIP levels");
+}
+
 bool fits(OIIO::TextureSystem* ts, const char* file) {
-  thread_local const char* last_passed = nullptr;
-  if (file == last_passed) return true;
+  struct Passed {
+    const char* ptr = nullptr;
+    std::string name;
+  };
+  thread_local Passed passed[8];
+  thread_local size_t next = 0;
+  for (const Passed& p : passed)
+    if (p.ptr == file && p.name == file) return true;
   static std::mutex mutex;
   static std::unordered_map<std::string, std::string> verdicts;
   std::string refusal;
+  bool known = false;
   {
     std::lock_guard<std::mutex> lock(mutex);
-    auto [it, added] = verdicts.try_emplace(file);
-    if (added) {
-      // Null for a file that cannot be opened: the lookup then fails with OpenImageIO's error.
-      const OIIO::ImageSpec* spec = ts->imagespec(OIIO::ustring(file));
-      if (!spec) ts->geterror(); // cleared: the lookup reports it as its own
-      // OpenImageIO reports an untiled file as one tile the size of the image.
-      if (spec && (spec->tile_width <= 0 ||
-                   (spec->tile_width >= spec->width && spec->tile_height >= spec->height))) {
-        double bytes = double(spec->width) * double(spec->height) * double(spec->depth) *
-                       double(spec->nchannels) * 4 * 4 / 3;
-        it->second = check_memory(
-            std::string(file) + " (" + std::to_string(spec->width) + "x" +
-                std::to_string(spec->height) + ", " + std::to_string(spec->nchannels) +
-                " channels, not tiled)",
-            bytes, "read whole into the texture cache, with its MIP levels");
-      }
-    }
-    refusal = it->second;
+    auto it = verdicts.find(file);
+    if (it != verdicts.end()) known = true, refusal = it->second;
+  }
+  if (!known) { // read the header outside the lock; two threads may both read it
+    refusal = texture_verdict(ts, file);
+    std::lock_guard<std::mutex> lock(mutex);
+    verdicts.emplace(file, refusal);
   }
   if (refusal.empty()) {
-    last_passed = file;
+    passed[next] = Passed{file, file};
+    next = (next + 1) % std::size(passed);
     return true;
   }
   t_refused = std::move(refusal);

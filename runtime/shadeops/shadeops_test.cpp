@@ -3,6 +3,7 @@
 #include "env.h"
 #include "format.h"
 #include "lobe/context.h"
+#include "shadeop_decls.h"
 #include "shadeops.h"
 
 #include <gtest/gtest.h>
@@ -683,4 +684,20 @@ TEST(Table, NamesResolve) {
   ASSERT_NE(find_shadeop("lobe_noise"), nullptr);
   EXPECT_STREQ(find_shadeop("sinf")->sig, "ff");
   EXPECT_EQ(find_shadeop("nope"), nullptr);
+}
+
+// spline() with a NaN position reads it as 0 (the first segment's start, knots[1] for the
+// linear basis) and gives no derivatives; the segment index is never computed from the NaN
+// (it would index far outside the knots).
+TEST(Spline, NanPositionReadsAsZero) {
+  const float knots[4] = {0.0f, 0.25f, 0.75f, 1.0f};
+  float out = -1, dx = -1, dy = -1;
+  lobe_spline("linear", std::numeric_limits<float>::quiet_NaN(), 1.0f, 1.0f, knots, 4, 1, &out,
+              &dx, &dy);
+  EXPECT_EQ(out, 0.25f);
+  EXPECT_EQ(dx, 0.0f);
+  EXPECT_EQ(dy, 0.0f);
+  lobe_spline("catmull-rom", -std::numeric_limits<float>::infinity(), 0, 0, knots, 4, 1, &out,
+              nullptr, nullptr);
+  EXPECT_EQ(out, 0.25f);
 }

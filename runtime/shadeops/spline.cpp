@@ -44,13 +44,13 @@ const Basis& find_basis(const char* name) {
 // segment's four knots P combine into the cubic's coefficients tk[k] = m[k] . P (summed left to
 // right), then tr = ((tk0 t + tk1) t + tk2) t + tk3 with t the position in the segment, every
 // product and sum rounded (OSL's spline shadeops are compiled C++ without contraction). A
-// clamped x (outside [0, 1]) carries no derivatives.
+// clamped x (outside [0, 1], or NaN, which reads as 0) carries no derivatives.
 float eval(const Basis& b, float x, const float* knots, int nknots, int comps, int c,
            const float* xd = nullptr, float* d = nullptr) {
   if (d) d[0] = d[1] = 0;
   if (nknots < 4) return 0;
-  bool clamped = x < 0 || x > 1;
-  x = std::clamp(x, 0.0f, 1.0f);
+  bool clamped = !(x >= 0 && x <= 1); // NaN too: it reads as 0
+  x = x > 1 ? 1.0f : x >= 0 ? x : 0.0f;
   int nsegs = (nknots - 4) / b.step + 1;
   float xs = x * float(nsegs);
   int seg = std::min(int(xs), nsegs - 1);

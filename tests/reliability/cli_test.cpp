@@ -201,7 +201,7 @@ TEST(ReliabilityShade, HugeLocalArrayIsAnErrorNotAStackOverflow) {
              "}\n");
   CmdResult r = run_cmd("cd '" + d.string() + "' && " + exe() + " shade -g 2 2 big -o f null");
   EXPECT_EQ(r.status, 1) << r.out;
-  EXPECT_NE(r.out.find("the material's variables need 4.0 GB of stack while it shades, more "
+  EXPECT_NE(r.out.find("the material's arrays need 4.0 GB of stack while it shades, more "
                        "than the limit of 1.0 MB; the largest is 'a' (float[1000000000], 4.0 GB) "
                        "in shader 'big' (layer 'big_0', big.osl:2)"),
             std::string::npos)
@@ -238,13 +238,13 @@ TEST(ReliabilityRender, HugeImageIsRefusedWithTheFigure) {
   EXPECT_FALSE(fs::exists(d / "out.exr"));
   // The same file as a texture: OpenImageIO would read it whole (it is not tiled) and its failed
   // allocation would abort the process (OSL's testshade runs out of memory on it); the lookup
-  // is refused with the figure (x 4/3 for the MIP levels) and gives 0, an error as testshade
-  // reports texture errors (exit status 0).
+  // is refused with the figure (3 bytes a pixel, x 4/3 for the MIP levels: 4 TB) and gives 0,
+  // an error as testshade reports texture errors (exit status 0).
   write_file(d / "tex.osl", "shader tex(output color c = 1) { c = texture(\"big.ppm\", u, v); }\n");
   r = run_cmd("cd '" + d.string() + "' && " + exe() + " shade -g 2 2 tex -o c null");
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("ERROR: texture \"big.ppm\": big.ppm (1000000x1000000, 3 channels, not "
-                       "tiled) needs about 16.0 TB of memory (read whole into the texture cache, "
+                       "tiled) needs about 4.0 TB of memory (read whole into the texture cache, "
                        "with its MIP levels)"),
             std::string::npos)
       << r.out;

@@ -83,6 +83,23 @@ TEST(ShadeCli, ConnectionsOfTypesOslRefusesAreErrors) {
             "Connect A.nosuch to B.f\nERROR: ConnectShaders: \"nosuch\" is not a parameter or "
             "global of layer \"A\" (shader \"connect_types_src\")\nERROR: ConnectShaders: cannot "
             "connect a unknown (nosuch) to a float (f), invalid connection\n" + group + "rc 1\n");
+  // An index out of range or on a scalar connects nothing (OSL reports it and shades garbage
+  // for c[5]; Lobe stops): exit 1, a ConnectShaders error.
+  for (const char* bad : {"c[5]", "f[1]", "a3[3]", "c[x]"}) {
+    std::string out = connect(bad, "f");
+    EXPECT_NE(out.find("ERROR: ConnectShaders: "), std::string::npos) << bad << ": " << out;
+    EXPECT_NE(out.find("rc 1\n"), std::string::npos) << bad << ": " << out;
+  }
+  // A struct connects only to the same struct type (OSL 1.13.12, `testshade -g 1 1 -layer A
+  // connect_struct_src -layer B connect_struct_dst -connect A s B si` / `... B sf`).
+  auto structs = [](const std::string& dst) {
+    return run_cmd(std::string("cd ") + LOBE_SHADE_CORPUS + "/layers && { " + LOBE_EXE +
+                   " shade -g 1 1 -layer A connect_struct_src -layer B connect_struct_dst "
+                   "-connect A s B " + dst + " 2>&1; echo \"rc $?\"; }");
+  };
+  EXPECT_EQ(structs("si"), "Connect A.s to B.si\nERROR: ConnectShaders: cannot connect a struct "
+                           "SF (s) to a struct SI (si)\n" + group + "rc 1\n");
+  EXPECT_EQ(structs("sf"), "Connect A.s to B.sf\nsi 0 0 0 0 sf 1 1 2 3\n\nrc 0\n");
   EXPECT_EQ(connect("i", "c"),
             "Connect A.i to B.c\nf 0 i 0 c 3 3 3 s  a3 0 0 0 p 0 0 0 m 0 a2 0 0\n\nrc 0\n");
 }
