@@ -82,7 +82,7 @@ private:
   // As convert, for an assignment or a declaration of `name` ("" when not a plain variable):
   // a float assigned to an int truncates, with oslc's warning.
   void convert_assign(ExprPtr& e, const ast::Type& to, const std::string& name);
-  void coerce(ExprPtr& e, const ast::Type& to);  // insert the cast (already valid)
+  void coerce(ExprPtr& e, const ast::Type& to); // insert the cast (already valid)
   bool is_zero_literal(const ast::Expr* e) const;
   void init_list(ExprPtr& e, const ast::Type& target);
   bool init_list_fits(const ast::Expr* e, const ast::Type& target) const;

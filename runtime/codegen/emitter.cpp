@@ -237,8 +237,8 @@ Val LayerEmitter::convert(const Val& v, BaseType from, BaseType to) {
     // Truncation; NaN and values outside int32 give INT_MIN, as x86's cvttss2si does in OSL
     // (math::cvtt, which the constant folder uses: the same answer folded or not).
     llvm::Value* f = v[0].v;
-    llvm::Value* in_range = b_.CreateFCmpOLT(
-        b_.CreateUnaryIntrinsic(llvm::Intrinsic::fabs, f), fconst(2147483648.0f));
+    llvm::Value* in_range =
+        b_.CreateFCmpOLT(b_.CreateUnaryIntrinsic(llvm::Intrinsic::fabs, f), fconst(2147483648.0f));
     llvm::Value* x = b_.CreateSelect(in_range, b_.CreateFPToSI(f, i32()), iconst(INT32_MIN));
     return Val{Dual{x}};
   }

@@ -80,8 +80,7 @@ llvm::Value* sqrt_pos(LayerEmitter& e, llvm::Value* x) {
 void op_dot(LayerEmitter& e, const ir::Op& op) {
   DualOps d(e);
   Val a = load3(e, op, 1), b = load3(e, op, 2);
-  e.store(op.args[0],
-          Val{e.wants_derivs(op.args[0]) ? dot3(d, a, b) : Dual{dot_fused(e, a, b)}});
+  e.store(op.args[0], Val{e.wants_derivs(op.args[0]) ? dot3(d, a, b) : Dual{dot_fused(e, a, b)}});
 }
 void op_cross(LayerEmitter& e, const ir::Op& op) {
   DualOps d(e);
@@ -294,8 +293,7 @@ void op_deriv(LayerEmitter& e, const ir::Op& op) {
       r.push_back(Dual{o == ir::Opcode::Dx ? dxv(c) : o == ir::Opcode::Dy ? dyv(c) : e.fconst(0)});
   } else if (o == ir::Opcode::FilterWidth) { // sqrt(dx dx + dy dy), contracted as OSL's
     for (const Dual& c : x)
-      r.push_back(
-          Dual{sqrt_pos(e, fmuladd(e, dxv(c), dxv(c), e.b().CreateFMul(dyv(c), dyv(c))))});
+      r.push_back(Dual{sqrt_pos(e, fmuladd(e, dxv(c), dxv(c), e.b().CreateFMul(dyv(c), dyv(c))))});
   } else { // OSL's shadeops: Imath's cross and length, contracted (dot_fused, cross_fused)
     Val px, py;
     for (const Dual& c : x) {

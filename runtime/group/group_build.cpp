@@ -100,8 +100,8 @@ std::string check_storage(const std::vector<std::unique_ptr<ir::Shader>>& shader
       if (b > largest) largest = b, big = &s, big_layer = li;
     }
   if (!big || total <= double(codegen::kMaxLocalBytes)) return "";
-  std::string where = "shader '" + shaders[big_layer]->name + "' (layer '" +
-                      layer_names[big_layer] + "'";
+  std::string where =
+      "shader '" + shaders[big_layer]->name + "' (layer '" + layer_names[big_layer] + "'";
   if (big->loc.line > 0)
     where.append(", ").append(big->loc.file).append(":").append(std::to_string(big->loc.line));
   return "the material's arrays need " + format_bytes(total) +
@@ -130,8 +130,8 @@ bool connectable(const ir::Type& src, const ir::Type& dst) {
   if (src.is_array() != dst.is_array()) return false;
   // An unsized array (`float a[]`) takes the connected array's length.
   bool same_base = src.base == dst.base || (src.is_triple() && dst.is_triple());
-  if (src.is_array() && (!same_base || (src.arraylen != dst.arraylen && src.arraylen >= 0 &&
-                                        dst.arraylen >= 0)))
+  if (src.is_array() &&
+      (!same_base || (src.arraylen != dst.arraylen && src.arraylen >= 0 && dst.arraylen >= 0)))
     return false;
   if (src.base == dst.base || (src.is_triple() && dst.is_triple())) return true;
   bool number = src.base == B::Float || src.base == B::Int;
@@ -402,11 +402,11 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
   for (const Connection& c : group.connections) {
     auto si = layer_index.find(c.src_layer), di = layer_index.find(c.dst_layer);
     if (si == layer_index.end() || di == layer_index.end()) {
-      diags.push_back(err(si == layer_index.end()
-                              ? "ConnectShaders: source layer \"" + c.src_layer + "\" not found"
-                              : "ConnectShaders: destination layer \"" + c.dst_layer +
-                                    "\" not found",
-                          "connect_layer"));
+      diags.push_back(
+          err(si == layer_index.end()
+                  ? "ConnectShaders: source layer \"" + c.src_layer + "\" not found"
+                  : "ConnectShaders: destination layer \"" + c.dst_layer + "\" not found",
+              "connect_layer"));
       return false;
     }
     if (si->second >= di->second) {
@@ -435,12 +435,13 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       const bool src_missing = src.empty();
       const std::string& layer = src_missing ? c.src_layer : c.dst_layer;
       const std::string& param = src_missing ? c.src_param : c.dst_param;
-      diags.push_back(err("ConnectShaders: \"" + param + "\" is not a parameter or global of layer \"" +
-                              layer + "\" (shader \"" + (src_missing ? src_sh : dst_sh).name + "\")",
+      diags.push_back(err("ConnectShaders: \"" + param +
+                              "\" is not a parameter or global of layer \"" + layer +
+                              "\" (shader \"" + (src_missing ? src_sh : dst_sh).name + "\")",
                           "connect_param"));
       diags.push_back(err("ConnectShaders: cannot connect a " + type_of(src_sh, src) + " (" +
-                              c.src_param + ") to a " + type_of(dst_sh, dst) + " (" +
-                              c.dst_param + "), invalid connection",
+                              c.src_param + ") to a " + type_of(dst_sh, dst) + " (" + c.dst_param +
+                              "), invalid connection",
                           "connect_param"));
       return false;
     }
@@ -450,8 +451,8 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       fits = connectable(endpoint_type(src_sh, src.at("")), endpoint_type(dst_sh, dst.at("")));
     if (!fits) {
       diags.push_back(err("ConnectShaders: cannot connect a " + type_of(src_sh, src) + " (" +
-                              c.src_param + ") to a " + type_of(dst_sh, dst) + " (" +
-                              c.dst_param + ")",
+                              c.src_param + ") to a " + type_of(dst_sh, dst) + " (" + c.dst_param +
+                              ")",
                           "connect_type"));
       return false;
     }
@@ -463,12 +464,11 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         return false;
       }
       if (!connectable(endpoint_type(src_sh, e), endpoint_type(dst_sh, d->second))) {
-        diags.push_back(err("ConnectShaders: cannot connect a " +
-                                ir::to_string(endpoint_type(src_sh, e)) + " (" + c.src_param +
-                                suffix + ") to a " +
-                                ir::to_string(endpoint_type(dst_sh, d->second)) + " (" +
-                                c.dst_param + suffix + ")",
-                            "connect_type"));
+        diags.push_back(err(
+            "ConnectShaders: cannot connect a " + ir::to_string(endpoint_type(src_sh, e)) + " (" +
+                c.src_param + suffix + ") to a " + ir::to_string(endpoint_type(dst_sh, d->second)) +
+                " (" + c.dst_param + suffix + ")",
+            "connect_type"));
         return false;
       }
       links.push_back({si->second, di->second, e, d->second});

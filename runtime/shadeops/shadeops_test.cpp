@@ -692,8 +692,8 @@ TEST(Table, NamesResolve) {
 TEST(Spline, NanPositionReadsAsZero) {
   const float knots[4] = {0.0f, 0.25f, 0.75f, 1.0f};
   float out = -1, dx = -1, dy = -1;
-  lobe_spline("linear", std::numeric_limits<float>::quiet_NaN(), 1.0f, 1.0f, knots, 4, 1, &out,
-              &dx, &dy);
+  lobe_spline("linear", std::numeric_limits<float>::quiet_NaN(), 1.0f, 1.0f, knots, 4, 1, &out, &dx,
+              &dy);
   EXPECT_EQ(out, 0.25f);
   EXPECT_EQ(dx, 0.0f);
   EXPECT_EQ(dy, 0.0f);

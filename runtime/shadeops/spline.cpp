@@ -121,8 +121,8 @@ extern "C" {
 
 // out[comps] = spline(basis, x, knots[nknots][comps]); odx, ody (null: none) receive the
 // result's derivatives for x's (xdx, xdy).
-void lobe_spline(const char* basis, float x, float xdx, float xdy, const float* knots,
-                 int nknots, int comps, float* out, float* odx, float* ody) {
+void lobe_spline(const char* basis, float x, float xdx, float xdy, const float* knots, int nknots,
+                 int comps, float* out, float* odx, float* ody) {
   const Basis& b = find_basis(basis);
   const float xd[2] = {xdx, xdy};
   for (int c = 0; c < comps; ++c) {

@@ -193,12 +193,11 @@ TEST(ReliabilityShade, HugeGridIsRefusedWithTheFigure) {
 // check guards lobe render's set-up (one build path).
 TEST(ReliabilityShade, HugeLocalArrayIsAnErrorNotAStackOverflow) {
   fs::path d = temp_dir("shade_array");
-  write_file(d / "big.osl",
-             "shader big(output float f = 0) {\n"
-             "  float a[1000000000];\n"
-             "  a[int(u * 7)] = u;\n"
-             "  f = a[int(v * 3)];\n"
-             "}\n");
+  write_file(d / "big.osl", "shader big(output float f = 0) {\n"
+                            "  float a[1000000000];\n"
+                            "  a[int(u * 7)] = u;\n"
+                            "  f = a[int(v * 3)];\n"
+                            "}\n");
   CmdResult r = run_cmd("cd '" + d.string() + "' && " + exe() + " shade -g 2 2 big -o f null");
   EXPECT_EQ(r.status, 1) << r.out;
   EXPECT_NE(r.out.find("the material's arrays need 4.0 GB of stack while it shades, more "
@@ -207,13 +206,12 @@ TEST(ReliabilityShade, HugeLocalArrayIsAnErrorNotAStackOverflow) {
             std::string::npos)
       << r.out;
   // 10^4 floats (40 kB) are fine: f = a[0] = u at u = 0 and 1 (-g 2 1).
-  write_file(d / "ok.osl",
-             "shader ok(output float f = 0) {\n"
-             "  float a[10000];\n"
-             "  a[int(u * 7)] = u;\n"
-             "  f = a[int(u * 7)];\n"
-             "  printf(\"%g\\n\", f);\n"
-             "}\n");
+  write_file(d / "ok.osl", "shader ok(output float f = 0) {\n"
+                           "  float a[10000];\n"
+                           "  a[int(u * 7)] = u;\n"
+                           "  f = a[int(u * 7)];\n"
+                           "  printf(\"%g\\n\", f);\n"
+                           "}\n");
   r = run_cmd("cd '" + d.string() + "' && " + exe() + " shade -g 2 1 ok -o f null");
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("0\n1\n"), std::string::npos) << r.out;
@@ -228,8 +226,8 @@ TEST(ReliabilityRender, HugeImageIsRefusedWithTheFigure) {
              "{\"camera\": {\"eye\": [0, 0, 5], \"look_at\": [0, 0, 0], \"fov\": 40},\n"
              " \"settings\": {\"resolution\": [8, 8], \"spp\": 1},\n"
              " \"environment\": {\"type\": \"map\", \"file\": \"big.ppm\"}}\n");
-  CmdResult r = run_cmd("cd '" + d.string() + "' && " + exe() +
-                        " render s.json -o out.exr --progress none");
+  CmdResult r =
+      run_cmd("cd '" + d.string() + "' && " + exe() + " render s.json -o out.exr --progress none");
   EXPECT_EQ(r.status, 1) << r.out;
   EXPECT_NE(r.out.find("big.ppm (1000000x1000000, 3 channels) needs about 12.0 TB of memory "
                        "(its pixels as floats)"),
