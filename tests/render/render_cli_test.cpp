@@ -124,8 +124,10 @@ TEST(RenderCli, JitErrorsAreReportedAsTheyAre) {
       furnace_json(R"({"group": "param float ior 1.45 ; shader glass g ; connect g.x h.y ;"})"));
   CmdResult r = render(scene.string() + " -o " + (d / "o.png").string());
   EXPECT_EQ(r.status, 1);
-  EXPECT_EQ(r.out, "lobe render: " + scene.string() +
-                       ": /materials/m: material 'm': ConnectShaders: destination layer \"h\" not found\n");
+  EXPECT_EQ(
+      r.out,
+      "lobe render: " + scene.string() +
+          ": /materials/m: material 'm': ConnectShaders: destination layer \"h\" not found\n");
   r = render("--materials native " + scene.string() + " -o " + (d / "o.png").string());
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.out, "lobe render: " + scene.string() +

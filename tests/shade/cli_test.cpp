@@ -66,23 +66,29 @@ TEST(ShadeCli, ConnectionsAreAnnouncedAndFollowed) {
 // -layer A connect_types_src -layer B connect_types_dst -connect A X B Y` (stdout, then stderr).
 TEST(ShadeCli, ConnectionsOfTypesOslRefusesAreErrors) {
   auto connect = [](const std::string& src, const std::string& dst) {
-    return run_cmd(std::string("cd ") + LOBE_SHADE_CORPUS + "/layers && { " + LOBE_EXE +
-                   " shade -g 1 1 -layer A connect_types_src -layer B connect_types_dst -connect A " +
-                   src + " B " + dst + " 2>&1; echo \"rc $?\"; }");
+    return run_cmd(
+        std::string("cd ") + LOBE_SHADE_CORPUS + "/layers && { " + LOBE_EXE +
+        " shade -g 1 1 -layer A connect_types_src -layer B connect_types_dst -connect A " + src +
+        " B " + dst + " 2>&1; echo \"rc $?\"; }");
   };
   const std::string group = "        group: unnamed_group_1\n";
   EXPECT_EQ(connect("f", "i"), "Connect A.f to B.i\nERROR: ConnectShaders: cannot connect a float "
-                               "(f) to a int (i)\n" + group + "rc 1\n");
+                               "(f) to a int (i)\n" +
+                                   group + "rc 1\n");
   EXPECT_EQ(connect("c", "f"), "Connect A.c to B.f\nERROR: ConnectShaders: cannot connect a color "
-                               "(c) to a float (f)\n" + group + "rc 1\n");
+                               "(c) to a float (f)\n" +
+                                   group + "rc 1\n");
   EXPECT_EQ(connect("a3", "a2"), "Connect A.a3 to B.a2\nERROR: ConnectShaders: cannot connect a "
-                                 "float[3] (a3) to a float[2] (a2)\n" + group + "rc 1\n");
+                                 "float[3] (a3) to a float[2] (a2)\n" +
+                                     group + "rc 1\n");
   EXPECT_EQ(connect("s", "f"), "Connect A.s to B.f\nERROR: ConnectShaders: cannot connect a string "
-                               "(s) to a float (f)\n" + group + "rc 1\n");
+                               "(s) to a float (f)\n" +
+                                   group + "rc 1\n");
   EXPECT_EQ(connect("nosuch", "f"),
             "Connect A.nosuch to B.f\nERROR: ConnectShaders: \"nosuch\" is not a parameter or "
             "global of layer \"A\" (shader \"connect_types_src\")\nERROR: ConnectShaders: cannot "
-            "connect a unknown (nosuch) to a float (f), invalid connection\n" + group + "rc 1\n");
+            "connect a unknown (nosuch) to a float (f), invalid connection\n" +
+                group + "rc 1\n");
   // An index out of range or on a scalar connects nothing (OSL reports it and shades garbage
   // for c[5]; Lobe stops): exit 1, a ConnectShaders error.
   for (const char* bad : {"c[5]", "f[1]", "a3[3]", "c[x]"}) {
@@ -95,10 +101,12 @@ TEST(ShadeCli, ConnectionsOfTypesOslRefusesAreErrors) {
   auto structs = [](const std::string& dst) {
     return run_cmd(std::string("cd ") + LOBE_SHADE_CORPUS + "/layers && { " + LOBE_EXE +
                    " shade -g 1 1 -layer A connect_struct_src -layer B connect_struct_dst "
-                   "-connect A s B " + dst + " 2>&1; echo \"rc $?\"; }");
+                   "-connect A s B " +
+                   dst + " 2>&1; echo \"rc $?\"; }");
   };
   EXPECT_EQ(structs("si"), "Connect A.s to B.si\nERROR: ConnectShaders: cannot connect a struct "
-                           "SF (s) to a struct SI (si)\n" + group + "rc 1\n");
+                           "SF (s) to a struct SI (si)\n" +
+                               group + "rc 1\n");
   EXPECT_EQ(structs("sf"), "Connect A.s to B.sf\nsi 0 0 0 0 sf 1 1 2 3\n\nrc 0\n");
   EXPECT_EQ(connect("i", "c"),
             "Connect A.i to B.c\nf 0 i 0 c 3 3 3 s  a3 0 0 0 p 0 0 0 m 0 a2 0 0\n\nrc 0\n");
