@@ -10,11 +10,14 @@
 #include <OpenImageIO/texture.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cstdint>
 #include <iterator>
 #include <mutex>
 #include <string>
 #include <unordered_map>
 #include <utility>
+#include <vector>
 
 namespace OIIO = OIIO_NAMESPACE;
 using lobe::shadeops::TextureArgs;
@@ -22,17 +25,62 @@ using lobe::shadeops::TextureArgs;
 namespace lobe::oiio {
 namespace {
 
-OIIO::TextureSystem* ts_of(void* ts) { return static_cast<OIIO::TextureSystem*>(ts); }
+using Perthread = OIIO::TextureSystem::Perthread;
+using Handle = OIIO::TextureSystem::TextureHandle;
+
+// A texture system and what Lobe keeps beside it. Every lookup passes OpenImageIO a per-thread
+// record that Lobe created (create_thread_info) and destroys with the texture system, rather than
+// the one OpenImageIO would keep in a thread_local of its own: that one outlives the texture
+// system on a thread that does not end (oneTBB's workers), holding open the files its thread last
+// read, and it is freed only at thread exit.
+struct Textures {
+  OIIO::TextureSystem* ts = nullptr;
+  uint64_t id = 0; // unique over the process: a thread's cached records are matched by it
+  std::mutex mutex;
+  std::vector<Perthread*> threads;                     // every record created, under `mutex`
+  std::unordered_map<std::string, std::string> verdicts; // file -> refusal ("" fits), `mutex`
+};
+
+Textures* textures_of(void* t) { return static_cast<Textures*>(t); }
 
 void* create_texture_system() {
-  OIIO::TextureSystem* ts = OIIO::TextureSystem::create(false);
+  static std::atomic<uint64_t> next_id{1};
+  auto* t = new Textures;
+  t->id = next_id++;
+  t->ts = OIIO::TextureSystem::create(false);
   // An image without MIP levels gets them built on first use, so that derivatives and blur
   // filter it (as OSL's testshade and testrender set up their TextureSystem).
-  ts->attribute("automip", 1);
-  return ts;
+  t->ts->attribute("automip", 1);
+  return t;
 }
 
-void destroy_texture_system(void* ts) { OIIO::TextureSystem::destroy(ts_of(ts)); }
+void destroy_texture_system(void* p) {
+  Textures* t = textures_of(p);
+  for (Perthread* info : t->threads) t->ts->destroy_thread_info(info);
+  OIIO::TextureSystem::destroy(t->ts);
+  delete t;
+}
+
+// This thread's record for `t`, created on the thread's first lookup. A thread remembers its
+// records for the last few texture systems it used (one, unless a plugin runs several).
+Perthread* thread_info(Textures* t) {
+  struct Slot {
+    uint64_t id = 0;
+    Perthread* info = nullptr;
+  };
+  thread_local Slot slots[4];
+  thread_local size_t next = 0;
+  for (const Slot& s : slots)
+    if (s.id == t->id) return t->ts->get_perthread_info(s.info); // (its housekeeping)
+  Perthread* info = t->ts->create_thread_info();
+  {
+    std::lock_guard<std::mutex> lock(t->mutex);
+    t->threads.push_back(info);
+  }
+  slots[next] = Slot{t->id, info};
+  next = (next + 1) % std::size(slots);
+  return t->ts->get_perthread_info(info);
+}
 
 OIIO::TextureOpt options(const TextureArgs* a) {
   OIIO::TextureOpt opt;
@@ -57,7 +105,7 @@ OIIO::TextureOpt options(const TextureArgs* a) {
   return opt;
 }
 
-// The refusal of the last lookup on this thread that `fits` stopped (texture_error reports it).
+// The refusal of the last lookup on this thread that `find` stopped (texture_error reports it).
 thread_local std::string t_refused;
 
 // Bounded memory for textures. OpenImageIO reads a tiled file a tile at a time into its cache
@@ -65,12 +113,11 @@ thread_local std::string t_refused;
 // pixel format, and automip builds its MIP levels beside it. So on the first lookup of a file
 // its header is read and an untiled image that cannot fit in the memory (lobe/memory.h) is
 // refused, with the figure, instead of failing an allocation inside OpenImageIO (which throws
-// through the shader and aborts the process). The verdict is kept per file name; each thread
-// remembers the last few names it passed (by pointer, confirmed by content), which keeps the
-// shared table and its lock off the per-lookup path.
-std::string texture_verdict(OIIO::TextureSystem* ts, const char* file) {
+// through the shader and aborts the process).
+std::string texture_verdict(OIIO::TextureSystem* ts, Handle* h, Perthread* info,
+                            const char* file) {
   // Null for a file that cannot be opened: the lookup then fails with OpenImageIO's error.
-  const OIIO::ImageSpec* spec = ts->imagespec(OIIO::ustring(file));
+  const OIIO::ImageSpec* spec = h ? ts->imagespec(h, info) : nullptr;
   if (!spec) {
     ts->geterror(); // cleared: the lookup reports it as its own
     return "";
@@ -86,64 +133,82 @@ std::string texture_verdict(OIIO::TextureSystem* ts, const char* file) {
                       bytes, "read whole into the texture cache, with its MIP levels");
 }
 
-bool fits(OIIO::TextureSystem* ts, const char* file) {
+// The handle of `file` for a lookup on this thread, or null (with t_refused set) when the file
+// does not fit in memory. The verdict is kept per file name; each thread remembers the last few
+// names it passed (by pointer, confirmed by content) with their handles, which keeps the shared
+// table and its lock off the per-lookup path.
+struct Lookup {
+  Handle* handle = nullptr;
+  Perthread* info = nullptr;
+};
+
+Lookup find(Textures* t, const char* file) {
   struct Passed {
+    uint64_t id = 0;
     const char* ptr = nullptr;
     std::string name;
+    Handle* handle = nullptr;
   };
   thread_local Passed passed[8];
   thread_local size_t next = 0;
+  Lookup l;
+  l.info = thread_info(t);
   for (const Passed& p : passed)
-    if (p.ptr == file && p.name == file) return true;
-  static std::mutex mutex;
-  static std::unordered_map<std::string, std::string> verdicts;
+    if (p.id == t->id && p.ptr == file && p.name == file) return {p.handle, l.info};
+  l.handle = t->ts->get_texture_handle(OIIO::ustring(file), l.info);
   std::string refusal;
   bool known = false;
   {
-    std::lock_guard<std::mutex> lock(mutex);
-    auto it = verdicts.find(file);
-    if (it != verdicts.end()) known = true, refusal = it->second;
+    std::lock_guard<std::mutex> lock(t->mutex);
+    auto it = t->verdicts.find(file);
+    if (it != t->verdicts.end()) known = true, refusal = it->second;
   }
   if (!known) { // read the header outside the lock; two threads may both read it
-    refusal = texture_verdict(ts, file);
-    std::lock_guard<std::mutex> lock(mutex);
-    verdicts.emplace(file, refusal);
+    refusal = texture_verdict(t->ts, l.handle, l.info, file);
+    std::lock_guard<std::mutex> lock(t->mutex);
+    t->verdicts.emplace(file, refusal);
   }
-  if (refusal.empty()) {
-    passed[next] = Passed{file, file};
+  if (!refusal.empty()) {
+    t_refused = std::move(refusal);
+    return {nullptr, l.info};
+  }
+  if (l.handle) {
+    passed[next] = Passed{t->id, file, file, l.handle};
     next = (next + 1) % std::size(passed);
-    return true;
   }
-  t_refused = std::move(refusal);
-  return false;
+  return l;
 }
 
-bool texture(void* tsv, const char* file, const TextureArgs* a, float s, float t, float dsdx,
+bool texture(void* tv, const char* file, const TextureArgs* a, float s, float t, float dsdx,
              float dtdx, float dsdy, float dtdy, int n, float* out, float* dds, float* ddt) {
-  OIIO::TextureSystem* ts = ts_of(tsv);
-  if (!fits(ts, file)) return false;
+  Textures* x = textures_of(tv);
+  Lookup l = find(x, file);
+  if (!l.handle) return false;
   OIIO::TextureOpt opt = options(a);
-  return ts->texture(OIIO::ustring(file), opt, s, t, dsdx, dtdx, dsdy, dtdy, n, out, dds, ddt);
+  return x->ts->texture(l.handle, l.info, opt, s, t, dsdx, dtdx, dsdy, dtdy, n, out, dds, ddt);
 }
 
 Imath::V3f v3(const float* p) { return Imath::V3f(p[0], p[1], p[2]); }
 
-bool texture3d(void* ts, const char* file, const TextureArgs* a, const float* p, const float* dpdx,
-               const float* dpdy, const float* dpdz, int n, float* out) {
-  if (!fits(ts_of(ts), file)) return false;
+bool texture3d(void* tv, const char* file, const TextureArgs* a, const float* p,
+               const float* dpdx, const float* dpdy, const float* dpdz, int n, float* out) {
+  Textures* x = textures_of(tv);
+  Lookup l = find(x, file);
+  if (!l.handle) return false;
   OIIO::TextureOpt opt = options(a);
-  return ts_of(ts)->texture3d(OIIO::ustring(file), opt, v3(p), v3(dpdx), v3(dpdy), v3(dpdz), n,
-                              out);
+  return x->ts->texture3d(l.handle, l.info, opt, v3(p), v3(dpdx), v3(dpdy), v3(dpdz), n, out);
 }
 
-bool environment(void* ts, const char* file, const TextureArgs* a, const float* r,
+bool environment(void* tv, const char* file, const TextureArgs* a, const float* r,
                  const float* drdx, const float* drdy, int n, float* out) {
-  if (!fits(ts_of(ts), file)) return false;
+  Textures* x = textures_of(tv);
+  Lookup l = find(x, file);
+  if (!l.handle) return false;
   OIIO::TextureOpt opt = options(a);
-  return ts_of(ts)->environment(OIIO::ustring(file), opt, v3(r), v3(drdx), v3(drdy), n, out);
+  return x->ts->environment(l.handle, l.info, opt, v3(r), v3(drdx), v3(drdy), n, out);
 }
 
-int texture_info(void* tsv, const char* file, bool udim, float s, float t, const char* query,
+int texture_info(void* tv, const char* file, bool udim, float s, float t, const char* query,
                  int base, int arraylen, void* val) {
   // Lobe's base types in order: int float color point vector normal matrix string.
   static const OIIO::TypeDesc kTypes[] = {
@@ -152,22 +217,22 @@ int texture_info(void* tsv, const char* file, bool udim, float s, float t, const
   if (base < 0 || base >= int(std::size(kTypes))) return 0;
   OIIO::TypeDesc type = kTypes[base];
   if (arraylen > 0) type.arraylen = arraylen;
-  OIIO::TextureSystem* ts = ts_of(tsv);
+  Textures* x = textures_of(tv);
+  OIIO::TextureSystem* ts = x->ts;
+  Perthread* info = thread_info(x);
   OIIO::ustring name(file ? file : ""), what(query ? query : "");
+  Handle* h = ts->get_texture_handle(name, info);
   if (udim) {
-    OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(name);
-    if (h && ts->is_udim(h)) h = ts->resolve_udim(h, nullptr, s, t);
+    if (h && ts->is_udim(h)) h = ts->resolve_udim(h, info, s, t);
     if (!h) return 0; // no tile at (s, t): not an error, as in OSL
-    if (ts->get_texture_info(h, nullptr, 0, what, type, val)) return 1;
-  } else if (ts->get_texture_info(name, 0, what, type, val)) {
-    return 1;
   }
+  if (h && ts->get_texture_info(h, info, 0, what, type, val)) return 1;
   return -1;
 }
 
-std::string texture_error(void* ts) {
+std::string texture_error(void* tv) {
   if (!t_refused.empty()) return std::exchange(t_refused, std::string());
-  return ts_of(ts)->geterror();
+  return textures_of(tv)->ts->geterror();
 }
 
 OIIO::TypeDesc type_of(Pixel p) {
