@@ -6,6 +6,7 @@
 #include "ir/opcodes.h"
 #include "passes/consteval.h"
 
+#include <iterator>
 #include <set>
 #include <unordered_map>
 #include <unordered_set>
@@ -18,7 +19,8 @@ namespace {
 
 class Folder {
 public:
-  Folder(Shader& sh, const EvalOptions& options) : sh_(sh), options_(options) {}
+  Folder(Shader& sh, const EvalOptions& options, bool algebraic)
+      : sh_(sh), options_(options), algebraic_(algebraic) {}
   bool run();
 
 private:
@@ -31,13 +33,22 @@ private:
   bool fold(Op& op);
   bool fold_pow(Op& op);
   bool fold_closure(Op& op);
+  bool fold_algebraic(Op& op);
+  int root(int s) const {
+    auto it = alias_.find(s);
+    return it == alias_.end() ? s : it->second;
+  }
+  void clear_block() { known_.clear(), null_.clear(), alias_.clear(); }
   bool all_zero(int s) const;
+  bool all_equal(int s, int value) const; // a constant all of whose components are `value`
   void make_assign(Op& op, int dst, int src);
   void record(const Op& op);
 
   Shader& sh_;
   EvalOptions options_;
+  bool algebraic_;
   std::unordered_map<int, int> known_; // symbol -> Const symbol with its value
+  std::unordered_map<int, int> alias_; // symbol -> the symbol it was copied from (algebraic_)
   std::unordered_set<int> null_;       // closure symbols known to hold the null closure
   bool changed_ = false;
 };
@@ -61,6 +72,14 @@ bool Folder::all_zero(int s) const {
   for (const ConstValue& c : sym.init)
     if ((sym.type.base == BaseType::Int ? c.i != 0 : c.f != 0.0f)) return false;
   return !sym.init.empty();
+}
+
+bool Folder::all_equal(int s, int value) const {
+  const Symbol& sym = sh_.symbols[s];
+  if (sym.type.is_array() || sym.init.empty()) return false;
+  for (const ConstValue& c : sym.init)
+    if ((sym.type.base == BaseType::Int ? c.i != value : c.f != float(value))) return false;
+  return true;
 }
 
 void Folder::make_assign(Op& op, int dst, int src) {
@@ -111,6 +130,34 @@ bool Folder::fold_pow(Op& op) {
   return true;
 }
 
+// OSL's runtime optimizer's identities, for a varying x and a constant all of whose components
+// are 0 or 1: x * 0 = 0 * x = 0, x - x = 0, x + 0 = 0 + x = x - 0 = x * 1 = 1 * x = x / 1 = x.
+// OSL 1.13.12, `testshade` at its default -O2, prints "0 0 0 0 | -0 -0" for printf("%g %g %g %g
+// | %g %g", nan * 0, 0 * nan, nan - nan, nan - y, nz + 0, nz * 1) with nan a varying NaN, y = nan
+// and nz a varying -0 ("-nan -nan -nan -nan | 0 -0" at -O0, as the arithmetic computes).
+bool Folder::fold_algebraic(Op& op) {
+  if (!algebraic_ || op.args.size() != 3) return false;
+  const Type& t = sh_.symbols[op.args[0]].type;
+  if (t.is_array() || !(t.base == BaseType::Float || t.base == BaseType::Int || t.is_triple()))
+    return false;
+  int a = op.args[1], b = op.args[2];
+  Opcode o = op.opcode;
+  if (o == Opcode::Sub && root(a) == root(b) && !is_const(a))
+    return make_assign(op, op.args[0], intern_int(sh_, 0)), true;
+  if (is_const(a) == is_const(b)) return false; // two constants fold as they compute
+  int k = is_const(a) ? a : b, x = is_const(a) ? b : a;
+  bool k_second = k == b;
+  if (all_equal(k, 0)) {
+    if (o == Opcode::Mul) return make_assign(op, op.args[0], intern_int(sh_, 0)), true;
+    if (o == Opcode::Add || (o == Opcode::Sub && k_second))
+      return make_assign(op, op.args[0], x), true;
+  } else if (all_equal(k, 1)) {
+    if (o == Opcode::Mul || (o == Opcode::Div && k_second))
+      return make_assign(op, op.args[0], x), true;
+  }
+  return false;
+}
+
 bool Folder::fold(Op& op) {
   if (op.opcode == Opcode::Cbr && !op.args.empty() && is_const(op.args[0]) &&
       op.jumps.size() == 2) {
@@ -128,6 +175,7 @@ bool Folder::fold(Op& op) {
   const ir::OpcodeInfo* info = &ir::info(op.opcode);
   if (!(info->flags & kPure)) return false;
   if (fold_pow(op)) return true;
+  if (fold_algebraic(op)) return true;
   std::vector<ConstArg> srcs;
   for (size_t i = 1; i < op.args.size(); ++i) {
     if (!is_const(op.args[i])) return false;
@@ -147,9 +195,19 @@ bool Folder::fold(Op& op) {
 void Folder::record(const Op& op) {
   for (size_t i = 0; i < op.args.size(); ++i) {
     if (!op.writes(int(i))) continue;
-    known_.erase(op.args[i]);
-    null_.erase(op.args[i]);
+    int w = op.args[i];
+    known_.erase(w);
+    null_.erase(w);
+    if (alias_.empty()) continue;
+    alias_.erase(w);
+    for (auto it = alias_.begin(); it != alias_.end();) // copies of w no longer equal it
+      it = it->second == w ? alias_.erase(it) : std::next(it);
   }
+  if (algebraic_ && op.opcode == Opcode::Assign && op.args.size() == 2 && !is_const(op.args[1]) &&
+      op.args[0] != op.args[1] &&
+      sh_.symbols[op.args[0]].type == sh_.symbols[op.args[1]].type &&
+      !sh_.symbols[op.args[0]].type.is_array() && !is_closure(op.args[0]))
+    alias_[op.args[0]] = root(op.args[1]);
   if (op.opcode != Opcode::Assign || op.args.size() != 2 || !is_const(op.args[1])) return;
   int dst = op.args[0], src = op.args[1];
   if (is_closure(dst)) {
@@ -168,21 +226,21 @@ bool Folder::run() {
   for (const Symbol& s : sh_.symbols)
     if (s.init_begin >= 0) starts.insert(s.init_begin);
   for (size_t i = 0; i < sh_.ops.size(); ++i) {
-    if (starts.count(int(i))) known_.clear(), null_.clear();
+    if (starts.count(int(i))) clear_block();
     Op& op = sh_.ops[i];
     substitute(op);
     fold(op);
     record(sh_.ops[i]);
     const ir::OpcodeInfo* info = &ir::info(sh_.ops[i].opcode);
-    if (info->flags & kJump) known_.clear(), null_.clear();
+    if (info->flags & kJump) clear_block();
   }
   return changed_;
 }
 
 } // namespace
 
-bool fold_constants(Shader& shader, const EvalOptions& options) {
-  return Folder(shader, options).run();
+bool fold_constants(Shader& shader, const EvalOptions& options, bool algebraic) {
+  return Folder(shader, options, algebraic).run();
 }
 
 } // namespace lobe::passes

@@ -244,3 +244,66 @@ end
 }
 
 } // namespace
+
+namespace {
+
+// The runtime's identities (algebraic = true): a varying x times a zero constant is 0, x - x and
+// x - y for a copy y of x are 0, x + 0, x * 1 and x / 1 are copies, a constant 0 - x and a
+// partly-zero constant are left; a copy stops being one when either side is written. The
+// compile-time folding (algebraic = false) leaves every op alone.
+const char* kIdentities = R"(lobe-ir 1
+surface s
+symbols
+  global float u
+  oparam float a = 0
+  oparam float b = 0
+  oparam float c = 0
+  oparam float d = 0
+  oparam float e = 0
+  oparam vector w = 0 0 0
+  local float y
+  local float x
+  const float $c0 = 0
+  const float $c1 = 1
+  const vector $c2 = 0 1 0
+main
+  mul x u u
+  mul a x $c0
+  assign y x
+  sub b x y
+  add c $c0 x
+  div d x $c1
+  sub e $c0 x
+  mul w x $c2
+  assign x u
+  sub b x y
+end
+)";
+
+bool fold_algebraic(lobe::ir::Shader& sh) {
+  return lobe::passes::fold_constants(sh, {}, /*algebraic=*/true);
+}
+
+TEST(ConstFold, RuntimeIdentitiesAsOslsOptimizer) {
+  bool changed = false;
+  std::string out = run_pass(kIdentities, fold_algebraic, &changed);
+  EXPECT_TRUE(changed);
+  EXPECT_EQ(main_of(out), R"(main
+  mul x u u
+  assign a $c3
+  assign y x
+  assign b $c3
+  assign c x
+  assign d x
+  sub e $c0 x
+  mul w x $c2
+  assign x u
+  sub b x y
+end
+)");
+  EXPECT_NE(out.find("const int $c3 = 0\n"), std::string::npos) << out;
+  out = run_pass(kIdentities, fold_constants, &changed);
+  EXPECT_FALSE(changed) << out;
+}
+
+} // namespace

@@ -195,6 +195,7 @@ void specialize_layer(ir::Shader& sh,
   }
   passes::OptimizeOptions opt;
   opt.math = math;
+  opt.algebraic = true; // as OSL's runtime optimizer, which oslc's folding is not
   passes::optimize(sh, opt);
 }
 
