@@ -11,6 +11,9 @@
 #include <llvm/IR/Constants.h>
 #include <llvm/IR/Intrinsics.h>
 
+#include <cmath>
+#include <limits>
+
 namespace lobe::codegen {
 namespace {
 
@@ -77,6 +80,74 @@ llvm::Value* sqrt_pos(LayerEmitter& e, llvm::Value* x) {
       e.fconst(0));
 }
 
+// The components of `a` when all three are constants (folded as OSL's optimiser folds: on the
+// host, each product and sum rounded; this file is compiled without contraction).
+bool constant3(const Val& a, float out[3]) {
+  for (size_t i = 0; i < 3; ++i) {
+    auto* c = llvm::dyn_cast<llvm::ConstantFP>(a[i].v);
+    if (!c) return false;
+    out[i] = c->getValueAPF().convertToFloat();
+  }
+  return true;
+}
+
+// Imath's Vec3::length (OSL's length without derivatives): the square root of the squared
+// length, or where that is below 2 * FLT_MIN (it underflowed), lengthTiny: the largest
+// |component| m times the length of the vector divided by m. `fused`: the sums of squares as
+// dot_fused contracts them, which is how LLVM folds OSL's length shadeop on constants (fma);
+// unfused, as OSL's optimiser folds normalize (Imath's normalized(), host code).
+float imath_length(const float v[3], bool fused) {
+  auto sum2 = [fused](float x, float y, float z) {
+    return fused ? std::fma(z, z, std::fma(x, x, y * y)) : x * x + y * y + z * z;
+  };
+  float len2 = sum2(v[0], v[1], v[2]);
+  if (!(len2 < 2 * std::numeric_limits<float>::min())) return std::sqrt(len2);
+  float ax = std::fabs(v[0]), ay = std::fabs(v[1]), az = std::fabs(v[2]);
+  float m = ax;
+  if (m < ay) m = ay;
+  if (m < az) m = az;
+  if (m == 0.0f) return 0.0f;
+  ax /= m, ay /= m, az /= m;
+  return m * std::sqrt(sum2(ax, ay, az));
+}
+
+// The same at run time, as OSL's shadeop computes it (contracted multiply-adds); lengthTiny on
+// its own branch, so the common case pays a compare. (A NaN squared length gives 0, as
+// sqrt_pos.)
+llvm::Value* length_value(LayerEmitter& e, const Val& a) {
+  float c[3];
+  if (constant3(a, c)) return e.fconst(imath_length(c, true));
+  auto& B = e.b();
+  llvm::Value* len2 = dot_fused(e, a, a);
+  llvm::Value* normal = sqrt_pos(e, len2);
+  llvm::BasicBlock* from = B.GetInsertBlock();
+  llvm::Function* fn = from->getParent();
+  auto* tiny = llvm::BasicBlock::Create(e.ctx(), "length_tiny", fn);
+  auto* done = llvm::BasicBlock::Create(e.ctx(), "length_done", fn);
+  B.CreateCondBr(B.CreateFCmpOLT(len2, e.fconst(2 * std::numeric_limits<float>::min())), tiny,
+                 done);
+  B.SetInsertPoint(tiny);
+  Val m3(3);
+  for (size_t i = 0; i < 3; ++i)
+    m3[i] = Dual{B.CreateUnaryIntrinsic(llvm::Intrinsic::fabs, a[i].v)};
+  llvm::Value* m = m3[0].v;
+  m = B.CreateSelect(B.CreateFCmpOLT(m, m3[1].v), m3[1].v, m);
+  m = B.CreateSelect(B.CreateFCmpOLT(m, m3[2].v), m3[2].v, m);
+  llvm::Value* zero = B.CreateFCmpOEQ(m, e.fconst(0));
+  llvm::Value* safe_m = B.CreateSelect(zero, e.fconst(1), m);
+  Val s(3);
+  for (size_t i = 0; i < 3; ++i) s[i] = Dual{B.CreateFDiv(m3[i].v, safe_m)};
+  llvm::Value* t = B.CreateFMul(m, B.CreateUnaryIntrinsic(llvm::Intrinsic::sqrt, dot_fused(e, s, s)));
+  t = B.CreateSelect(zero, e.fconst(0), t);
+  llvm::BasicBlock* tiny_end = B.GetInsertBlock();
+  B.CreateBr(done);
+  B.SetInsertPoint(done);
+  llvm::PHINode* r = B.CreatePHI(B.getFloatTy(), 2);
+  r->addIncoming(normal, from);
+  r->addIncoming(t, tiny_end);
+  return r;
+}
+
 void op_dot(LayerEmitter& e, const ir::Op& op) {
   DualOps d(e);
   Val a = load3(e, op, 1), b = load3(e, op, 2);
@@ -91,7 +162,7 @@ void op_length(LayerEmitter& e, const ir::Op& op) {
   DualOps d(e);
   Val a = load3(e, op, 1);
   if (!e.wants_derivs(op.args[0])) {
-    e.store(op.args[0], Val{Dual{sqrt_pos(e, dot_fused(e, a, a))}});
+    e.store(op.args[0], Val{Dual{length_value(e, a)}});
     return;
   }
   e.store(op.args[0], Val{sqrt_dual(e, d, dot3(d, a, a))});
@@ -132,6 +203,13 @@ void op_normalize(LayerEmitter& e, const ir::Op& op) {
   DualOps d(e);
   Val a = load3(e, op, 1), r;
   bool derivs = e.wants_derivs(op.args[0]);
+  float c[3];
+  if (!derivs && constant3(a, c)) { // OSL's optimiser folds Imath's normalized(): x / length
+    float len = imath_length(c, false);
+    for (float x : c) r.push_back(Dual{e.fconst(len == 0.0f ? 0.0f : x / len)});
+    e.store(op.args[0], r);
+    return;
+  }
   Dual len = derivs ? sqrt_dual(e, d, dot3(d, a, a)) : Dual{sqrt_pos(e, dot_fused(e, a, a))};
   if (!derivs) { // OSL: each component times the reciprocal length (0 for a zero vector)
     auto& B = e.b();
