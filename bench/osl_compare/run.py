@@ -49,13 +49,15 @@ CASES = {
                          ["strings_branches", "-o", "f", "null", "-o", "n", "null"]),
     "matrix_transform": (["matrix_transform"],
                          ["matrix_transform", "-o", "q", "null", "-o", "det", "null"]),
-    # A MaterialX-style network: position -> noise and fractal -> mix -> surface.
+    # A MaterialX-style network: position -> noise and fractal -> mix -> surface. (Parameter values
+# are typed as testshade reads them: "4" would be an int and a bare "0.9 0.7 0.3" a string,
+# which both tools refuse with a warning and leave the default.)
     "mx_network": (["mx_position", "mx_noise3d", "mx_fractal3d", "mx_mix", "mx_surface"],
-                   ["-param", "scale", "4", "-shader", "mx_position", "pos",
+                   ["-param", "scale", "4.0", "-shader", "mx_position", "pos",
                     "-param", "amplitude", "0.5", "-param", "pivot", "0.5",
                     "-shader", "mx_noise3d", "n1",
                     "-param", "octaves", "5", "-shader", "mx_fractal3d", "n2",
-                    "-param", "fg", "0.9 0.7 0.3", "-shader", "mx_mix", "mixer",
+                    "-param:type=color", "fg", "0.9 0.7 0.3", "-shader", "mx_mix", "mixer",
                     "-shader", "mx_surface", "surf",
                     "-connect", "pos", "out", "n1", "position",
                     "-connect", "pos", "out", "n2", "position",
