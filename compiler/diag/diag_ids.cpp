@@ -73,6 +73,9 @@ const Row kTable[] = {
     ROW(err_undeclared, Error, "use of undeclared identifier '%0'"),
     ROW(err_redefinition, Error, "redefinition of '%0'"),
     ROW(note_previous_decl, Note, "previous definition is here"),
+    ROW(err_redeclares_global, Error,
+        "'%0' already declared in this scope (a shader global; a shader's parameters and the "
+        "outermost block of its body share a scope with them)"),
     ROW(err_unknown_function, Error, "use of undeclared function '%0'"),
     ROW(err_no_matching_call, Error, "no matching function for call to '%0(%1)'"),
     ROW(err_ambiguous_call, Error, "call to '%0(%1)' is ambiguous"),

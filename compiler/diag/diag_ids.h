@@ -72,6 +72,7 @@ enum class DiagId : uint16_t {
   err_undeclared,
   err_redefinition,
   note_previous_decl,
+  err_redeclares_global,
   err_unknown_function,
   err_no_matching_call,
   err_ambiguous_call,

@@ -32,6 +32,10 @@ bool Sema::run() {
 
 // ---- scopes -----------------------------------------------------------------------------------
 
+// A shader's parameters and the outermost block of its body are one scope in OSL, with the
+// shader globals in it: oslc 1.13.12 rejects `shader g(float u = 1)` and `shader g() { float
+// a = 1; }` beside a parameter `a` ("\"u\" already declared in this scope"); nested blocks and
+// functions may reuse the names.
 void Sema::declare_var(ast::VarDecl* v) {
   if (v->name.empty()) return; // unnamed prototype parameter
   auto& vars = scopes_.back().vars;
@@ -40,6 +44,20 @@ void Sema::declare_var(ast::VarDecl* v) {
     error(DiagId::err_redefinition, v->name_range, {v->name});
     error(DiagId::note_previous_decl, it->second->name_range);
     return;
+  }
+  if (scopes_.back().shader_level) {
+    const ShadingGlobal* g = find_shading_global(v->name);
+    if (g && (g->flags & kGlobalNamed)) {
+      error(DiagId::err_redeclares_global, v->name_range, {v->name});
+      return;
+    }
+    for (size_t i = scopes_.size() - 1; i-- > 0 && scopes_[i].shader_level;) {
+      auto prev = scopes_[i].vars.find(v->name);
+      if (prev == scopes_[i].vars.end()) continue;
+      error(DiagId::err_redefinition, v->name_range, {v->name});
+      error(DiagId::note_previous_decl, prev->second->name_range);
+      return;
+    }
   }
   vars[v->name] = v;
 }
@@ -268,6 +286,7 @@ void Sema::shader_decl(ast::ShaderDecl* s) {
   // The parameters' and the body's scopes: for functions, one overload scope with the file's.
   push_scope();
   scopes_.back().file_level = true;
+  scopes_.back().shader_level = !s->from_stdlib;
   for (auto& p : s->params) {
     check_param_name(p.get(), s->from_stdlib);
     var_decl(p.get()); // a default may use globals and earlier parameters
@@ -276,6 +295,7 @@ void Sema::shader_decl(ast::ShaderDecl* s) {
   if (s->body) {
     push_scope();
     scopes_.back().file_level = true;
+    scopes_.back().shader_level = !s->from_stdlib;
     compound(s->body.get(), false);
     pop_scope();
   }

@@ -264,7 +264,7 @@ void Sema::binary(ast::BinaryExpr* e, const Type* expected) {
     switch (e->op) {
     case Op::Add:
     case Op::Sub:
-      ok = !ct->is_string() && !(ct->is_matrix() && !(l.is_matrix() && r.is_matrix()));
+      ok = !ct->is_string() && !ct->is_matrix(); // oslc: "Not allowed: 'matrix + matrix'"
       break;
     case Op::Mul:
     case Op::Div:

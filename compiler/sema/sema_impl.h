@@ -28,6 +28,9 @@ private:
     std::unordered_map<std::string, ast::VarDecl*> vars;
     std::unordered_map<std::string, std::vector<ast::FunctionDecl*>> funcs; // declaration order
     bool file_level = false; // the file's or the shader's (see lookup_functions)
+    // The shader's parameters and the outermost block of its body: one scope in OSL, which
+    // also holds the shader globals (declare_var).
+    bool shader_level = false;
   };
   struct CallEdge {
     ast::FunctionDecl* caller;

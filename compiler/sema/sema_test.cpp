@@ -84,8 +84,8 @@ TEST(Sema, LiteralsAndArithmeticCoercions) {
 
 TEST(Sema, OneArgumentConstructorsAreCasts) {
   EXPECT_EQ(
-      body_of("vector v = vector(P); color c = color(0.5); int k = int(2.7);"),
-      "{ (var vector v (cast vector:vector P:point)) (var color c (cast color:color 0.5:float)) "
+      body_of("vector w = vector(P); color c = color(0.5); int k = int(2.7);"),
+      "{ (var vector w (cast vector:vector P:point)) (var color c (cast color:color 0.5:float)) "
       "(var int k (cast int:int 2.7:float)) }");
   EXPECT_EQ(
       body_of("color h = color(\"hsv\", 0.1, 1, 1);"),
@@ -106,7 +106,7 @@ TEST(Sema, ComponentsMembersAndMatrixElements) {
 
 TEST(Sema, OverloadsByArgumentsAndReturnType) {
   std::string src =
-      "shader s() { float f = noise(P); color c = noise(P); vector v = (vector) noise(u, v);"
+      "shader s() { float f = noise(P); color c = noise(P); vector w = (vector) noise(u, v);"
       " float g = noise(u); float h = sin(1); int a = abs(-2); }";
   Checked c(src);
   ASSERT_TRUE(c.ok()) << c.text();
@@ -813,7 +813,7 @@ TEST(Sema, BuiltinHeadersCompileCleanly) {
   EXPECT_EQ(n, 7);
   Checked use("#include <color4.h>\n#include \"vector2.h\"\n#include \"matrix33.h\"\n"
               "shader s(color4 p = color4({0.5, 1.5, 2.5}, 3.5)) {"
-              " color4 q = 2 / p + mix(p, p, 0.5); vector2 v = normalize(vector2(3, 4)) * 2;"
+              " color4 q = 2 / p + mix(p, p, 0.5); vector2 w = normalize(vector2(3, 4)) * 2;"
               " matrix33 m = matrix44To33(matrix(2)); point x = transform(m / 2, P); }");
   EXPECT_TRUE(use.ok()) << use.text();
 }

@@ -246,10 +246,10 @@ TEST_P(Services, GroupTextCarriesLockgeom) {
 TEST_P(Services, GetAttribute) {
   std::string f = write("attrs", R"(
 surface attrs() {
-  int v = 0; string sn = "?", ln = "?", gn = "?";
+  int ver = 0; string sn = "?", ln = "?", gn = "?";
   float clip[2] = {-1, -1}, far = -1, untouched = -7, s = -8;
   point lp = 0; int wrong = -9;
-  int a = getattribute("osl:version", v);
+  int a = getattribute("osl:version", ver);
   int b = getattribute("shader:shadername", sn) + getattribute("shader:layername", ln) +
           getattribute("shader:groupname", gn);
   int c = getattribute("camera:clip", clip);
@@ -257,7 +257,7 @@ surface attrs() {
   int e = getattribute("light1", "position", lp);
   int g = getattribute("scribble", untouched) + getattribute("nothing", s) +
           getattribute("shader:shadername", wrong);
-  printf("%d %d %s %s '%s' | %d %g %g | %d %g | %d %g | %d %g %g %d | %d\n", a, v == OSL_VERSION,
+  printf("%d %d %s %s '%s' | %d %g %g | %d %g | %d %g | %d %g %g %d | %d\n", a, ver == OSL_VERSION,
          sn, ln, gn, c, clip[0], clip[1], d, far, e, lp, g, untouched, s, wrong, b);
 }
 )");
@@ -389,12 +389,12 @@ namespace {
 TEST_P(Services, TraceAndItsMessages) {
   std::string f = write("tr", R"(
 surface tr() {
-  float d = -1, u = -1; point p = 0; normal n = 0; int h = -1;
+  float d = -1, hu = -1; point p = 0; normal n = 0; int h = -1;
   int before = getmessage("trace", "hit", h);
   int up = trace(P, vector(0, 0, 1), "mindist", 0.5, "maxdist", 10, "traceset", "walls");
   int a = getmessage("trace", "hit", h) + getmessage("trace", "hitdist", d) +
-          getmessage("trace", "P", p) + getmessage("trace", "N", n) + getmessage("trace", "u", u);
-  printf("%d | %d %d %d %g %g | %g %g\n", before, up, a, h, d, p, n, u);
+          getmessage("trace", "P", p) + getmessage("trace", "N", n) + getmessage("trace", "u", hu);
+  printf("%d | %d %d %d %g %g | %g %g\n", before, up, a, h, d, p, n, hu);
   int down = trace(P, vector(0, 0, -1), "shade", 1);
   int b = getmessage("trace", "hit", h) + getmessage("trace", "hitdist", d);
   printf("%d %d %d %g\n", down, b, h, d);
