@@ -204,8 +204,7 @@ void Folder::record(const Op& op) {
       it = it->second == w ? alias_.erase(it) : std::next(it);
   }
   if (algebraic_ && op.opcode == Opcode::Assign && op.args.size() == 2 && !is_const(op.args[1]) &&
-      op.args[0] != op.args[1] &&
-      sh_.symbols[op.args[0]].type == sh_.symbols[op.args[1]].type &&
+      op.args[0] != op.args[1] && sh_.symbols[op.args[0]].type == sh_.symbols[op.args[1]].type &&
       !sh_.symbols[op.args[0]].type.is_array() && !is_closure(op.args[0]))
     alias_[op.args[0]] = root(op.args[1]);
   if (op.opcode != Opcode::Assign || op.args.size() != 2 || !is_const(op.args[1])) return;

@@ -13,8 +13,8 @@
 namespace lobe::passes {
 
 struct OptimizeOptions {
-  EvalOptions math;   // how folded math builtins compute
-  int max_rounds = 8; // see above
+  EvalOptions math;       // how folded math builtins compute
+  int max_rounds = 8;     // see above
   bool algebraic = false; // x * 0 and x - x fold (fold_constants): the runtime's pass only
   // Optional steps of each round, for a caller that folds something constant folding must not
   // see (the runtime's string compares, runtime/group/group_build.cpp): `before_fold` runs

@@ -50,8 +50,8 @@ Dual osl_div(LayerEmitter& e, const Dual& a, const Dual& b, bool plain) {
   if (!a.dx && !a.dy && !b.dx && !b.dy) return r;
   llvm::Value* binv = quotient(e.fconst(1), b.v);
   auto slope = [&](llvm::Value* ad, llvm::Value* bd) {
-    return B.CreateFMul(B.CreateFSub(ad ? ad : e.fconst(0), B.CreateFMul(r.v, bd ? bd : e.fconst(0))),
-                        binv);
+    return B.CreateFMul(
+        B.CreateFSub(ad ? ad : e.fconst(0), B.CreateFMul(r.v, bd ? bd : e.fconst(0))), binv);
   };
   r.dx = slope(a.dx, b.dx);
   r.dy = slope(a.dy, b.dy);

@@ -137,7 +137,8 @@ llvm::Value* length_value(LayerEmitter& e, const Val& a) {
   llvm::Value* safe_m = B.CreateSelect(zero, e.fconst(1), m);
   Val s(3);
   for (size_t i = 0; i < 3; ++i) s[i] = Dual{B.CreateFDiv(m3[i].v, safe_m)};
-  llvm::Value* t = B.CreateFMul(m, B.CreateUnaryIntrinsic(llvm::Intrinsic::sqrt, dot_fused(e, s, s)));
+  llvm::Value* t =
+      B.CreateFMul(m, B.CreateUnaryIntrinsic(llvm::Intrinsic::sqrt, dot_fused(e, s, s)));
   t = B.CreateSelect(zero, e.fconst(0), t);
   llvm::BasicBlock* tiny_end = B.GetInsertBlock();
   B.CreateBr(done);

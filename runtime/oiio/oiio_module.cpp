@@ -39,7 +39,7 @@ struct Textures {
   OIIO::TextureSystem* ts = nullptr;
   uint64_t id = 0; // unique over the process: a thread's cached records are matched by it
   std::mutex mutex;
-  std::vector<Perthread*> threads;                     // every record created, under `mutex`
+  std::vector<Perthread*> threads;                       // every record created, under `mutex`
   std::unordered_map<std::string, std::string> verdicts; // file -> refusal ("" fits), `mutex`
 };
 
@@ -122,8 +122,7 @@ thread_local std::string t_refused;
 // its header is read and an untiled image that cannot fit in the memory (lobe/memory.h) is
 // refused, with the figure, instead of failing an allocation inside OpenImageIO (which throws
 // through the shader and aborts the process).
-std::string texture_verdict(OIIO::TextureSystem* ts, Handle* h, Perthread* info,
-                            const char* file) {
+std::string texture_verdict(OIIO::TextureSystem* ts, Handle* h, Perthread* info, const char* file) {
   // Null for a file that cannot be opened: the lookup then fails with OpenImageIO's error.
   const OIIO::ImageSpec* spec = h ? ts->imagespec(h, info) : nullptr;
   if (!spec) {
@@ -198,8 +197,8 @@ bool texture(void* tv, const char* file, const TextureArgs* a, float s, float t,
 
 Imath::V3f v3(const float* p) { return Imath::V3f(p[0], p[1], p[2]); }
 
-bool texture3d(void* tv, const char* file, const TextureArgs* a, const float* p,
-               const float* dpdx, const float* dpdy, const float* dpdz, int n, float* out) {
+bool texture3d(void* tv, const char* file, const TextureArgs* a, const float* p, const float* dpdx,
+               const float* dpdy, const float* dpdz, int n, float* out) {
   Textures* x = textures_of(tv);
   Lookup l = find(x, file);
   if (!l.handle) return false;
