@@ -39,6 +39,12 @@ int intern_const(Shader& sh, const Type& t, const std::vector<ConstValue>& v) {
   return int(sh.symbols.size()) - 1;
 }
 
+bool const_all(const Symbol& s, int value) {
+  for (const ConstValue& c : s.init)
+    if (s.type.base == BaseType::Int ? c.i != value : c.f != float(value)) return false;
+  return !s.init.empty();
+}
+
 int intern_int(Shader& sh, int value) {
   return intern_const(sh, Type{BaseType::Int}, {ConstValue::of_int(value)});
 }

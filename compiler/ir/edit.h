@@ -15,6 +15,10 @@ int intern_int(Shader& sh, int value);
 int intern_float(Shader& sh, float value);
 int intern_string(Shader& sh, const std::string& value);
 
+// True if `s` has a value and every component of it equals `value` (ints compared as ints,
+// the rest as floats, so -0 equals 0).
+bool const_all(const Symbol& s, int value);
+
 // Removes the ops with keep[i] == false. A jump to a removed op goes to the next kept op of
 // the same region; init ranges and main_begin shrink accordingly.
 void remove_ops(Shader& sh, const std::vector<bool>& keep);

@@ -40,7 +40,6 @@ private:
   }
   void clear_block() { known_.clear(), null_.clear(), alias_.clear(); }
   bool all_zero(int s) const;
-  bool all_equal(int s, int value) const; // a constant all of whose components are `value`
   void make_assign(Op& op, int dst, int src);
   void record(const Op& op);
 
@@ -66,21 +65,7 @@ void Folder::substitute(Op& op) {
   }
 }
 
-bool Folder::all_zero(int s) const {
-  if (!is_const(s)) return false;
-  const Symbol& sym = sh_.symbols[s];
-  for (const ConstValue& c : sym.init)
-    if ((sym.type.base == BaseType::Int ? c.i != 0 : c.f != 0.0f)) return false;
-  return !sym.init.empty();
-}
-
-bool Folder::all_equal(int s, int value) const {
-  const Symbol& sym = sh_.symbols[s];
-  if (sym.type.is_array() || sym.init.empty()) return false;
-  for (const ConstValue& c : sym.init)
-    if ((sym.type.base == BaseType::Int ? c.i != value : c.f != float(value))) return false;
-  return true;
-}
+bool Folder::all_zero(int s) const { return is_const(s) && const_all(sh_.symbols[s], 0); }
 
 void Folder::make_assign(Op& op, int dst, int src) {
   op.opcode = Opcode::Assign;
@@ -147,11 +132,11 @@ bool Folder::fold_algebraic(Op& op) {
   if (is_const(a) == is_const(b)) return false; // two constants fold as they compute
   int k = is_const(a) ? a : b, x = is_const(a) ? b : a;
   bool k_second = k == b;
-  if (all_equal(k, 0)) {
+  if (const_all(sh_.symbols[k], 0)) {
     if (o == Opcode::Mul) return make_assign(op, op.args[0], intern_int(sh_, 0)), true;
     if (o == Opcode::Add || (o == Opcode::Sub && k_second))
       return make_assign(op, op.args[0], x), true;
-  } else if (all_equal(k, 1)) {
+  } else if (const_all(sh_.symbols[k], 1)) {
     if (o == Opcode::Mul || (o == Opcode::Div && k_second))
       return make_assign(op, op.args[0], x), true;
   }

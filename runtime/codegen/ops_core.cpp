@@ -1,6 +1,7 @@
 // Core ops: assignment and conversion, arithmetic (floats as dual numbers, ints with OSL's
 // division rules, matrices, closures), comparisons and integer bit ops.
 #include "duals.h"
+#include "ir/edit.h"
 #include "mathops.h"
 #include "op_tables.h"
 
@@ -56,13 +57,6 @@ Dual osl_div(LayerEmitter& e, const Dual& a, const Dual& b, bool plain) {
   r.dx = slope(a.dx, b.dx);
   r.dy = slope(a.dy, b.dy);
   return r;
-}
-
-// Whether a constant divisor is all zero (OSL then divides safely).
-bool all_zero(const ir::Symbol& s) {
-  for (const ir::ConstValue& c : s.init)
-    if (s.type.base == BaseType::Int ? c.i != 0 : c.f != 0.0f) return false;
-  return true;
 }
 
 // OSL's dual arithmetic gives an operand without derivatives zero ones and computes with them
@@ -207,7 +201,9 @@ void arith(LayerEmitter& e, const ir::Op& op) {
   Val b = unary ? Val{} : e.load_as(op, 2, t, derivs);
   if (derivs && !unary && op.opcode != ir::Opcode::Mod) zero_missing_derivs(e, a, b);
   const ir::Symbol* divisor = op.opcode == ir::Opcode::Div ? &e.arg(op, 2) : nullptr;
-  bool plain_div = divisor && divisor->kind == ir::SymKind::Const && !all_zero(*divisor);
+  // A constant divisor all zero (an empty value is zero) divides safely, as OSL's does.
+  bool plain_div = divisor && divisor->kind == ir::SymKind::Const && !divisor->init.empty() &&
+                   !ir::const_all(*divisor, 0);
   DualOps d(e);
   Val r(a.size());
   for (size_t i = 0; i < a.size(); ++i) {
