@@ -73,18 +73,22 @@ void* ShadingContext::allocate(size_t bytes) {
   return arena_.get() + start;
 }
 
-void ShadingContext::message(MessageKind kind, const std::string& text) {
-  if (report) {
-    report(kind, text);
-    return;
+void ShadingContext::message(MessageKind kind, const std::string& text) noexcept {
+  try {
+    if (report) {
+      report(kind, text);
+      return;
+    }
+    std::string line = kind == MessageKind::Print     ? text
+                       : kind == MessageKind::Warning ? "WARNING: " + text + "\n"
+                                                      : "ERROR: " + text + "\n";
+    if (print)
+      print(line);
+    else
+      output += line;
+  } catch (...) { // out of memory, or a sink that threw: never through the shader's frames
+    ++messages_lost;
   }
-  std::string line = kind == MessageKind::Print     ? text
-                     : kind == MessageKind::Warning ? "WARNING: " + text + "\n"
-                                                    : "ERROR: " + text + "\n";
-  if (print)
-    print(line);
-  else
-    output += line;
 }
 
 } // namespace lobe

@@ -199,6 +199,11 @@ private:
   // What the points said, keyed by iteration * points + point; in order once sorted (stably:
   // one point's messages come from one thread, in order).
   std::vector<std::pair<size_t, Said>> said_;
+  // Bounded memory for messages: their bytes are counted against `said_budget_` (a quarter of
+  // the memory available when shading starts); messages past it are counted in `said_dropped_`
+  // and reported after the ones kept.
+  std::atomic<uint64_t> said_bytes_{0}, said_dropped_{0};
+  uint64_t said_budget_ = 0;
   std::vector<std::string> pixel_blocks_; // --print, per point of the last iteration
   // Bounded execution: `stopped_`: a shade was stopped in a loop (its error is in its point's
   // messages; g_cancel is set too); `shaded_` counts the points that finished.
@@ -245,6 +250,7 @@ bool Shade::resolve_outputs() {
     std::fprintf(stderr, "lobe shade: %s\n", e.c_str());
     return false;
   }
+  said_budget_ = available_memory_bytes() / 4;
   for (Output& o : outputs_)
     if (!o.closure && o.type.base != DataType::Base::String)
       o.img = image::Image(job_.xres, job_.yres,
@@ -304,8 +310,17 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
     ctx.renderer = &services;
     ctx.cancel = &g_cancel;
     group::GridGlobals globals(grid, &ctx);
-    ctx.report = [&row_said, &key](ShadingContext::MessageKind k, const std::string& t) {
-      row_said.push_back({key, {k, t}});
+    ctx.report = [this, &row_said, &key](ShadingContext::MessageKind k, const std::string& t) {
+      uint64_t cost = sizeof(std::pair<size_t, Said>) + t.size() + 32;
+      if (said_bytes_.fetch_add(cost, std::memory_order_relaxed) + cost > said_budget_) {
+        said_dropped_.fetch_add(1, std::memory_order_relaxed);
+        return;
+      }
+      try {
+        row_said.push_back({key, {k, t}});
+      } catch (const std::bad_alloc&) {
+        said_dropped_.fetch_add(1, std::memory_order_relaxed);
+      }
     };
     size_t finished = 0;
     for (int x = 0; x < job_.xres; ++x) {
@@ -499,6 +514,11 @@ int Shade::run() {
   Journal journal(job_.error_repeats);
   for (const auto& [point, s] : said_) journal.print(s);
   std::fflush(stdout);
+  if (uint64_t n = said_dropped_.load())
+    std::fprintf(stderr,
+                 "lobe shade: %llu more shader messages not shown: the grid's messages passed "
+                 "the %s of memory kept for them (a quarter of what was available)\n",
+                 (unsigned long long)n, format_bytes(double(said_budget_)).c_str());
   if (job_.outputs.size() == 1 && job_.outputs[0].file == "null") std::printf("\n");
   size_t total = size_t(job_.xres) * size_t(job_.yres) * size_t(std::max(1, job_.iters));
   std::fflush(stdout);

@@ -62,6 +62,19 @@ Vec3 JsonReader::color(const json& j, const std::string& ptr) const {
   return vec3(j, ptr);
 }
 
+Vec3 JsonReader::emission(const json& j, const std::string& ptr) const {
+  Vec3 c = color(j, ptr);
+  if (!(c.x >= 0 && c.y >= 0 && c.z >= 0))
+    fail(ptr, "expected components >= 0 (emitted light cannot be negative)");
+  return c;
+}
+
+float JsonReader::emission_scale(const json& j, const std::string& ptr) const {
+  float v = number(j, ptr);
+  if (!(v >= 0)) fail(ptr, "expected a number >= 0 (emitted light cannot be negative)");
+  return v;
+}
+
 Mat4 JsonReader::transform(const json& j, const std::string& ptr) const {
   if (j.is_array()) {
     Mat4 m;

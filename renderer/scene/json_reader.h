@@ -39,6 +39,10 @@ public:
   Vec3 vec3(const json& j, const std::string& ptr) const;
   // A colour: [r,g,b] or one number for grey.
   Vec3 color(const json& j, const std::string& ptr) const;
+  // A colour or number scaling emitted light (a light's intensity and colour, an environment's
+  // colour and intensity): each component >= 0 (light is never negative), else an error.
+  Vec3 emission(const json& j, const std::string& ptr) const;
+  float emission_scale(const json& j, const std::string& ptr) const;
   // {"translate":[x,y,z], "rotate":[deg,ax,ay,az], "scale":s|[x,y,z], "matrix":[16]} (applied
   // scale, then rotate, then translate, then matrix), or an array of those applied in order.
   Mat4 transform(const json& j, const std::string& ptr) const;

@@ -303,9 +303,12 @@ private:
     if (!j.contains("position")) r_.fail(p, "expected \"position\"");
     l.position = r_.vec3(j.at("position"), p + "/position");
     Color3 tint{1, 1, 1};
-    r_.opt(j, p, "intensity", l.intensity, &JsonReader::color);
-    r_.opt(j, p, "color", tint, &JsonReader::color);
+    r_.opt(j, p, "intensity", l.intensity, &JsonReader::emission);
+    r_.opt(j, p, "color", tint, &JsonReader::emission);
     l.intensity = l.intensity * tint;
+    if (!(std::isfinite(l.intensity.x) && std::isfinite(l.intensity.y) &&
+          std::isfinite(l.intensity.z)))
+      r_.fail(p, "intensity x color overflows a 32-bit float");
     if (l.kind == Light::Kind::Spot) {
       if (j.contains("look_at"))
         l.direction = r_.vec3(j.at("look_at"), p + "/look_at") - l.position;
@@ -330,7 +333,7 @@ private:
     if (!j.contains("type"))
       r_.fail(p, "expected \"type\": \"none\", \"constant\", \"map\", \"sky\" or \"shader\"");
     std::string type = r_.string(j.at("type"), p + "/type");
-    r_.opt(j, p, "intensity", e.intensity, &JsonReader::number);
+    r_.opt(j, p, "intensity", e.intensity, &JsonReader::emission_scale);
     r_.opt(j, p, "rotation", e.rotation, &JsonReader::number);
     if (type == "none") {
       r_.check_keys(j, p, {"type"});
@@ -338,7 +341,7 @@ private:
     } else if (type == "constant") {
       r_.check_keys(j, p, {"type", "color", "intensity"});
       e.kind = Environment::Kind::Constant;
-      r_.opt(j, p, "color", e.color, &JsonReader::color);
+      r_.opt(j, p, "color", e.color, &JsonReader::emission);
     } else if (type == "map") {
       r_.check_keys(j, p, {"type", "file", "intensity", "rotation"});
       e.kind = Environment::Kind::Map;

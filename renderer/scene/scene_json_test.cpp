@@ -169,3 +169,30 @@ TEST(SceneJson, NumbersOutOfRangeAreLocatedErrors) {
   EXPECT_EQ(error_of(R"({"camera": {"eye": [1e300, 0, 0]}})"),
             "t.json: /camera/eye/0: number 1e+300 is out of the range of a 32-bit float");
 }
+
+// Emitted light is never negative: a light's intensity or colour, an environment's colour or
+// intensity below 0 is an error at its place; a product no float holds likewise. Shader
+// parameters are the shader's to interpret (a negative offset is fine) and are not checked.
+TEST(SceneJson, NegativeOrOverflowingLightIsAnError) {
+  EXPECT_EQ(error_of(R"({"lights": [{"type": "point", "position": [0, 1, 0], "intensity": -5}]})"),
+            "t.json: /lights/0/intensity: expected components >= 0 (emitted light cannot be "
+            "negative)");
+  EXPECT_EQ(error_of(R"({"lights": [{"type": "spot", "position": [0, 1, 0], "look_at": [0, 0, 0],
+                       "color": [1, -0.5, 1]}]})"),
+            "t.json: /lights/0/color: expected components >= 0 (emitted light cannot be "
+            "negative)");
+  EXPECT_EQ(error_of(R"({"lights": [{"type": "point", "position": [0, 1, 0], "intensity": 1e38,
+                       "color": 100}]})"),
+            "t.json: /lights/0: intensity x color overflows a 32-bit float");
+  EXPECT_EQ(error_of(R"({"environment": {"type": "constant", "color": [-1, 1, 1]}})"),
+            "t.json: /environment/color: expected components >= 0 (emitted light cannot be "
+            "negative)");
+  EXPECT_EQ(error_of(R"({"environment": {"type": "sky", "intensity": -2}})"),
+            "t.json: /environment/intensity: expected a number >= 0 (emitted light cannot be "
+            "negative)");
+  std::string err;
+  EXPECT_TRUE(parse_json_scene(R"({"materials": {"m": {"shader": "matte", "params": {"Cs": -0.5}}}})",
+                               "t.json", err)
+                  .has_value())
+      << err;
+}

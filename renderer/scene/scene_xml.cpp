@@ -358,8 +358,12 @@ private:
     check_attrs(n, {"position", "intensity"});
     Light l;
     l.where = at(n);
-    return vec(n, "position", l.position, true) && vec(n, "intensity", l.intensity, true) &&
-           (s.lights.push_back(l), true);
+    if (!vec(n, "position", l.position, true) || !vec(n, "intensity", l.intensity, true))
+      return false;
+    if (!(l.intensity.x >= 0 && l.intensity.y >= 0 && l.intensity.z >= 0))
+      return fail(n, "intensity expects components >= 0 (emitted light cannot be negative)");
+    s.lights.push_back(l);
+    return true;
   }
 
   const std::string& text_;

@@ -145,6 +145,10 @@ TEST(SceneXml, ErrorsCarryLines) {
                                "\n</World>",
                                "t.xml", err));
   EXPECT_EQ(err, "t.xml:3: error: unterminated string");
+  EXPECT_FALSE(parse_xml_scene("<World>\n<PointLight position=\"0 1 0\" intensity=\"1 -1 1\"/>"
+                               "\n</World>",
+                               "t.xml", err));
+  EXPECT_EQ(err, "t.xml:2: intensity expects components >= 0 (emitted light cannot be negative)");
   EXPECT_FALSE(parse_xml_scene("<World><Sphere", "t.xml", err));
   EXPECT_NE(err.find("invalid XML"), std::string::npos);
 }

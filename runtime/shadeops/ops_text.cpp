@@ -30,13 +30,24 @@ namespace {
 void send(ShaderGlobals* sg, const std::string& text) {
   if (sg && sg->context) sg->context->message(text);
 }
+
+// Runs `f`, which builds and sends a message: an exception (out of memory while formatting)
+// must not unwind through the shader's frames, so it is caught here and the message counted
+// as lost (ShadingContext::messages_lost).
+template <class F> void guarded(ShaderGlobals* sg, F&& f) noexcept {
+  try {
+    f();
+  } catch (...) {
+    if (sg && sg->context) ++sg->context->messages_lost;
+  }
+}
 } // namespace
 
 extern "C" {
 
 void lobe_printf(ShaderGlobals* sg, RuntimeEnv* env, const char* fmt, const char* codes,
                  const void* const* args) {
-  send(sg, lobe::shadeops::format_values(*env, fmt, codes, args));
+  guarded(sg, [&] { send(sg, lobe::shadeops::format_values(*env, fmt, codes, args)); });
 }
 
 const char* lobe_format(RuntimeEnv* env, const char* fmt, const char* codes,
@@ -49,15 +60,19 @@ const char* lobe_format(RuntimeEnv* env, const char* fmt, const char* codes,
 void lobe_warning(ShaderGlobals* sg, RuntimeEnv* env, const char* shader, const char* fmt,
                   const char* codes, const void* const* args) {
   if (sg && sg->context)
-    sg->context->warning(std::string("Shader warning [") + shader +
-                         "]: " + lobe::shadeops::format_values(*env, fmt, codes, args));
+    guarded(sg, [&] {
+      sg->context->warning(std::string("Shader warning [") + shader +
+                           "]: " + lobe::shadeops::format_values(*env, fmt, codes, args));
+    });
 }
 
 void lobe_error(ShaderGlobals* sg, RuntimeEnv* env, const char* shader, const char* fmt,
                 const char* codes, const void* const* args) {
   if (sg && sg->context)
-    sg->context->error(std::string("Shader error [") + shader +
-                       "]: " + lobe::shadeops::format_values(*env, fmt, codes, args));
+    guarded(sg, [&] {
+      sg->context->error(std::string("Shader error [") + shader +
+                         "]: " + lobe::shadeops::format_values(*env, fmt, codes, args));
+    });
 }
 
 // fprintf(file, ...): appends to the file (created if missing), as OSL does; one writer at a
@@ -84,9 +99,11 @@ void lobe_fprintf(ShaderGlobals* sg, RuntimeEnv* env, const char* file, const ch
 void lobe_range_error(ShaderGlobals* sg, int index, int length, const char* what, const char* file,
                       int line, const char* where) {
   if (sg && sg->context)
-    sg->context->error("Index [" + std::to_string(index) + "] out of range " + what + "[0.." +
-                       std::to_string(length - 1) + "]: " + file + ":" + std::to_string(line) +
-                       " " + where);
+    guarded(sg, [&] {
+      sg->context->error("Index [" + std::to_string(index) + "] out of range " + what + "[0.." +
+                         std::to_string(length - 1) + "]: " + file + ":" + std::to_string(line) +
+                         " " + where);
+    });
 }
 
 // A loop's back edges ran out of their chunk (codegen.h, GroupPlan::loop_count_offset): adds

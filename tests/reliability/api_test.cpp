@@ -163,3 +163,37 @@ TEST(BoundedLoops, FiniteLoopsAreUnchanged) {
 }
 
 } // namespace
+
+// A message sink that throws (here: std::bad_alloc, as when the memory runs out) must not
+// unwind through the shader's frames: the shade goes on, the message is counted in
+// messages_lost, and the messages the sink takes still arrive.
+TEST(ShaderMessages, ASinkThatThrowsLosesTheMessageNotTheProcess) {
+  lobe::ShadingSystem ss;
+  auto m = compile(ss, "talk",
+                   "shader talk(output float f = 0)\n"
+                   "{\n"
+                   "  printf(\"one\\n\");\n"
+                   "  error(\"two\");\n"
+                   "  printf(\"three\\n\");\n"
+                   "  f = 7;\n"
+                   "}\n");
+  ASSERT_TRUE(m);
+  lobe::ShadingContext ctx;
+  std::vector<std::string> taken;
+  ctx.report = [&taken](lobe::ShadingContext::MessageKind, const std::string& t) {
+    if (t.find("two") != std::string::npos) throw std::bad_alloc();
+    taken.push_back(t);
+  };
+  lobe::group::GridSpec grid;
+  lobe::ShaderGlobals sg = lobe::group::grid_globals(grid, 0, 0, &ctx);
+  m->shade(sg);
+  EXPECT_EQ(ctx.messages_lost, 1u);
+  EXPECT_EQ(ctx.errors, 1);
+  ASSERT_EQ(taken.size(), 2u);
+  EXPECT_EQ(taken[0], "one\n");
+  EXPECT_EQ(taken[1], "three\n");
+  std::vector<float> f;
+  ASSERT_TRUE(m->read_output(ctx, "l1", "f", f));
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(f[0], 7.0f);
+}

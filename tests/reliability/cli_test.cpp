@@ -187,6 +187,34 @@ TEST(ReliabilityShade, HugeGridIsRefusedWithTheFigure) {
   EXPECT_NE(r.out.find("lobe shade: "), std::string::npos) << r.out;
 }
 
+// Messages are kept until the grid is shaded (testshade prints them in point order), within a
+// quarter of the memory available: under a 2 GB address-space limit, 10^6 points printing
+// 512 bytes each (512 MB) pass it; the rest are counted and reported, and the run ends
+// normally. Before, the messages grew until an uncaught std::bad_alloc aborted the process
+// (exit 134).
+TEST(ReliabilityShade, MessagesPastTheMemoryAreCountedNotAnAbort) {
+  if (kAddressSanitizer) GTEST_SKIP() << "cannot start under ulimit -v (see above)";
+  fs::path d = temp_dir("shade_said");
+  write_file(d / "talk.osl", "shader talk(output float f = 0) {\n  printf(\"%s %g\\n\", \"" +
+                                 std::string(500, 'x') + "\", P[0]);\n  f = 1;\n}\n");
+  CmdResult r = run_cmd("cd '" + d.string() + "' && { ulimit -v 2000000 && " + exe() +
+                        " shade -g 1000 1000 talk -o f out.exr > stdout.txt; }");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out.rfind("lobe shade: ", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find(" more shader messages not shown: the grid's messages passed the "),
+            std::string::npos)
+      << r.out;
+  EXPECT_TRUE(fs::exists(d / "out.exr"));
+  // The messages kept come in order after testshade's header ("\nOutput f to out.exr\n"):
+  // the first is point (0, 0)'s, where P[0] = 0.
+  std::ifstream out(d / "stdout.txt");
+  std::string line[3];
+  for (std::string& l : line) std::getline(out, l);
+  EXPECT_EQ(line[0], "");
+  EXPECT_EQ(line[1], "Output f to out.exr");
+  EXPECT_EQ(line[2], std::string(500, 'x') + " 0");
+}
+
 // A shader whose variables cannot fit on a shading thread's stack (a 10^9-element local array:
 // 4 GB of floats; OSL 1.13's testshade crashes with SIGSEGV on it) is refused when the material
 // is built, naming the array, its size and its line; an array within the limit shades. The same

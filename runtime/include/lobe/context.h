@@ -40,15 +40,17 @@ public:
   // "Index [5] out of range a[0..2]: f.osl:3 (group g, layer 0 l, shader s)").
   enum class MessageKind : uint8_t { Print, Warning, Error };
   // Sends a message to `report` if set, else to `print` (or `output`) formatted as OSL's
-  // testshade prints it: "WARNING: text\n", "ERROR: text\n".
-  void message(MessageKind kind, const std::string& text);
-  void message(const std::string& text) { message(MessageKind::Print, text); }
+  // testshade prints it: "WARNING: text\n", "ERROR: text\n". Never throws (it runs inside
+  // shader code): a message that cannot be delivered (no memory for it, a sink that threw) is
+  // counted in `messages_lost`.
+  void message(MessageKind kind, const std::string& text) noexcept;
+  void message(const std::string& text) noexcept { message(MessageKind::Print, text); }
   // A run-time error or warning from shader code (counted in `errors` / `warnings`).
-  void error(const std::string& text) {
+  void error(const std::string& text) noexcept {
     ++errors;
     message(MessageKind::Error, text);
   }
-  void warning(const std::string& text) {
+  void warning(const std::string& text) noexcept {
     ++warnings;
     message(MessageKind::Warning, text);
   }
@@ -67,6 +69,7 @@ public:
   int errors = 0;
   int warnings = 0;
   uint64_t closures_dropped = 0;
+  uint64_t messages_lost = 0;
 
   // Bounded execution (CompileOptions::max_loop_iterations). `stopped`: the current shade was
   // stopped in a loop, because it ran past the material's limit (an error was reported, naming
