@@ -19,6 +19,7 @@
 #include "rng.h"
 #include "stress.h"
 
+#include "lobe/bsdf.h"
 #include "lobe/context.h"
 #include "lobe/install.h"
 #include "lobe/shadingsys.h"
@@ -457,6 +458,13 @@ int run_brdf(int argc, char** argv) {
     owned = std::make_unique<ClosureLobe>(r.closure->params, r.closure->strings);
   }
   const LobeView& lobe = *owned;
+  // A closure reading a data file (measured_bsdf) that does not load has no lobe: asked about
+  // it, that is an error, not a report of zeros.
+  lobe.eval(direction_at(0.5), direction_at(0.5), Transport::Radiance);
+  if (std::vector<std::string> bad = lobe::closure_data_errors(); !bad.empty()) {
+    std::fprintf(stderr, "lobe brdf: error: %s\n", bad.front().c_str());
+    return 1;
+  }
   Transport mode = o.mode == "importance" ? Transport::Importance : Transport::Radiance;
   Vec3 wo = direction_at(o.theta * M_PI / 180.0);
   if (!o.wo_text.empty()) {

@@ -6,6 +6,7 @@
 
 #include "default_scene.h"
 #include "image.h"
+#include "lobe/bsdf.h"
 #include "lobe/memory.h"
 #include "material_backend.h"
 #include "native_materials.h"
@@ -287,6 +288,8 @@ int run_render(int argc, char** argv) {
   lobe::render::merge_messages(stats.counters.messages, messages);
   for (const std::string& m : scene.describe(messages))
     std::fprintf(stderr, "warning: %s\n", m.c_str());
+  for (const std::string& e : lobe::closure_data_errors())
+    std::fprintf(stderr, "warning: %s; its lobes are black\n", e.c_str());
   if (!stats.stopped.empty()) { // a runaway shader: an error, no image
     std::fprintf(stderr, "lobe render: %s; rendering stopped, no image written\n",
                  stats.stopped.c_str());

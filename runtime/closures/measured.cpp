@@ -9,6 +9,8 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <string>
+#include <vector>
 
 namespace lobe::closures {
 namespace {
@@ -138,19 +140,42 @@ bool write_merl(const std::string& path, BrdfFunction fn, void* user) {
   return true;
 }
 
+namespace {
+// The one process-wide cache in the library: tables are immutable once loaded and shared by
+// every thread, the way interned strings are; the files that failed, with why, beside them.
+struct TableCache {
+  std::mutex mutex;
+  std::map<std::string, std::unique_ptr<MeasuredTable>> tables;
+  std::vector<std::string> errors;
+};
+TableCache& table_cache() {
+  static TableCache c;
+  return c;
+}
+} // namespace
+
 const MeasuredTable* measured_table(const char* path) {
-  // The one process-wide cache in the library: tables are immutable once loaded and shared
-  // by every thread, the way interned strings are.
-  static std::mutex mutex;
-  static std::map<std::string, std::unique_ptr<MeasuredTable>> cache;
-  if (!path || !*path) return nullptr;
-  std::lock_guard<std::mutex> lock(mutex);
-  auto it = cache.find(path);
-  if (it != cache.end()) return it->second.get();
+  if (!path) return nullptr;
+  TableCache& c = table_cache();
+  std::lock_guard<std::mutex> lock(c.mutex);
+  auto it = c.tables.find(path);
+  if (it != c.tables.end()) return it->second.get();
   auto table = std::make_unique<MeasuredTable>();
   std::string error;
-  if (!load_merl(path, *table, error)) table.reset();
-  return (cache[path] = std::move(table)).get();
+  if (!*path) {
+    table.reset();
+    c.errors.push_back("measured_bsdf: no file named (an empty filename)");
+  } else if (!load_merl(path, *table, error)) {
+    table.reset();
+    c.errors.push_back("measured_bsdf: " + error); // the error names the file
+  }
+  return (c.tables[path] = std::move(table)).get();
 }
 
 } // namespace lobe::closures
+
+std::vector<std::string> lobe::closure_data_errors() {
+  closures::TableCache& c = closures::table_cache();
+  std::lock_guard<std::mutex> lock(c.mutex);
+  return c.errors;
+}

@@ -327,6 +327,19 @@ TEST(ReliabilityRender, CtrlCWritesThePartialImage) {
 }
 
 // A printf of a different line at every shade: at most 10 lines per material, then a summary.
+// A material whose measured_bsdf file does not load renders its lobe black, and lobe render
+// says so (once, naming the file) instead of a silently dark image.
+TEST(ReliabilityRender, MeasuredFileThatDoesNotLoadIsReported) {
+  fs::path d = temp_dir("render_merl");
+  write_file(d / "meas.osl", "surface meas() { Ci = measured_bsdf(N, \"missing.binary\"); }\n");
+  write_file(d / "s.json", scene_json("meas"));
+  CmdResult r = run_cmd("cd '" + d.string() + "' && " + exe() +
+                        " render -q --materials jit s.json -o o.png");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out, "warning: measured_bsdf: cannot open measured BRDF 'missing.binary'; its lobes "
+                   "are black\n");
+}
+
 TEST(ReliabilityRender, ShaderMessagesAreCapped) {
   fs::path d = temp_dir("render_printf");
   write_file(d / "chatty.osl",
@@ -375,6 +388,11 @@ TEST(ReliabilityBrdf, InvalidArgumentsAreRefused) {
       {"'diffuse(N)' --albedo nan", "--albedo angles must lie in [0, 180]"},
       {"'diffuse(N)' --wo nan,0,1 --sample 0.5,0.5,0.5", "--wo must be finite and non-zero"},
       {"'diffuse(N)' --eval 0,0,1,0,0,0", "--eval: directions must be finite and non-zero"},
+      // A measured BRDF whose file does not load has no lobe: an error, not a table of zeros
+      // (before: exit status 0 and albedo 0).
+      {"'measured_bsdf(N, \"/nonexistent/a/rather/long/path/to/gold.binary\")' --albedo 30",
+       "lobe brdf: error: measured_bsdf: cannot open measured BRDF "
+       "'/nonexistent/a/rather/long/path/to/gold.binary'"},
   };
   for (const Case& c : cases) {
     CmdResult r = run_cmd(exe() + " brdf " + c.args);

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace lobe {
 
@@ -112,5 +113,11 @@ private:
 // Human-readable form of a closure tree in OSL's print format:
 // `(w0, w1, w2) * name ((Nx, Ny, Nz), arg, "kw", value)`, terms joined by "\n\t+ ".
 std::string closure_to_string(const ClosureNode* closure);
+
+// The data files closures read (measured_bsdf's MERL tables) that failed to load, each once, in
+// the order first tried: "measured_bsdf: cannot open measured BRDF 'x.binary'" (or a short
+// header, a wrong size, NaN cells, ...).
+// A closure whose file failed gives no lobe (it renders black), so a renderer reports these.
+std::vector<std::string> closure_data_errors();
 
 } // namespace lobe
