@@ -191,8 +191,9 @@ TEST(SceneJson, NegativeOrOverflowingLightIsAnError) {
             "t.json: /environment/intensity: expected a number >= 0 (emitted light cannot be "
             "negative)");
   std::string err;
-  EXPECT_TRUE(parse_json_scene(R"({"materials": {"m": {"shader": "matte", "params": {"Cs": -0.5}}}})",
-                               "t.json", err)
-                  .has_value())
+  EXPECT_TRUE(
+      parse_json_scene(R"({"materials": {"m": {"shader": "matte", "params": {"Cs": -0.5}}}})",
+                       "t.json", err)
+          .has_value())
       << err;
 }

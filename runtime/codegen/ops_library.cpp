@@ -456,6 +456,9 @@ void op_noise(LayerEmitter& e, const ir::Op& op) {
 // ---- splines --------------------------------------------------------------------------------
 
 // spline a "basis" x (knots... | knots[] | nknots knots[]); splineinverse likewise (floats).
+// Where the result needs derivatives they come from x's and (spline only) the knots' (OSL's
+// dual spline shadeops): the knots' derivative planes are passed beside their values when the
+// knot array (or a listed knot) carries derivatives.
 void op_spline(LayerEmitter& e, const ir::Op& op) {
   auto& B = e.b();
   bool inverse = op.opcode == ir::Opcode::SplineInverse;
@@ -471,35 +474,59 @@ void op_spline(LayerEmitter& e, const ir::Op& op) {
     count = e.load_as(op, 3, BaseType::Int)[0].v;
     k = 4;
   }
-  std::vector<llvm::Value*> kv;
+  // splineinverse's derivatives are y's through the curve; OSL's search reads the knots'
+  // values only (checked with testshade: knots that vary leave the derivative y' / f'(x)).
+  bool knot_derivs = false;
+  if (derivs && !inverse)
+    for (size_t i = k; i < op.args.size(); ++i) knot_derivs |= e.wants_derivs(op.args[i]);
+  std::vector<llvm::Value*> kv, kdx, kdy;
+  auto add = [&](const Val& v) {
+    for (const Dual& d : v) {
+      kv.push_back(d.v);
+      if (knot_derivs) {
+        kdx.push_back(d.dx ? d.dx : e.fconst(0));
+        kdy.push_back(d.dy ? d.dy : e.fconst(0));
+      }
+    }
+  };
   int n = 0;
   if (e.arg(op, int(k)).type.is_array()) {
     const ir::Symbol& a = e.arg(op, int(k));
     n = a.type.arraylen > 0 ? a.type.arraylen : int(a.init.size()) / a.type.components();
     for (int i = 0; i < n; ++i)
-      for (const Dual& d : e.convert(e.load(op.args[k], e.iconst(i), false), a.type.base, t))
-        kv.push_back(d.v);
+      add(e.convert(e.load(op.args[k], e.iconst(i), knot_derivs), a.type.base, t));
   } else {
-    for (size_t i = k; i < op.args.size(); ++i, ++n)
-      for (const Dual& d : e.load_as(op, int(i), t, false)) kv.push_back(d.v);
+    for (size_t i = k; i < op.args.size(); ++i, ++n) add(e.load_as(op, int(i), t, knot_derivs));
   }
   llvm::Value* nk = e.iconst(n);
   if (count) nk = B.CreateSelect(B.CreateICmpSLT(count, nk), count, nk);
   llvm::Value* knots = e.spill(kv);
+  llvm::Value* null = llvm::ConstantPointerNull::get(B.getPtrTy());
+  llvm::Value* knots_dx = knot_derivs ? e.spill(kdx) : null;
+  llvm::Value* knots_dy = knot_derivs ? e.spill(kdy) : null;
+  bool x_derivs = derivs && (x.dx || x.dy);
+  bool chain = x_derivs || knot_derivs;
+  llvm::Value* xdx = x.dx ? x.dx : e.fconst(0);
+  llvm::Value* xdy = x.dy ? x.dy : e.fconst(0);
   if (inverse) {
-    e.store(op.args[0], e.convert(Val{Dual{e.call("lobe_splineinverse",
-                                                  {e.load(op.args[1])[0].v, x.v, knots, nk})}},
-                                  BaseType::Float, e.arg(op, 0).type.base));
+    Val r;
+    if (chain) {
+      llvm::Value* out = e.spill(std::vector<llvm::Value*>(3, e.fconst(0)));
+      e.call("lobe_splineinverse_d", {e.load(op.args[1])[0].v, x.v, xdx, xdy, knots, nk, out});
+      std::vector<llvm::Value*> o = e.reload(out, 3);
+      r.push_back(Dual{o[0], o[1], o[2]});
+    } else {
+      r.push_back(Dual{e.call("lobe_splineinverse", {e.load(op.args[1])[0].v, x.v, knots, nk})});
+    }
+    e.store(op.args[0], e.convert(r, BaseType::Float, e.arg(op, 0).type.base));
     return;
   }
   llvm::Value* out = e.spill(std::vector<llvm::Value*>(size_t(comps), e.fconst(0)));
-  bool chain = derivs && (x.dx || x.dy);
-  llvm::Value* null = llvm::ConstantPointerNull::get(B.getPtrTy());
   auto zeros = [&] { return e.spill(std::vector<llvm::Value*>(size_t(comps), e.fconst(0))); };
   llvm::Value* odx = chain ? zeros() : null;
   llvm::Value* ody = chain ? zeros() : null;
-  e.call("lobe_spline", {e.load(op.args[1])[0].v, x.v, x.dx ? x.dx : e.fconst(0),
-                         x.dy ? x.dy : e.fconst(0), knots, nk, e.iconst(comps), out, odx, ody});
+  e.call("lobe_spline", {e.load(op.args[1])[0].v, x.v, xdx, xdy, e.iconst(x_derivs ? 1 : 0), knots,
+                         knots_dx, knots_dy, nk, e.iconst(comps), out, odx, ody});
   std::vector<llvm::Value*> ov = e.reload(out, comps), gx, gy;
   if (chain) {
     gx = e.reload(odx, comps);

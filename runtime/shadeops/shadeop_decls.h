@@ -100,8 +100,9 @@ void lobe_noise_named_d(lobe::ShaderGlobals* sg, const char* name, const float* 
 void lobe_gabor(const float* x, const float* dx, const float* dy, int nin, const float* period,
                 const lobe::shadeops::GaborOptions* opt, float* out, float* odx, float* ody,
                 int nout);
-void lobe_spline(const char* basis, float x, float xdx, float xdy, const float* knots, int nknots,
-                 int comps, float* out, float* odx, float* ody);
+void lobe_spline(const char* basis, float x, float xdx, float xdy, int x_derivs, const float* knots,
+                 const float* kdx, const float* kdy, int nknots, int comps, float* out, float* odx,
+                 float* ody);
 void lobe_texture(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* file,
                   float s, float t, float dsdx, float dtdx, float dsdy, float dtdy, int n,
                   float* out, float* dds, float* ddt, const lobe::shadeops::TextureArgs* a);
@@ -125,4 +126,6 @@ void lobe_environment(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, 
                       const float* r, const float* drdx, const float* drdy, const float* unused,
                       int n, float* out, const lobe::shadeops::TextureArgs* a);
 float lobe_splineinverse(const char* basis, float y, const float* knots, int nknots);
+void lobe_splineinverse_d(const char* basis, float y, float ydx, float ydy, const float* knots,
+                          int nknots, float* out);
 }

@@ -692,12 +692,51 @@ TEST(Table, NamesResolve) {
 TEST(Spline, NanPositionReadsAsZero) {
   const float knots[4] = {0.0f, 0.25f, 0.75f, 1.0f};
   float out = -1, dx = -1, dy = -1;
-  lobe_spline("linear", std::numeric_limits<float>::quiet_NaN(), 1.0f, 1.0f, knots, 4, 1, &out, &dx,
-              &dy);
+  lobe_spline("linear", std::numeric_limits<float>::quiet_NaN(), 1.0f, 1.0f, 1, knots, nullptr,
+              nullptr, 4, 1, &out, &dx, &dy);
   EXPECT_EQ(out, 0.25f);
   EXPECT_EQ(dx, 0.0f);
   EXPECT_EQ(dy, 0.0f);
-  lobe_spline("catmull-rom", -std::numeric_limits<float>::infinity(), 0, 0, knots, 4, 1, &out,
-              nullptr, nullptr);
+  lobe_spline("catmull-rom", -std::numeric_limits<float>::infinity(), 0, 0, 0, knots, nullptr,
+              nullptr, 4, 1, &out, nullptr, nullptr);
   EXPECT_EQ(out, 0.25f);
+}
+
+// Knot derivatives carry through the cubic. Linear basis over knots (0, a, b, 1) at x in the
+// segment: s = a + (b - a) x, so ds = da (1 - x) + db x + (b - a) dx, computed here in closed
+// form; a clamped x (1.5 reads as 1) keeps only the knots' part, db.
+TEST(Spline, KnotDerivativesCarryThroughTheCubic) {
+  const float knots[4] = {0.0f, 0.25f, 0.75f, 1.0f};
+  const float kdx[4] = {0.0f, 2.0f, -1.0f, 0.0f};
+  const float kdy[4] = {0.0f, 0.5f, 0.5f, 0.0f};
+  float out = -1, dx = -1, dy = -1;
+  lobe_spline("linear", 0.25f, 4.0f, 0.0f, 1, knots, kdx, kdy, 4, 1, &out, &dx, &dy);
+  EXPECT_FLOAT_EQ(out, 0.25f + 0.5f * 0.25f);
+  EXPECT_FLOAT_EQ(dx, 2.0f * 0.75f + -1.0f * 0.25f + 0.5f * 4.0f);
+  EXPECT_FLOAT_EQ(dy, 0.5f);
+  lobe_spline("linear", 1.5f, 4.0f, 0.0f, 1, knots, kdx, kdy, 4, 1, &out, &dx, &dy);
+  EXPECT_FLOAT_EQ(out, 0.75f);
+  EXPECT_FLOAT_EQ(dx, -1.0f);
+  EXPECT_FLOAT_EQ(dy, 0.5f);
+  // "constant" has no derivatives, whatever the knots carry.
+  lobe_spline("constant", 0.25f, 4.0f, 1.0f, 1, knots, kdx, kdy, 4, 1, &out, &dx, &dy);
+  EXPECT_EQ(out, 0.25f);
+  EXPECT_EQ(dx, 0.0f);
+  EXPECT_EQ(dy, 0.0f);
+}
+
+// splineinverse's derivative is y's through the curve: x = (y - a) / (b - a) on the linear
+// basis, dx/dy' = 1 / (b - a) (the knots' derivatives are not taken: OSL's search reads their
+// values only).
+TEST(Spline, InverseDerivativeIsThroughTheCurve) {
+  const float knots[4] = {0.0f, 0.25f, 0.75f, 1.0f};
+  float out[3] = {-1, -1, -1};
+  lobe_splineinverse_d("linear", 0.5f, 1.0f, -2.0f, knots, 4, out);
+  EXPECT_NEAR(out[0], 0.5f, 1e-6f);
+  EXPECT_NEAR(out[1], 2.0f, 1e-5f);
+  EXPECT_NEAR(out[2], -4.0f, 1e-5f);
+  // Beyond the curve's ends: 0 or 1, no derivatives.
+  lobe_splineinverse_d("linear", 0.1f, 1.0f, 1.0f, knots, 4, out);
+  EXPECT_EQ(out[0], 0.0f);
+  EXPECT_EQ(out[1], 0.0f);
 }

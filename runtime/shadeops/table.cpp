@@ -88,6 +88,7 @@ const ShadeOpSymbol kTable[] = {
     LOBE_SHADEOP(lobe_texture3d),
     LOBE_SHADEOP(lobe_environment),
     LOBE_SHADEOP(lobe_splineinverse),
+    LOBE_SHADEOP(lobe_splineinverse_d),
     // libm / libc
     LOBE_LIBC("sinf", F1(::sinf)),
     LOBE_LIBC("cosf", F1(::cosf)),

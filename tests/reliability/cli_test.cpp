@@ -333,8 +333,8 @@ TEST(ReliabilityRender, MeasuredFileThatDoesNotLoadIsReported) {
   fs::path d = temp_dir("render_merl");
   write_file(d / "meas.osl", "surface meas() { Ci = measured_bsdf(N, \"missing.binary\"); }\n");
   write_file(d / "s.json", scene_json("meas"));
-  CmdResult r = run_cmd("cd '" + d.string() + "' && " + exe() +
-                        " render -q --materials jit s.json -o o.png");
+  CmdResult r =
+      run_cmd("cd '" + d.string() + "' && " + exe() + " render -q --materials jit s.json -o o.png");
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_EQ(r.out, "warning: measured_bsdf: cannot open measured BRDF 'missing.binary'; its lobes "
                    "are black\n");
