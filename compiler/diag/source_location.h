@@ -34,6 +34,7 @@ struct PresumedLoc {
   const char* file = ""; // owned by the SourceManager
   int line = 0;
   int column = 0;
+  bool renumbered = false; // a #line directive gave the line (and maybe the file)
   bool valid() const { return line > 0; }
 };
 

@@ -99,6 +99,7 @@ PresumedLoc SourceManager::presumed(SourceLoc loc) const {
   for (auto d = b.directives.rbegin(); d != b.directives.rend(); ++d) {
     if (d->offset > off) continue;
     p.line = d->line + (line - physical_line(b, d->offset));
+    p.renumbered = true;
     if (d->file) p.file = d->file;
     break;
   }

@@ -87,9 +87,10 @@ bool Preprocessor::try_expand(const PPToken& t, Input& in) {
     if (t.text == "__LINE__") {
       // oslc reads the main file after a line of its own (the #include of stdosl.h), so its
       // __LINE__ there is one more than the line (diagnostics still name the line itself);
-      // in an included file it is the line. Lobe's __LINE__ is oslc's.
+      // in an included file, or after a #line directive (which numbers the lines that follow
+      // as the preprocessor sees them), it is the line. Lobe's __LINE__ is oslc's.
       bool main_file = !sm_.include_loc(at).valid();
-      r.text = std::to_string(p.line + (main_file ? 1 : 0));
+      r.text = std::to_string(p.line + (main_file && !p.renumbered ? 1 : 0));
     } else {
       r.text.assign(1, '"');
       r.text.append(p.file).push_back('"');

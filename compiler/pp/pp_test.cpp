@@ -277,10 +277,17 @@ TEST(PP, LocationsThroughMacros) {
 
 // __LINE__ in the main file is one more than its line, as oslc's (OSL 1.13.12: a shader whose
 // line 2 prints __LINE__ prints 3, `oslc s.osl; testshade s`); in an included file it is the
-// line (tests/shade/line_macro.osl).
+// line (tests/shade/line_macro.osl). After `#line N` the next line is N, with or without a
+// file name, in the GNU form too (OSL 1.13.12 prints 3, 100, 200 other.osl, 300 third.osl for
+// `printf("%d %s\n", __LINE__, __FILE__)` on lines 2, 4, 6, 8 of a shader with `#line 100`,
+// `#line 200 "other.osl"` and `# 300 "third.osl"` before the last three).
 TEST(PP, LineAndFileMacros) {
   PPRun r;
   EXPECT_EQ(r.run("\n\n__LINE__ __FILE__\n"), "4 \"main.osl\"");
+  PPRun l;
+  EXPECT_EQ(l.run("__LINE__\n#line 100\n__LINE__\n#line 200 \"other.osl\"\n__LINE__ __FILE__\n"
+                  "# 300 \"third.osl\"\n__LINE__ __FILE__\n"),
+            "2 100 200 \"other.osl\" 300 \"third.osl\"");
 }
 
 TEST(PP, MacroErrors) {
