@@ -433,10 +433,13 @@ void op_noise(LayerEmitter& e, const ir::Op& op) {
   }
   if (gabor)
     e.call("lobe_gabor", {in, indx, indy, e.iconst(nin), pp, opts, out, odx, ody, e.iconst(nout)});
-  else if (named)
+  else if (named) // the place only for a constant name: OSL words the two errors differently
     e.call("lobe_noise_named_d",
            {e.sg(), e.load(op.args[1])[0].v, in, indx, indy, e.iconst(nin), pp, opts, out, odx, ody,
-            e.iconst(nout), e.string_const(op.loc.file.empty() ? e.shader().name : op.loc.file),
+            e.iconst(nout),
+            is_const_string(e.arg(op, 1))
+                ? e.string_const(op.loc.file.empty() ? e.shader().name : op.loc.file)
+                : ptr_null(),
             e.iconst(op.loc.line)});
   else
     e.call("lobe_noise_d",

@@ -558,8 +558,10 @@ void lobe_noise(int kind, const float* x, int nin, const float* period, float* o
 
 // noise(name, ...) with a name known only at run time (OSL's genericnoise / genericpnoise):
 // dispatches on the name like the constant case in codegen. An unknown name, or
-// "simplex"/"usimplex" with a period, is a run-time error naming the source location; the
-// result (and its derivatives) is 0. "gabor" goes to lobe_gabor (gabor.cpp) with the call's
+// "simplex"/"usimplex" with a period, is a run-time error, as OSL words it: `[periodic ]noise
+// type "x" is unknown, called from (file:line)` for a name that is a constant,
+// `Unknown noise type "x"` (file null) for one known only while shading; the result (and its
+// derivatives) is 0. "gabor" goes to lobe_gabor (gabor.cpp) with the call's
 // keyword options (null: the defaults).
 void lobe_noise_named_d(lobe::ShaderGlobals* sg, const char* name, const float* x, const float* dx,
                         const float* dy, int nin, const float* period, const void* gabor_opts,
@@ -575,9 +577,13 @@ void lobe_noise_named_d(lobe::ShaderGlobals* sg, const char* name, const float* 
     out[j] = 0;
     if (dx) odx[j] = ody[j] = 0;
   }
-  if (sg && sg->context) {
-    sg->context->error("noise type \"" + std::string(n) + "\" is unknown, called from (" + file +
-                       ":" + std::to_string(line) + ")"); // OSL's words
+  if (sg && sg->context) { // OSL's words: a constant name's error has the place
+    if (file)
+      sg->context->error(std::string(period ? "periodic " : "") + "noise type \"" +
+                         std::string(n) + "\" is unknown, called from (" + file + ":" +
+                         std::to_string(line) + ")");
+    else
+      sg->context->error("Unknown noise type \"" + std::string(n) + "\"");
   }
 }
 
