@@ -285,8 +285,22 @@ void Sema::binary(ast::BinaryExpr* e, const Type* expected) {
     fail();
     return;
   }
-  // point - point is a vector (the difference of two positions).
+  // point - point is a vector (the difference of two positions). Two other triple kinds give
+  // oslc's result: with + and -, a point if either is one; otherwise the left operand's kind.
   if (e->op == Op::Sub && l.base == BaseType::Point && r.base == BaseType::Point) ct = t_vector();
+  else if (l.is_triple() && r.is_triple() && !(l == r))
+    ct = (e->op == Op::Add || e->op == Op::Sub) &&
+                 (l.base == BaseType::Point || r.base == BaseType::Point)
+             ? t_point()
+             : l;
+  // A matrix times or over a number scales it (the number is not made a diagonal matrix: no
+  // products of zeros that would lose a -0 or turn an infinity into NaN), as OSL.
+  if (ct->is_matrix() && (e->op == Op::Mul || e->op == Op::Div) && !(l.is_matrix() && r.is_matrix())) {
+    coerce(e->lhs, l.is_matrix() ? *ct : t_float());
+    coerce(e->rhs, r.is_matrix() ? *ct : t_float());
+    e->type = *ct;
+    return;
+  }
   coerce(e->lhs, *ct);
   coerce(e->rhs, *ct);
   bool comparison = e->op >= Op::Lt && e->op <= Op::Ne;
@@ -421,6 +435,10 @@ void Sema::assign(ast::AssignExpr* e) {
     error(DiagId::warn_lose_precision, e->range, {"int", target_name(e->lhs.get()), "float"});
     return;
   }
+  if (lt.is_matrix() && !rt.is_matrix()) { // m *= f, m /= f: scaled by the number (binary)
+    convert(e->rhs, t_float());
+    return;
+  }
   convert(e->rhs, lt);
 }
 
@@ -455,6 +473,8 @@ void Sema::ternary(ast::TernaryExpr* e, const Type* expected) {
     result = a;
   else if (b.is_closure() && is_zero_literal(e->then_expr.get()))
     result = b;
+  else if (a.is_triple() && b.is_triple() && !a.is_array() && !b.is_array())
+    result = b; // two triple kinds: oslc's result is the second branch's kind
   else if (auto ct = common_type(a, b))
     result = *ct;
   else {

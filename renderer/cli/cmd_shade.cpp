@@ -85,14 +85,63 @@ std::string shader_name(std::string s) {
   return s;
 }
 
-// `group`: the group's name, which testshade prints after a connection error.
-void print_diagnostics(const DiagnosticList& diags, bool notes, const std::string& group = "") {
+// `name(args)` as oslc prints a function: `name (args)`.
+std::string oslc_signature(std::string s) {
+  if (size_t at = s.find('('); at != std::string::npos && at > 0 && s[at - 1] != ' ')
+    s.insert(at, " ");
+  return s;
+}
+
+// A compiler warning as oslc prints it, without column or source line: `file:line: warning:
+// message`, an ambiguous call with oslc's words and its candidates (a built-in one without a
+// place). `notes` are the warning's own notes.
+void print_oslc_warning(const Diagnostic& d, const std::vector<const Diagnostic*>& notes) {
+  std::string place = d.file.empty() ? "" : d.file + ":" + std::to_string(d.line) + ": ";
+  if (d.id != "warn_ambiguous_call") {
+    std::fprintf(stderr, "%swarning: %s\n", place.c_str(), d.message.c_str());
+    return;
+  }
+  std::string call = d.message; // call to 'f(args)' is ambiguous
+  size_t a = call.find('\''), b = call.rfind('\'');
+  if (a != std::string::npos && b > a) call = call.substr(a + 1, b - a - 1);
+  std::fprintf(stderr, "%swarning: Ambiguous call to '%s'\n", place.c_str(),
+               oslc_signature(call).c_str());
+  bool others = false;
+  for (const Diagnostic* n : notes) {
+    bool chosen = n->id == "note_chosen_candidate";
+    if (!chosen && n->id != "note_other_candidate") continue;
+    if (chosen) std::fprintf(stderr, "  Chosen function is:\n");
+    if (!chosen && !others) std::fprintf(stderr, "  Other candidates are:\n");
+    others = others || !chosen;
+    std::string sig = n->message.substr(n->message.find(':') + 2);
+    bool builtin = n->file.empty() || n->file.ends_with("stdosl.h");
+    std::string at = builtin ? "" : n->file + ":" + std::to_string(n->line) + "\t";
+    std::fprintf(stderr, "    %s%s\n", at.c_str(), oslc_signature(sig).c_str());
+  }
+}
+
+// `group`: the group's name, which testshade prints after a connection error. `compiler`: the
+// compiler's own warnings (a shader's source compiled here) as Lobe renders them (caret and
+// notes); otherwise as oslc prints them, since a testshade run follows oslc's (OSL's testsuite
+// records both in one output).
+void print_diagnostics(const DiagnosticList& diags, bool notes, const std::string& group = "",
+                       bool compiler = true) {
   bool connect_error = false;
   for (const Diagnostic& d : diags) // testshade has printed its "Connect ..." lines by then
     if (d.id.rfind("connect_", 0) == 0) std::fflush(stdout);
   for (const Diagnostic& d : diags) {
     if (d.severity == Diagnostic::Severity::Note && !notes) continue;
     std::string t = d.text;
+    if (!compiler && d.severity != Diagnostic::Severity::Error && t.rfind("warning: ", 0) != 0) {
+      if (d.severity == Diagnostic::Severity::Warning) { // a compiler warning, then its notes
+        std::vector<const Diagnostic*> own;
+        for (size_t k = size_t(&d - diags.data()) + 1;
+             k < diags.size() && diags[k].severity == Diagnostic::Severity::Note; ++k)
+          own.push_back(&diags[k]);
+        print_oslc_warning(d, own);
+      }
+      continue;
+    }
     // Group-level warnings print as testshade prints them: "WARNING: ...", and so do
     // connection errors (OSL's ConnectShaders words, "ERROR: ...").
     if (d.severity == Diagnostic::Severity::Warning && t.rfind("warning: ", 0) == 0)
@@ -215,7 +264,7 @@ private:
 bool Shade::compile(const ShaderGroup& g, std::shared_ptr<const Material>& out) {
   DiagnosticList diags;
   out = ss_.compile(g, diags);
-  print_diagnostics(diags, job_.verbose || !out, g.name);
+  print_diagnostics(diags, job_.verbose || !out, g.name, job_.verbose || !out);
   return out != nullptr;
 }
 

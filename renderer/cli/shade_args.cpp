@@ -44,9 +44,11 @@ struct Parser {
       job.group = ShaderGroup{};
     }
     if (name.empty()) name = pending_layer;
-    if (name.empty())
-      name = std::filesystem::path(shader).filename().string() + "_" +
-             std::to_string(job.group.layers.size());
+    if (name.empty()) { // testshade's: the file name without folder or .oso (Lobe: or .osl)
+      std::filesystem::path f = std::filesystem::path(shader).filename();
+      if (f.extension() == ".oso" || f.extension() == ".osl") f.replace_extension();
+      name = f.string() + "_" + std::to_string(job.group.layers.size());
+    }
     pending_layer.clear();
     job.group.layers.push_back({shader, name, std::move(pending)});
     pending.clear();

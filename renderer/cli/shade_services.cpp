@@ -89,23 +89,22 @@ ShadeServices::ShadeServices(std::vector<ShadeUserDatum> data, int xres, int yre
       {1, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1},                    // myspace
       {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1.00010001f, 1, 0, 0, -0.100010001f, 0}, // screen
   };
-  const char* names[] = {"object", "shader", "myspace", "screen"};
-  for (int k = 0; k < 4; ++k) {
+  const char* names[] = {"object", "shader", "myspace"};
+  for (int k = 0; k < 3; ++k) {
     Space s{names[k], {}};
     invert(common_to[k], s.to_common);
     spaces_.push_back(s);
   }
+  // The camera spaces, kept as common -> space (Space::to_common holds that way round here).
   // NDC = screen * (x, y in [-1, 1] -> [0, 1]); raster = NDC * scale(xres, yres, 1).
+  Space camera{"camera", {}}, screen{"screen", {}}, ndc{"NDC", {}}, raster{"raster", {}};
+  for (int k = 0; k < 16; ++k) camera.to_common[k] = k % 5 == 0 ? 1.0f : 0.0f;
+  std::memcpy(screen.to_common, common_to[3], sizeof screen.to_common);
   const float to_ndc[16] = {0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 1, 0, 0.5f, 0.5f, 0, 1};
-  float common_to_ndc[16], common_to_raster[16];
-  multiply(common_to[3], to_ndc, common_to_ndc);
+  multiply(common_to[3], to_ndc, ndc.to_common);
   const float to_raster[16] = {float(xres), 0, 0, 0, 0, float(yres), 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-  multiply(common_to_ndc, to_raster, common_to_raster);
-  Space ndc{"NDC", {}}, raster{"raster", {}};
-  invert(common_to_ndc, ndc.to_common);
-  invert(common_to_raster, raster.to_common);
-  spaces_.push_back(ndc);
-  spaces_.push_back(raster);
+  multiply(ndc.to_common, to_raster, raster.to_common);
+  camera_spaces_ = {camera, screen, ndc, raster};
 }
 
 bool ShadeServices::has_userdata(std::string_view name) const {
@@ -173,11 +172,17 @@ bool ShadeServices::get_attribute(const ShaderGlobals& sg, std::string_view obje
   return write(v, index, type, val);
 }
 
+bool ShadeServices::get_inverse_matrix(const ShaderGlobals&, std::string_view space,
+                                       float* m) const {
+  for (const Space& s : camera_spaces_)
+    if (space == s.name) {
+      std::memcpy(m, s.to_common, sizeof s.to_common);
+      return true;
+    }
+  return false; // the others: the inverse of get_matrix's
+}
+
 bool ShadeServices::get_matrix(const ShaderGlobals&, std::string_view space, float* m) const {
-  if (space == "camera") { // camera = common in testshade
-    for (int k = 0; k < 16; ++k) m[k] = k % 5 == 0 ? 1.0f : 0.0f;
-    return true;
-  }
   for (const Space& s : spaces_)
     if (space == s.name) {
       std::memcpy(m, s.to_common, sizeof s.to_common);

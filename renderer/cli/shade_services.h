@@ -6,7 +6,9 @@
 //   probe), and any other name without an object or index from the user data;
 // - spaces: testshade's "object" (translated by (0, 1, 0) then turned 90 degrees about z),
 //   "shader" (translated by (1, 0, 0) then turned 45 degrees), "myspace" (scaled by 2 in y),
-//   "screen", "NDC" and "raster" of its camera; common = world = camera.
+//   "screen", "NDC" and "raster" of its camera, and "camera" (= common = world), these four only
+//   as a destination: as a source they are unknown spaces (an error; transform leaves the
+//   value, getmatrix returns 0), as in testshade.
 #pragma once
 
 #include "lobe/renderer_services.h"
@@ -26,6 +28,9 @@ public:
   bool get_attribute(const ShaderGlobals& sg, std::string_view object, std::string_view name,
                      int index, DataType type, bool derivatives, void* val) const override;
   bool get_matrix(const ShaderGlobals& sg, std::string_view space, float* m) const override;
+  bool get_inverse_matrix(const ShaderGlobals& sg, std::string_view space,
+                          float* m) const override;
+  bool camera_spaces_default_to_identity() const override { return false; }
 
   bool has_userdata(std::string_view name) const;
 
@@ -37,6 +42,8 @@ private:
     float to_common[16];
   };
   std::vector<Space> spaces_;
+  // common -> camera, screen, NDC, raster: testshade knows these only as destinations.
+  std::vector<Space> camera_spaces_;
 };
 
 } // namespace lobe::cli

@@ -114,11 +114,11 @@ void construct_matrix(LayerEmitter& e, const ir::Op& op, size_t first) {
   else
     for (size_t k = 0; k < 16 && k < n; ++k)
       m[k] = e.load_as(op, int(first + k), BaseType::Float, false)[0];
-  if (first == 2) { // values given in a named space: M * (space -> common)
+  if (first == 2) { // values given in a named space: (space -> common) * M, as OSL
     llvm::Value* s = e.spill(values(m));
     llvm::Value* out = e.spill(values(m));
     e.call("lobe_space_matrix", {e.sg(), e.load(op.args[1])[0].v, out});
-    e.call("lobe_mat_mul", {out, s, out});
+    e.call("lobe_mat_mul", {out, out, s});
     m.clear();
     for (llvm::Value* v : e.reload(out, 16)) m.push_back(Dual{v});
   }
@@ -143,7 +143,7 @@ void op_construct(LayerEmitter& e, const ir::Op& op) {
       e.call("lobe_color_from", {e.sg(), e.colors_ptr(), space, out, in});
     } else {
       llvm::Value* m = e.spill(std::vector<llvm::Value*>(16, e.fconst(0)));
-      e.call("lobe_get_matrix", {e.sg(), space, e.string_const("common"), m});
+      e.call("lobe_get_transform", {e.sg(), space, e.string_const("common"), m});
       int kind = dst.type.base == BaseType::Point ? 0 : (dst.type.base == BaseType::Vector ? 1 : 2);
       e.call("lobe_transform", {out, m, in, e.iconst(kind)});
     }

@@ -237,7 +237,7 @@ void op_transform(LayerEmitter& e, const ir::Op& op) {
     m = e.spill(std::vector<llvm::Value*>(16, e.fconst(0)));
     llvm::Value* from = last == 3 ? e.load(op.args[1])[0].v : e.string_const("common");
     llvm::Value* to = e.load(op.args[last - 1])[0].v;
-    e.call("lobe_get_matrix", {e.sg(), from, to, m});
+    e.call("lobe_get_transform", {e.sg(), from, to, m});
   }
   Val x = e.load_as(op, int(last), BaseType::Vector, e.wants_derivs(op.args[0]));
   auto apply = [&](std::vector<llvm::Value*> comps, int k) {

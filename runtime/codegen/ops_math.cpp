@@ -198,12 +198,12 @@ void op_nary(LayerEmitter& e, const ir::Op& op) {
         out = Dual{call_math(e, f->fn, MathForm::Value, {x.v, y.v}), x.dx, x.dy};
       else
         out = binary_dual(e, f->fn, x, y);
-    } else if (o == ir::Opcode::Min)
+    } else if (o == ir::Opcode::Min) // OSL's: x <= y (unordered) ? x : y; a tie gives x
       out = d.select(B.CreateFCmpOLT(y.v, x.v), y, x);
-    else if (o == ir::Opcode::Max)
-      out = d.select(B.CreateFCmpOGT(y.v, x.v), y, x);
-    else if (o == ir::Opcode::Clamp) {
-      Dual lo = d.select(B.CreateFCmpOGT(y.v, x.v), y, x);
+    else if (o == ir::Opcode::Max) // OSL's: x > y (unordered) ? x : y; a tie gives y
+      out = d.select(B.CreateFCmpUGT(x.v, y.v), x, y);
+    else if (o == ir::Opcode::Clamp) { // min(max(x, lo), hi), a tie's derivatives as there
+      Dual lo = d.select(B.CreateFCmpUGT(x.v, y.v), x, y);
       out = d.select(B.CreateFCmpOLT(z.v, lo.v), z, lo);
     } else if (o == ir::Opcode::Mix)
       out = d.add(d.mul(x, d.sub(d.constant(1), z)), d.mul(y, z));

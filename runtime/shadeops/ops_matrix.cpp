@@ -1,9 +1,10 @@
 // Matrix and coordinate-space shadeops. Matrices are 16 floats, row-major, and points are row
 // vectors (OSL): p' = p * M. Named spaces map to "common" through ShaderGlobals::object2common
 // and shader2common (null: identity); "common" and "world" are the identity. The renderer
-// (RendererServices::get_matrix) answers any other name first; without an answer "camera",
-// "screen", "raster" and "NDC" are identity too (documented in docs/runtime.md). An unknown
-// space name is an error and gives the identity.
+// (RendererServices::get_matrix, and get_inverse_matrix for a destination) answers any other
+// name first; without an answer "camera", "screen", "raster" and "NDC" are the identity too,
+// unless the renderer says it has no such defaults (testshade knows them only as destinations).
+// An unknown space name is an error and gives the identity (documented in docs/runtime.md).
 #include "matrix44.h"
 #include "shadeop_decls.h"
 #include "shadeops.h"
@@ -34,7 +35,11 @@ bool space_to_common(const ShaderGlobals* sg, const char* space, float* m) {
   if (sg && sg->context && sg->context->renderer && sg->context->renderer->get_matrix(*sg, s, m))
     return true;
   mat_identity(m);
-  if (s == "camera" || s == "screen" || s == "raster" || s == "NDC" || s == "rgb") return true;
+  bool camera_defaults = !(sg && sg->context && sg->context->renderer) ||
+                         sg->context->renderer->camera_spaces_default_to_identity();
+  if (s == "rgb") return true;
+  if (camera_defaults && (s == "camera" || s == "screen" || s == "raster" || s == "NDC"))
+    return true;
   if (s == "object") {
     if (sg && sg->object2common) std::memcpy(m, sg->object2common, 16 * sizeof(float));
     return true;
@@ -62,22 +67,34 @@ void lobe_mat_div(float* dst, const float* a, const float* b) { lobe::math::mat_
 void lobe_mat_transpose(float* dst, const float* m) { lobe::math::mat_transpose(dst, m); }
 float lobe_mat_det(const float* m) { return lobe::math::mat_det(m); }
 
-// The matrix transforming points from space `from` to space `to`; returns 0 on an unknown name.
+// The matrix transforming points from space `from` to space `to`; returns 0 on an unknown name
+// (reported), whose half of the product is then the identity (OSL's getmatrix).
 int lobe_get_matrix(ShaderGlobals* sg, const char* from, const char* to, float* dst) {
   float a[16], b[16], binv[16];
   bool ok = space_to_common(sg, from, a);
   if (!ok) unknown_space(sg, from);
-  bool ok2 = space_to_common(sg, to, b);
-  if (!ok2) unknown_space(sg, to);
-  // To "common" or "world" (or any space that is the identity): the inversion is skipped and
-  // the identity used (the float inverse would give it too, but with -0 in the translation row);
-  // the product still runs.
-  if (mat_is_identity(b))
-    mat_identity(binv);
-  else
-    mat_invert(binv, b);
+  std::string_view t = to;
+  bool ok2 = true;
+  if (t == "common" || t == "world" || !sg || !sg->context || !sg->context->renderer ||
+      !sg->context->renderer->get_inverse_matrix(*sg, t, binv)) {
+    ok2 = space_to_common(sg, to, b);
+    if (!ok2) unknown_space(sg, to);
+    // To "common" or "world" (or any space that is the identity): the inversion is skipped and
+    // the identity used (the float inverse would give it too, but with -0 in the translation
+    // row); the product still runs.
+    if (mat_is_identity(b))
+      mat_identity(binv);
+    else
+      mat_invert(binv, b);
+  }
   mat_mul(dst, a, binv);
   return ok && ok2;
+}
+
+// transform(from, to, x) and the spaced triple constructors: as lobe_get_matrix, but an unknown
+// name leaves the value as it is (the identity), as OSL.
+void lobe_get_transform(ShaderGlobals* sg, const char* from, const char* to, float* dst) {
+  if (!lobe_get_matrix(sg, from, to, dst)) mat_identity(dst);
 }
 
 // matrix("space"): space -> common.

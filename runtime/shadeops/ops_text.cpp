@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -210,7 +211,11 @@ int lobe_endswith(const char* s, const char* suffix) {
   return m <= n && std::strcmp(s + n - m, suffix) == 0;
 }
 
-int lobe_stoi(const char* s) { return int(std::strtol(s, nullptr, 10)); }
+// A number outside int's range saturates (OSL 1.13.12: stoi("3000000000") is 2147483647).
+int lobe_stoi(const char* s) {
+  long long v = std::strtoll(s, nullptr, 10);
+  return int(std::clamp<long long>(v, INT_MIN, INT_MAX));
+}
 float lobe_stof(const char* s) { return std::strtof(s, nullptr); }
 int lobe_getchar(const char* s, int i) {
   int n = int(std::strlen(s));

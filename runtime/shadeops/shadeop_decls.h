@@ -75,6 +75,7 @@ void lobe_mat_div(float* dst, const float* a, const float* b);
 void lobe_mat_transpose(float* dst, const float* m);
 float lobe_mat_det(const float* m);
 int lobe_get_matrix(lobe::ShaderGlobals* sg, const char* from, const char* to, float* dst);
+void lobe_get_transform(lobe::ShaderGlobals* sg, const char* from, const char* to, float* dst);
 void lobe_space_matrix(lobe::ShaderGlobals* sg, const char* space, float* dst);
 void lobe_transform(float* dst, const float* m, const float* p, int kind);
 void lobe_transformc(lobe::ShaderGlobals* sg, const void* cs, const char* from, const char* to,

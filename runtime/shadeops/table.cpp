@@ -64,6 +64,7 @@ const ShadeOpSymbol kTable[] = {
     LOBE_SHADEOP(lobe_mat_transpose),
     LOBE_SHADEOP(lobe_mat_det),
     LOBE_SHADEOP(lobe_get_matrix),
+    LOBE_SHADEOP(lobe_get_transform),
     LOBE_SHADEOP(lobe_space_matrix),
     LOBE_SHADEOP(lobe_transform),
     LOBE_SHADEOP(lobe_transformc),

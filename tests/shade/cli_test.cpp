@@ -219,6 +219,57 @@ TEST(ShadeCli, PreprocessorOptionsFileNamesAndDiagnosticsAsLobeCompile) {
                                 "            ^~~\n");
 }
 
+// A shader compiled here prints its warnings as oslc prints them (a testsuite run of testshade
+// follows oslc's, and OSL's testsuite records both): `file:line: warning: ...`, an ambiguous
+// call with its candidates; -v shows Lobe's own form (column, source line, notes). Expected:
+// OSL 1.13.12, `oslc lose.osl` and `oslc amb.osl` (then `testshade -g 1 1 lose`: "1" and the
+// closing blank line).
+TEST(ShadeCli, CompilerWarningsPrintAsOslcPrintsThem) {
+  auto dir = scratch_dir("lose.osl",
+                         "shader lose()\n{\n    int d = 1.5;\n    printf(\"%d\\n\", d);\n}\n");
+  const std::string lose = "lose.osl:3: warning: Assignment may lose precision: int d = float\n";
+  EXPECT_EQ(run_in(dir, "-g 1 1 lose"), lose + "1\n\n");
+  EXPECT_EQ(run_in(dir, "-g 1 1 lose.osl"), lose + "1\n\n");
+  EXPECT_NE(run_in(dir, "-v -g 1 1 lose").find("lose.osl:3:13: warning: "), std::string::npos);
+  scratch_dir("amb.osl", "normal func () { return 1; }\nvector func () { return 2; }\n"
+                         "shader amb ()\n{\n    point p = func();\n}\n");
+  EXPECT_EQ(run_in(dir, "-g 1 1 amb"), "amb.osl:5: warning: Ambiguous call to 'func ()'\n"
+                                       "  Chosen function is:\n"
+                                       "    amb.osl:2\tvector func ()\n"
+                                       "  Other candidates are:\n"
+                                       "    amb.osl:1\tnormal func ()\n\n");
+}
+
+// testshade knows its camera spaces ("camera", "screen", "NDC", "raster") only as a transform's
+// destination: as a source each is an unknown space (an error; getmatrix returns 0 with its own
+// half the identity, transform and the spaced constructors leave the value). common -> screen
+// is testshade's matrix exactly (an inverse of its inverse left 1.1e-17 for 0). Expected: OSL
+// 1.13.12, `oslc cs.osl; testshade -g 1 1 cs 2>&1`.
+TEST(ShadeCli, CameraSpacesAreDestinationsOnlyAsInTestshade) {
+  auto dir = scratch_dir(
+      "cs.osl", "shader cs()\n{\n    matrix m = 7;\n"
+                "    int ok = getmatrix(\"camera\", \"object\", m);\n"
+                "    printf(\"%d %g | %g\\n\", ok, m, transform(\"camera\", \"object\", "
+                "point(1, 2, 3)));\n"
+                "    ok = getmatrix(\"common\", \"screen\", m);\n"
+                "    printf(\"%d %g | %g\\n\", ok, m, point(\"raster\", 1, 2, 3));\n}\n");
+  EXPECT_EQ(run_in(dir, "-g 1 1 cs"),
+            "ERROR: Unknown transformation \"camera\"\n"
+            "0 -4.37114e-08 -1 0 0 1 -4.37114e-08 0 0 0 0 1 0 -1 4.37114e-08 0 1 | 1 2 3\n"
+            "ERROR: Unknown transformation \"raster\"\n"
+            "1 1 0 0 0 0 1 0 0 0 0 1.0001 1 0 0 -0.10001 0 | 1 2 3\n\n");
+}
+
+// The layer named after a shader given as a file is the name without folder or extension
+// (OSL 1.13.12: `testshade -g 1 1 gac.oso` prints gac_0 for getattribute("shader:layername")).
+TEST(ShadeCli, LayerNamesDropTheExtension) {
+  auto dir = scratch_dir("gac.osl", "shader gac()\n{\n    string s;\n"
+                                    "    getattribute(\"shader:layername\", s);\n"
+                                    "    printf(\"%s\\n\", s);\n}\n");
+  EXPECT_EQ(run_in(dir, "-g 1 1 gac.oso"), "gac_0\n\n");
+  EXPECT_EQ(run_in(dir, "-g 1 1 gac.osl"), "gac_0\n\n");
+}
+
 // --colorspace sets the material's colour space. Expected: OSL 1.13.12,
 //   oslc csli.osl; stdbuf -oL testshade [--colorspace NAME] csli 2>&1; echo $?
 // (testshade's closing blank line included): an unknown name (names are case-sensitive) is

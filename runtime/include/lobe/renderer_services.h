@@ -97,6 +97,19 @@ public:
     return false;
   }
 
+  // The matrix from "common" to the named space, asked first when the space is a transform's
+  // destination (OSL's get_inverse_matrix by name). Without an answer Lobe inverts get_matrix's.
+  virtual bool get_inverse_matrix(const ShaderGlobals& sg, std::string_view space,
+                                  float* m) const {
+    (void)sg, (void)space, (void)m;
+    return false;
+  }
+
+  // Whether the camera spaces that neither method above answers are the identity (true, Lobe's
+  // default) or unknown spaces, an error (false: OSL's testshade, which knows them only as
+  // destinations).
+  virtual bool camera_spaces_default_to_identity() const { return true; }
+
   // trace(P, R, ...): casts a ray from P along the direction of R (R need not be unit length)
   // with the differentials of both; true when it hits something between opt.mindist and
   // opt.maxdist, with `hit`'s hitdist, P, N, Ng, u, v filled (Lobe sets `traced` and `hit`).
