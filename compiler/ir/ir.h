@@ -139,6 +139,10 @@ struct Op {
   uint32_t written_mask = 0; // bit i set: args[i] is written by this op
   std::vector<int> jumps;    // op indices (br: {target}; cbr: {if_true, if_false})
   SourceLoc loc;
+  // An `assign` the optimiser made of an arithmetic identity (x * 1, x + 0 become x), not a copy
+  // as written: OSL's layer elision does not take it for a copy of a global (group_build.cpp).
+  // Not part of the IR text.
+  bool identity_copy = false;
 
   bool writes(int argi) const { return (written_mask >> argi) & 1u; }
 };

@@ -302,12 +302,13 @@ int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
   for (size_t i = 0; i < npos; ++i)
     if (!is_out[i]) args.push_back(rvalue(c->args[i].get()));
   // A texture lookup's "alpha" keyword names a variable the lookup writes (the channel after
-  // the result's).
+  // the result's), and so does "errormessage" (why it failed, or "").
   bool texture = *code == ir::Opcode::Texture || *code == ir::Opcode::Texture3d ||
                  *code == ir::Opcode::Environment;
   for (const ast::KeywordArg& k : c->keywords) {
     args.push_back(ir::intern_string(sh_, k.name));
-    if (texture && k.name == "alpha" && k.value->lvalue && args.size() < 32) {
+    if (texture && (k.name == "alpha" || k.name == "errormessage") && k.value->lvalue &&
+        args.size() < 32) {
       LRef r = lvalue(k.value)[0];
       int s = r.whole() ? r.sym : temp(irtype(k.value->type, c));
       if (!r.whole()) copy_back.push_back({r, s});

@@ -71,6 +71,7 @@ void Folder::make_assign(Op& op, int dst, int src) {
   op.opcode = Opcode::Assign;
   op.args = {dst, src};
   op.written_mask = 1;
+  op.identity_copy = false;
   op.jumps.clear();
   changed_ = true;
 }
@@ -135,10 +136,10 @@ bool Folder::fold_algebraic(Op& op) {
   if (const_all(sh_.symbols[k], 0)) {
     if (o == Opcode::Mul) return make_assign(op, op.args[0], intern_int(sh_, 0)), true;
     if (o == Opcode::Add || (o == Opcode::Sub && k_second))
-      return make_assign(op, op.args[0], x), true;
+      return make_assign(op, op.args[0], x), op.identity_copy = true, true;
   } else if (const_all(sh_.symbols[k], 1)) {
     if (o == Opcode::Mul || (o == Opcode::Div && k_second))
-      return make_assign(op, op.args[0], x), true;
+      return make_assign(op, op.args[0], x), op.identity_copy = true, true;
   }
   return false;
 }

@@ -306,7 +306,8 @@ bool Shade::resolve_outputs() {
                            channel_names(o.type.elements() * o.type.components()));
   for (const Output& o : outputs_)
     if (o.spec.file != "null")
-      std::printf("Output %s to %s\n", o.spec.var.c_str(), o.spec.file.c_str());
+      std::printf("Output %s%s%s to %s\n", o.spec.layer.c_str(), o.spec.layer.empty() ? "" : ".",
+                  o.spec.var.c_str(), o.spec.file.c_str()); // as named: `-o layer.var file`
   for (const Output& o : outputs_)
     if (o.closure)
       std::printf("No output copy for closure color %s because of type mismatch vs "

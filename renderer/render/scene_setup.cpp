@@ -55,28 +55,8 @@ void merge_messages(const ShaderMessages& from, ShaderMessages& into) {
 }
 
 std::vector<std::string> RenderScene::describe(const ShaderMessages& all) const {
-  // OpenImageIO explains a failed texture once; later lookups of the same file only say
-  // "cannot read": those are counted with the explained line.
-  ShaderMessages messages = all;
-  const std::string vague = ": cannot read";
-  for (auto it = messages.begin(); it != messages.end();) {
-    const std::string& t = it->first.second;
-    if (t.size() > vague.size() && t.compare(t.size() - vague.size(), vague.size(), vague) == 0) {
-      std::string prefix = t.substr(0, t.size() - vague.size() + 2); // up to ": "
-      auto other = messages.lower_bound({it->first.first, prefix});
-      auto same = [&](ShaderMessages::iterator o) {
-        return o != messages.end() && o->first.first == it->first.first &&
-               o->first.second.rfind(prefix, 0) == 0;
-      };
-      if (other == it) ++other;
-      if (same(other)) {
-        other->second += it->second;
-        it = messages.erase(it);
-        continue;
-      }
-    }
-    ++it;
-  }
+  // (A texture that cannot be opened is told once, by its first failed lookup, as in OSL.)
+  const ShaderMessages& messages = all;
   // Per material: the first kMaxMessageLines distinct lines (each with its count), then one
   // summary line for the rest.
   std::vector<std::string> lines;

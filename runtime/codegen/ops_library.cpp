@@ -687,7 +687,14 @@ void op_gettextureinfo(LayerEmitter& e, const ir::Op& op) {
   llvm::Value* t = udim ? e.load_as(op, 4, BaseType::Float, false)[0].v : e.fconst(0);
   llvm::Value* r =
       e.call("lobe_gettextureinfo",
-             {e.sg(), e.env_ptr(), e.load(op.args[2])[0].v, e.iconst(udim ? 1 : 0), s, t,
+             {e.sg(), e.env_ptr(),
+              // OSL words a failure by how it looked the file up: a name constant at -O2 as
+              // the shader's error, any other through its RendererServices (null here).
+              is_const_string(e.arg(op, 2)) && e.group().opt_level >= 2
+                  ? e.string_const(e.shader().name)
+                  : llvm::ConstantPointerNull::get(e.b().getPtrTy()),
+              e.load(op.args[2])[0].v,
+              e.iconst(udim ? 1 : 0), s, t,
               e.load(op.args[udim ? 5 : 3])[0].v,
               e.iconst(LayerEmitter::type_code(e.sym(dest).type)), e.storage_address(dest)});
   if (e.wants_derivs(dest)) // texture information is constant over the surface
@@ -727,6 +734,8 @@ llvm::Value* texture_args(LayerEmitter& e, const ir::Op& op, size_t first) {
   B.CreateStore(e.iconst(0), at(offsetof(TextureArgs, has_missing)));
   for (size_t k = 0; k < 4; ++k)
     B.CreateStore(e.fconst(0), at(offsetof(TextureArgs, missing) + 4 * k));
+  B.CreateStore(llvm::ConstantPointerNull::get(B.getPtrTy()),
+                at(offsetof(TextureArgs, errormessage)));
   for (size_t i = first; i + 1 < op.args.size(); i += 2) {
     std::string kw = const_string(e.arg(op, int(i)));
     int v = int(i + 1);
@@ -762,6 +771,8 @@ llvm::Value* texture_args(LayerEmitter& e, const ir::Op& op, size_t first) {
                     at(offsetof(TextureArgs, missing) + 4 * size_t(std::min(channels, 3))));
       B.CreateStore(e.iconst(1), at(offsetof(TextureArgs, has_missing)));
     }
+    else if (kw == "errormessage" && op.writes(v)) // the lookup writes the string there
+      B.CreateStore(e.storage_address(op.args[size_t(v)]), at(offsetof(TextureArgs, errormessage)));
     // "alpha": the lookup's extra channel (alpha_operand); "time", "subimage": ignored
   }
   return block;

@@ -292,8 +292,9 @@ std::vector<ir::ConstValue> convert_const(const std::vector<ir::ConstValue>& v,
 }
 
 // What OSL's -O2 knows of an upstream layer's output param at the end of the layer: written by
-// one `assign` of a constant or of a shading global (that the layer never writes), with no
-// jump before it, or never written and holding a constant default. `global` names the global
+// one `assign` of a constant or of a shading global (that the layer never writes; a copy as
+// written, not one the optimiser made of x * 1 or x + 0, which OSL keeps), with no jump before
+// it, or never written and holding a constant default. `global` names the global
 // of a copy; else `value` is the constant (in the param's type). Neither: not known.
 struct KnownOutput {
   std::vector<ir::ConstValue> value;
@@ -332,7 +333,7 @@ KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool run
   const ir::Symbol& src = sh.symbols[size_t(op.args[1])];
   if (src.kind == SymKind::Const) {
     k.value = convert_const(src.init, src.type, s.type);
-  } else if (src.kind == SymKind::Global && !written_globals.count(op.args[1]) &&
+  } else if (src.kind == SymKind::Global && !op.identity_copy && !written_globals.count(op.args[1]) &&
              !src.type.is_array() && !s.type.is_array() &&
              src.type.components() == s.type.components() && same_kind(src.type, s.type)) {
     k.global = src.name;

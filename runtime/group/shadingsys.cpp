@@ -157,6 +157,7 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   b.plan.env = env.get();
   b.plan.colors = colors();
   b.plan.fast_math = options.fast_math;
+  b.plan.opt_level = options.opt_level;
   b.plan.max_loop_iterations = options.max_loop_iterations;
   b.plan.debug_nan = options.debug_nan;
   b.plan.debug_uninit = options.debug_uninit;

@@ -17,6 +17,7 @@
 #include <mutex>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -40,7 +41,11 @@ struct Textures {
   uint64_t id = 0; // unique over the process: a thread's cached records are matched by it
   std::mutex mutex;
   std::vector<Perthread*> threads;                       // every record created, under `mutex`
-  std::unordered_map<std::string, std::string> verdicts; // file -> refusal ("" fits), `mutex`
+  // file -> refusal ("" fits), `mutex`. A file that cannot be opened is explained once, by
+  // the first lookup or gettextureinfo that fails on it (as OSL prints it once): its refusal is
+  // then kNoExplanation. `explained`: files whose failure was told, under `mutex`.
+  std::unordered_map<std::string, std::string> verdicts;
+  std::unordered_set<std::string> explained;
 };
 
 Textures* textures_of(void* t) { return static_cast<Textures*>(t); }
@@ -122,12 +127,18 @@ thread_local std::string t_refused;
 // its header is read and an untiled image that cannot fit in the memory (lobe/memory.h) is
 // refused, with the figure, instead of failing an allocation inside OpenImageIO (which throws
 // through the shader and aborts the process).
-std::string texture_verdict(OIIO::TextureSystem* ts, Handle* h, Perthread* info, const char* file) {
-  // Null for a file that cannot be opened: the lookup then fails with OpenImageIO's error.
+std::string texture_verdict(OIIO::TextureSystem* ts, Handle* h, Perthread* info, const char* file,
+                            bool* unopened) {
+  // Null for a file that cannot be opened: refused, with OpenImageIO's error as OSL's texture
+  // lookup words it (`Could not open file "x"`, without imagespec's `Invalid image file "x": `).
   const OIIO::ImageSpec* spec = h ? ts->imagespec(h, info) : nullptr;
   if (!spec) {
-    ts->geterror(); // cleared: the lookup reports it as its own
-    return "";
+    std::string err = ts->geterror();
+    err = err.substr(0, err.find('\n'));
+    std::string prefix = "Invalid image file \"" + std::string(file) + "\": ";
+    if (err.rfind(prefix, 0) == 0) err.erase(0, prefix.size());
+    *unopened = true;
+    return err.empty() ? kNoExplanation : err; // empty: OpenImageIO explained it before
   }
   // OpenImageIO reports an untiled file as one tile the size of the image.
   if (spec->tile_width > 0 && (spec->tile_width < spec->width || spec->tile_height < spec->height))
@@ -171,9 +182,11 @@ Lookup find(Textures* t, const char* file) {
     if (it != t->verdicts.end()) known = true, refusal = it->second;
   }
   if (!known) { // read the header outside the lock; two threads may both read it
-    refusal = texture_verdict(t->ts, l.handle, l.info, file);
+    bool unopened = false;
+    refusal = texture_verdict(t->ts, l.handle, l.info, file, &unopened);
     std::lock_guard<std::mutex> lock(t->mutex);
-    t->verdicts.emplace(file, refusal);
+    if (unopened && !t->explained.insert(file).second) refusal = kNoExplanation;
+    t->verdicts.emplace(file, unopened ? std::string(kNoExplanation) : refusal);
   }
   if (!refusal.empty()) {
     t_refused = std::move(refusal);
@@ -234,6 +247,8 @@ int texture_info(void* tv, const char* file, bool udim, float s, float t, const 
     if (!h) return 0; // no tile at (s, t): not an error, as in OSL
   }
   if (h && ts->get_texture_info(h, info, 0, what, type, val)) return 1;
+  std::lock_guard<std::mutex> lock(x->mutex); // a texture lookup of it later says no more
+  x->explained.insert(name.string());
   return -1;
 }
 

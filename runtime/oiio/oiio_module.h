@@ -53,6 +53,9 @@ struct Api {
   // is written as a const char* of interned text.
   int (*texture_info)(void* ts, const char* file, bool udim, float s, float t, const char* query,
                       int base, int arraylen, void* val);
+  // Why the last failed lookup on this thread failed; kNoExplanation for a file that could not
+  // be opened and whose failure was explained before (OpenImageIO explains one once, so OSL
+  // prints it once and gives later "errormessage" outputs "unknown").
   std::string (*texture_error)(void* ts);
   // Images: "" on success, else "path: why".
   bool (*can_write)(const std::string& path);
@@ -63,6 +66,7 @@ struct Api {
 };
 
 constexpr int kAbi = 1;
+inline constexpr const char* kNoExplanation = "\n";
 
 // The loaded module (loaded once, thread-safe), or null with `why` set.
 const Api* module(std::string* why = nullptr);

@@ -116,8 +116,9 @@ void lobe_setmessage(lobe::ShaderGlobals* sg, const char* name, int code, const 
                      const char* file, int line, int layer);
 int lobe_getmessage(lobe::ShaderGlobals* sg, const char* source, const char* name, int code,
                     int derivs, void* dest, const char* file, int line, int layer);
-int lobe_gettextureinfo(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* file,
-                        int udim, float s, float t, const char* query, int code, void* dest);
+int lobe_gettextureinfo(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env,
+                        const char* shader, const char* file, int udim, float s, float t,
+                        const char* query, int code, void* dest);
 int lobe_trace(lobe::ShaderGlobals* sg, const float* p, const float* dpdx, const float* dpdy,
                const float* r, const float* drdx, const float* drdy, const lobe::TraceOptions* opt);
 void lobe_texture3d(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* file,

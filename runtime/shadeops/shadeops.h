@@ -49,6 +49,9 @@ struct TextureArgs {
   int32_t has_missing = 0;
   float missing[4] = {0, 0, 0,
                       0}; // "missingcolor": used (without an error) when the file is missing
+  // "errormessage": the string the lookup writes (null: none): "" when it succeeds, else why it
+  // failed (then no error is reported), as OSL.
+  const char** errormessage = nullptr;
 };
 
 // Noise kinds for lobe_noise (noise("name", ...) and the named functions).

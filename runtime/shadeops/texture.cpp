@@ -40,13 +40,26 @@ void* texsys(RuntimeEnv* env, const lobe::oiio::Api*& api, std::string& why) {
   return env->texture_system;
 }
 
-// After a failed lookup: the shader's missing colour, or zeros and an error.
-void missing(ShaderGlobals* sg, std::string err, const TextureArgs* a, const char* file, int n,
-             float* out) {
+// After a failed lookup: the shader's missing colour, or zeros and an error in OSL's words
+// (`[RendererServices::texture] Could not open file "x.exr"`; nothing for a file OpenImageIO
+// explained before), or the reason in the "errormessage" output instead ("unknown" when there
+// is none).
+void missing(ShaderGlobals* sg, RuntimeEnv* env, std::string err, const TextureArgs* a,
+             const char* file, int n, float* out) {
   for (int c = 0; c < n; ++c) out[c] = a->has_missing ? a->missing[std::min(c, 3)] : 0.0f;
-  if (a->has_missing || !sg || !sg->context) return;
-  sg->context->error("texture \"" + std::string(file) +
-                     "\": " + (err.empty() ? "cannot read" : err));
+  bool explained = err == lobe::oiio::kNoExplanation;
+  if (err.empty()) err = "Could not open file \"" + std::string(file) + "\"";
+  if (a->errormessage) {
+    *a->errormessage = env->strings.intern(explained ? "unknown" : err);
+    return;
+  }
+  if (a->has_missing || explained || !sg || !sg->context) return;
+  sg->context->error("[RendererServices::texture] " + err);
+}
+
+// After a lookup that succeeded: an "errormessage" output is "".
+void found(RuntimeEnv* env, const TextureArgs* a) {
+  if (a->errormessage) *a->errormessage = env->strings.intern("");
 }
 
 } // namespace
@@ -60,8 +73,10 @@ void lobe_texture(ShaderGlobals* sg, RuntimeEnv* env, const char* file, float s,
   const lobe::oiio::Api* api;
   std::string why;
   void* ts = texsys(env, api, why);
-  if (!ts || !api->texture(ts, file, a, s, t, dsdx, dtdx, dsdy, dtdy, n, out, dds, ddt)) {
-    missing(sg, ts ? api->texture_error(ts) : why, a, file, n, out);
+  if (ts && api->texture(ts, file, a, s, t, dsdx, dtdx, dsdy, dtdy, n, out, dds, ddt)) {
+    found(env, a);
+  } else {
+    missing(sg, env, ts ? api->texture_error(ts) : why, a, file, n, out);
     if (dds) std::fill(dds, dds + n, 0.0f);
     if (ddt) std::fill(ddt, ddt + n, 0.0f);
   }
@@ -74,8 +89,10 @@ void lobe_texture3d(ShaderGlobals* sg, RuntimeEnv* env, const char* file, const 
   const lobe::oiio::Api* api;
   std::string why;
   void* ts = texsys(env, api, why);
-  if (!ts || !api->texture3d(ts, file, a, p, dpdx, dpdy, dpdz, n, out))
-    missing(sg, ts ? api->texture_error(ts) : why, a, file, n, out);
+  if (ts && api->texture3d(ts, file, a, p, dpdx, dpdy, dpdz, n, out))
+    found(env, a);
+  else
+    missing(sg, env, ts ? api->texture_error(ts) : why, a, file, n, out);
 }
 
 // As lobe_texture3d, for a direction r; the third derivative is unused (an environment is a
@@ -86,17 +103,21 @@ void lobe_environment(ShaderGlobals* sg, RuntimeEnv* env, const char* file, cons
   const lobe::oiio::Api* api;
   std::string why;
   void* ts = texsys(env, api, why);
-  if (!ts || !api->environment(ts, file, a, r, drdx, drdy, n, out))
-    missing(sg, ts ? api->texture_error(ts) : why, a, file, n, out);
+  if (ts && api->environment(ts, file, a, r, drdx, drdy, n, out))
+    found(env, a);
+  else
+    missing(sg, env, ts ? api->texture_error(ts) : why, a, file, n, out);
 }
 
 // gettextureinfo(file, [s, t,] query, dest): OIIO's get_texture_info ("exists", "resolution",
 // "channels", "type", "textureformat", "datawindow", "averagecolor", any image metadata...)
 // into `dest` of type `code` (typed_value.h). With `udim`, a UDIM file name (`tex.<UDIM>.tx`)
 // resolves to its tile at (s, t) first, as OSL does; other names ignore s and t. 1 when
-// answered; a failure reports OIIO's error, as OSL does.
-int lobe_gettextureinfo(ShaderGlobals* sg, RuntimeEnv* env, const char* file, int udim, float s,
-                        float t, const char* query, int code, void* dest) {
+// answered; a failure reports OIIO's error as OSL does: `Shader error [shader]: Invalid image
+// file ...` with `shader` (a file name constant at -O2, which OSL looks up while compiling), else
+// `[RendererServices::get_texture_info] ...`.
+int lobe_gettextureinfo(ShaderGlobals* sg, RuntimeEnv* env, const char* shader, const char* file,
+                        int udim, float s, float t, const char* query, int code, void* dest) {
   using namespace lobe::shadeops;
   int base = code_base(code);
   if (base < 0 || base > int(lobe::DataType::Base::String))
@@ -110,7 +131,8 @@ int lobe_gettextureinfo(ShaderGlobals* sg, RuntimeEnv* env, const char* file, in
     if (r >= 0) return r == 1;
     std::string err = ts ? api->texture_error(ts) : why;
     if (!err.empty() && sg && sg->context)
-      sg->context->error("[RendererServices::get_texture_info] " + err);
+      sg->context->error(shader ? "Shader error [" + std::string(shader) + "]: " + err
+                                : "[RendererServices::get_texture_info] " + err);
     return false;
   });
 }

@@ -260,6 +260,24 @@ TEST(ShadeCli, CameraSpacesAreDestinationsOnlyAsInTestshade) {
             "1 1 0 0 0 0 1 0 0 0 0 1.0001 1 0 0 -0.10001 0 | 1 2 3\n\n");
 }
 
+// matrix("space", 16 values) is space -> common times the values, and the kind of a mixed
+// triple sum decides its transform (point + vector is a point, which moves with the
+// translation). Expected: OSL 1.13.12, `oslc ms.osl; testshade -g 1 1 ms`.
+TEST(ShadeCli, SpacedMatrixAndMixedTripleTransforms) {
+  auto dir = scratch_dir(
+      "ms.osl", "shader ms()\n{\n"
+                "    printf(\"%g\\n\", matrix(\"shader\", 2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, "
+                "0, 1));\n"
+                "    printf(\"%g\\n\", matrix(\"object\", 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 0, "
+                "0, 1));\n"
+                "    point p = point(1, 2, 3);\n    vector d = vector(0, 0, 1);\n"
+                "    printf(\"%g | %g\\n\", transform(\"object\", p + d), transform(\"object\", "
+                "d + p));\n}\n");
+  EXPECT_EQ(run_in(dir, "-g 1 1 ms"), "1.41421 0.707107 0 0 -1.41421 0.707107 0 0 0 0 1 0 2 0 0 1\n"
+                                      "-4.37114e-08 1 0 0 -1 -4.37114e-08 0 0 0 0 1 0 5 1 0 1\n"
+                                      "1 -1 4 | 1 -1 4\n\n");
+}
+
 // The layer named after a shader given as a file is the name without folder or extension
 // (OSL 1.13.12: `testshade -g 1 1 gac.oso` prints gac_0 for getattribute("shader:layername")).
 TEST(ShadeCli, LayerNamesDropTheExtension) {
@@ -398,6 +416,9 @@ TEST(ShadeCli, UpstreamLayersOfKnownValueAreElidedAtO2) {
             "Connect A.o to B.i\nreader i 3\nreader i 3\n\n");
   EXPECT_EQ(run("-O2 " + group("elide_global", "o")),
             "Connect A.o to B.i\nreader i 0\nreader i 1\n\n");
+  // A copy of a global that only the optimiser made (u * scale, scale 1) keeps the layer.
+  EXPECT_EQ(both(group("elide_identity", "o")), "Connect A.o to B.i\nelide_identity ran\n"
+                                                "reader i 0\nelide_identity ran\nreader i 1\n\n");
   // A computed value, or one assigned in a branch, keeps the layer at every level.
   EXPECT_EQ(both(group("elide_computed", "o")), "Connect A.o to B.i\nelide_computed ran\n"
                                                 "reader i 1\nelide_computed ran\nreader i 3\n\n");
