@@ -185,6 +185,12 @@ TEST(ShadeCli, WritesOutputImage) {
   EXPECT_TRUE(std::filesystem::exists(file));
   EXPECT_GT(std::filesystem::file_size(file), 0u);
   std::filesystem::remove(file);
+  // An output named with its layer is announced so (OSL 1.13.12: `testshade ... -o a.fout
+  // f.exr` prints `Output a.fout to f.exr`).
+  out = run("-g 1 1 -layer A elide_computed -layer B elide_reader -connect A o B i -o A.o " +
+            file.string());
+  EXPECT_NE(out.find("\nOutput A.o to " + file.string() + "\n"), std::string::npos) << out;
+  std::filesystem::remove(file);
 }
 
 // Runs `lobe shade args` in directory `dir` (stdout and stderr together).
