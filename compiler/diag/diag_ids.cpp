@@ -97,7 +97,7 @@ const Row kTable[] = {
     ROW(warn_write_nonoutput_param_arg, Warning,
         "cannot write to non-output parameter \"%0\", as passed to function %1() as arg %2 "
         "(output parameter \"%3\")"),
-    ROW(err_write_readonly_global, Error, "cannot write to global '%0' in %1"),
+    ROW(err_write_nonoutput_param, Error, "cannot write to non-output parameter \"%0\""),
     ROW(err_output_arg_not_lvalue, Error,
         "argument %0 of '%1' is an output parameter and needs a writable variable"),
     ROW(err_output_arg_type, Error,

@@ -89,7 +89,7 @@ enum class DiagId : uint16_t {
   err_not_assignable,
   warn_write_nonoutput_param,
   warn_write_nonoutput_param_arg,
-  err_write_readonly_global,
+  err_write_nonoutput_param,
   err_output_arg_not_lvalue,
   err_output_arg_type,
   err_missing_return,

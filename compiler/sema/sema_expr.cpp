@@ -321,13 +321,18 @@ ast::VarDecl* Sema::root_var(ast::Expr* e) const {
   return nullptr;
 }
 
-// Function parameters are read-only unless `output`; globals depend on the shader type.
-// A function's parameters are references to the caller's values: writing one that is not
-// `output` reaches the caller all the same, with oslc's warning (none when it is written as the
-// output argument of a call, as oslc gives none).
+// As oslc: a shader parameter that is not `output` cannot be written (an error); a function's
+// parameters are references to the caller's values, so writing one that is not `output`
+// reaches the caller all the same, with oslc's warning (none when it is written as the output
+// argument of a call, as oslc gives none); the shading globals but P, I, N and Ci are
+// non-output parameters to oslc too: written with that warning, in any kind of shader.
 bool Sema::check_writable(ast::Expr* target, SourceRange where, bool output_arg) {
   ast::VarDecl* v = root_var(target);
   if (!v) return true;
+  if (v->storage == ast::Storage::ShaderParam && !v->is_output) {
+    error(DiagId::err_write_nonoutput_param, where, {v->name});
+    return false;
+  }
   if (v->storage == ast::Storage::FuncParam && !v->is_output) {
     v->written = true; // lowering passes it by reference (Lowerer::call_user)
     // oslc does not warn for an array element either.
@@ -336,21 +341,8 @@ bool Sema::check_writable(ast::Expr* target, SourceRange where, bool output_arg)
     if (!output_arg && !element) error(DiagId::warn_write_nonoutput_param, where, {v->name});
     return true;
   }
-  if (v->storage == ast::Storage::Global) {
-    bool ok = v->writable;
-    if (ok && shader_) {
-      auto st = shader_->shader_type;
-      if (st == ast::ShaderType::Displacement) ok = v->name == "P" || v->name == "N";
-      if (st == ast::ShaderType::Volume) ok = v->name == "Ci";
-    }
-    if (!ok) {
-      std::string kind =
-          shader_ ? "a shader of type '" + std::string(ast::to_string(shader_->shader_type)) + "'"
-                  : "a shader";
-      error(DiagId::err_write_readonly_global, where, {v->name, kind});
-      return false;
-    }
-  }
+  if (v->storage == ast::Storage::Global && !v->writable && !output_arg)
+    error(DiagId::warn_write_nonoutput_param, where, {v->name});
   return true;
 }
 
