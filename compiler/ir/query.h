@@ -36,4 +36,9 @@ struct DescribeOptions {
 
 std::string describe(const Shader& shader, const DescribeOptions& options = {});
 
+// The parameters as OSL's OSLQuery lists a layer's (testshade --oslquery): a line each,
+// `<tab>[output ]type name` in declaration order, a struct (and a struct nested in it)
+// announced as `unknown name` before its fields `type name.field`, a closure a `pointer`.
+std::string oslquery_params(const Shader& shader);
+
 } // namespace lobe::ir

@@ -14,6 +14,7 @@
 
 #include "grid.h"
 #include "image.h"
+#include "ir/query.h"
 #include "lobe/memory.h"
 #include "lobe/shadingsys.h"
 #include "shade_args.h"
@@ -156,19 +157,25 @@ void print_diagnostics(const DiagnosticList& diags, bool notes, const std::strin
   if (connect_error && !group.empty()) std::fprintf(stderr, "        group: %s\n", group.c_str());
 }
 
-// The group as -v prints it (in OSL's group-text form).
-void print_group(const ShaderGroup& g) {
+// The group as -v prints it (in OSL's group-text form), each layer's shader as it was named;
+// with `params` (--oslquery), each layer's parameters under its name.
+void print_group(const ShaderGroup& g, const std::vector<std::string>& shaders,
+                 const std::vector<std::string>* params) {
   std::printf("Shader group:\n---\n");
-  for (const ShaderGroup::Layer& l : g.layers) {
+  for (size_t k = 0; k < g.layers.size(); ++k) {
+    const ShaderGroup::Layer& l = g.layers[k];
     for (const InstanceValue& v : l.values)
       std::printf("param %s %s %s ;\n", v.type.c_str(), v.name.c_str(), v.value.c_str());
-    std::printf("shader %s %s ;\n", l.shader.c_str(), l.name.c_str());
+    std::printf("shader %s %s ;\n", shaders[k].c_str(), l.name.c_str());
   }
   for (const Connection& c : g.connections)
     std::printf("connect %s.%s %s.%s ;\n", c.src_layer.c_str(), c.src_param.c_str(),
                 c.dst_layer.c_str(), c.dst_param.c_str());
   std::printf("\n---\n\nShader group \"%s\" layers are:\n", g.name.c_str());
-  for (const ShaderGroup::Layer& l : g.layers) std::printf("    %s\n", l.name.c_str());
+  for (size_t k = 0; k < g.layers.size(); ++k) {
+    std::printf("    %s\n", g.layers[k].name.c_str());
+    if (params) std::printf("%s", (*params)[k].c_str());
+  }
   std::printf("\n");
 }
 
@@ -502,8 +509,10 @@ int Shade::run() {
   ShaderGroup& g = job_.group;
   // A shader named without a path resolves on the search path here, so that one found in the
   // working directory is `x.osl` in diagnostics and __FILE__ (as for lobe compile and OSL).
+  std::vector<std::string> named; // as given (x.oso names x), for -v
   for (ShaderGroup::Layer& l : g.layers) {
     l.shader = shader_name(l.shader);
+    named.push_back(l.shader);
     std::string p = group::find_shader_file(l.shader, ss_.options());
     if (p.rfind("./", 0) == 0) p.erase(0, 2);
     if (!p.empty()) l.shader = p;
@@ -511,7 +520,18 @@ int Shade::run() {
   for (const ShadeOutput& o : job_.outputs)
     g.renderer_outputs.push_back(o.layer.empty() ? o.var : o.layer + "." + o.var);
   for (const std::string& e : job_.entry_layers) g.entry_layers.push_back(e);
-  if (job_.verbose || job_.oslquery) print_group(g);
+  if (job_.verbose || job_.oslquery) {
+    std::vector<std::string> params; // --oslquery: each layer's, as OSLQuery lists them
+    for (const ShaderGroup::Layer& l : g.layers) {
+      DiagnosticList d;
+      CompileStats stats;
+      std::optional<ir::Shader> sh =
+          job_.oslquery ? group::compile_shader_file(l.shader, ss_.options(), d, stats)
+                        : std::nullopt;
+      params.push_back(sh ? ir::oslquery_params(*sh) : "");
+    }
+    print_group(g, named, job_.oslquery ? &params : nullptr);
+  }
   // Ctrl-C from here on: compiling finishes, then nothing is shaded; shading stops promptly.
   std::signal(SIGINT, on_shade_sigint);
   if (!compile(g, mat_)) return 1;

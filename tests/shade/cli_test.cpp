@@ -284,6 +284,16 @@ TEST(ShadeCli, SpacedMatrixAndMixedTripleTransforms) {
                                       "1 -1 4 | 1 -1 4\n\n");
 }
 
+// --oslquery lists each layer's parameters as OSLQuery does, under the group as -v prints it
+// (the shader as it was named). Expected: OSL 1.13.12, `oslc connect_struct_src.osl;
+// testshade -g 1 1 --oslquery -layer A connect_struct_src`.
+TEST(ShadeCli, OslqueryListsTheLayersParameters) {
+  EXPECT_EQ(run_here("-g 1 1 --oslquery -layer A connect_struct_src"),
+            "Shader group:\n---\nshader connect_struct_src A ;\n\n---\n\n"
+            "Shader group \"unnamed_group_1\" layers are:\n    A\n\toutput unknown s\n"
+            "\toutput float s.a\n\toutput color s.c\n\n\n");
+}
+
 // The layer named after a shader given as a file is the name without folder or extension
 // (OSL 1.13.12: `testshade -g 1 1 gac.oso` prints gac_0 for getattribute("shader:layername")).
 TEST(ShadeCli, LayerNamesDropTheExtension) {
