@@ -520,6 +520,39 @@ int Shade::run() {
   for (const ShadeOutput& o : job_.outputs)
     g.renderer_outputs.push_back(o.layer.empty() ? o.var : o.layer + "." + o.var);
   for (const std::string& e : job_.entry_layers) g.entry_layers.push_back(e);
+  // --entryoutput: as testshade, an output the group keeps: a layer's output parameter of that
+  // name that a connection reads or the renderer reads (-o; any, at -O0, where nothing is
+  // optimised away). The names found are announced after compiling; the first not found stops
+  // there ("Entry output NAME not found. Abording.", exit status 1).
+  std::string entry_outputs = "Entry outputs:", missing_output;
+  if (!job_.entry_outputs.empty()) {
+    std::vector<std::optional<ir::Shader>> shaders;
+    for (const ShaderGroup::Layer& l : g.layers) {
+      DiagnosticList d;
+      CompileStats stats;
+      shaders.push_back(group::compile_shader_file(l.shader, ss_.options(), d, stats));
+    }
+    for (const std::string& name : job_.entry_outputs) {
+      bool kept = false;
+      for (size_t k = 0; k < g.layers.size() && !kept; ++k) {
+        int si = shaders[k] ? shaders[k]->find_symbol(name) : -1;
+        if (si < 0 || shaders[k]->symbols[size_t(si)].kind != ir::SymKind::OutputParam) continue;
+        const std::string& layer = g.layers[k].name;
+        kept = ss_.options().opt_level == 0;
+        for (const Connection& c : g.connections)
+          kept = kept || (c.src_layer == layer &&
+                          (c.src_param == name || c.src_param.rfind(name + ".", 0) == 0 ||
+                           c.src_param.rfind(name + "[", 0) == 0));
+        for (const std::string& r : g.renderer_outputs)
+          kept = kept || r == name || r == layer + "." + name;
+      }
+      if (!kept) {
+        missing_output = name;
+        break;
+      }
+      entry_outputs += " " + name;
+    }
+  }
   if (job_.verbose || job_.oslquery) {
     std::vector<std::string> params; // --oslquery: each layer's, as OSLQuery lists them
     for (const ShaderGroup::Layer& l : g.layers) {
@@ -539,6 +572,7 @@ int Shade::run() {
     std::fprintf(stderr, "lobe shade: interrupted (Ctrl-C) while compiling; nothing shaded\n");
     return 130;
   }
+  if (job_.outputs_given) std::printf("\n");
   if (!job_.entry_layers.empty()) {
     std::string line = "Entry layers:";
     for (const std::string& e : job_.entry_layers) {
@@ -554,8 +588,14 @@ int Shade::run() {
     }
     std::printf("%s\n", line.c_str());
   }
-  if (job_.outputs_given) std::printf("\n");
-  if (!resolve_outputs()) return 1;
+  if (!resolve_outputs()) return 1; // prints the Output lines
+  if (!job_.entry_outputs.empty()) {
+    std::printf("%s\n", entry_outputs.c_str());
+    if (!missing_output.empty()) {
+      std::printf("Entry output %s not found. Abording.\n", missing_output.c_str());
+      return 1;
+    }
+  }
   double setup = seconds_since(t0);
 
   auto t1 = Clock::now();

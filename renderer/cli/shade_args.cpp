@@ -335,7 +335,7 @@ void print_shade_help() {
       "    --iters N                    Shade the grid N times\n"
       "    -O0 -O1 -O2                  Optimisation (-O0: no specialisation)\n"
       "    --entry LAYER                Run this layer (repeatable) instead of the group\n"
-      "    --entryoutput NAME           Run the layer of this output (repeatable)\n"
+      "    --entryoutput NAME           An output the group must keep (repeatable)\n"
       "    --center                     Shade pixel centres\n"
       "    --debugnan                   Report NaN and Inf results of every op\n"
       "    --debuguninit                Report reads of uninitialised values\n"

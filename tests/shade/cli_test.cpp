@@ -284,6 +284,20 @@ TEST(ShadeCli, SpacedMatrixAndMixedTripleTransforms) {
                                       "1 -1 4 | 1 -1 4\n\n");
 }
 
+// --entryoutput names outputs the group keeps (read by a connection or the renderer): they are
+// announced after the entry layers and the Output lines; the first that is not kept stops the
+// run. Expected: OSL 1.13.12, `testshade -g 1 1 -layer A elide_computed -layer B elide_reader
+// -connect A o B i ARGS` (its exit status 1 on the missing one).
+TEST(ShadeCli, EntryOutputsAsTestshade) {
+  const std::string g = "-g 1 1 -layer A elide_computed -layer B elide_reader -connect A o B i ";
+  EXPECT_EQ(run(g + "--entryoutput o"),
+            "Connect A.o to B.i\nEntry outputs: o\nelide_computed ran\nreader i 2\n\n");
+  EXPECT_EQ(run(g + "--entryoutput o --entryoutput o2"),
+            "Connect A.o to B.i\nEntry outputs: o\nEntry output o2 not found. Abording.\n");
+  EXPECT_EQ(run(g + "--entry A --entryoutput o -o A.o2 null"),
+            "Connect A.o to B.i\n\nEntry layers: A(0)\nEntry outputs: o\nelide_computed ran\n\n");
+}
+
 // --oslquery lists each layer's parameters as OSLQuery does, under the group as -v prints it
 // (the shader as it was named). Expected: OSL 1.13.12, `oslc connect_struct_src.osl;
 // testshade -g 1 1 --oslquery -layer A connect_struct_src`.
