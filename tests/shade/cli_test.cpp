@@ -298,6 +298,15 @@ TEST(ShadeCli, EntryOutputsAsTestshade) {
             "Connect A.o to B.i\n\nEntry layers: A(0)\nEntry outputs: o\nelide_computed ran\n\n");
 }
 
+// --expr wraps an expression in a shader of testshade's form (s, t from u, v; outputs result
+// and alpha), named expr_0 in a layer expr_0_0. Expected: OSL 1.13.12, `testshade -g 2 1 --expr
+// '...'`.
+TEST(ShadeCli, ExpressionShader) {
+  EXPECT_EQ(run("-g 2 1 --expr 'string n; getattribute(\"shader:layername\", n); "
+                "result = color(s, t, 1); printf(\"%s %g %g\\n\", n, s, result);'"),
+            "expr_0_0 0 0 0.5 1\nexpr_0_0 1 1 0.5 1\n\n");
+}
+
 // --oslquery lists each layer's parameters as OSLQuery does, under the group as -v prints it
 // (the shader as it was named). Expected: OSL 1.13.12, `oslc connect_struct_src.osl;
 // testshade -g 1 1 --oslquery -layer A connect_struct_src`.
