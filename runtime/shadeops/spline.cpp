@@ -3,7 +3,7 @@
 // spline_derivs_osl.osl, derivatives included). With step s and n
 // knots there are (n - 4) / s + 1 segments; x in [0,1] (clamped) picks segment k and the four
 // knots starting at k*s, whose combination by the basis matrix gives the segment's cubic.
-// "constant" returns knots[k+1]. Unknown bases behave as catmull-rom.
+// "constant" returns knots[k+1]. Unknown bases behave as linear (as OSL 1.13.12's do).
 #include "shadeop_decls.h"
 
 #include <algorithm>
@@ -38,7 +38,7 @@ const Basis kBases[] = {
 const Basis& find_basis(const char* name) {
   for (const Basis& b : kBases)
     if (!std::strcmp(name, b.name)) return b;
-  return kBases[0];
+  return kBases[4]; // linear
 }
 
 // A value with optional derivatives, combined as OSL's dual numbers combine a Dual2 with a
