@@ -27,7 +27,6 @@ const Row kTable[] = {
     ROW(err_binary_input, Error, "source contains a NUL byte (binary input?)"),
     ROW(err_unterminated_string, Error, "missing terminating '\"' character"),
     ROW(err_unterminated_comment, Error, "unterminated /* comment"),
-    ROW(warn_unknown_escape, Warning, "unknown escape sequence '\\%0'"),
     ROW(err_bad_number, Error, "invalid numeric literal '%0'"),
     ROW(err_int_too_large, Error, "integer literal '%0' is too large for int"),
     // preprocessor

@@ -27,7 +27,6 @@ enum class DiagId : uint16_t {
   err_binary_input,
   err_unterminated_string,
   err_unterminated_comment,
-  warn_unknown_escape,
   err_bad_number,
   err_int_too_large,
   // preprocessor

@@ -230,9 +230,10 @@ Token Lexer::number() {
   return t;
 }
 
-// C escapes: \n \t \r \a \b \f \v \\ \" \' \? \0-\377 (octal) \xHH.
+// The escapes oslc decodes (OpenImageIO's unescape_chars): \n \t \r \a \b \f \v \\ \" and
+// octal \0-\377. Any other (\' \? \xHH \e ...) stays as written, backslash included, without
+// a warning, as in oslc: "\x41" is four characters.
 void Lexer::escape(std::string& out) {
-  size_t b = pos_ - 1; // the backslash
   char c = at(pos_++);
   switch (c) {
   case 'n':
@@ -258,20 +259,8 @@ void Lexer::escape(std::string& out) {
     return;
   case '\\':
   case '"':
-  case '\'':
-  case '?':
     out += c;
     return;
-  case 'x': {
-    int v = 0, n = 0;
-    while (n < 2 && std::isxdigit(static_cast<unsigned char>(at(pos_)))) {
-      char h = at(pos_++);
-      v = v * 16 + (digit(h) ? h - '0' : (std::tolower(h) - 'a' + 10));
-      ++n;
-    }
-    out += char(v);
-    return;
-  }
   default:
     break;
   }
@@ -282,7 +271,7 @@ void Lexer::escape(std::string& out) {
     out += char(v & 0xff);
     return;
   }
-  diags_.report(DiagId::warn_unknown_escape, SourceRange(loc(b), loc(pos_)), {std::string(1, c)});
+  out += '\\';
   out += c;
 }
 
