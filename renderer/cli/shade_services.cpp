@@ -139,7 +139,10 @@ bool ShadeServices::get_attribute(const ShaderGlobals& sg, std::string_view obje
                                   std::string_view name, int index, DataType type, bool derivatives,
                                   void* val) const {
   if (object == "options" && name == "blahblah") return write(floats({3.14159f}), index, type, val);
-  if (!object.empty()) return false;
+  // The camera's attributes for any object (or none), whole only: testshade answers no
+  // element by index.
+  if (name.starts_with("camera:") && index >= 0) return false;
+  if (!object.empty() && !name.starts_with("camera:")) return false;
   float aspect = float(xres_) / float(yres_);
   Value v;
   if (name == "camera:resolution") {

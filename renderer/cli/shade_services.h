@@ -2,8 +2,9 @@
 // - user data: "s" and "t", u and v with their derivatives; then the --userdata values, of
 //   exactly the asked type;
 // - attributes: "camera:resolution" (the grid), testshade's camera (a 90 degree perspective
-//   camera, clip 0.1 to 1000, shutter 0 to 1), "options"/"blahblah" (3.14159, testshade's
-//   probe), and any other name without an object or index from the user data;
+//   camera, clip 0.1 to 1000, shutter 0 to 1), whole (no element by index) and for any object,
+//   "options"/"blahblah" (3.14159, testshade's probe), and any other name without an object or
+//   index from the user data;
 // - spaces: testshade's "object" (translated by (0, 1, 0) then turned 90 degrees about z),
 //   "shader" (translated by (1, 0, 0) then turned 45 degrees), "myspace" (scaled by 2 in y),
 //   "screen", "NDC" and "raster" of its camera, and "camera" (= common = world), these four only

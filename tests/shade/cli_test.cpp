@@ -307,6 +307,38 @@ TEST(ShadeCli, ExpressionShader) {
             "expr_0_0 0 0 0.5 1\nexpr_0_0 1 1 0.5 1\n\n");
 }
 
+// Attributes as testshade answers them: the camera's whole for any object (no element by index:
+// 0, the destination kept), osl:version and shader:* whatever object is named. Expected: OSL
+// 1.13.12, `oslc ga.osl; testshade -g 2 1 ga` (its first point).
+TEST(ShadeCli, AttributesAsTestshadeAnswersThem) {
+  auto dir = scratch_dir("ga.osl", "shader ga()\n"
+            "{\n"
+            "    int ir[2] = {7, 7}; int i = 7; float f = 90; float fc[2] = {5, 5}; string s = \"x\";\n"
+            "    int a = getattribute(\"camera:resolution\", ir);\n"
+            "    printf(\"%d %d %d\\n\", a, ir[0], ir[1]);\n"
+            "    int b = getattribute(\"camera:resolution\", 0, i);\n"
+            "    printf(\"%d %d\\n\", b, i);\n"
+            "    int c = getattribute(\"camera:clip\", 1, f);\n"
+            "    printf(\"%d %g\\n\", c, f);\n"
+            "    int d = getattribute(\"object\", \"camera:resolution\", ir);\n"
+            "    printf(\"%d %d %d\\n\", d, ir[0], ir[1]);\n"
+            "    int e = getattribute(\"object\", \"osl:version\", i);\n"
+            "    printf(\"%d %d\\n\", e, i);\n"
+            "    int g = getattribute(\"\", \"camera:clip\", fc);\n"
+            "    printf(\"%d %g %g\\n\", g, fc[0], fc[1]);\n"
+            "    int h = getattribute(\"shader:shadername\", s);\n"
+            "    int k = getattribute(\"object\", \"shader:shadername\", s);\n"
+            "    printf(\"%d %d %s\\n\", h, k, s);\n"
+            "    int m = getattribute(\"options\", \"blahblah\", f);\n"
+            "    int n = getattribute(\"blahblah\", f);\n"
+            "    printf(\"%d %d %g\\n\", m, n, f);\n"
+            "}\n"
+            "");
+  std::string out = run_in(dir, "-g 2 1 ga");
+  EXPECT_EQ(out.substr(0, out.find("1 0 3.14159\n") + 12),
+            "1 2 1\n0 7\n0 90\n1 2 1\n1 11312\n1 0.1 1000\n1 1 ga\n1 0 3.14159\n");
+}
+
 // --oslquery lists each layer's parameters as OSLQuery does, under the group as -v prints it
 // (the shader as it was named). Expected: OSL 1.13.12, `oslc connect_struct_src.osl;
 // testshade -g 1 1 --oslquery -layer A connect_struct_src`.
