@@ -243,6 +243,7 @@ public:
 
 private:
   bool compile(const ShaderGroup& g, std::shared_ptr<const Material>& out);
+  bool reparameter(ShaderGroup::Layer& l, const ShadeReparam& r);
   bool resolve_outputs();
   void shade_grid(const Material& m, bool last_iteration);
   int write_outputs();
@@ -267,6 +268,53 @@ private:
   std::atomic<size_t> shaded_{0};
   size_t shaded_iterations_ = 0; // shade_grid calls so far
 };
+
+// --reparam as testshade's ReParameter: an interactive parameter (`-param:interactive=1`, or
+// the shader's own `[[ int interactive = 1 ]]`) takes the new value; one of another type is
+// ignored without a word, except a float for a triple, which sets its first component only
+// (OSL copies the float's bytes into the triple). True when the layer changed.
+bool Shade::reparameter(ShaderGroup::Layer& l, const ShadeReparam& r) {
+  DiagnosticList d;
+  CompileStats stats;
+  std::optional<ir::Shader> sh = group::compile_shader_file(l.shader, ss_.options(), d, stats);
+  int si = sh ? sh->find_symbol(r.param) : -1;
+  if (si < 0) return false;
+  const ir::Symbol& s = sh->symbols[size_t(si)];
+  if (s.kind != ir::SymKind::Param && s.kind != ir::SymKind::OutputParam) return false;
+  InstanceValue* current = nullptr;
+  for (InstanceValue& v : l.values)
+    if (v.name == r.param) current = &v;
+  bool interactive = current && current->interactive;
+  for (const ir::Metadata& m : s.metadata)
+    interactive = interactive || (m.name == "interactive" && m.type.base == ir::BaseType::Int &&
+                                  !m.value.empty() && m.value[0].i != 0);
+  if (!interactive) return false;
+  std::string declared = ir::to_string(s.type);
+  InstanceValue v = r.value;
+  if (s.type.is_triple() && !s.type.is_array() && v.type == "float") {
+    std::vector<float> comps; // the value until now: the instance value's, else the default's
+    if (current && (current->words.size() == 3 || current->words.size() == 1))
+      for (size_t k = 0; k < 3; ++k) // one number stands for all three
+        comps.push_back(std::strtof(current->words[k % current->words.size()].c_str(), nullptr));
+    else
+      for (const ir::ConstValue& c : s.init) comps.push_back(c.f);
+    if (comps.size() != 3) return false;
+    comps[0] = std::strtof(v.value.c_str(), nullptr);
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.9g %.9g %.9g", comps[0], comps[1], comps[2]);
+    v = param_value(declared, r.param, buf);
+  } else if (v.type != declared && !(s.type.is_triple() && !s.type.is_array() &&
+                                     (v.type == "color" || v.type == "point" ||
+                                      v.type == "vector" || v.type == "normal"))) {
+    return false;
+  }
+  v.interactive = true;
+  if (current)
+    *current = v;
+  else
+    l.values.push_back(v);
+  return true;
+}
 
 bool Shade::compile(const ShaderGroup& g, std::shared_ptr<const Material>& out) {
   DiagnosticList diags;
@@ -606,12 +654,7 @@ int Shade::run() {
       bool any = false;
       for (const ShadeReparam& r : job_.reparams)
         for (ShaderGroup::Layer& l : changed.layers)
-          if (l.name == r.layer)
-            for (InstanceValue& v : l.values)
-              if (v.name == r.param && v.interactive) {
-                v = r.value, v.interactive = true;
-                any = true;
-              }
+          if (l.name == r.layer) any = reparameter(l, r) || any;
       if (any && !compile(changed, reparam)) return 1;
     }
     shade_grid(reparam ? *reparam : *mat_, it + 1 == job_.iters);

@@ -339,6 +339,23 @@ TEST(ShadeCli, AttributesAsTestshadeAnswersThem) {
             "1 2 1\n0 7\n0 90\n1 2 1\n1 11312\n1 0.1 1000\n1 1 ga\n1 0 3.14159\n");
 }
 
+// --reparam as testshade's ReParameter: a parameter interactive by its own metadata or by
+// -param:interactive=1 takes the value from the second iteration; a value of another type is
+// ignored without a word (5 for a float), a float for a colour sets its first component only.
+// Expected: OSL 1.13.12, `testshade -g 1 1 --iters 2 [-param...] -layer A reparam_print
+// --reparam A ...`.
+TEST(ShadeCli, ReparamAsTestshade) {
+  EXPECT_EQ(run("-g 1 1 --iters 2 -layer A reparam_print --reparam A f 5.0"),
+            "f=1 c=1 1 1\nf=5 c=1 1 1\n\n");
+  EXPECT_EQ(run("-g 1 1 --iters 2 -layer A reparam_print --reparam A f 5"),
+            "f=1 c=1 1 1\nf=1 c=1 1 1\n\n");
+  EXPECT_EQ(run("-g 1 1 --iters 2 -param:interactive=1 c 0.5 -layer A reparam_print "
+                "--reparam A c 0.25"),
+            "f=1 c=0.5 0.5 0.5\nf=1 c=0.25 0.5 0.5\n\n");
+  EXPECT_EQ(run("-g 1 1 --iters 2 -layer A reparam_print --reparam A c 0.25"),
+            "f=1 c=1 1 1\nf=1 c=1 1 1\n\n");
+}
+
 // --oslquery lists each layer's parameters as OSLQuery does, under the group as -v prints it
 // (the shader as it was named). Expected: OSL 1.13.12, `oslc connect_struct_src.osl;
 // testshade -g 1 1 --oslquery -layer A connect_struct_src`.
