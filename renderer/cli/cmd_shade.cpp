@@ -538,6 +538,7 @@ int Shade::run() {
   ss_.options().debug_nan = job_.debug_nan;
   ss_.options().debug_uninit = job_.debug_uninit;
   ss_.options().range_checking = job_.range_checking;
+  ss_.options().userdata_isconnected = job_.userdata_isconnected;
   if (!job_.colorspace.empty()) { // an unknown name: testshade's message once, then Rec709
     ss_.options().colorspace = job_.colorspace;
     if (std::string e = colorspace_error(job_.colorspace); !e.empty())

@@ -65,6 +65,7 @@ struct GroupPlan {
   const shadeops::ColorSystem* colors = nullptr;
   bool fast_math = true; // CompileOptions::fast_math: the math shadeops' math::MathMode
   int opt_level = 2;     // CompileOptions::opt_level (messages OSL words by its level)
+  bool userdata_isconnected = false; // CompileOptions::userdata_isconnected
   // Bounded loops (CompileOptions::max_loop_iterations): with loop_count_offset >= 0, every
   // backward jump (a loop's back edge) counts down a per-layer-run counter of
   // kLoopChunk iterations; when it runs out the layer calls lobe_loop_check, which adds the

@@ -586,6 +586,8 @@ void op_query(LayerEmitter& e, const ir::Op& op) {
     for (const LayerPlan& lp : e.group().layers)
       for (const ConnectionPlan& c : lp.connections)
         v |= (c.src_layer == e.layer() && c.src_symbol == s) ? 2 : 0;
+    const std::vector<bool>& user = e.group().layers[size_t(e.layer())].userdata;
+    if (e.group().userdata_isconnected && size_t(s) < user.size() && user[size_t(s)]) v |= 1;
     r = Val{Dual{e.iconst(v)}};
   } else if (o == ir::Opcode::IsConstant) {
     // A constant of the shader as written; specialisation resolves isconstant before it turns

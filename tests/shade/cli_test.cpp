@@ -356,6 +356,19 @@ TEST(ShadeCli, ReparamAsTestshade) {
             "f=1 c=1 1 1\nf=1 c=1 1 1\n\n");
 }
 
+// --userdata_isconnected (OSL's userdata_isconnected): isconnected() is 1 for a parameter that
+// takes user data (lockgeom = 0), given or not. Expected: OSL 1.13.12, `oslc uc.osl; testshade
+// -g 1 1 [--userdata_isconnected --userdata a 5.0] uc`.
+TEST(ShadeCli, UserdataIsconnected) {
+  auto dir = scratch_dir("uc.osl", "shader uc(float a = 1 [[int lockgeom = 0]], color c = 0 "
+                                   "[[int lockgeom = 0]], float b = 2)\n{\n    printf(\"%g %d "
+                                   "%d %d\\n\", a, isconnected(a), isconnected(c), "
+                                   "isconnected(b));\n}\n");
+  EXPECT_EQ(run_in(dir, "-g 1 1 uc"), "1 0 0 0\n\n");
+  EXPECT_EQ(run_in(dir, "-g 1 1 --userdata_isconnected --userdata a 5.0 uc"), "5 1 1 0\n\n");
+  EXPECT_EQ(run_in(dir, "-g 1 1 --options userdata_isconnected=1 uc"), "1 1 1 0\n\n");
+}
+
 // --oslquery lists each layer's parameters as OSLQuery does, under the group as -v prints it
 // (the shader as it was named). Expected: OSL 1.13.12, `oslc connect_struct_src.osl;
 // testshade -g 1 1 --oslquery -layer A connect_struct_src`.

@@ -101,6 +101,10 @@ struct CompileOptions {
   // OSL's "lockgeom" option: false lets every parameter without `[[ int lockgeom = 1 ]]` take
   // the renderer's user data (renderer_services.h), as if each said `lockgeom = 0`.
   bool lockgeom_default = true;
+  // OSL's "userdata_isconnected": isconnected(p) is 1 for a parameter that takes the renderer's
+  // user data (lockgeom = 0), as if the user data were a connection (testshade's
+  // --userdata_isconnected).
+  bool userdata_isconnected = false;
   // Run-time checks, as OSL's options of the same names, reported as OSL's errors through the
   // ShadingContext: an out-of-range index (range_checking); a NaN or Inf among the float
   // results of an op (debug_nan); a read of a local or temporary before it is written, or of
