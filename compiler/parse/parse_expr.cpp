@@ -349,6 +349,9 @@ ExprPtr Parser::paren_or_cast() {
     return nullptr;
   }
   e->range = range_from(begin); // the parentheses belong to the expression's range
+  // oslc's warning, wherever a comma expression stands in parentheses (`color c = (a, b, c)`
+  // is color(c)).
+  if (e->kind == ast::ExprKind::Comma) diags_.report(DiagId::warn_confusing_comma, e->range);
   return e;
 }
 

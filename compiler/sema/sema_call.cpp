@@ -282,7 +282,9 @@ void Sema::check_output_arg(ast::CallExpr* e, size_t i, const Type& pt,
     ast::VarDecl* v = root_var(a.get());
     auto* ix = ast::as<ast::IndexExpr>(a.get());
     bool element = ix && ix->base->type.is_array();
-    if (fn && v && v->storage == ast::Storage::FuncParam && !v->is_output && !element)
+    bool readonly = v && ((v->storage == ast::Storage::FuncParam && !v->is_output) ||
+                          (v->storage == ast::Storage::Global && !v->writable));
+    if (fn && readonly && !element)
       error(DiagId::warn_write_nonoutput_param_arg, a->range,
             {v->name, e->name, argno, fn->params[i]->name});
   }

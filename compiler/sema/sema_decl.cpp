@@ -94,6 +94,12 @@ void Sema::declare_function(ast::FunctionDecl* f) {
   set.push_back(f);
 }
 
+// A function's signature as oslc words it in messages: `float f (float)`.
+static std::string oslc_signature(std::string s) {
+  if (size_t at = s.find('('); at != std::string::npos) s.insert(at, " ");
+  return s;
+}
+
 // oslc's warning when a definition repeats a signature of its overload scope: at file level
 // (which includes the shader body and the builtins) or in the same nested scope. Not for the
 // standard header, which may restate one.
@@ -104,13 +110,13 @@ void Sema::warn_redefinition(ast::FunctionDecl* f) {
       file_level ? lookup_functions(f->name) : scopes_.back().funcs[f->name];
   for (ast::FunctionDecl* g : previous) {
     if (!g->body || !same_signature(g, f)) continue;
-    error(DiagId::warn_function_redefined, f->name_range, {Candidate{f}.signature()});
+    error(DiagId::warn_function_redefined, f->name_range, {oslc_signature(Candidate{f}.signature())});
     error(DiagId::note_previous_decl, g->name_range);
     return;
   }
   for (const BuiltinSig& b : builtins().lookup(f->name)) {
     if (!file_level || !redefines(f, b)) continue;
-    error(DiagId::warn_function_redefined, f->name_range, {Candidate{f}.signature()});
+    error(DiagId::warn_function_redefined, f->name_range, {oslc_signature(Candidate{f}.signature())});
     error(DiagId::note_previous_builtin, SourceRange(), {b.signature()});
     return;
   }
@@ -308,10 +314,6 @@ void Sema::var_decl(ast::VarDecl* v) {
     error(DiagId::err_void_variable, v->name_range, {v->name});
     v->type = t_error();
   }
-  // OSL's warning for `color c = (a, b, c)`: the comma operator gives (c, c, c).
-  if (v->init && v->init->kind == ast::ExprKind::Comma && v->type.arraylen == 0 &&
-      (v->type.is_triple() || v->type.base == ast::BaseType::Matrix))
-    error(DiagId::warn_confusing_comma, v->init->range, {v->name, ast::to_string(v->type)});
   if (v->init) {
     if (v->init->kind == ast::ExprKind::InitList) {
       init_list(v->init, v->type);

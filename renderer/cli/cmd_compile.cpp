@@ -1,6 +1,7 @@
 // `lobe compile [options] file`: compiles a shader as OSL's oslc does, to Lobe IR text (Lobe's
-// compiled form, as .oso is OSL's). Without -o the output is the file's base name with .lir in
-// the current directory (oslc writes x.oso there); stdout says `Compiled x.osl -> x.lir` (not
+// compiled form, as .oso is OSL's). Without -o the output is the shader's name with .lir in the
+// current directory, as oslc writes `name.oso` there (the file's base name when the shader has
+// none, as for --emit=ast); stdout says `Compiled x.osl -> name.lir` (not
 // with -q), or `FAILED x.osl` with exit status 1. Options, one word or two (-Idir, -I dir):
 //   -o FILE                  the output file
 //   -I DIR, -D N[=V], -U N   #include directory, preprocessor definitions
@@ -133,15 +134,15 @@ int parse_args(int argc, char** argv, Options& o) {
   return -1;
 }
 
-// Writes `text` to -o FILE or to the compiled file's default name, or to stdout for --emit
-// without -o. `Compiled X -> Y` follows a file written (unless -q).
-bool write_output(const Options& o, const std::string& text) {
+// Writes `text` to -o FILE or to the default name (`shader`.lir, else the file's base name), or
+// to stdout for --emit without -o. `Compiled X -> Y` follows a file written (unless -q).
+bool write_output(const Options& o, const std::string& text, const std::string& shader = "") {
   std::string out = o.out;
   if (out.empty() && !o.emit.empty()) {
     std::fwrite(text.data(), 1, text.size(), stdout);
     return true;
   }
-  if (out.empty()) out = fs::path(o.file).stem().string() + ".lir";
+  if (out.empty()) out = (shader.empty() ? fs::path(o.file).stem().string() : shader) + ".lir";
   std::error_code ec;
   if (fs::equivalent(out, o.file, ec)) {
     std::fprintf(stderr, "lobe compile: error: the output \"%s\" is the input; give -o FILE\n",
@@ -196,7 +197,7 @@ bool compile_file(const Options& o, const std::string& path) {
   if (!l.ok) return false;
   if (o.emit == "ast")
     return write_output(o, lobe::ast::dump(*l.tu, {.types = true, .stdlib = false}));
-  return write_output(o, lobe::ir::print(*l.shader));
+  return write_output(o, lobe::ir::print(*l.shader), l.shader->name);
 }
 
 // --emit=llvm|asm (OSL or IR text) through the runtime.

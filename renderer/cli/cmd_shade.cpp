@@ -100,6 +100,16 @@ void print_oslc_warning(const Diagnostic& d, const std::vector<const Diagnostic*
   std::string place = d.file.empty() ? "" : d.file + ":" + std::to_string(d.line) + ": ";
   if (d.id != "warn_ambiguous_call") {
     std::fprintf(stderr, "%swarning: %s\n", place.c_str(), d.message.c_str());
+    bool first = true; // the earlier definition or declaration, in oslc's layout
+    for (const Diagnostic* n : notes) {
+      if (n->id != "note_previous_decl" || n->file.empty()) continue;
+      std::string at = n->file + ":" + std::to_string(n->line);
+      if (d.id == "warn_function_redefined")
+        std::fprintf(stderr, "%s    %s\n", first ? "  Previous definitions:\n" : "", at.c_str());
+      else if (d.id == "warn_param_hides_function")
+        std::fprintf(stderr, "\t\tprevious declaration was at %s\n", at.c_str());
+      first = false;
+    }
     return;
   }
   std::string call = d.message; // call to 'f(args)' is ambiguous

@@ -91,6 +91,13 @@ TEST(LobeCompile, WritesTheIrFileInTheCurrentDirectoryAsOslcDoes) {
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.out, "FAILED p.lir\n");
   EXPECT_NE(r.err.find("is the input"), std::string::npos) << r.err;
+  // The output is named after the shader, not the file: oslc sub2/afile.osl (holding shader
+  // bname) prints `Compiled sub2/afile.osl -> bname.oso`.
+  scratch("sub2/afile.osl", "shader bname() { printf(\"x\\n\"); }\n");
+  r = lobe("compile sub2/afile.osl", dir);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "Compiled sub2/afile.osl -> bname.lir\n");
+  EXPECT_TRUE(fs::exists(dir / "bname.lir"));
 }
 
 TEST(LobeCompile, PrintsVerifiedIrForOslSourceWithEmitIr) {
