@@ -225,8 +225,7 @@ std::string oslquery_params(const Shader& shader) {
     if (s.kind != SymKind::Param && s.kind != SymKind::OutputParam) continue;
     std::string output = s.kind == SymKind::OutputParam ? "output " : "";
     if (!s.struct_name.empty()) // each enclosing struct, outermost first
-      for (size_t dot = s.name.find('.'); dot != std::string::npos;
-           dot = s.name.find('.', dot + 1))
+      for (size_t dot = s.name.find('.'); dot != std::string::npos; dot = s.name.find('.', dot + 1))
         if (announced.insert(s.name.substr(0, dot)).second)
           out += "\t" + output + "unknown " + s.name.substr(0, dot) + "\n";
     out += "\t" + output + type_name(s.type) + " " + s.name + "\n";

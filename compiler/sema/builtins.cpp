@@ -43,7 +43,7 @@ void math(Builder& b) {
   b.add("abs", t_int(), {t_int()});
   b.generic("abs", 1);
   b.add("fabs", t_int(), {t_int()}); // OSL's fabs is abs: fabs(int) is an int
-  b.generic("sign", 1); // no int form, as stdosl.h: sign(-3) is the float -1
+  b.generic("sign", 1);              // no int form, as stdosl.h: sign(-3) is the float -1
   for (const char* f : {"atan2", "pow", "fmod", "mod", "min", "max", "step"}) {
     if (std::string(f) == "min" || std::string(f) == "max" || std::string(f) == "mod")
       b.add(f, t_int(), {t_int(), t_int()});

@@ -110,13 +110,15 @@ void Sema::warn_redefinition(ast::FunctionDecl* f) {
       file_level ? lookup_functions(f->name) : scopes_.back().funcs[f->name];
   for (ast::FunctionDecl* g : previous) {
     if (!g->body || !same_signature(g, f)) continue;
-    error(DiagId::warn_function_redefined, f->name_range, {oslc_signature(Candidate{f}.signature())});
+    error(DiagId::warn_function_redefined, f->name_range,
+          {oslc_signature(Candidate{f}.signature())});
     error(DiagId::note_previous_decl, g->name_range);
     return;
   }
   for (const BuiltinSig& b : builtins().lookup(f->name)) {
     if (!file_level || !redefines(f, b)) continue;
-    error(DiagId::warn_function_redefined, f->name_range, {oslc_signature(Candidate{f}.signature())});
+    error(DiagId::warn_function_redefined, f->name_range,
+          {oslc_signature(Candidate{f}.signature())});
     error(DiagId::note_previous_builtin, SourceRange(), {b.signature()});
     return;
   }

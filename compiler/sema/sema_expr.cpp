@@ -287,7 +287,8 @@ void Sema::binary(ast::BinaryExpr* e, const Type* expected) {
   }
   // point - point is a vector (the difference of two positions). Two other triple kinds give
   // oslc's result: with + and -, a point if either is one; otherwise the left operand's kind.
-  if (e->op == Op::Sub && l.base == BaseType::Point && r.base == BaseType::Point) ct = t_vector();
+  if (e->op == Op::Sub && l.base == BaseType::Point && r.base == BaseType::Point)
+    ct = t_vector();
   else if (l.is_triple() && r.is_triple() && !(l == r))
     ct = (e->op == Op::Add || e->op == Op::Sub) &&
                  (l.base == BaseType::Point || r.base == BaseType::Point)
@@ -295,7 +296,8 @@ void Sema::binary(ast::BinaryExpr* e, const Type* expected) {
              : l;
   // A matrix times or over a number scales it (the number is not made a diagonal matrix: no
   // products of zeros that would lose a -0 or turn an infinity into NaN), as OSL.
-  if (ct->is_matrix() && (e->op == Op::Mul || e->op == Op::Div) && !(l.is_matrix() && r.is_matrix())) {
+  if (ct->is_matrix() && (e->op == Op::Mul || e->op == Op::Div) &&
+      !(l.is_matrix() && r.is_matrix())) {
     coerce(e->lhs, l.is_matrix() ? *ct : t_float());
     coerce(e->rhs, r.is_matrix() ? *ct : t_float());
     e->type = *ct;

@@ -168,7 +168,8 @@ TEST(Sema, RedefinitionOfAFunctionNeedsTheSameReturnType) {
   EXPECT_TRUE(c.ok()) << c.text();
   EXPECT_EQ(c.count(DiagId::warn_function_redefined), 1) << c.text();
   std::string t = c.text();
-  EXPECT_NE(t.find("t.osl:3:7: warning: Function 'color pick ()' redefined in the same scope"), std::string::npos)
+  EXPECT_NE(t.find("t.osl:3:7: warning: Function 'color pick ()' redefined in the same scope"),
+            std::string::npos)
       << t;
   EXPECT_NE(t.find("t.osl:2:7: note: previous definition is here"), std::string::npos) << t;
   auto* d = static_cast<ast::DeclStmt*>(c.shader()->body->stmts[0].get());

@@ -415,10 +415,10 @@ int parse_shade_args(int argc, char** argv, ShadeJob& job) {
     return 1;
   }
   for (size_t k = 0; k < job.expressions.size(); ++k) // --expr layers come after the others,
-    job.group.layers.push_back({"expr_" + std::to_string(k), // named as any layer is (expr_0_0)
-                                "expr_" + std::to_string(k) + "_" +
-                                    std::to_string(job.group.layers.size()),
-                                {}});
+    job.group.layers.push_back(
+        {"expr_" + std::to_string(k), // named as any layer is (expr_0_0)
+         "expr_" + std::to_string(k) + "_" + std::to_string(job.group.layers.size()),
+         {}});
   for (const Connection& c : job.connects) job.group.connections.push_back(c);
   if (!job.groupname.empty())
     job.group.name = job.groupname;

@@ -29,8 +29,7 @@ public:
   bool get_attribute(const ShaderGlobals& sg, std::string_view object, std::string_view name,
                      int index, DataType type, bool derivatives, void* val) const override;
   bool get_matrix(const ShaderGlobals& sg, std::string_view space, float* m) const override;
-  bool get_inverse_matrix(const ShaderGlobals& sg, std::string_view space,
-                          float* m) const override;
+  bool get_inverse_matrix(const ShaderGlobals& sg, std::string_view space, float* m) const override;
   bool camera_spaces_default_to_identity() const override { return false; }
 
   bool has_userdata(std::string_view name) const;

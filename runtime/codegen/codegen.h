@@ -63,8 +63,8 @@ struct GroupPlan {
   shadeops::RuntimeEnv* env = nullptr; // baked into the code as a constant pointer
   // The material's colour system (CompileOptions::colorspace), baked in likewise; null: Rec709.
   const shadeops::ColorSystem* colors = nullptr;
-  bool fast_math = true; // CompileOptions::fast_math: the math shadeops' math::MathMode
-  int opt_level = 2;     // CompileOptions::opt_level (messages OSL words by its level)
+  bool fast_math = true;             // CompileOptions::fast_math: the math shadeops' math::MathMode
+  int opt_level = 2;                 // CompileOptions::opt_level (messages OSL words by its level)
   bool userdata_isconnected = false; // CompileOptions::userdata_isconnected
   // Bounded loops (CompileOptions::max_loop_iterations): with loop_count_offset >= 0, every
   // backward jump (a loop's back edge) counts down a per-layer-run counter of

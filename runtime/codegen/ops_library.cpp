@@ -687,18 +687,16 @@ void op_gettextureinfo(LayerEmitter& e, const ir::Op& op) {
   bool udim = op.args.size() == 6;
   llvm::Value* s = udim ? e.load_as(op, 3, BaseType::Float, false)[0].v : e.fconst(0);
   llvm::Value* t = udim ? e.load_as(op, 4, BaseType::Float, false)[0].v : e.fconst(0);
-  llvm::Value* r =
-      e.call("lobe_gettextureinfo",
-             {e.sg(), e.env_ptr(),
-              // OSL words a failure by how it looked the file up: a name constant at -O2 as
-              // the shader's error, any other through its RendererServices (null here).
-              is_const_string(e.arg(op, 2)) && e.group().opt_level >= 2
-                  ? e.string_const(e.shader().name)
-                  : llvm::ConstantPointerNull::get(e.b().getPtrTy()),
-              e.load(op.args[2])[0].v,
-              e.iconst(udim ? 1 : 0), s, t,
-              e.load(op.args[udim ? 5 : 3])[0].v,
-              e.iconst(LayerEmitter::type_code(e.sym(dest).type)), e.storage_address(dest)});
+  llvm::Value* r = e.call(
+      "lobe_gettextureinfo",
+      {e.sg(), e.env_ptr(),
+       // OSL words a failure by how it looked the file up: a name constant at -O2 as
+       // the shader's error, any other through its RendererServices (null here).
+       is_const_string(e.arg(op, 2)) && e.group().opt_level >= 2
+           ? e.string_const(e.shader().name)
+           : llvm::ConstantPointerNull::get(e.b().getPtrTy()),
+       e.load(op.args[2])[0].v, e.iconst(udim ? 1 : 0), s, t, e.load(op.args[udim ? 5 : 3])[0].v,
+       e.iconst(LayerEmitter::type_code(e.sym(dest).type)), e.storage_address(dest)});
   if (e.wants_derivs(dest)) // texture information is constant over the surface
     for (int k = 0; k < std::max(1, e.sym(dest).type.arraylen); ++k)
       e.store(dest, e.load(dest, e.iconst(k), false), e.iconst(k));
@@ -772,8 +770,7 @@ llvm::Value* texture_args(LayerEmitter& e, const ir::Op& op, size_t first) {
       B.CreateStore(e.load_as(op, v, BaseType::Float, false)[0].v,
                     at(offsetof(TextureArgs, missing) + 4 * size_t(std::min(channels, 3))));
       B.CreateStore(e.iconst(1), at(offsetof(TextureArgs, has_missing)));
-    }
-    else if (kw == "errormessage" && op.writes(v)) // the lookup writes the string there
+    } else if (kw == "errormessage" && op.writes(v)) // the lookup writes the string there
       B.CreateStore(e.storage_address(op.args[size_t(v)]), at(offsetof(TextureArgs, errormessage)));
     // "alpha": the lookup's extra channel (alpha_operand); "time", "subimage": ignored
   }

@@ -333,8 +333,8 @@ KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool run
   const ir::Symbol& src = sh.symbols[size_t(op.args[1])];
   if (src.kind == SymKind::Const) {
     k.value = convert_const(src.init, src.type, s.type);
-  } else if (src.kind == SymKind::Global && !op.identity_copy && !written_globals.count(op.args[1]) &&
-             !src.type.is_array() && !s.type.is_array() &&
+  } else if (src.kind == SymKind::Global && !op.identity_copy &&
+             !written_globals.count(op.args[1]) && !src.type.is_array() && !s.type.is_array() &&
              src.type.components() == s.type.components() && same_kind(src.type, s.type)) {
     k.global = src.name;
   }

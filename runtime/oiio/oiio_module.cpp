@@ -40,7 +40,7 @@ struct Textures {
   OIIO::TextureSystem* ts = nullptr;
   uint64_t id = 0; // unique over the process: a thread's cached records are matched by it
   std::mutex mutex;
-  std::vector<Perthread*> threads;                       // every record created, under `mutex`
+  std::vector<Perthread*> threads; // every record created, under `mutex`
   // file -> refusal ("" fits), `mutex`. A file that cannot be opened is explained once, by
   // the first lookup or gettextureinfo that fails on it (as OSL prints it once): its refusal is
   // then kNoExplanation. `explained`: files whose failure was told, under `mutex`.

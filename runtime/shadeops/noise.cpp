@@ -579,9 +579,8 @@ void lobe_noise_named_d(lobe::ShaderGlobals* sg, const char* name, const float* 
   }
   if (sg && sg->context) { // OSL's words: a constant name's error has the place
     if (file)
-      sg->context->error(std::string(period ? "periodic " : "") + "noise type \"" +
-                         std::string(n) + "\" is unknown, called from (" + file + ":" +
-                         std::to_string(line) + ")");
+      sg->context->error(std::string(period ? "periodic " : "") + "noise type \"" + std::string(n) +
+                         "\" is unknown, called from (" + file + ":" + std::to_string(line) + ")");
     else
       sg->context->error("Unknown noise type \"" + std::string(n) + "\"");
   }

@@ -145,8 +145,7 @@ int lobe_getattribute(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, 
   else if (index < 0)
     return 0;
   int found = 0; // OSL answers its own attributes whatever object is named
-  if (builtin_attribute(nm, code, dest, env, shadername, layername, groupname, found))
-    return found;
+  if (builtin_attribute(nm, code, dest, env, shadername, layername, groupname, found)) return found;
   if (!sg || !sg->context || !sg->context->renderer || code_base(code) == kClosureBase) return 0;
   const lobe::RendererServices* rs = sg->context->renderer;
   return fetch_value(env, code, derivs, dest, [&](void* val) {

@@ -269,10 +269,11 @@ TEST(ReliabilityRender, HugeImageIsRefusedWithTheFigure) {
   write_file(d / "tex.osl", "shader tex(output color c = 1) { c = texture(\"big.ppm\", u, v); }\n");
   r = run_cmd("cd '" + d.string() + "' && " + exe() + " shade -g 2 2 tex -o c null");
   EXPECT_EQ(r.status, 0) << r.out;
-  EXPECT_NE(r.out.find("ERROR: [RendererServices::texture] big.ppm (1000000x1000000, 3 channels, not "
-                       "tiled) needs about 4.0 TB of memory (read whole into the texture cache, "
-                       "with its MIP levels)"),
-            std::string::npos)
+  EXPECT_NE(
+      r.out.find("ERROR: [RendererServices::texture] big.ppm (1000000x1000000, 3 channels, not "
+                 "tiled) needs about 4.0 TB of memory (read whole into the texture cache, "
+                 "with its MIP levels)"),
+      std::string::npos)
       << r.out;
 }
 

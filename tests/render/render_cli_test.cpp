@@ -215,7 +215,8 @@ TEST(RenderCli, ShaderRunTimeErrorsAreReportedOnceAfterTheRender) {
   // Told once, by the first lookup (as OSL tells it), not once per point.
   std::string line = "warning: " + (d / "s.json").string() +
                      ": /materials/m: material 'm': [RendererServices::texture] Could not open "
-                     "file \"" + missing + "\"\n";
+                     "file \"" +
+                     missing + "\"\n";
   EXPECT_EQ(r.out, line);
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out; // one line in all
   EXPECT_EQ(r.out.find("also_missing"), std::string::npos) << r.out;

@@ -231,8 +231,8 @@ TEST(ShadeCli, PreprocessorOptionsFileNamesAndDiagnosticsAsLobeCompile) {
 // OSL 1.13.12, `oslc lose.osl` and `oslc amb.osl` (then `testshade -g 1 1 lose`: "1" and the
 // closing blank line).
 TEST(ShadeCli, CompilerWarningsPrintAsOslcPrintsThem) {
-  auto dir = scratch_dir("lose.osl",
-                         "shader lose()\n{\n    int d = 1.5;\n    printf(\"%d\\n\", d);\n}\n");
+  auto dir =
+      scratch_dir("lose.osl", "shader lose()\n{\n    int d = 1.5;\n    printf(\"%d\\n\", d);\n}\n");
   const std::string lose = "lose.osl:3: warning: Assignment may lose precision: int d = float\n";
   EXPECT_EQ(run_in(dir, "-g 1 1 lose"), lose + "1\n\n");
   EXPECT_EQ(run_in(dir, "-g 1 1 lose.osl"), lose + "1\n\n");
@@ -252,13 +252,13 @@ TEST(ShadeCli, CompilerWarningsPrintAsOslcPrintsThem) {
 // is testshade's matrix exactly (an inverse of its inverse left 1.1e-17 for 0). Expected: OSL
 // 1.13.12, `oslc cs.osl; testshade -g 1 1 cs 2>&1`.
 TEST(ShadeCli, CameraSpacesAreDestinationsOnlyAsInTestshade) {
-  auto dir = scratch_dir(
-      "cs.osl", "shader cs()\n{\n    matrix m = 7;\n"
-                "    int ok = getmatrix(\"camera\", \"object\", m);\n"
-                "    printf(\"%d %g | %g\\n\", ok, m, transform(\"camera\", \"object\", "
-                "point(1, 2, 3)));\n"
-                "    ok = getmatrix(\"common\", \"screen\", m);\n"
-                "    printf(\"%d %g | %g\\n\", ok, m, point(\"raster\", 1, 2, 3));\n}\n");
+  auto dir = scratch_dir("cs.osl",
+                         "shader cs()\n{\n    matrix m = 7;\n"
+                         "    int ok = getmatrix(\"camera\", \"object\", m);\n"
+                         "    printf(\"%d %g | %g\\n\", ok, m, transform(\"camera\", \"object\", "
+                         "point(1, 2, 3)));\n"
+                         "    ok = getmatrix(\"common\", \"screen\", m);\n"
+                         "    printf(\"%d %g | %g\\n\", ok, m, point(\"raster\", 1, 2, 3));\n}\n");
   EXPECT_EQ(run_in(dir, "-g 1 1 cs"),
             "ERROR: Unknown transformation \"camera\"\n"
             "0 -4.37114e-08 -1 0 0 1 -4.37114e-08 0 0 0 0 1 0 -1 4.37114e-08 0 1 | 1 2 3\n"
@@ -271,14 +271,15 @@ TEST(ShadeCli, CameraSpacesAreDestinationsOnlyAsInTestshade) {
 // translation). Expected: OSL 1.13.12, `oslc ms.osl; testshade -g 1 1 ms`.
 TEST(ShadeCli, SpacedMatrixAndMixedTripleTransforms) {
   auto dir = scratch_dir(
-      "ms.osl", "shader ms()\n{\n"
-                "    printf(\"%g\\n\", matrix(\"shader\", 2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, "
-                "0, 1));\n"
-                "    printf(\"%g\\n\", matrix(\"object\", 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 0, "
-                "0, 1));\n"
-                "    point p = point(1, 2, 3);\n    vector d = vector(0, 0, 1);\n"
-                "    printf(\"%g | %g\\n\", transform(\"object\", p + d), transform(\"object\", "
-                "d + p));\n}\n");
+      "ms.osl",
+      "shader ms()\n{\n"
+      "    printf(\"%g\\n\", matrix(\"shader\", 2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, "
+      "0, 1));\n"
+      "    printf(\"%g\\n\", matrix(\"object\", 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 0, "
+      "0, 1));\n"
+      "    point p = point(1, 2, 3);\n    vector d = vector(0, 0, 1);\n"
+      "    printf(\"%g | %g\\n\", transform(\"object\", p + d), transform(\"object\", "
+      "d + p));\n}\n");
   EXPECT_EQ(run_in(dir, "-g 1 1 ms"), "1.41421 0.707107 0 0 -1.41421 0.707107 0 0 0 0 1 0 2 0 0 1\n"
                                       "-4.37114e-08 1 0 0 -1 -4.37114e-08 0 0 0 0 1 0 5 1 0 1\n"
                                       "1 -1 4 | 1 -1 4\n\n");
@@ -311,29 +312,31 @@ TEST(ShadeCli, ExpressionShader) {
 // 0, the destination kept), osl:version and shader:* whatever object is named. Expected: OSL
 // 1.13.12, `oslc ga.osl; testshade -g 2 1 ga` (its first point).
 TEST(ShadeCli, AttributesAsTestshadeAnswersThem) {
-  auto dir = scratch_dir("ga.osl", "shader ga()\n"
-            "{\n"
-            "    int ir[2] = {7, 7}; int i = 7; float f = 90; float fc[2] = {5, 5}; string s = \"x\";\n"
-            "    int a = getattribute(\"camera:resolution\", ir);\n"
-            "    printf(\"%d %d %d\\n\", a, ir[0], ir[1]);\n"
-            "    int b = getattribute(\"camera:resolution\", 0, i);\n"
-            "    printf(\"%d %d\\n\", b, i);\n"
-            "    int c = getattribute(\"camera:clip\", 1, f);\n"
-            "    printf(\"%d %g\\n\", c, f);\n"
-            "    int d = getattribute(\"object\", \"camera:resolution\", ir);\n"
-            "    printf(\"%d %d %d\\n\", d, ir[0], ir[1]);\n"
-            "    int e = getattribute(\"object\", \"osl:version\", i);\n"
-            "    printf(\"%d %d\\n\", e, i);\n"
-            "    int g = getattribute(\"\", \"camera:clip\", fc);\n"
-            "    printf(\"%d %g %g\\n\", g, fc[0], fc[1]);\n"
-            "    int h = getattribute(\"shader:shadername\", s);\n"
-            "    int k = getattribute(\"object\", \"shader:shadername\", s);\n"
-            "    printf(\"%d %d %s\\n\", h, k, s);\n"
-            "    int m = getattribute(\"options\", \"blahblah\", f);\n"
-            "    int n = getattribute(\"blahblah\", f);\n"
-            "    printf(\"%d %d %g\\n\", m, n, f);\n"
-            "}\n"
-            "");
+  auto dir = scratch_dir(
+      "ga.osl",
+      "shader ga()\n"
+      "{\n"
+      "    int ir[2] = {7, 7}; int i = 7; float f = 90; float fc[2] = {5, 5}; string s = \"x\";\n"
+      "    int a = getattribute(\"camera:resolution\", ir);\n"
+      "    printf(\"%d %d %d\\n\", a, ir[0], ir[1]);\n"
+      "    int b = getattribute(\"camera:resolution\", 0, i);\n"
+      "    printf(\"%d %d\\n\", b, i);\n"
+      "    int c = getattribute(\"camera:clip\", 1, f);\n"
+      "    printf(\"%d %g\\n\", c, f);\n"
+      "    int d = getattribute(\"object\", \"camera:resolution\", ir);\n"
+      "    printf(\"%d %d %d\\n\", d, ir[0], ir[1]);\n"
+      "    int e = getattribute(\"object\", \"osl:version\", i);\n"
+      "    printf(\"%d %d\\n\", e, i);\n"
+      "    int g = getattribute(\"\", \"camera:clip\", fc);\n"
+      "    printf(\"%d %g %g\\n\", g, fc[0], fc[1]);\n"
+      "    int h = getattribute(\"shader:shadername\", s);\n"
+      "    int k = getattribute(\"object\", \"shader:shadername\", s);\n"
+      "    printf(\"%d %d %s\\n\", h, k, s);\n"
+      "    int m = getattribute(\"options\", \"blahblah\", f);\n"
+      "    int n = getattribute(\"blahblah\", f);\n"
+      "    printf(\"%d %d %g\\n\", m, n, f);\n"
+      "}\n"
+      "");
   std::string out = run_in(dir, "-g 2 1 ga");
   EXPECT_EQ(out.substr(0, out.find("1 0 3.14159\n") + 12),
             "1 2 1\n0 7\n0 90\n1 2 1\n1 11312\n1 0.1 1000\n1 1 ga\n1 0 3.14159\n");

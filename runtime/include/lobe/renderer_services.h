@@ -99,8 +99,7 @@ public:
 
   // The matrix from "common" to the named space, asked first when the space is a transform's
   // destination (OSL's get_inverse_matrix by name). Without an answer Lobe inverts get_matrix's.
-  virtual bool get_inverse_matrix(const ShaderGlobals& sg, std::string_view space,
-                                  float* m) const {
+  virtual bool get_inverse_matrix(const ShaderGlobals& sg, std::string_view space, float* m) const {
     (void)sg, (void)space, (void)m;
     return false;
   }
