@@ -76,7 +76,7 @@ void fresnel(vector I, normal N, float eta, output float Kr, output float Kt, ou
   float c = dot(I, N);
   if (c < 0) c = -c;
   R = reflect(I, N);
-  float g = sqr(1.0 / eta) - 1 + c * c;
+  float g = 1.0 / sqr(eta) - 1 + c * c;
   if (g >= 0) {
     g = sqrt(g);
     float beta = g - c;
