@@ -569,13 +569,25 @@ int Shade::run() {
   // A shader named without a path resolves on the search path here, so that one found in the
   // working directory is `x.osl` in diagnostics and __FILE__ (as for lobe compile and OSL).
   std::vector<std::string> named; // as given (x.oso names x), for -v
+  bool missing = false; // every shader not found is reported, in testshade's words
   for (ShaderGroup::Layer& l : g.layers) {
     l.shader = shader_name(l.shader);
     named.push_back(l.shader);
     std::string p = group::find_shader_file(l.shader, ss_.options());
     if (p.rfind("./", 0) == 0) p.erase(0, 2);
     if (!p.empty()) l.shader = p;
+    bool expression = l.shader.rfind("expr_", 0) == 0 &&
+                      std::all_of(l.shader.begin() + 5, l.shader.end(), ::isdigit) &&
+                      std::stoul("0" + l.shader.substr(5)) < job_.expressions.size();
+    if (p.empty() && !expression) {
+      std::fprintf(stderr,
+                   "ERROR: No .oso file could be found for shader \"%s\"\n"
+                   "ERROR: Could not find shader \"%s\"\n        group: %s\n",
+                   l.shader.c_str(), l.shader.c_str(), g.name.c_str());
+      missing = true;
+    }
   }
+  if (missing) return 1; // testshade goes on with nothing to shade (exit status 0)
   for (const ShadeOutput& o : job_.outputs)
     g.renderer_outputs.push_back(o.layer.empty() ? o.var : o.layer + "." + o.var);
   for (const std::string& e : job_.entry_layers) g.entry_layers.push_back(e);
