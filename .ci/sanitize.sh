@@ -26,6 +26,8 @@ t1=$(date +%s)
 # that can only add false leak reports, never hide one.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1:new_delete_type_mismatch=0:intercept_tls_get_addr=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
+# One suppression, glibc's dlerror() bookkeeping (its reason in the file).
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/.ci/lsan.supp:print_suppressions=0}
 status=0
 ctest --test-dir "$dir" -LE heavy -j 2 --output-on-failure --timeout 3600 || status=$?
 t2=$(date +%s)

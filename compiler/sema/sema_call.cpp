@@ -267,8 +267,9 @@ void Sema::apply_candidate(ast::CallExpr* e, const Candidate& c) {
 
 // Argument i of `e` for an `output` parameter of type `pt`. A value that is not a variable
 // (`x + 1`) is accepted, as oslc accepts it (the function writes a temporary); a literal is not.
-// A non-output parameter as a builtin's output argument is silent, as in oslc; as a user
-// function's (`fn`), it is oslc's warning naming the function.
+// A function's non-output parameter as a builtin's output argument is silent, as in oslc; as a
+// user function's (`fn`), it is oslc's warning naming the function. A shader's input parameter
+// there is oslc's error (check_writable), for builtins too (`sincos(0.5, p, c)`).
 void Sema::check_output_arg(ast::CallExpr* e, size_t i, const Type& pt,
                             const ast::FunctionDecl* fn) {
   ExprPtr& a = e->args[i];

@@ -35,6 +35,7 @@
 #include <deque>
 #include <filesystem>
 #include <locale>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -254,6 +255,7 @@ public:
 private:
   bool compile(const ShaderGroup& g, std::shared_ptr<const Material>& out);
   bool reparameter(ShaderGroup::Layer& l, const ShadeReparam& r);
+  std::optional<ir::Shader> layer_ir(const ShaderGroup::Layer& l);
   bool resolve_outputs();
   void shade_grid(const Material& m, bool last_iteration);
   int write_outputs();
@@ -261,6 +263,7 @@ private:
 
   ShadeJob& job_;
   ShadingSystem ss_;
+  std::map<std::string, std::string> expr_sources_; // --expr shaders' text, by shader name
   std::shared_ptr<const Material> mat_;
   std::vector<Output> outputs_;
   // What the points said, keyed by iteration * points + point; in order once sorted (stably:
@@ -279,14 +282,22 @@ private:
   size_t shaded_iterations_ = 0; // shade_grid calls so far
 };
 
+// A layer's shader as IR (for what testshade asks of a layer's parameters): an --expr
+// layer's from its text, any other from its file; nothing if it does not compile.
+std::optional<ir::Shader> Shade::layer_ir(const ShaderGroup::Layer& l) {
+  DiagnosticList d;
+  CompileStats stats;
+  if (auto it = expr_sources_.find(l.shader); it != expr_sources_.end())
+    return group::compile_osl_source(it->first, it->second, ss_.options(), d, stats);
+  return group::compile_shader_file(l.shader, ss_.options(), d, stats);
+}
+
 // --reparam as testshade's ReParameter: an interactive parameter (`-param:interactive=1`, or
 // the shader's own `[[ int interactive = 1 ]]`) takes the new value; one of another type is
 // ignored without a word, except a float for a triple, which sets its first component only
 // (OSL copies the float's bytes into the triple). True when the layer changed.
 bool Shade::reparameter(ShaderGroup::Layer& l, const ShadeReparam& r) {
-  DiagnosticList d;
-  CompileStats stats;
-  std::optional<ir::Shader> sh = group::compile_shader_file(l.shader, ss_.options(), d, stats);
+  std::optional<ir::Shader> sh = layer_ir(l);
   int si = sh ? sh->find_symbol(r.param) : -1;
   if (si < 0) return false;
   const ir::Symbol& s = sh->symbols[size_t(si)];
@@ -559,6 +570,7 @@ int Shade::run() {
     std::string text = expression_shader(name, job_.expressions[k]);
     if (job_.verbose) std::printf("Expression-based shader text is:\n---\n%s---\n", text.c_str());
     DiagnosticList diags;
+    expr_sources_[name] = text;
     if (!ss_.add_shader_source(name, text, "<buffer>", diags)) {
       print_diagnostics(diags, true);
       std::fprintf(stderr, "Could not compile \"%s\"\n", name.c_str());
@@ -569,17 +581,14 @@ int Shade::run() {
   // A shader named without a path resolves on the search path here, so that one found in the
   // working directory is `x.osl` in diagnostics and __FILE__ (as for lobe compile and OSL).
   std::vector<std::string> named; // as given (x.oso names x), for -v
-  bool missing = false; // every shader not found is reported, in testshade's words
+  bool missing = false;           // every shader not found is reported, in testshade's words
   for (ShaderGroup::Layer& l : g.layers) {
     l.shader = shader_name(l.shader);
     named.push_back(l.shader);
     std::string p = group::find_shader_file(l.shader, ss_.options());
     if (p.rfind("./", 0) == 0) p.erase(0, 2);
     if (!p.empty()) l.shader = p;
-    bool expression = l.shader.rfind("expr_", 0) == 0 &&
-                      std::all_of(l.shader.begin() + 5, l.shader.end(), ::isdigit) &&
-                      std::stoul("0" + l.shader.substr(5)) < job_.expressions.size();
-    if (p.empty() && !expression) {
+    if (p.empty() && !expr_sources_.count(l.shader)) {
       std::fprintf(stderr,
                    "ERROR: No .oso file could be found for shader \"%s\"\n"
                    "ERROR: Could not find shader \"%s\"\n        group: %s\n",
@@ -598,11 +607,7 @@ int Shade::run() {
   std::string entry_outputs = "Entry outputs:", missing_output;
   if (!job_.entry_outputs.empty()) {
     std::vector<std::optional<ir::Shader>> shaders;
-    for (const ShaderGroup::Layer& l : g.layers) {
-      DiagnosticList d;
-      CompileStats stats;
-      shaders.push_back(group::compile_shader_file(l.shader, ss_.options(), d, stats));
-    }
+    for (const ShaderGroup::Layer& l : g.layers) shaders.push_back(layer_ir(l));
     for (const std::string& name : job_.entry_outputs) {
       bool kept = false;
       for (size_t k = 0; k < g.layers.size() && !kept; ++k) {
@@ -627,11 +632,7 @@ int Shade::run() {
   if (job_.verbose || job_.oslquery) {
     std::vector<std::string> params; // --oslquery: each layer's, as OSLQuery lists them
     for (const ShaderGroup::Layer& l : g.layers) {
-      DiagnosticList d;
-      CompileStats stats;
-      std::optional<ir::Shader> sh =
-          job_.oslquery ? group::compile_shader_file(l.shader, ss_.options(), d, stats)
-                        : std::nullopt;
+      std::optional<ir::Shader> sh = job_.oslquery ? layer_ir(l) : std::nullopt;
       params.push_back(sh ? ir::oslquery_params(*sh) : "");
     }
     print_group(g, named, job_.oslquery ? &params : nullptr);

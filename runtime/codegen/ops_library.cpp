@@ -340,9 +340,9 @@ void op_noise(LayerEmitter& e, const ir::Op& op) {
              : o == ir::Opcode::HashNoise                        ? shadeops::kHash
                                                                  : shadeops::kUPerlin;
   // noise("name", ...): a constant known name selects the kind here; a name known only at run
-  // time (or an unknown constant, so that -O0 and -O2 agree when specialisation makes a name
-  // constant) dispatches in lobe_noise_named_d, which reports an unknown name as a run-time
-  // error. "gabor" calls lobe_gabor.
+  // time, or an unknown constant, dispatches in lobe_noise_named_d, which reports an unknown
+  // name as a run-time error in OSL's words for each (a parameter is constant once specialised,
+  // so its wording differs between -O0 and -O2, as OSL's). "gabor" calls lobe_gabor.
   bool periodic = o == ir::Opcode::PNoise || o == ir::Opcode::PSNoise;
   bool named = false, gabor = false, maybe_gabor = false;
   if (e.arg(op, 1).type.base == BaseType::String) {
@@ -770,7 +770,7 @@ llvm::Value* texture_args(LayerEmitter& e, const ir::Op& op, size_t first) {
       B.CreateStore(e.load_as(op, v, BaseType::Float, false)[0].v,
                     at(offsetof(TextureArgs, missing) + 4 * size_t(std::min(channels, 3))));
       B.CreateStore(e.iconst(1), at(offsetof(TextureArgs, has_missing)));
-    } else if (kw == "errormessage" && op.writes(v)) // the lookup writes the string there
+    } else if (kw == "errormessage" && v < 32 && op.writes(v)) // the lookup writes it there
       B.CreateStore(e.storage_address(op.args[size_t(v)]), at(offsetof(TextureArgs, errormessage)));
     // "alpha": the lookup's extra channel (alpha_operand); "time", "subimage": ignored
   }
@@ -779,7 +779,7 @@ llvm::Value* texture_args(LayerEmitter& e, const ir::Op& op, size_t first) {
 
 // The operand a texture lookup's "alpha" keyword writes (lowering marks it written), or -1.
 int alpha_operand(LayerEmitter& e, const ir::Op& op, size_t first) {
-  for (size_t i = first; i + 1 < op.args.size(); i += 2)
+  for (size_t i = first; i + 1 < op.args.size() && i + 1 < 32; i += 2)
     if (op.writes(int(i + 1)) && const_string(e.arg(op, int(i))) == "alpha") return int(i + 1);
   return -1;
 }

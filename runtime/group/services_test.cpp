@@ -354,6 +354,23 @@ INSTANTIATE_TEST_SUITE_P(Opt, Services, ::testing::Values(0, 2),
 
 namespace {
 
+// A UDIM name looks up the tile at (s, t) (OpenImageIO resolves it per lookup: u in [0, 1) is
+// tile 1001, [1, 2) tile 1002); a tile that does not exist is a lookup of nothing.
+TEST_P(Services, TextureLooksUpUdimTiles) {
+  std::ofstream(dir_ / "t.1001.ppm") << "P3\n1 1\n255\n255 0 0\n";
+  std::ofstream(dir_ / "t.1002.ppm") << "P3\n1 1\n255\n0 255 0\n";
+  std::string f = write("udim", R"(
+surface udim(string file = "") {
+  color a = texture(file, 0.5, 0.5, "wrap", "clamp", "interp", "closest");
+  color b = texture(file, 1.5, 0.5, "wrap", "clamp", "interp", "closest");
+  printf("%g | %g\n", a, b);
+}
+)");
+  std::string out =
+      shade(one(f, {{"string", "file", (dir_ / "t.<UDIM>.ppm").string()}}), 1, nullptr);
+  EXPECT_EQ(out, "1 0 0 | 0 1 0\n");
+}
+
 TEST_P(Services, GetTextureInfo) {
   // A 4 x 2 RGB image in the plain-text PPM format, which OpenImageIO reads.
   fs::path img = dir_ / "tex.ppm";

@@ -131,6 +131,7 @@ std::string texture_verdict(OIIO::TextureSystem* ts, Handle* h, Perthread* info,
                             bool* unopened) {
   // Null for a file that cannot be opened: refused, with OpenImageIO's error as OSL's texture
   // lookup words it (`Could not open file "x"`, without imagespec's `Invalid image file "x": `).
+  if (h && ts->is_udim(h)) return ""; // a UDIM name: OpenImageIO picks the tile per lookup
   const OIIO::ImageSpec* spec = h ? ts->imagespec(h, info) : nullptr;
   if (!spec) {
     std::string err = ts->geterror();
@@ -185,7 +186,8 @@ Lookup find(Textures* t, const char* file) {
     bool unopened = false;
     refusal = texture_verdict(t->ts, l.handle, l.info, file, &unopened);
     std::lock_guard<std::mutex> lock(t->mutex);
-    if (unopened && !t->explained.insert(file).second) refusal = kNoExplanation;
+    if (unopened && refusal != kNoExplanation && !t->explained.insert(file).second)
+      refusal = kNoExplanation; // another lookup or gettextureinfo told it already
     t->verdicts.emplace(file, unopened ? std::string(kNoExplanation) : refusal);
   }
   if (!refusal.empty()) {

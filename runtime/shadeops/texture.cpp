@@ -40,17 +40,18 @@ void* texsys(RuntimeEnv* env, const lobe::oiio::Api*& api, std::string& why) {
   return env->texture_system;
 }
 
-// After a failed lookup: the shader's missing colour, or zeros and an error in OSL's words
-// (`[RendererServices::texture] Could not open file "x.exr"`; nothing for a file OpenImageIO
-// explained before), or the reason in the "errormessage" output instead ("unknown" when there
-// is none).
+// After a failed lookup: the shader's missing colour (no error; an "errormessage" output is
+// ""), or zeros and an error in OSL's words (`[RendererServices::texture] Could not open file
+// "x.exr"`; nothing for a file OpenImageIO explained before), or the reason in the
+// "errormessage" output instead ("unknown" when it was told before).
 void missing(ShaderGlobals* sg, RuntimeEnv* env, std::string err, const TextureArgs* a,
              const char* file, int n, float* out) {
   for (int c = 0; c < n; ++c) out[c] = a->has_missing ? a->missing[std::min(c, 3)] : 0.0f;
   bool explained = err == lobe::oiio::kNoExplanation;
-  if (err.empty()) err = "Could not open file \"" + std::string(file) + "\"";
-  if (a->errormessage) {
-    *a->errormessage = env->strings.intern(explained ? "unknown" : err);
+  // No reason given: the lookup of a file that opened failed otherwise (OpenImageIO said nothing).
+  if (err.empty()) err = "texture lookup of \"" + std::string(file) + "\" failed";
+  if (a->errormessage) { // with "missingcolor" the lookup counts as done: "" (as in OSL)
+    *a->errormessage = env->strings.intern(a->has_missing ? "" : explained ? "unknown" : err);
     return;
   }
   if (a->has_missing || explained || !sg || !sg->context) return;

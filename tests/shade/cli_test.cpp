@@ -306,6 +306,17 @@ TEST(ShadeCli, ExpressionShader) {
   EXPECT_EQ(run("-g 2 1 --expr 'string n; getattribute(\"shader:layername\", n); "
                 "result = color(s, t, 1); printf(\"%s %g %g\\n\", n, s, result);'"),
             "expr_0_0 0 0 0.5 1\nexpr_0_0 1 1 0.5 1\n\n");
+  // Its parameters answer --oslquery and --entryoutput as any layer's (testshade -g 1 1
+  // --oslquery --expr 'result = color(u);', and with --entryoutput result: not kept, as no
+  // connection or -o reads it).
+  EXPECT_EQ(run("-g 1 1 --oslquery --expr 'result = color(u);'"),
+            "Shader group:\n---\nshader expr_0 expr_0_0 ;\n\n---\n\n"
+            "Shader group \"unnamed_group_1\" layers are:\n    expr_0_0\n\tfloat s\n\tfloat t\n"
+            "\toutput color result\n\toutput float alpha\n\n\n");
+  EXPECT_EQ(run("-g 1 1 --expr 'result = color(u);' --entryoutput result"),
+            "Entry outputs:\nEntry output result not found. Abording.\n");
+  EXPECT_EQ(run("-g 1 1 --expr 'result = color(u);' --entryoutput result -o result null"),
+            "\nEntry outputs: result\n\n");
 }
 
 // Attributes as testshade answers them: the camera's whole for any object (no element by index:
