@@ -94,12 +94,6 @@ void Sema::declare_function(ast::FunctionDecl* f) {
   set.push_back(f);
 }
 
-// A function's signature as oslc words it in messages: `float f (float)`.
-static std::string oslc_signature(std::string s) {
-  if (size_t at = s.find('('); at != std::string::npos) s.insert(at, " ");
-  return s;
-}
-
 // oslc's warning when a definition repeats a signature of its overload scope: at file level
 // (which includes the shader body and the builtins) or in the same nested scope. Not for the
 // standard header, which may restate one.
@@ -111,14 +105,14 @@ void Sema::warn_redefinition(ast::FunctionDecl* f) {
   for (ast::FunctionDecl* g : previous) {
     if (!g->body || !same_signature(g, f)) continue;
     error(DiagId::warn_function_redefined, f->name_range,
-          {oslc_signature(Candidate{f}.signature())});
+          {diag::oslc_signature(Candidate{f}.signature())});
     error(DiagId::note_previous_decl, g->name_range);
     return;
   }
   for (const BuiltinSig& b : builtins().lookup(f->name)) {
     if (!file_level || !redefines(f, b)) continue;
     error(DiagId::warn_function_redefined, f->name_range,
-          {oslc_signature(Candidate{f}.signature())});
+          {diag::oslc_signature(Candidate{f}.signature())});
     error(DiagId::note_previous_builtin, SourceRange(), {b.signature()});
     return;
   }

@@ -12,6 +12,7 @@
 // kept with the point, so the output is the same, in row-major order, whatever the threads.
 #include "command.h"
 
+#include "diag/diagnostics.h"
 #include "grid.h"
 #include "image.h"
 #include "ir/query.h"
@@ -87,13 +88,6 @@ std::string shader_name(std::string s) {
   return s;
 }
 
-// `name(args)` as oslc prints a function: `name (args)`.
-std::string oslc_signature(std::string s) {
-  if (size_t at = s.find('('); at != std::string::npos && at > 0 && s[at - 1] != ' ')
-    s.insert(at, " ");
-  return s;
-}
-
 // A compiler warning as oslc prints it, without column or source line: `file:line: warning:
 // message`, an ambiguous call with oslc's words and its candidates (a built-in one without a
 // place). `notes` are the warning's own notes.
@@ -117,7 +111,7 @@ void print_oslc_warning(const Diagnostic& d, const std::vector<const Diagnostic*
   size_t a = call.find('\''), b = call.rfind('\'');
   if (a != std::string::npos && b > a) call = call.substr(a + 1, b - a - 1);
   std::fprintf(stderr, "%swarning: Ambiguous call to '%s'\n", place.c_str(),
-               oslc_signature(call).c_str());
+               diag::oslc_signature(call).c_str());
   bool others = false;
   for (const Diagnostic* n : notes) {
     bool chosen = n->id == "note_chosen_candidate";
@@ -128,7 +122,7 @@ void print_oslc_warning(const Diagnostic& d, const std::vector<const Diagnostic*
     std::string sig = n->message.substr(n->message.find(':') + 2);
     bool builtin = n->file.empty() || n->file.ends_with("stdosl.h");
     std::string at = builtin ? "" : n->file + ":" + std::to_string(n->line) + "\t";
-    std::fprintf(stderr, "    %s%s\n", at.c_str(), oslc_signature(sig).c_str());
+    std::fprintf(stderr, "    %s%s\n", at.c_str(), diag::oslc_signature(sig).c_str());
   }
 }
 
@@ -255,7 +249,7 @@ public:
 private:
   bool compile(const ShaderGroup& g, std::shared_ptr<const Material>& out);
   bool reparameter(ShaderGroup::Layer& l, const ShadeReparam& r);
-  std::optional<ir::Shader> layer_ir(const ShaderGroup::Layer& l);
+  const ir::Shader* layer_ir(const ShaderGroup::Layer& l);
   bool resolve_outputs();
   void shade_grid(const Material& m, bool last_iteration);
   int write_outputs();
@@ -264,6 +258,7 @@ private:
   ShadeJob& job_;
   ShadingSystem ss_;
   std::map<std::string, std::string> expr_sources_; // --expr shaders' text, by shader name
+  std::map<std::string, std::optional<ir::Shader>> layer_irs_; // layer_ir's, by shader name
   std::shared_ptr<const Material> mat_;
   std::vector<Output> outputs_;
   // What the points said, keyed by iteration * points + point; in order once sorted (stably:
@@ -283,13 +278,19 @@ private:
 };
 
 // A layer's shader as IR (for what testshade asks of a layer's parameters): an --expr
-// layer's from its text, any other from its file; nothing if it does not compile.
-std::optional<ir::Shader> Shade::layer_ir(const ShaderGroup::Layer& l) {
-  DiagnosticList d;
-  CompileStats stats;
-  if (auto it = expr_sources_.find(l.shader); it != expr_sources_.end())
-    return group::compile_osl_source(it->first, it->second, ss_.options(), d, stats);
-  return group::compile_shader_file(l.shader, ss_.options(), d, stats);
+// layer's from its text, any other from its file; null if it does not compile. Each shader is
+// compiled once, however many layers and options ask.
+const ir::Shader* Shade::layer_ir(const ShaderGroup::Layer& l) {
+  auto [it, fresh] = layer_irs_.try_emplace(l.shader);
+  if (fresh) {
+    DiagnosticList d;
+    CompileStats stats;
+    auto src = expr_sources_.find(l.shader);
+    it->second = src != expr_sources_.end()
+                     ? group::compile_osl_source(src->first, src->second, ss_.options(), d, stats)
+                     : group::compile_shader_file(l.shader, ss_.options(), d, stats);
+  }
+  return it->second ? &*it->second : nullptr;
 }
 
 // --reparam as testshade's ReParameter: an interactive parameter (`-param:interactive=1`, or
@@ -297,7 +298,7 @@ std::optional<ir::Shader> Shade::layer_ir(const ShaderGroup::Layer& l) {
 // ignored without a word, except a float for a triple, which sets its first component only
 // (OSL copies the float's bytes into the triple). True when the layer changed.
 bool Shade::reparameter(ShaderGroup::Layer& l, const ShadeReparam& r) {
-  std::optional<ir::Shader> sh = layer_ir(l);
+  const ir::Shader* sh = layer_ir(l);
   int si = sh ? sh->find_symbol(r.param) : -1;
   if (si < 0) return false;
   const ir::Symbol& s = sh->symbols[size_t(si)];
@@ -606,7 +607,7 @@ int Shade::run() {
   // there ("Entry output NAME not found. Abording.", exit status 1).
   std::string entry_outputs = "Entry outputs:", missing_output;
   if (!job_.entry_outputs.empty()) {
-    std::vector<std::optional<ir::Shader>> shaders;
+    std::vector<const ir::Shader*> shaders;
     for (const ShaderGroup::Layer& l : g.layers) shaders.push_back(layer_ir(l));
     for (const std::string& name : job_.entry_outputs) {
       bool kept = false;
@@ -632,7 +633,7 @@ int Shade::run() {
   if (job_.verbose || job_.oslquery) {
     std::vector<std::string> params; // --oslquery: each layer's, as OSLQuery lists them
     for (const ShaderGroup::Layer& l : g.layers) {
-      std::optional<ir::Shader> sh = job_.oslquery ? layer_ir(l) : std::nullopt;
+      const ir::Shader* sh = job_.oslquery ? layer_ir(l) : nullptr;
       params.push_back(sh ? ir::oslquery_params(*sh) : "");
     }
     print_group(g, named, job_.oslquery ? &params : nullptr);

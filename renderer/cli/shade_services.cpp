@@ -92,18 +92,18 @@ ShadeServices::ShadeServices(std::vector<ShadeUserDatum> data, int xres, int yre
   const char* names[] = {"object", "shader", "myspace"};
   for (int k = 0; k < 3; ++k) {
     Space s{names[k], {}};
-    invert(common_to[k], s.to_common);
+    invert(common_to[k], s.m);
     spaces_.push_back(s);
   }
-  // The camera spaces, kept as common -> space (Space::to_common holds that way round here).
+  // The camera spaces, kept as common -> space.
   // NDC = screen * (x, y in [-1, 1] -> [0, 1]); raster = NDC * scale(xres, yres, 1).
   Space camera{"camera", {}}, screen{"screen", {}}, ndc{"NDC", {}}, raster{"raster", {}};
-  for (int k = 0; k < 16; ++k) camera.to_common[k] = k % 5 == 0 ? 1.0f : 0.0f;
-  std::memcpy(screen.to_common, common_to[3], sizeof screen.to_common);
+  for (int k = 0; k < 16; ++k) camera.m[k] = k % 5 == 0 ? 1.0f : 0.0f;
+  std::memcpy(screen.m, common_to[3], sizeof screen.m);
   const float to_ndc[16] = {0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 1, 0, 0.5f, 0.5f, 0, 1};
-  multiply(common_to[3], to_ndc, ndc.to_common);
+  multiply(common_to[3], to_ndc, ndc.m);
   const float to_raster[16] = {float(xres), 0, 0, 0, 0, float(yres), 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-  multiply(ndc.to_common, to_raster, raster.to_common);
+  multiply(ndc.m, to_raster, raster.m);
   camera_spaces_ = {camera, screen, ndc, raster};
 }
 
@@ -179,7 +179,7 @@ bool ShadeServices::get_inverse_matrix(const ShaderGlobals&, std::string_view sp
                                        float* m) const {
   for (const Space& s : camera_spaces_)
     if (space == s.name) {
-      std::memcpy(m, s.to_common, sizeof s.to_common);
+      std::memcpy(m, s.m, sizeof s.m);
       return true;
     }
   return false; // the others: the inverse of get_matrix's
@@ -188,7 +188,7 @@ bool ShadeServices::get_inverse_matrix(const ShaderGlobals&, std::string_view sp
 bool ShadeServices::get_matrix(const ShaderGlobals&, std::string_view space, float* m) const {
   for (const Space& s : spaces_)
     if (space == s.name) {
-      std::memcpy(m, s.to_common, sizeof s.to_common);
+      std::memcpy(m, s.m, sizeof s.m);
       return true;
     }
   return false;

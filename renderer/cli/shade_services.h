@@ -39,7 +39,7 @@ private:
   int xres_, yres_;
   struct Space {
     const char* name;
-    float to_common[16];
+    float m[16]; // spaces_: space -> common; camera_spaces_: common -> space
   };
   std::vector<Space> spaces_;
   // common -> camera, screen, NDC, raster: testshade knows these only as destinations.
