@@ -29,6 +29,8 @@
 #include <span>
 #include <string_view>
 
+#include "library_calls.h" // runtime/registry
+
 namespace lobe::ir {
 
 inline constexpr int kVariadic = -1;
@@ -42,6 +44,11 @@ enum OpFlags : uint8_t {
 
 inline constexpr uint8_t kArith = kPropagates | kPure; // value ops that carry derivatives
 inline constexpr uint8_t kValue = kPure;               // value ops without derivatives
+
+// A library call's opcode row: the result, then its OSL arguments; pure, no derivatives read.
+#define LOBE_LIBRARY_OPCODE_ROW(X, e, name, R, P, fn, doc)                                         \
+  X(e, name, 1 + library::kArity[int(library::Call::e)],                                           \
+    1 + library::kArity[int(library::Call::e)], 1, 0, kValue, doc)
 
 // clang-format off
 #define LOBE_OPCODES(X) \
@@ -171,13 +178,7 @@ inline constexpr uint8_t kValue = kPure;               // value ops without deri
   X(Warning,          "warning",           1, kVariadic, 0, 0,  kEffect,     "report a runtime warning with format a") \
   X(Fprintf,          "fprintf",           2, kVariadic, 0, 0,  kEffect,     "append formatted text to file a") \
   X(Concat,           "concat",            2, kVariadic, 1, 0,  kPure,       "string a = b + c + ...") \
-  X(Strlen,           "strlen",            2, 2,         1, 0,  kPure,       "int a = length of b") \
-  X(StartsWith,       "startswith",        3, 3,         1, 0,  kPure,       "int a = b starts with c") \
-  X(EndsWith,         "endswith",          3, 3,         1, 0,  kPure,       "int a = b ends with c") \
-  X(Stoi,             "stoi",              2, 2,         1, 0,  kPure,       "int a = atoi(b)") \
-  X(Stof,             "stof",              2, 2,         1, 0,  kPure,       "float a = atof(b)") \
   X(Substr,           "substr",            3, 4,         1, 0,  kPure,       "string a = b.substr(c [, d])") \
-  X(GetChar,          "getchar",           3, 3,         1, 0,  kPure,       "int a = byte c of b") \
   X(Hash,             "hash",              2, 3,         1, 0,  kPure,       "int a = hash of b") \
   X(RegexSearch,      "regex_search",      3, 4,         1, 0,  0,           "int a = regex search (subject, [results,] pattern)") \
   X(RegexMatch,       "regex_match",       3, 4,         1, 0,  0,           "int a = regex match") \
@@ -197,7 +198,9 @@ inline constexpr uint8_t kValue = kPure;               // value ops without deri
   X(Backfacing,       "backfacing",        1, 1,         1, 0,  0,           "int a = ShaderGlobals::backfacing") \
   X(SurfaceArea,      "surfacearea",       1, 1,         1, 0,  0,           "float a = ShaderGlobals::surfacearea") \
   X(IsConnected,      "isconnected",       2, 2,         1, 0,  0,           "int a = 1 if param b is connected upstream, 2 downstream, 3 both") \
-  X(IsConstant,       "isconstant",        2, 2,         1, 0,  0,           "int a = 1 if b is a compile-time constant after specialisation")
+  X(IsConstant,       "isconstant",        2, 2,         1, 0,  0,           "int a = 1 if b is a compile-time constant after specialisation") \
+  /* ---- library calls: one row each in library_calls.h */ \
+  LOBE_LIBRARY_CALLS(LOBE_LIBRARY_OPCODE_ROW, X)
 // clang-format on
 
 enum class Opcode : uint16_t {

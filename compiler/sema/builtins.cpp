@@ -5,8 +5,11 @@
 
 #include "sema/types.h"
 
+#include "library_calls.h"
+
 #include <algorithm>
 #include <map>
+#include <type_traits>
 
 namespace lobe::sema {
 
@@ -179,14 +182,8 @@ void strings(Builder& b) {
   b.add("concat", str, {str, str, str, str});
   b.add("concat", str, {str, str, str, str, str});
   b.add("concat", str, {str, str, str, str, str, str});
-  b.add("strlen", t_int(), {t_string()});
-  b.add("startswith", t_int(), {t_string(), t_string()});
-  b.add("endswith", t_int(), {t_string(), t_string()});
-  b.add("stoi", t_int(), {t_string()});
-  b.add("stof", t_float(), {t_string()});
   b.add("substr", t_string(), {t_string(), t_int(), t_int()});
   b.add("substr", t_string(), {t_string(), t_int()});
-  b.add("getchar", t_int(), {t_string(), t_int()});
   // split(str, results[], sep = "" (whitespace), maxsplit = arraylength(results)): the count.
   const Type strings_out(BaseType::String, -1);
   b.add("split", t_int(), {t_string(), strings_out, t_string(), t_int()}).params[1].output = true;
@@ -283,6 +280,41 @@ void textures(Builder& b) {
   }
 }
 
+// The library calls (ir/library_calls.h): one signature each, from the table's row.
+namespace lib = ir::library;
+template <class T> Type lib_type() {
+  if constexpr (std::is_same_v<T, lib::Int>)
+    return t_int();
+  else if constexpr (std::is_same_v<T, lib::Float>)
+    return t_float();
+  else if constexpr (std::is_same_v<T, lib::String>)
+    return t_string();
+  else if constexpr (std::is_same_v<T, lib::Color>)
+    return t_color();
+  else if constexpr (std::is_same_v<T, lib::Point>)
+    return t_point();
+  else if constexpr (std::is_same_v<T, lib::Vector>)
+    return t_vector();
+  else
+    return t_normal();
+}
+template <class F> struct LibParams;
+template <class... P> struct LibParams<void(P...)> {
+  static std::vector<Type> types() {
+    std::vector<Type> out;
+    ((std::is_same_v<P, lib::Env> ? void() : out.push_back(lib_type<P>())), ...);
+    return out;
+  }
+};
+
+void library_calls(Builder& b) {
+  using namespace ir::library;
+#define LOBE_LIBRARY_SIG_ROW(x, e, name, R, P, fn, doc)                                            \
+  b.add(name, lib_type<R>(), LibParams<void P>::types());
+  LOBE_LIBRARY_CALLS(LOBE_LIBRARY_SIG_ROW, _)
+#undef LOBE_LIBRARY_SIG_ROW
+}
+
 void misc(Builder& b) {
   b.add("exit", t_void(), {});
   b.add("arraylength", t_int(), {t_float()}).array_param = true;
@@ -314,6 +346,7 @@ BuiltinTable::BuiltinTable() {
   splines(b);
   services(b);
   textures(b);
+  library_calls(b);
   misc(b);
   // Group by name, keeping each name's declaration order (the preference order).
   std::stable_sort(b.sigs.begin(), b.sigs.end(),

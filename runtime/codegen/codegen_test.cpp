@@ -433,3 +433,40 @@ TEST(Codegen, EveryOpcodeHasExactlyOneEmitter) {
     EXPECT_EQ(codegen::op_emitter(op) == nullptr, flow) << ir::to_string(op);
   }
 }
+
+// A library call is one row of runtime/registry/library_calls.h: its opcode (name, operand
+// counts), its emitter and its JIT symbol (name, signature string) all come from the row. The
+// expected values are the rows' declared types, written out by hand.
+TEST(Codegen, LibraryCallRowsAreWired) {
+  struct Expect {
+    ir::Opcode op;
+    const char* name;
+    int operands;
+    const char* shadeop;
+    const char* sig;
+  };
+  const Expect rows[] = {
+      {ir::Opcode::Strlen, "strlen", 2, "lobe_strlen", "ip"},
+      {ir::Opcode::StartsWith, "startswith", 3, "lobe_startswith", "ipp"},
+      {ir::Opcode::EndsWith, "endswith", 3, "lobe_endswith", "ipp"},
+      {ir::Opcode::Stoi, "stoi", 2, "lobe_stoi", "ip"},
+      {ir::Opcode::Stof, "stof", 2, "lobe_stof", "fp"},
+      {ir::Opcode::GetChar, "getchar", 3, "lobe_getchar", "ipi"},
+  };
+  EXPECT_EQ(ir::library::kCount, std::size(rows));
+  for (const Expect& x : rows) {
+    const ir::OpcodeInfo& info = ir::info(x.op);
+    EXPECT_STREQ(info.name, x.name);
+    EXPECT_EQ(info.min_args, x.operands) << x.name;
+    EXPECT_EQ(info.max_args, x.operands) << x.name;
+    EXPECT_EQ(info.written, 1u) << x.name;
+    EXPECT_NE(codegen::op_emitter(x.op), nullptr) << x.name;
+    int found = 0;
+    for (const shadeops::ShadeOpSymbol& s : shadeops::shadeop_symbols())
+      if (std::strcmp(s.name, x.shadeop) == 0) {
+        ++found;
+        EXPECT_STREQ(s.sig, x.sig) << x.shadeop;
+      }
+    EXPECT_EQ(found, 1) << x.shadeop;
+  }
+}

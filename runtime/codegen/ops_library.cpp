@@ -15,7 +15,9 @@
 #include <climits>
 #include <cstddef>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
+#include <type_traits>
 
 namespace lobe::codegen {
 namespace {
@@ -112,19 +114,7 @@ void op_string(LayerEmitter& e, const ir::Op& op) {
     r = str(e, op, 1);
     for (size_t i = 2; i < op.args.size(); ++i)
       r = e.call("lobe_concat", {e.env_ptr(), r, str(e, op, int(i))});
-  } else if (o == ir::Opcode::Strlen)
-    r = e.call("lobe_strlen", {str(e, op, 1)});
-  else if (o == ir::Opcode::StartsWith)
-    r = e.call("lobe_startswith", {str(e, op, 1), str(e, op, 2)});
-  else if (o == ir::Opcode::EndsWith)
-    r = e.call("lobe_endswith", {str(e, op, 1), str(e, op, 2)});
-  else if (o == ir::Opcode::Stoi)
-    r = e.call("lobe_stoi", {str(e, op, 1)});
-  else if (o == ir::Opcode::Stof)
-    r = e.call("lobe_stof", {str(e, op, 1)});
-  else if (o == ir::Opcode::GetChar)
-    r = e.call("lobe_getchar", {str(e, op, 1), e.load_as(op, 2, BaseType::Int)[0].v});
-  else if (o == ir::Opcode::Substr) {
+  } else if (o == ir::Opcode::Substr) {
     llvm::Value* len =
         op.args.size() > 3 ? e.load_as(op, 3, BaseType::Int)[0].v : e.iconst(0x7fffffff);
     r = e.call("lobe_substr",
@@ -145,10 +135,80 @@ void op_string(LayerEmitter& e, const ir::Op& op) {
   }
   e.store(op.args[0],
           e.convert(Val{Dual{r}},
-                    o == ir::Opcode::Stof                                  ? BaseType::Float
-                    : (o == ir::Opcode::Concat || o == ir::Opcode::Substr) ? BaseType::String
-                                                                           : BaseType::Int,
+                    (o == ir::Opcode::Concat || o == ir::Opcode::Substr) ? BaseType::String
+                                                                         : BaseType::Int,
                     e.arg(op, 0).type.base));
+}
+
+// ---- library calls (runtime/registry/library_calls.h) ---------------------------------------
+
+// How a library call passes a value: its OSL base type (none for the Env parameter).
+template <class T> constexpr std::optional<BaseType> library_base() {
+  namespace lib = ir::library;
+  if constexpr (std::is_same_v<T, lib::Int>)
+    return BaseType::Int;
+  else if constexpr (std::is_same_v<T, lib::Float>)
+    return BaseType::Float;
+  else if constexpr (std::is_same_v<T, lib::String>)
+    return BaseType::String;
+  else if constexpr (std::is_same_v<T, lib::Color>)
+    return BaseType::Color;
+  else if constexpr (std::is_same_v<T, lib::Point>)
+    return BaseType::Point;
+  else if constexpr (std::is_same_v<T, lib::Vector>)
+    return BaseType::Vector;
+  else if constexpr (std::is_same_v<T, lib::Normal>)
+    return BaseType::Normal;
+  else
+    return std::nullopt;
+}
+template <class F> struct LibraryParams;
+template <class... P> struct LibraryParams<void(P...)> {
+  static std::vector<std::optional<BaseType>> get() { return {library_base<P>()...}; }
+};
+
+struct LibraryCall {
+  const char* shadeop;
+  BaseType result;
+  std::vector<std::optional<BaseType>> params; // none: the RuntimeEnv
+};
+
+// The row of each library call's opcode (null for the other opcodes).
+const LibraryCall* library_call(ir::Opcode o) {
+  static const std::vector<std::pair<ir::Opcode, LibraryCall>> kRows = [] {
+    using namespace ir::library;
+    return std::vector<std::pair<ir::Opcode, LibraryCall>>{
+#define LOBE_LIBRARY_CODEGEN_ROW(x, e, name, R, P, fn, doc)                                        \
+  {ir::Opcode::e, LibraryCall{#fn, *library_base<R>(), LibraryParams<void P>::get()}},
+        LOBE_LIBRARY_CALLS(LOBE_LIBRARY_CODEGEN_ROW, _)
+#undef LOBE_LIBRARY_CODEGEN_ROW
+    };
+  }();
+  for (const auto& [op, row] : kRows)
+    if (op == o) return &row;
+  return nullptr;
+}
+
+// result = shadeop(arguments as C values): ints and floats by value (converted to the
+// parameter's type), strings as their pointers, triples as the address of 3 floats.
+void op_library_call(LayerEmitter& e, const ir::Op& op) {
+  const LibraryCall* c = library_call(op.opcode);
+  std::vector<llvm::Value*> args;
+  int i = 1;
+  for (std::optional<BaseType> p : c->params) {
+    BaseType t = p ? *p : BaseType::Int;
+    if (!p) {
+      args.push_back(e.env_ptr());
+    } else if (t == BaseType::Int || t == BaseType::Float || t == BaseType::String) {
+      args.push_back(e.load_as(op, i++, t, false)[0].v);
+    } else {
+      std::vector<llvm::Value*> comps;
+      for (const Dual& d : e.load_as(op, i++, t, false)) comps.push_back(d.v);
+      args.push_back(e.spill(comps));
+    }
+  }
+  llvm::Value* r = e.call(c->shadeop, std::move(args));
+  e.store(op.args[0], e.convert(Val{Dual{r}}, c->result, e.arg(op, 0).type.base));
 }
 
 // hash(string) is OIIO's ustring hash, as in OSL (shadeop); hash of numbers is OSL's lookup3
@@ -882,19 +942,18 @@ void op_texture3d(LayerEmitter& e, const ir::Op& op) {
 }
 
 const OpEntry kLibraryOps[] = {
+// clang-format off
+#define LOBE_LIBRARY_ENTRY_ROW(x, e, name, R, P, fn, doc) {ir::Opcode::e, op_library_call},
+    LOBE_LIBRARY_CALLS(LOBE_LIBRARY_ENTRY_ROW, _)
+#undef LOBE_LIBRARY_ENTRY_ROW
+    // clang-format on
     {ir::Opcode::Printf, op_printf},
     {ir::Opcode::Format, op_printf},
     {ir::Opcode::Error, op_printf},
     {ir::Opcode::Warning, op_printf},
     {ir::Opcode::Fprintf, op_printf},
     {ir::Opcode::Concat, op_string},
-    {ir::Opcode::Strlen, op_string},
-    {ir::Opcode::StartsWith, op_string},
-    {ir::Opcode::EndsWith, op_string},
-    {ir::Opcode::Stoi, op_string},
-    {ir::Opcode::Stof, op_string},
     {ir::Opcode::Substr, op_string},
-    {ir::Opcode::GetChar, op_string},
     {ir::Opcode::RegexSearch, op_string},
     {ir::Opcode::RegexMatch, op_string},
     {ir::Opcode::Hash, op_hash},

@@ -1,10 +1,14 @@
 // The generated closures reference (closure_docs.h).
 #include "closure_docs.h"
 
+#include "library_calls.h"
+
 #include "closure_registry.h"
 #include "closure_table.h"
 
+#include <string>
 #include <string_view>
+#include <type_traits>
 
 namespace lobe::registry {
 namespace {
@@ -68,14 +72,49 @@ std::string closure_reference_markdown() {
   return out;
 }
 
-bool replace_generated_section(std::string& doc) {
-  size_t b = doc.find(kDocsBegin);
-  if (b == std::string::npos) return false;
+namespace {
+
+template <class F> struct LibrarySignature;
+template <class... P> struct LibrarySignature<void(P...)> {
+  static std::string params() {
+    std::string s;
+    ((std::is_same_v<P, ir::library::Env>
+          ? void()
+          : void(s += (s.empty() ? "" : ", ") + std::string(ir::library::type_name<P>()))),
+     ...);
+    return s;
+  }
+};
+
+// Replaces the text between `begin` and `end`; 0 when there is no such pair, -1 when broken.
+int replace_between(std::string& doc, const char* begin, const char* end, const std::string& text) {
+  size_t b = doc.find(begin);
+  if (b == std::string::npos) return 0;
   size_t body = doc.find('\n', b);
-  size_t e = doc.find(kDocsEnd, b);
-  if (body == std::string::npos || e == std::string::npos || e < body) return false;
-  doc.replace(body + 1, e - (body + 1), closure_reference_markdown());
-  return true;
+  size_t e = doc.find(end, b);
+  if (body == std::string::npos || e == std::string::npos || e < body) return -1;
+  doc.replace(body + 1, e - (body + 1), text);
+  return 1;
+}
+
+} // namespace
+
+std::string library_reference_markdown() {
+  using namespace ir::library;
+  std::string out = "| function | what it returns |\n"
+                    "|---|---|\n";
+#define LOBE_LIBRARY_DOC_ROW(x, e, name, R, P, fn, doc)                                            \
+  out += "| `" + std::string(ir::library::type_name<R>()) + " " + name + "(" +                     \
+         LibrarySignature<void P>::params() + ")` | " + doc + " |\n";
+  LOBE_LIBRARY_CALLS(LOBE_LIBRARY_DOC_ROW, _)
+#undef LOBE_LIBRARY_DOC_ROW
+  return out;
+}
+
+bool replace_generated_section(std::string& doc) {
+  int c = replace_between(doc, kDocsBegin, kDocsEnd, closure_reference_markdown());
+  int l = replace_between(doc, kLibraryDocsBegin, kLibraryDocsEnd, library_reference_markdown());
+  return c >= 0 && l >= 0 && (c > 0 || l > 0);
 }
 
 } // namespace lobe::registry

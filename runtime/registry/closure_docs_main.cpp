@@ -1,6 +1,8 @@
 // closure_docs: prints the closures reference table generated from the registry, or, with
-// `--update FILE`, rewrites the generated section of FILE (docs/closures.md) in place.
+// `--update FILE`, rewrites the generated sections of FILE in place (the closure table of
+// docs/closures.md, the library calls of docs/language.md).
 //   ./build/runtime/registry/closure_docs --update docs/closures.md
+//   ./build/runtime/registry/closure_docs --update docs/language.md
 #include "closure_docs.h"
 
 #include <cstdio>
@@ -14,7 +16,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (argc != 3 || std::strcmp(argv[1], "--update") != 0) {
-    std::fprintf(stderr, "usage: closure_docs [--update docs/closures.md]\n");
+    std::fprintf(stderr, "usage: closure_docs [--update docs/closures.md | docs/language.md]\n");
     return 2;
   }
   std::ifstream in(argv[2], std::ios::binary);

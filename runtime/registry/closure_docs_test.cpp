@@ -42,6 +42,25 @@ TEST(ClosureDocs, RowsFollowTheTable) {
             std::string::npos);
 }
 
+TEST(ClosureDocs, CommittedLibraryListIsTheGeneratedOne) {
+  std::string doc = read(LOBE_SOURCE_DIR "/docs/language.md");
+  ASSERT_FALSE(doc.empty());
+  ASSERT_NE(doc.find(kLibraryDocsBegin), std::string::npos) << "docs/language.md lost its markers";
+  std::string regenerated = doc;
+  ASSERT_TRUE(replace_generated_section(regenerated));
+  EXPECT_EQ(doc, regenerated)
+      << "docs/language.md is out of date: run closure_docs --update docs/language.md";
+}
+
+TEST(ClosureDocs, LibraryRowsFollowTheTable) {
+  std::string md = library_reference_markdown();
+  // Written from the rows of library_calls.h, by hand.
+  EXPECT_NE(md.find("| `int strlen(string)` | the length of the string in bytes |\n"),
+            std::string::npos);
+  EXPECT_NE(md.find("| `int getchar(string, int)` | "), std::string::npos);
+  EXPECT_NE(md.find("| `float stof(string)` | "), std::string::npos);
+}
+
 TEST(ClosureDocs, ReplaceNeedsBothMarkers) {
   std::string doc = "x\n" + std::string(kDocsBegin) + "\nold\n";
   EXPECT_FALSE(replace_generated_section(doc));

@@ -4,6 +4,8 @@
 // compile (two extern "C" declarations of one name with different types are an error).
 #pragma once
 
+#include "library_calls.h"
+
 #include <cstdint>
 
 namespace lobe {
@@ -41,13 +43,7 @@ void lobe_uninit_check(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env,
 void lobe_fprintf(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* file,
                   const char* fmt, const char* codes, const void* const* args);
 const char* lobe_concat(lobe::shadeops::RuntimeEnv* env, const char* a, const char* b);
-int lobe_strlen(const char* s);
 const char* lobe_substr(lobe::shadeops::RuntimeEnv* env, const char* s, int start, int len);
-int lobe_startswith(const char* s, const char* prefix);
-int lobe_endswith(const char* s, const char* suffix);
-int lobe_stoi(const char* s);
-float lobe_stof(const char* s);
-int lobe_getchar(const char* s, int i);
 int lobe_strhash(const char* s);
 int32_t lobe_hash(const uint32_t* words, int32_t n);
 int lobe_regex(const char* s, const char* pattern, int full_match);
@@ -131,3 +127,21 @@ float lobe_splineinverse(const char* basis, float y, const float* knots, int nkn
 void lobe_splineinverse_d(const char* basis, float y, float ydx, float ydy, const float* knots,
                           int nknots, float* out);
 }
+
+// The library calls' prototypes, from their rows in compiler/ir/library_calls.h: each tag type
+// names the C type the function takes (a definition of another type does not compile).
+namespace lobe::shadeops::library_c {
+using Int = int;
+using Float = float;
+using String = const char*;
+using Color = const float*;
+using Point = const float*;
+using Vector = const float*;
+using Normal = const float*;
+using Env = RuntimeEnv*;
+extern "C" {
+#define LOBE_LIBRARY_DECL_ROW(x, e, name, R, P, fn, doc) R fn P;
+LOBE_LIBRARY_CALLS(LOBE_LIBRARY_DECL_ROW, _)
+#undef LOBE_LIBRARY_DECL_ROW
+}
+} // namespace lobe::shadeops::library_c

@@ -43,14 +43,15 @@ const ShadeOpSymbol kTable[] = {
     LOBE_SHADEOP(lobe_dict_value),
     LOBE_SHADEOP(lobe_pointcloud),
     LOBE_SHADEOP(lobe_concat),
-    LOBE_SHADEOP(lobe_strlen),
     LOBE_SHADEOP(lobe_substr),
-    LOBE_SHADEOP(lobe_startswith),
-    LOBE_SHADEOP(lobe_endswith),
-    LOBE_SHADEOP(lobe_stoi),
-    LOBE_SHADEOP(lobe_stof),
-    LOBE_SHADEOP(lobe_getchar),
     LOBE_SHADEOP(lobe_strhash),
+// clang-format off
+    // the library calls, from their rows (runtime/registry/library_calls.h)
+#define LOBE_LIBRARY_TABLE_ROW(x, e, name, R, P, fn, doc) \
+    {#fn, addr(library_c::fn), shadeop_sig<decltype(library_c::fn)>},
+    LOBE_LIBRARY_CALLS(LOBE_LIBRARY_TABLE_ROW, _)
+#undef LOBE_LIBRARY_TABLE_ROW
+    // clang-format on
     LOBE_SHADEOP(lobe_hash),
     LOBE_SHADEOP(lobe_regex),
     LOBE_SHADEOP(lobe_regex_results),
