@@ -9,7 +9,7 @@ namespace lobe::scene {
 static const char* kind_name(const JsonReader::json& j) { return j.type_name(); }
 
 void JsonReader::check_keys(const json& j, const std::string& ptr,
-                            std::initializer_list<const char*> allowed) const {
+                            std::span<const char* const> allowed) const {
   for (auto it = j.begin(); it != j.end(); ++it) {
     bool ok = false;
     for (const char* a : allowed) ok |= it.key() == a;

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <initializer_list>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -31,7 +32,11 @@ public:
 
   // Rejects keys not in `allowed` (catches misspelt settings instead of ignoring them).
   void check_keys(const json& j, const std::string& ptr,
-                  std::initializer_list<const char*> allowed) const;
+                  std::initializer_list<const char*> allowed) const {
+    check_keys(j, ptr, std::span<const char* const>(allowed.begin(), allowed.size()));
+  }
+  void check_keys(const json& j, const std::string& ptr,
+                  std::span<const char* const> allowed) const;
   const json& object(const json& j, const std::string& ptr) const;
   float number(const json& j, const std::string& ptr) const;
   int integer(const json& j, const std::string& ptr, int lo, int hi) const;

@@ -5,6 +5,7 @@
 #include "mesh_io.h"
 #include "scene.h"
 #include "scene_group.h"
+#include "shape_kinds.h"
 
 #include <cctype>
 #include <cmath>
@@ -239,7 +240,7 @@ private:
 
   Shape shape(const json& j, const std::string& p) {
     r_.object(j, p);
-    if (!j.contains("type")) r_.fail(p, "expected \"type\": \"sphere\", \"quad\" or \"mesh\"");
+    if (!j.contains("type")) r_.fail(p, "expected \"type\": " + shape_types());
     std::string type = r_.string(j.at("type"), p + "/type");
     Shape s;
     s.where = r_.file() + ": " + p;
@@ -277,10 +278,52 @@ private:
       if (f.is_relative()) f = dir_ / f;
       if (std::string e = load_mesh(f.string(), s.mesh); !e.empty()) r_.fail(p + "/file", e);
       transform_mesh(s.mesh, xf);
+    } else if (const ShapeKind* k = find_shape_kind(type)) {
+      generated_shape(j, p, *k, xf, s);
     } else {
-      r_.fail(p + "/type", "expected \"sphere\", \"quad\" or \"mesh\", found \"" + type + "\"");
+      r_.fail(p + "/type", "expected " + shape_types() + ", found \"" + type + "\"");
     }
     return s;
+  }
+
+  // "sphere", "quad", "mesh" and the kinds of the shape table, as a list for messages.
+  static std::string shape_types() {
+    std::string out = "\"sphere\", \"quad\", \"mesh\"";
+    std::span<const ShapeKind> kinds = shape_kinds();
+    for (size_t i = 0; i < kinds.size(); ++i)
+      out += std::string(i + 1 == kinds.size() ? " or " : ", ") + "\"" + kinds[i].name + "\"";
+    return out;
+  }
+
+  // A kind of the shape table (shape_kinds.h): its parameters, read and checked as its row
+  // says, build its mesh, which the transform then places.
+  void generated_shape(const json& j, const std::string& p, const ShapeKind& k, const Mat4& xf,
+                       Shape& s) {
+    std::vector<const char*> allowed = {"type", "material", "transform", "userdata"};
+    for (const ShapeParam& q : k.params) allowed.push_back(q.name);
+    r_.check_keys(j, p, allowed);
+    ShapeArgs args;
+    for (const ShapeParam& q : k.params) {
+      const std::string qp = p + "/" + q.name;
+      Vec3 v;
+      if (j.contains(q.name)) {
+        const json& x = j.at(q.name);
+        if (q.type == ShapeParam::Type::Point || q.type == ShapeParam::Type::Vector)
+          v = r_.vec3(x, qp);
+        else if (q.type == ShapeParam::Type::Number)
+          v.x = r_.number(x, qp);
+        else
+          v.x = float(r_.integer(x, qp, 1, 1 << 20));
+      } else if (!q.default_value) {
+        r_.fail(p, std::string("expected \"") + q.name + "\"");
+      } else {
+        parse_shape_value(q, q.default_value, v);
+      }
+      args.values.push_back(v);
+    }
+    s.kind = Shape::Kind::Mesh;
+    if (std::string e = k.build(args, s.mesh); !e.empty()) r_.fail(p, k.name + (": " + e));
+    transform_mesh(s.mesh, xf);
   }
 
   Light light(const json& j, const std::string& p) {

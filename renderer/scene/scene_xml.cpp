@@ -21,10 +21,12 @@
 // unknown elements are errors. Every message names the file and line.
 #include "scene.h"
 #include "scene_group.h"
+#include "shape_kinds.h"
 
 #include <pugixml.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -60,10 +62,12 @@ public:
                 : name == "Option"      ? option(n, s.settings)
                 : name == "Settings"    ? settings(n, s.settings)
                 : name == "PointLight"  ? point_light(n, s)
-                                        : fail(n, "unknown element <" + name +
-                                                      "> (expected Option, Camera, ShaderGroup, "
-                                                       "Sphere, Quad, Background, Settings, "
-                                                       "PointLight)");
+                : xml_kind(name)
+                    ? generated_shape(n, *xml_kind(name), s)
+                    : fail(n, "unknown element <" + name +
+                                  "> (expected Option, Camera, ShaderGroup, "
+                                  "Sphere, Quad, " +
+                                  xml_kind_names() + "Background, Settings, PointLight)");
       if (!ok) return false;
     }
     return true;
@@ -311,6 +315,48 @@ private:
       return false;
     if (is_zero(cross(sh.edge_x, sh.edge_y))) return fail(n, "quad edges are parallel or zero");
     s.shapes.push_back(sh);
+    return true;
+  }
+  // The kinds of the shape table (shape_kinds.h) as elements: the name capitalised (<Disk>).
+  static std::string xml_element(const ShapeKind& k) {
+    std::string e = k.name;
+    if (!e.empty()) e[0] = char(std::toupper((unsigned char)e[0]));
+    return e;
+  }
+  static const ShapeKind* xml_kind(const std::string& element) {
+    const ShapeKind* k = find_shape_kind(element, true);
+    return k && xml_element(*k) == element ? k : nullptr;
+  }
+  static std::string xml_kind_names() {
+    std::string out;
+    for (const ShapeKind& k : shape_kinds()) out += xml_element(k) + ", ";
+    return out;
+  }
+  // <Disk center="..." .../>: the row's parameters as attributes (defaults where left out).
+  bool generated_shape(const pugi::xml_node& n, const ShapeKind& k, SceneDesc& s) {
+    std::vector<std::string> known = {"is_light"};
+    for (const ShapeParam& q : k.params) known.push_back(q.name);
+    for (pugi::xml_attribute a : n.attributes())
+      if (std::find(known.begin(), known.end(), a.name()) == known.end())
+        warnings.push_back(at(n) + ": <" + n.name() + "> attribute '" + a.name() + "' ignored");
+    Shape sh;
+    sh.kind = Shape::Kind::Mesh;
+    sh.where = at(n);
+    sh.material = current_;
+    ShapeArgs args;
+    for (const ShapeParam& q : k.params) {
+      pugi::xml_attribute a = n.attribute(q.name);
+      if (!a && !q.default_value)
+        return fail(n, std::string("<") + n.name() + "> needs attribute '" + q.name + "'");
+      Vec3 v;
+      if (std::string e = parse_shape_value(q, a ? a.value() : q.default_value, v); !e.empty())
+        return fail(n, std::string("attribute '") + q.name + "' " + e + ", found \"" + a.value() +
+                           "\"");
+      args.values.push_back(v);
+    }
+    if (!light_flag(n, sh)) return false;
+    if (std::string e = k.build(args, sh.mesh); !e.empty()) return fail(n, e);
+    s.shapes.push_back(std::move(sh));
     return true;
   }
   bool background(const pugi::xml_node& n, SceneDesc& s) {

@@ -80,7 +80,7 @@ template <class... P> struct LibrarySignature<void(P...)> {
     std::string s;
     ((std::is_same_v<P, ir::library::Env>
           ? void()
-          : void(s += (s.empty() ? "" : ", ") + std::string(ir::library::type_name<P>()))),
+          : void(s.append(s.empty() ? "" : ", ").append(ir::library::type_name<P>()))),
      ...);
     return s;
   }
@@ -104,8 +104,8 @@ std::string library_reference_markdown() {
   std::string out = "| function | what it returns |\n"
                     "|---|---|\n";
 #define LOBE_LIBRARY_DOC_ROW(x, e, name, R, P, fn, doc)                                            \
-  out += "| `" + std::string(ir::library::type_name<R>()) + " " + name + "(" +                     \
-         LibrarySignature<void P>::params() + ")` | " + doc + " |\n";
+  out.append("| `").append(ir::library::type_name<R>()).append(" ").append(name).append("(");      \
+  out.append(LibrarySignature<void P>::params()).append(")` | ").append(doc).append(" |\n");
   LOBE_LIBRARY_CALLS(LOBE_LIBRARY_DOC_ROW, _)
 #undef LOBE_LIBRARY_DOC_ROW
   return out;
