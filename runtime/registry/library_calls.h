@@ -11,7 +11,7 @@
 //     (runtime/shadeops/table.cpp);
 //   - the code generator's call: each argument loaded as its C type, the shadeop called, the
 //     result stored (runtime/codegen/ops_library.cpp, op_library_call);
-//   - its line in the generated list of docs/language.md (`library_docs --update
+//   - its line in the generated list of docs/language.md (`closure_docs --update
 //     docs/language.md`; a test fails while the committed list differs).
 // Adding one is its row plus the shadeop's definition, extern "C", in runtime/shadeops/.
 //

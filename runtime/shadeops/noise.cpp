@@ -389,9 +389,15 @@ template <int N, bool kPartials> LOBE_VARIANT D simplex_n(const float* x, uint32
   for (int a = 0; a < n; ++a) d0[a] = x[a] - (float(cell[a]) - t);
   // rank[a]: how many offsets d0[a] exceeds. Ties go as in OSL (3-D: to the earlier coordinate,
   // 2-D and 4-D: to the later), so the same one of the simplices sharing the point is used.
+  // Counted with constant indices (the loops unroll), so the ranks stay in registers: an
+  // increment at a computed index kept them in memory, a chain of stores and reloads.
   int rank[4] = {0, 0, 0, 0};
   for (int a = 0; a < n; ++a)
-    for (int b = a + 1; b < n; ++b) ++rank[(n == 3 ? d0[a] >= d0[b] : d0[a] > d0[b]) ? a : b];
+    for (int b = a + 1; b < n; ++b) {
+      int first = (n == 3 ? d0[a] >= d0[b] : d0[a] > d0[b]) ? 1 : 0;
+      rank[a] += first;
+      rank[b] += 1 - first;
+    }
   float nc[5] = {0, 0, 0, 0, 0}, dd[4] = {0, 0, 0, 0}, gt[4] = {0, 0, 0, 0};
   for (int c = 0; c <= n; ++c) {
     int corner[4];
