@@ -151,6 +151,20 @@ const Row kTable[] = {
     ROW(err_lower_no_opcode, Error, "no IR opcode for the builtin '%0'"),
     ROW(err_lower_internal, Error, "internal: %0"),
     ROW(err_lower_invalid_ir, Error, "internal error: invalid IR: %0"),
+    // the runtime (runtime/group; docs/diagnostics.md, "The runtime's ids")
+    ROW(group_syntax, Error, "%0"),
+    ROW(group_no_shader, Error, "the group has no `shader`"),
+    ROW(group_empty, Error, "the group has no layers"),
+    ROW(nonexistent_param, Warning, "%0"),
+    ROW(param_type, Warning, "%0"),
+    ROW(param_value, Error, "%0"),
+    ROW(connect_layer, Error, "%0"),
+    ROW(connect_order, Error, "%0"),
+    ROW(connect_param, Error, "%0"),
+    ROW(connect_type, Error, "%0"),
+    ROW(storage_size, Error, "%0"),
+    ROW(codegen, Error, "%0"),
+    ROW(jit, Error, "%0"),
 };
 #undef ROW
 static_assert(sizeof(kTable) / sizeof(kTable[0]) == size_t(DiagId::kCount),

@@ -1,5 +1,6 @@
-// The one table of named diagnostics: every message the compiler can report (front end,
-// lowering, and the driver that finds and loads shaders).
+// The one table of named diagnostics: every message Lobe's libraries report (front end,
+// lowering, the driver that finds and loads shaders, and the runtime's group building, code
+// generation and JIT).
 //
 // Each entry has an id (the enum), a default severity and a message template where %0, %1, ...
 // are replaced by the arguments given when the diagnostic is reported. Naming the messages in
@@ -131,6 +132,21 @@ enum class DiagId : uint16_t {
   err_lower_no_opcode,
   err_lower_internal,
   err_lower_invalid_ir,
+  // the runtime (runtime/group): named as the runtime has always published them (no severity
+  // prefix; lobe::Diagnostic::id), the message composed where it is reported
+  group_syntax,
+  group_no_shader,
+  group_empty,
+  nonexistent_param,
+  param_type,
+  param_value,
+  connect_layer,
+  connect_order,
+  connect_param,
+  connect_type,
+  storage_size,
+  codegen,
+  jit,
   kCount
 };
 

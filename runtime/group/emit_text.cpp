@@ -18,7 +18,7 @@ namespace lobe::group {
 bool emit_shader_text(const std::string& path, const CompileOptions& options, EmitForm form,
                       std::string& out, DiagnosticList& diags) {
   auto error = [&](const std::string& text) {
-    diags.push_back({Diagnostic::Severity::Error, "error: " + text, "jit"});
+    diags.push_back(runtime_diag(diag::DiagId::jit, text));
     return false;
   };
   CompileStats stats;
@@ -46,7 +46,8 @@ bool emit_shader_text(const std::string& path, const CompileOptions& options, Em
   jit->configure(mod);
   err = codegen::emit_group(b.plan, mod);
   if (!err.empty()) {
-    diags.push_back(located_error(err, "codegen")); // `file:line:col: error: ...` when located
+    diags.push_back(
+        located_error(err, diag::DiagId::codegen)); // `file:line:col: error: ...` when located
     return false;
   }
   jit->optimize(mod, options.opt_level);

@@ -8,6 +8,7 @@
 #include "lobe/shading.h"
 #include "passes/derivs.h"
 #include "passes/optimize.h"
+#include "public_diag.h"
 
 #include <algorithm>
 #include <cstring>
@@ -19,12 +20,14 @@ namespace {
 
 using ir::SymKind;
 
-// The group's own diagnostics, with their ids (docs/diagnostics.md, "The runtime's ids").
-Diagnostic err(const std::string& msg, const char* id) {
-  return {Diagnostic::Severity::Error, "error: " + msg, id};
+// The group's own diagnostics: rows of the one table (compiler/diag/diag_ids.cpp; the runtime's
+// are listed in docs/diagnostics.md, "The runtime's ids").
+using diag::DiagId;
+Diagnostic err(const std::string& msg, DiagId id) {
+  return runtime_diag(id, msg, diag::Severity::Error);
 }
-Diagnostic warn(const std::string& msg, const char* id) {
-  return {Diagnostic::Severity::Warning, "warning: " + msg, id};
+Diagnostic warn(const std::string& msg, DiagId id) {
+  return runtime_diag(id, msg, diag::Severity::Warning);
 }
 
 // One resolved end of a connection: a symbol name and an optional element/component.
@@ -365,22 +368,25 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         // OSL's warning, then Lobe's hint as a note (a scene reader turns the pair into an
         // error: a misspelt parameter in a scene is a mistake).
         diags.push_back(
-            warn("attempting to set nonexistent parameter: " + v.name, "nonexistent_param"));
-        diags.push_back({Diagnostic::Severity::Note,
-                         "note: layer '" + group.layers[i].name + "': shader '" + sources[i]->name +
-                             "' has no parameter '" + v.name + "' (its parameters: " + names + ")",
-                         "nonexistent_param"});
+            warn("attempting to set nonexistent parameter: " + v.name, DiagId::nonexistent_param));
+        diags.push_back(runtime_diag(DiagId::nonexistent_param,
+                                     "layer '" + group.layers[i].name + "': shader '" +
+                                         sources[i]->name + "' has no parameter '" + v.name +
+                                         "' (its parameters: " + names + ")",
+                                     diag::Severity::Note));
         continue;
       }
       ValueFit fit = fit_instance_value(v, sources[i]->symbols[size_t(s)].type);
       if (!fit.error.empty()) {
-        diags.push_back(err("layer '" + group.layers[i].name + "': " + fit.error, "param_value"));
+        diags.push_back(
+            err("layer '" + group.layers[i].name + "': " + fit.error, DiagId::param_value));
         return false;
       }
       if (!fit.note.empty())
-        diags.push_back(warn("layer '" + group.layers[i].name + "': " + fit.note, "param_value"));
+        diags.push_back(
+            warn("layer '" + group.layers[i].name + "': " + fit.note, DiagId::param_value));
       if (!fit.ok) {
-        diags.push_back(warn(fit.warning, "param_type"));
+        diags.push_back(warn(fit.warning, DiagId::param_type));
         continue;
       }
       std::vector<ir::ConstValue>& cv = fit.values;
@@ -408,7 +414,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
           err(si == layer_index.end()
                   ? "ConnectShaders: source layer \"" + c.src_layer + "\" not found"
                   : "ConnectShaders: destination layer \"" + c.dst_layer + "\" not found",
-              "connect_layer"));
+              DiagId::connect_layer));
       return false;
     }
     if (si->second >= di->second) {
@@ -416,7 +422,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
                           "connect " +
                               c.src_layer + "." + c.src_param + " -> " + c.dst_layer + "." +
                               c.dst_param + ")",
-                          "connect_order"));
+                          DiagId::connect_order));
       return false;
     }
     const ir::Shader& src_sh = *sources[size_t(si->second)];
@@ -440,11 +446,11 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       diags.push_back(err("ConnectShaders: \"" + param +
                               "\" is not a parameter or global of layer \"" + layer +
                               "\" (shader \"" + (src_missing ? src_sh : dst_sh).name + "\")",
-                          "connect_param"));
+                          DiagId::connect_param));
       diags.push_back(err("ConnectShaders: cannot connect a " + type_of(src_sh, src) + " (" +
                               c.src_param + ") to a " + type_of(dst_sh, dst) + " (" + c.dst_param +
                               "), invalid connection",
-                          "connect_param"));
+                          DiagId::connect_param));
       return false;
     }
     // Structs connect only to the same struct type, as in OSL.
@@ -455,14 +461,14 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       diags.push_back(err("ConnectShaders: cannot connect a " + type_of(src_sh, src) + " (" +
                               c.src_param + ") to a " + type_of(dst_sh, dst) + " (" + c.dst_param +
                               ")",
-                          "connect_type"));
+                          DiagId::connect_type));
       return false;
     }
     for (auto& [suffix, e] : src) {
       auto d = dst.find(suffix);
       if (d == dst.end()) {
         diags.push_back(err("connect: struct field '" + suffix + "' missing in " + c.dst_param,
-                            "connect_param"));
+                            DiagId::connect_param));
         return false;
       }
       if (!connectable(endpoint_type(src_sh, e), endpoint_type(dst_sh, d->second))) {
@@ -470,7 +476,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
             "ConnectShaders: cannot connect a " + ir::to_string(endpoint_type(src_sh, e)) + " (" +
                 c.src_param + suffix + ") to a " + ir::to_string(endpoint_type(dst_sh, d->second)) +
                 " (" + c.dst_param + suffix + ")",
-            "connect_type"));
+            DiagId::connect_type));
         return false;
       }
       links.push_back({si->second, di->second, e, d->second});
@@ -642,7 +648,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
   out.plan.loop_count_offset = int(off); // the shade's loop iterations (codegen.h)
   off += 8;
   if (std::string e = check_storage(out.shaders, out.layer_names); !e.empty()) {
-    diags.push_back(err(e, "storage_size"));
+    diags.push_back(err(e, DiagId::storage_size));
     return false;
   }
   out.groupdata.assign(off, 0);

@@ -8,6 +8,8 @@
 #include "lobe/shadingsys.h"
 #include "shader_source.h"
 
+#include "diag/diag_ids.h"
+
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -595,6 +597,21 @@ TEST(GroupErrors, CompilerDiagnosticsAreStructured) {
   EXPECT_EQ(syntax[0].line, 2);
   EXPECT_EQ(syntax[0].message, "expected `param`, `shader` or `connect`, found `bogus`");
   EXPECT_EQ(syntax[0].text, "g.txt:2: error: " + syntax[0].message);
+  // ... and so do group building's, rows of the same table (compiler/diag/diag_ids.cpp): a
+  // connection from a missing layer, its message apart from its text.
+  DiagnosticList added;
+  ASSERT_TRUE(ss.add_shader_source("tint", "surface tint(color Cs = 1) { Ci = Cs * diffuse(N); }",
+                                   "tint.osl", added));
+  auto conn = ss.parse_group("shader tint a ;\nshader tint b ;\nconnect x.Cs b.Cs ;", "c", d);
+  ASSERT_TRUE(conn);
+  DiagnosticList connect;
+  EXPECT_EQ(ss.compile(*conn, connect), nullptr);
+  ASSERT_EQ(connect.size(), 1u);
+  EXPECT_EQ(connect[0].id, "connect_layer");
+  EXPECT_EQ(connect[0].severity, Diagnostic::Severity::Error);
+  EXPECT_EQ(connect[0].message, "ConnectShaders: source layer \"x\" not found");
+  EXPECT_EQ(connect[0].text, "error: " + connect[0].message);
+  EXPECT_STREQ(diag::diag_name(diag::DiagId::connect_layer), "connect_layer");
 }
 
 // CompileOptions::colorspace picks the colour system (part of the cache key); an unknown name

@@ -2,6 +2,8 @@
 // statement at a time.
 #include "group_text.h"
 
+#include "public_diag.h"
+
 #include <cctype>
 #include <regex>
 #include <vector>
@@ -91,12 +93,8 @@ std::unique_ptr<ShaderGroup> parse_group_text(const std::string& text, const std
   };
   size_t errors = 0;
   auto error = [&](int line, const std::string& msg) {
-    Diagnostic d{Diagnostic::Severity::Error,
-                 where + ":" + std::to_string(line_of(line)) + ": error: " + msg, "group_syntax"};
-    d.file = where;
-    d.line = line_of(line);
-    d.message = msg;
-    diags.push_back(std::move(d));
+    diags.push_back(
+        runtime_diag(diag::DiagId::group_syntax, msg, std::nullopt, where, line_of(line)));
     ++errors;
   };
   std::vector<Token> toks;
@@ -165,11 +163,7 @@ std::unique_ptr<ShaderGroup> parse_group_text(const std::string& text, const std
   if (!pending.empty() && !errors)
     error(toks.back().line, "parameter values after the last `shader`");
   if (group->layers.empty() && !errors) {
-    Diagnostic d{Diagnostic::Severity::Error, where + ": error: the group has no `shader`",
-                 "group_no_shader"};
-    d.file = where;
-    d.message = "the group has no `shader`";
-    diags.push_back(std::move(d));
+    diags.push_back(runtime_diag(diag::DiagId::group_no_shader, "", std::nullopt, where));
     ++errors;
   }
   return errors ? nullptr : std::move(group);

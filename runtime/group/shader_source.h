@@ -6,6 +6,7 @@
 #include "diag/diagnostics.h"
 #include "ir/ir.h"
 #include "lobe/shadingsys.h"
+#include "public_diag.h"
 
 #include <optional>
 #include <string>
@@ -31,12 +32,5 @@ std::optional<ir::Shader> compile_osl_source(const std::string& path, const std:
 
 std::optional<ir::Shader> parse_ir_text(const std::string& text, const std::string& where,
                                         DiagnosticList& diags);
-
-// The compiler's diagnostic as the public API gives it (shadingsys.h, Diagnostic).
-Diagnostic to_public(const diag::Report& r);
-// An error of a later stage (code generation) as text, `file:line:col: error: message` when it
-// names its place (file, line, column and message then filled in), else `message` (the text
-// gets "error: ").
-Diagnostic located_error(const std::string& text, const char* id);
 
 } // namespace lobe::group

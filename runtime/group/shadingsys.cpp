@@ -176,7 +176,7 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   std::string err = codegen::emit_group(b.plan, *mod);
   if (!err.empty()) {
     // Codegen errors name their place already (`file:line:col: error: ...`).
-    diags.push_back(group::located_error(err, "codegen"));
+    diags.push_back(group::located_error(err, diag::DiagId::codegen));
     return nullptr;
   }
   stats.llvm_ir_ms = ms_since(t1);
@@ -185,7 +185,7 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   jit::JitTimes times;
   if (!jit->add(std::move(ctx), std::move(mod), options.opt_level, b.plan.entry_name, code, times,
                 err)) {
-    diags.push_back({Diagnostic::Severity::Error, "error: JIT: " + err, "jit"});
+    diags.push_back(group::runtime_diag(diag::DiagId::jit, "JIT: " + err));
     return nullptr;
   }
   stats.optimize_ms = times.optimize_ms;
@@ -220,11 +220,11 @@ std::shared_ptr<const Material> ShadingSystem::compile(const ShaderGroup& group,
                                                        DiagnosticList& diags) {
   Impl& m = *impl_;
   if (!m.jit) {
-    diags.push_back({Diagnostic::Severity::Error, "error: JIT unavailable: " + m.jit_error, "jit"});
+    diags.push_back(group::runtime_diag(diag::DiagId::jit, "JIT unavailable: " + m.jit_error));
     return nullptr;
   }
   if (group.layers.empty()) {
-    diags.push_back({Diagnostic::Severity::Error, "error: the group has no layers", "group_empty"});
+    diags.push_back(group::runtime_diag(diag::DiagId::group_empty));
     return nullptr;
   }
   CompileStats stats;
