@@ -4,6 +4,7 @@
 
 #include "closure_call.h"
 #include "closure_registry.h"
+#include "driver/driver.h"
 
 #include <cctype>
 #include <cmath>
@@ -269,23 +270,114 @@ std::optional<ExprError> bind_match(const registry::ClosureMatch& m, const std::
   return std::nullopt;
 }
 
-// The two overloads that stdosl.h defines in the language by forwarding to a registry closure:
-// microfacet(dist, N, alpha, eta, refr) is microfacet(dist, N, vector(0), alpha, alpha, eta,
-// refr) and reflection(N) is reflection(N, 0).
-void expand_stdosl_forms(const std::string& name, std::vector<Arg>& args) {
-  if (name == "microfacet" && args.size() >= 5 && args[2].kind == Arg::Number) {
-    Arg u = args[2];
-    u.kind = Arg::Triple;
-    u.triple = {0, 0, 0};
-    Arg alpha = args[2];
-    args.insert(args.begin() + 2, u);
-    args.insert(args.begin() + 4, alpha);
-  } else if (name == "reflection" && args.size() == 1) {
-    Arg eta = args[0];
-    eta.kind = Arg::Number;
-    eta.number = 0;
-    args.push_back(eta);
+// The closure functions stdosl.h defines in the language by forwarding to a registry closure,
+// `closure color f(params) { return g(args); }` with each of g's arguments one of f's
+// parameters or a constant (microfacet(dist, N, alpha, eta, refr) is microfacet(dist, N,
+// vector(0), alpha, alpha, eta, refr); reflection(N) is reflection(N, 0)). Read once from the
+// front end's typed AST of the standard header, so stdosl.h stays the one place they are said.
+struct Forward {
+  const ast::FunctionDecl* function;
+  std::string target;
+  struct Slot {
+    int param = -1; // f's parameter passed on, or -1: `constant`
+    Arg constant{Arg::Number, 0};
+  };
+  std::vector<Slot> slots;
+};
+
+// A constant argument of the forwarding call (after the type checker's conversions), or false.
+bool constant_arg(const ast::Expr* e, Arg& out) {
+  // The kind the argument has as passed (vector(0) is a cast of the int 0 to a vector).
+  out.kind = e->type.is_string() ? Arg::String : e->type.is_triple() ? Arg::Triple : Arg::Number;
+  while (e->kind == ast::ExprKind::Cast) e = static_cast<const ast::CastExpr*>(e)->operand.get();
+  double v;
+  if (e->kind == ast::ExprKind::FloatLit)
+    v = static_cast<const ast::FloatLit*>(e)->value;
+  else if (e->kind == ast::ExprKind::IntLit)
+    v = static_cast<const ast::IntLit*>(e)->value;
+  else if (e->kind == ast::ExprKind::StringLit) {
+    out.kind = Arg::String;
+    out.text = static_cast<const ast::StringLit*>(e)->value;
+    return true;
+  } else
+    return false;
+  out.number = v;
+  out.triple = {float(v), float(v), float(v)};
+  return true;
+}
+
+std::vector<Forward> read_forwards(const ast::TranslationUnit& tu) {
+  std::vector<Forward> out;
+  for (const ast::DeclPtr& d : tu.decls) {
+    if (d->kind != ast::DeclKind::Function || !d->from_stdlib) continue;
+    const auto* f = static_cast<const ast::FunctionDecl*>(d.get());
+    if (!f->return_type.is_closure() || !f->body || f->body->stmts.size() != 1 ||
+        f->body->stmts[0]->kind != ast::StmtKind::Return)
+      continue;
+    const ast::Expr* v = static_cast<const ast::ReturnStmt*>(f->body->stmts[0].get())->value.get();
+    if (!v || v->kind != ast::ExprKind::Call) continue;
+    const auto* call = static_cast<const ast::CallExpr*>(v);
+    if (call->callee.kind != ast::CalleeKind::Closure || !call->keywords.empty()) continue;
+    Forward fw{f, call->name, {}};
+    bool plain = true;
+    for (const ast::ExprPtr& a : call->args) {
+      const ast::Expr* e = a.get();
+      while (e->kind == ast::ExprKind::Cast && static_cast<const ast::CastExpr*>(e)->implicit)
+        e = static_cast<const ast::CastExpr*>(e)->operand.get();
+      Forward::Slot slot;
+      if (e->kind == ast::ExprKind::Ident) {
+        for (size_t k = 0; k < f->params.size(); ++k)
+          if (static_cast<const ast::IdentExpr*>(e)->decl == f->params[k].get())
+            slot.param = int(k);
+        plain &= slot.param >= 0;
+      } else {
+        plain &= constant_arg(a.get(), slot.constant);
+      }
+      fw.slots.push_back(slot);
+    }
+    if (plain) out.push_back(std::move(fw));
   }
+  return out;
+}
+
+const std::vector<Forward>& stdosl_forwards() {
+  static const std::vector<Forward> forwards = [] {
+    static driver::Loaded loaded = driver::compile_source(
+        "<lobe brdf: stdosl.h>", "shader lobe_brdf_forms() {}\n", driver::Options{});
+    return loaded.tu ? read_forwards(*loaded.tu) : std::vector<Forward>{};
+  }();
+  return forwards;
+}
+
+// The call rewritten through a forwarding function of stdosl.h whose parameters the arguments
+// fit (strings for strings, triples for triples, numbers for numbers), or false. Arguments
+// past the function's parameters (keyword pairs) follow the forwarded ones.
+bool forward_stdosl(std::string& name, std::vector<Arg>& args, size_t name_pos) {
+  for (const Forward& fw : stdosl_forwards()) {
+    const auto& params = fw.function->params;
+    if (fw.function->name != name || args.size() < params.size()) continue;
+    bool fits = true;
+    for (size_t k = 0; k < params.size() && fits; ++k) {
+      const ast::Type& t = params[k]->type;
+      Arg::Kind want = t.is_string() ? Arg::String : t.is_triple() ? Arg::Triple : Arg::Number;
+      fits = args[k].kind == want && (t.is_string() || t.is_triple() || t.is_float() || t.is_int());
+    }
+    if (!fits) continue;
+    std::vector<Arg> out;
+    for (const Forward::Slot& s : fw.slots) {
+      if (s.param >= 0) {
+        out.push_back(args[size_t(s.param)]);
+      } else {
+        out.push_back(s.constant);
+        out.back().pos = name_pos;
+      }
+    }
+    out.insert(out.end(), args.begin() + std::ptrdiff_t(params.size()), args.end());
+    name = fw.target;
+    args = std::move(out);
+    return true;
+  }
+  return false;
 }
 
 } // namespace
@@ -296,8 +388,15 @@ ExprResult parse_closure_expr(std::string_view text) {
   size_t name_pos = 0, close_pos = 0;
   std::vector<Arg> args;
   if (auto e = parser.parse_call(name, name_pos, args, close_pos)) return {std::nullopt, *e};
-  expand_stdosl_forms(name, args);
   registry::ClosureMatch m = match(name, args);
+  if (!m.entry) { // maybe a form stdosl.h forwards to a registry closure
+    std::string fwd_name = name;
+    std::vector<Arg> fwd_args = args;
+    if (forward_stdosl(fwd_name, fwd_args, name_pos)) {
+      registry::ClosureMatch fm = match(fwd_name, fwd_args);
+      if (fm.entry) name = std::move(fwd_name), args = std::move(fwd_args), m = fm;
+    }
+  }
   if (!m.entry) return {std::nullopt, no_fit(m, name, args, name_pos, close_pos)};
   const registry::ClosureEntry& e = *m.entry;
   ParsedClosure pc{e.key, closures::Params(e.key), 1.0,

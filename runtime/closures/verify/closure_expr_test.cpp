@@ -48,6 +48,16 @@ TEST(ClosureExpr, OverloadsAndPromotion) {
   ExprResult r7 = parse_closure_expr("microfacet(\"ggx\", N, U, 0.3, 0.1, 1.33, 1)");
   ASSERT_TRUE(r7.closure) << r7.error.message;
   EXPECT_EQ(r7.closure->key, "microfacet");
+  // The 5-argument form is stdosl.h's: U = vector(0) and both alphas from the one given.
+  EXPECT_EQ(read<Vec3>(*r5.closure, "U"), (Vec3{0, 0, 0}));
+  EXPECT_FLOAT_EQ(read<float>(*r5.closure, "xalpha"), 0.3f);
+  EXPECT_EQ(read<int>(*r5.closure, "refract"), 2);
+  // reflection(N) is stdosl.h's reflection(N, 0.0).
+  ExprResult refl = parse_closure_expr("reflection(vector(0, 1, 0))");
+  ASSERT_TRUE(refl.closure) << refl.error.message;
+  EXPECT_EQ(refl.closure->key, "reflection");
+  EXPECT_EQ(read<Vec3>(*refl.closure, "N"), (Vec3{0, 1, 0}));
+  EXPECT_FLOAT_EQ(read<float>(*refl.closure, "eta"), 0.0f);
   ExprResult d = parse_closure_expr("oren_nayar_diffuse_bsdf(N, 0.5, 0.25)");
   ASSERT_TRUE(d.closure) << d.error.message;
   EXPECT_EQ(read<Vec3>(*d.closure, "albedo"), (Vec3{0.5f, 0.5f, 0.5f}));
