@@ -29,7 +29,8 @@
 #include <span>
 #include <string_view>
 
-#include "library_calls.h" // runtime/registry
+#include "library_calls.h"  // runtime/registry
+#include "math_functions.h" // runtime/registry
 
 namespace lobe::ir {
 
@@ -49,6 +50,11 @@ inline constexpr uint8_t kValue = kPure;               // value ops without deri
 #define LOBE_LIBRARY_OPCODE_ROW(X, e, name, R, P, fn, doc)                                         \
   X(e, name, 1 + library::kArity[int(library::Call::e)],                                           \
     1 + library::kArity[int(library::Call::e)], 1, 0, kValue, doc)
+
+// A math function's opcode row: the result, then its arguments (up to max_operands in all);
+// derivatives by the chain rule.
+#define LOBE_MATH_OPCODE_ROW(X, e, name, arity, max, forms, doc)                                   \
+  X(e, #name, 1 + arity, max, 1, 0, kArith, doc)
 
 // clang-format off
 #define LOBE_OPCODES(X) \
@@ -100,28 +106,9 @@ inline constexpr uint8_t kValue = kPure;               // value ops without deri
   X(Area,             "area",              2, 2,         1, 2,  kValue,      "a = length(cross(Dx(b), Dy(b))) for point b") \
   X(CalculateNormal,  "calculatenormal",   2, 2,         1, 2,  kValue,      "a = cross(Dx(b), Dy(b)), flipped by flip_handedness") \
   /* ---- math library (one float or per-component over triples) */ \
-  X(Sin,              "sin",               2, 2,         1, 0,  kArith,      "a = sin b") \
-  X(Cos,              "cos",               2, 2,         1, 0,  kArith,      "a = cos b") \
-  X(Tan,              "tan",               2, 2,         1, 0,  kArith,      "a = tan b") \
-  X(Asin,             "asin",              2, 2,         1, 0,  kArith,      "a = asin b") \
-  X(Acos,             "acos",              2, 2,         1, 0,  kArith,      "a = acos b") \
-  X(Atan,             "atan",              2, 2,         1, 0,  kArith,      "a = atan b") \
-  X(Atan2,            "atan2",             3, 3,         1, 0,  kArith,      "a = atan2(b, c)") \
-  X(Sinh,             "sinh",              2, 2,         1, 0,  kArith,      "a = sinh b") \
-  X(Cosh,             "cosh",              2, 2,         1, 0,  kArith,      "a = cosh b") \
-  X(Tanh,             "tanh",              2, 2,         1, 0,  kArith,      "a = tanh b") \
   X(SinCos,           "sincos",            3, 3,         3, 0,  kArith,      "a = sin c, b = cos c") \
-  X(Pow,              "pow",               3, 3,         1, 0,  kArith,      "a = pow(b, c); c float or same type as b") \
-  X(Exp,              "exp",               2, 2,         1, 0,  kArith,      "a = e^b") \
-  X(Exp2,             "exp2",              2, 2,         1, 0,  kArith,      "a = 2^b") \
-  X(Expm1,            "expm1",             2, 2,         1, 0,  kArith,      "a = e^b - 1") \
-  X(Log,              "log",               2, 3,         1, 0,  kArith,      "a = ln b, or log base c") \
-  X(Log2,             "log2",              2, 2,         1, 0,  kArith,      "a = log2 b") \
-  X(Log10,            "log10",             2, 2,         1, 0,  kArith,      "a = log10 b") \
-  X(Logb,             "logb",              2, 2,         1, 0,  kArith,      "a = exponent of b") \
   X(Sqrt,             "sqrt",              2, 2,         1, 0,  kArith,      "a = sqrt b (0 for b < 0)") \
   X(InverseSqrt,      "inversesqrt",       2, 2,         1, 0,  kArith,      "a = 1/sqrt b (0 for b <= 0)") \
-  X(Cbrt,             "cbrt",              2, 2,         1, 0,  kArith,      "a = cbrt b") \
   X(Hypot,            "hypot",             3, 4,         1, 0,  kArith,      "a = sqrt(b^2 + c^2 [+ d^2])") \
   X(Abs,              "abs",               2, 2,         1, 0,  kArith,      "a = |b| (int or float-based)") \
   X(Fabs,             "fabs",              2, 2,         1, 0,  kArith,      "a = |b|") \
@@ -130,7 +117,6 @@ inline constexpr uint8_t kValue = kPure;               // value ops without deri
   X(Ceil,             "ceil",              2, 2,         1, 0,  kArith,      "a = ceil b") \
   X(Round,            "round",             2, 2,         1, 0,  kArith,      "a = round b (half away from 0)") \
   X(Trunc,            "trunc",             2, 2,         1, 0,  kArith,      "a = trunc b") \
-  X(Fmod,             "fmod",              3, 3,         1, 0,  kArith,      "a = fmod(b, c), 0 where c == 0") \
   X(Min,              "min",               3, 3,         1, 0,  kArith,      "a = min(b, c)") \
   X(Max,              "max",               3, 3,         1, 0,  kArith,      "a = max(b, c)") \
   X(Clamp,            "clamp",             4, 4,         1, 0,  kArith,      "a = min(max(b, c), d)") \
@@ -138,8 +124,6 @@ inline constexpr uint8_t kValue = kPure;               // value ops without deri
   X(Select,           "select",            4, 4,         1, 0,  kArith,      "a = d != 0 ? c : b (per component if d is a triple)") \
   X(Step,             "step",              3, 3,         1, 0,  kArith,      "a = c < b ? 0 : 1") \
   X(SmoothStep,       "smoothstep",        4, 4,         1, 0,  kArith,      "a = smoothstep(b, c, d)") \
-  X(Erf,              "erf",               2, 2,         1, 0,  kArith,      "a = erf b") \
-  X(Erfc,             "erfc",              2, 2,         1, 0,  kArith,      "a = erfc b") \
   X(IsNan,            "isnan",             2, 2,         1, 0,  kValue,      "int a = isnan b") \
   X(IsInf,            "isinf",             2, 2,         1, 0,  kValue,      "int a = isinf b") \
   X(IsFinite,         "isfinite",          2, 2,         1, 0,  kValue,      "int a = isfinite b") \
@@ -199,6 +183,8 @@ inline constexpr uint8_t kValue = kPure;               // value ops without deri
   X(SurfaceArea,      "surfacearea",       1, 1,         1, 0,  0,           "float a = ShaderGlobals::surfacearea") \
   X(IsConnected,      "isconnected",       2, 2,         1, 0,  0,           "int a = 1 if param b is connected upstream, 2 downstream, 3 both") \
   X(IsConstant,       "isconstant",        2, 2,         1, 0,  0,           "int a = 1 if b is a compile-time constant after specialisation") \
+  /* ---- math functions: one row each in math_functions.h */ \
+  LOBE_MATH_FUNCTIONS(LOBE_MATH_OPCODE_ROW, X) \
   /* ---- library calls: one row each in library_calls.h */ \
   LOBE_LIBRARY_CALLS(LOBE_LIBRARY_OPCODE_ROW, X)
 // clang-format on

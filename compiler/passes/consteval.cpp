@@ -285,27 +285,8 @@ std::optional<Values> evaluate(Opcode op, const Type& dst, const std::vector<Con
   case Opcode::Xor:
   case Opcode::Shl:
   case Opcode::Shr:
-  case Opcode::Sin:
-  case Opcode::Cos:
-  case Opcode::Tan:
-  case Opcode::Asin:
-  case Opcode::Acos:
-  case Opcode::Atan:
-  case Opcode::Atan2:
-  case Opcode::Sinh:
-  case Opcode::Cosh:
-  case Opcode::Tanh:
-  case Opcode::Pow:
-  case Opcode::Exp:
-  case Opcode::Exp2:
-  case Opcode::Expm1:
-  case Opcode::Log:
-  case Opcode::Log2:
-  case Opcode::Log10:
-  case Opcode::Logb:
   case Opcode::Sqrt:
   case Opcode::InverseSqrt:
-  case Opcode::Cbrt:
   case Opcode::Hypot:
   case Opcode::Abs:
   case Opcode::Fabs:
@@ -314,7 +295,9 @@ std::optional<Values> evaluate(Opcode op, const Type& dst, const std::vector<Con
   case Opcode::Ceil:
   case Opcode::Round:
   case Opcode::Trunc:
-  case Opcode::Fmod:
+#define LOBE_MATH_FOLD_CASE(x, e, name, arity, max, forms, doc) case Opcode::e:
+    LOBE_MATH_FUNCTIONS(LOBE_MATH_FOLD_CASE, _)
+#undef LOBE_MATH_FOLD_CASE
   case Opcode::Min:
   case Opcode::Max:
   case Opcode::Clamp:
@@ -322,8 +305,6 @@ std::optional<Values> evaluate(Opcode op, const Type& dst, const std::vector<Con
   case Opcode::Select:
   case Opcode::Step:
   case Opcode::SmoothStep:
-  case Opcode::Erf:
-  case Opcode::Erfc:
     return arith(op, dst, s, options.fast_math ? math::MathMode::Fast : math::MathMode::Exact);
   default:
     break;

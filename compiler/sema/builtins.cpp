@@ -6,6 +6,7 @@
 #include "sema/types.h"
 
 #include "library_calls.h"
+#include "math_functions.h"
 
 #include <algorithm>
 #include <map>
@@ -37,17 +38,30 @@ public:
   static inline const Type kTriples[] = {t_color(), t_point(), t_vector(), t_normal()};
 };
 
+// A math_functions.h row's signatures: Generic, float and every triple (all arguments of the
+// result's type); Float, float only.
+enum class MathForms { Generic, Float };
+void math_function(Builder& b, const char* name, int arity, MathForms forms) {
+  if (forms == MathForms::Generic)
+    b.generic(name, arity);
+  else
+    b.add(name, t_float(), std::vector<Type>(size_t(arity), t_float()));
+}
+
 void math(Builder& b) {
+  // The functions computed by formula (runtime/registry/math_functions.h), then the rest.
+#define LOBE_MATH_SIG_ROW(x, e, name, arity, max, forms, doc)                                     \
+  math_function(b, #name, arity, MathForms::forms);
+  LOBE_MATH_FUNCTIONS(LOBE_MATH_SIG_ROW, _)
+#undef LOBE_MATH_SIG_ROW
   for (const char* f :
-       {"sin",  "cos",  "tan",   "asin", "acos",  "atan",  "sinh",    "cosh",   "tanh",
-        "exp",  "exp2", "expm1", "log",  "log2",  "log10", "logb",    "sqrt",   "inversesqrt",
-        "cbrt", "fabs", "floor", "ceil", "round", "trunc", "radians", "degrees"})
+       {"sqrt", "inversesqrt", "fabs", "floor", "ceil", "round", "trunc", "radians", "degrees"})
     b.generic(f, 1);
   b.add("abs", t_int(), {t_int()});
   b.generic("abs", 1);
   b.add("fabs", t_int(), {t_int()}); // OSL's fabs is abs: fabs(int) is an int
   b.generic("sign", 1);              // no int form, as stdosl.h: sign(-3) is the float -1
-  for (const char* f : {"atan2", "pow", "fmod", "mod", "min", "max", "step"}) {
+  for (const char* f : {"mod", "min", "max", "step"}) {
     if (std::string(f) == "min" || std::string(f) == "max" || std::string(f) == "mod")
       b.add(f, t_int(), {t_int(), t_int()});
     b.generic(f, 2);
@@ -72,8 +86,6 @@ void math(Builder& b) {
     b.add("select", t, {t, t, t});
   }
   for (const char* f : {"isnan", "isinf", "isfinite"}) b.add(f, t_int(), {t_float()});
-  b.add("erf", t_float(), {t_float()});
-  b.add("erfc", t_float(), {t_float()});
   for (Type t : Builder::kGeneric) {
     Sig& s = b.add("sincos", t_void(), {t, t, t});
     s.params[1].output = s.params[2].output = true;

@@ -470,3 +470,37 @@ TEST(Codegen, LibraryCallRowsAreWired) {
     EXPECT_EQ(found, 1) << x.shadeop;
   }
 }
+
+// A math function is one row of runtime/registry/math_functions.h: its opcode, emitter and
+// shadeops (value, and the derivative's: _slope for one argument, _dual for two) come from it.
+// The expected names and counts are written out by hand for three rows.
+TEST(Codegen, MathFunctionRowsAreWired) {
+  struct Expect {
+    ir::Opcode op;
+    const char* name;
+    int min, max;
+    const char* value_sig;
+    const char* deriv;
+    const char* deriv_sig;
+  };
+  const Expect rows[] = {
+      {ir::Opcode::Sin, "sin", 2, 2, "ffi", "lobe_math_sin_slope", "ffi"},
+      {ir::Opcode::Log, "log", 2, 3, "ffi", "lobe_math_log_slope", "ffi"},
+      {ir::Opcode::Pow, "pow", 3, 3, "fffi", "lobe_math_pow_dual", "vpppi"},
+  };
+  auto sig_of = [](const std::string& name) -> std::string {
+    for (const shadeops::ShadeOpSymbol& s : shadeops::shadeop_symbols())
+      if (name == s.name) return s.sig;
+    return "(missing)";
+  };
+  for (const Expect& x : rows) {
+    const ir::OpcodeInfo& info = ir::info(x.op);
+    EXPECT_STREQ(info.name, x.name);
+    EXPECT_EQ(info.min_args, x.min) << x.name;
+    EXPECT_EQ(info.max_args, x.max) << x.name;
+    EXPECT_EQ(info.flags, ir::kArith) << x.name;
+    EXPECT_NE(codegen::op_emitter(x.op), nullptr) << x.name;
+    EXPECT_EQ(sig_of(std::string("lobe_math_") + x.name), x.value_sig) << x.name;
+    EXPECT_EQ(sig_of(x.deriv), x.deriv_sig) << x.name;
+  }
+}

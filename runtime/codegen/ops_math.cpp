@@ -246,28 +246,39 @@ void op_sincos(LayerEmitter& e, const ir::Op& op) {
   e.store(op.args[1], c);
 }
 
+// A math_functions.h row's emitter: log's own (its base form), else by arity.
+void op_math_function(LayerEmitter& e, const ir::Op& op) {
+  if (op.opcode == ir::Opcode::Log) return op_log(e, op);
+  if (ir::info(op.opcode).min_args == 2) return op_unary(e, op);
+  op_nary(e, op);
+}
+
 const OpEntry kMathOps[] = {
-    {ir::Opcode::Sin, op_unary},        {ir::Opcode::Cos, op_unary},
-    {ir::Opcode::Tan, op_unary},        {ir::Opcode::Asin, op_unary},
-    {ir::Opcode::Acos, op_unary},       {ir::Opcode::Atan, op_unary},
-    {ir::Opcode::Sinh, op_unary},       {ir::Opcode::Cosh, op_unary},
-    {ir::Opcode::Tanh, op_unary},       {ir::Opcode::Exp, op_unary},
-    {ir::Opcode::Exp2, op_unary},       {ir::Opcode::Expm1, op_unary},
-    {ir::Opcode::Log, op_log},          {ir::Opcode::Log2, op_unary},
-    {ir::Opcode::Log10, op_unary},      {ir::Opcode::Logb, op_unary},
-    {ir::Opcode::Sqrt, op_unary},       {ir::Opcode::InverseSqrt, op_unary},
-    {ir::Opcode::Cbrt, op_unary},       {ir::Opcode::Abs, op_unary},
-    {ir::Opcode::Fabs, op_unary},       {ir::Opcode::Sign, op_unary},
-    {ir::Opcode::Floor, op_unary},      {ir::Opcode::Ceil, op_unary},
-    {ir::Opcode::Round, op_unary},      {ir::Opcode::Trunc, op_unary},
-    {ir::Opcode::Erf, op_unary},        {ir::Opcode::Erfc, op_unary},
-    {ir::Opcode::IsNan, op_isclass},    {ir::Opcode::IsInf, op_isclass},
-    {ir::Opcode::IsFinite, op_isclass}, {ir::Opcode::Pow, op_nary},
-    {ir::Opcode::Atan2, op_nary},       {ir::Opcode::Fmod, op_nary},
-    {ir::Opcode::Min, op_nary},         {ir::Opcode::Max, op_nary},
-    {ir::Opcode::Clamp, op_nary},       {ir::Opcode::Mix, op_nary},
-    {ir::Opcode::Select, op_nary},      {ir::Opcode::Step, op_nary},
-    {ir::Opcode::SmoothStep, op_nary},  {ir::Opcode::Hypot, op_nary},
+// clang-format off
+#define LOBE_MATH_EMIT_ROW(x, e, name, arity, max, forms, doc) {ir::Opcode::e, op_math_function},
+    LOBE_MATH_FUNCTIONS(LOBE_MATH_EMIT_ROW, _)
+#undef LOBE_MATH_EMIT_ROW
+    // clang-format on
+    {ir::Opcode::Sqrt, op_unary},
+    {ir::Opcode::InverseSqrt, op_unary},
+    {ir::Opcode::Abs, op_unary},
+    {ir::Opcode::Fabs, op_unary},
+    {ir::Opcode::Sign, op_unary},
+    {ir::Opcode::Floor, op_unary},
+    {ir::Opcode::Ceil, op_unary},
+    {ir::Opcode::Round, op_unary},
+    {ir::Opcode::Trunc, op_unary},
+    {ir::Opcode::IsNan, op_isclass},
+    {ir::Opcode::IsInf, op_isclass},
+    {ir::Opcode::IsFinite, op_isclass},
+    {ir::Opcode::Min, op_nary},
+    {ir::Opcode::Max, op_nary},
+    {ir::Opcode::Clamp, op_nary},
+    {ir::Opcode::Mix, op_nary},
+    {ir::Opcode::Select, op_nary},
+    {ir::Opcode::Step, op_nary},
+    {ir::Opcode::SmoothStep, op_nary},
+    {ir::Opcode::Hypot, op_nary},
     {ir::Opcode::SinCos, op_sincos},
 };
 

@@ -29,6 +29,7 @@
 #pragma once
 
 #include "fastmath.h"
+#include "math_functions.h"
 
 #include <string_view>
 
@@ -36,31 +37,13 @@ namespace lobe::math {
 
 enum class MathMode : int32_t { Fast = 0, Exact = 1, FastJit = 2 };
 
-// The builtins computed by formula. Run time: out-of-line shadeops lobe_math_<name> (value),
-// lobe_math_<name>_slope (unary derivative factor), lobe_math_<name>_dual (binary partials).
+// The builtins computed by formula, one row each in runtime/registry/math_functions.h. Run time:
+// out-of-line shadeops lobe_math_<name> (value), lobe_math_<name>_slope (unary derivative
+// factor), lobe_math_<name>_dual (binary partials).
 enum class Fn : int32_t {
-  Sin,
-  Cos,
-  Tan,
-  Asin,
-  Acos,
-  Atan,
-  Sinh,
-  Cosh,
-  Tanh,
-  Exp,
-  Exp2,
-  Expm1,
-  Log,
-  Log2,
-  Log10,
-  Logb,
-  Cbrt,
-  Erf,
-  Erfc,
-  Atan2,
-  Pow,
-  Fmod
+#define LOBE_MATH_FN_ENUM(x, e, name, arity, max, forms, doc) e,
+  LOBE_MATH_FUNCTIONS(LOBE_MATH_FN_ENUM, _)
+#undef LOBE_MATH_FN_ENUM
 };
 
 // One row per Fn, in enum order: the IR opcode it implements and its number of operands
@@ -71,12 +54,9 @@ struct FnInfo {
   int arity;
 };
 inline constexpr FnInfo kFns[] = {
-    {Fn::Sin, "sin", 1},   {Fn::Cos, "cos", 1},   {Fn::Tan, "tan", 1},     {Fn::Asin, "asin", 1},
-    {Fn::Acos, "acos", 1}, {Fn::Atan, "atan", 1}, {Fn::Sinh, "sinh", 1},   {Fn::Cosh, "cosh", 1},
-    {Fn::Tanh, "tanh", 1}, {Fn::Exp, "exp", 1},   {Fn::Exp2, "exp2", 1},   {Fn::Expm1, "expm1", 1},
-    {Fn::Log, "log", 1},   {Fn::Log2, "log2", 1}, {Fn::Log10, "log10", 1}, {Fn::Logb, "logb", 1},
-    {Fn::Cbrt, "cbrt", 1}, {Fn::Erf, "erf", 1},   {Fn::Erfc, "erfc", 1},   {Fn::Atan2, "atan2", 2},
-    {Fn::Pow, "pow", 2},   {Fn::Fmod, "fmod", 2},
+#define LOBE_MATH_FN_ROW(x, e, name, arity, max, forms, doc) {Fn::e, #name, arity},
+    LOBE_MATH_FUNCTIONS(LOBE_MATH_FN_ROW, _)
+#undef LOBE_MATH_FN_ROW
 };
 
 // ---- the two function libraries ---------------------------------------------------------------

@@ -2,6 +2,7 @@
 #include "closure_docs.h"
 
 #include "library_calls.h"
+#include "math_functions.h"
 
 #include "closure_registry.h"
 #include "closure_table.h"
@@ -111,10 +112,24 @@ std::string library_reference_markdown() {
   return out;
 }
 
+std::string math_reference_markdown() {
+  std::string out = "| function | signatures | what |\n"
+                    "|---|---|---|\n";
+  const char* kGeneric = "float, color, point, vector, normal";
+#define LOBE_MATH_DOC_ROW(x, e, name, arity, max, forms, doc)                                      \
+  out.append("| `").append(#name).append("` | `").append(arity == 1 ? "T(T)" : "T(T, T)");         \
+  out.append("`, T: ").append(std::string_view(#forms) == "Generic" ? kGeneric : "float");         \
+  out.append(" | ").append(doc).append(" |\n");
+  LOBE_MATH_FUNCTIONS(LOBE_MATH_DOC_ROW, _)
+#undef LOBE_MATH_DOC_ROW
+  return out;
+}
+
 bool replace_generated_section(std::string& doc) {
   int c = replace_between(doc, kDocsBegin, kDocsEnd, closure_reference_markdown());
   int l = replace_between(doc, kLibraryDocsBegin, kLibraryDocsEnd, library_reference_markdown());
-  return c >= 0 && l >= 0 && (c > 0 || l > 0);
+  int m = replace_between(doc, kMathDocsBegin, kMathDocsEnd, math_reference_markdown());
+  return c >= 0 && l >= 0 && m >= 0 && (c > 0 || l > 0 || m > 0);
 }
 
 } // namespace lobe::registry

@@ -61,6 +61,17 @@ TEST(ClosureDocs, LibraryRowsFollowTheTable) {
   EXPECT_NE(md.find("| `float stof(string)` | "), std::string::npos);
 }
 
+TEST(ClosureDocs, MathRowsFollowTheTable) {
+  std::string md = math_reference_markdown();
+  // Written from the rows of math_functions.h, by hand.
+  EXPECT_NE(md.find("| `sin` | `T(T)`, T: float, color, point, vector, normal | a = sin b |\n"),
+            std::string::npos);
+  EXPECT_NE(md.find("| `erf` | `T(T)`, T: float | a = erf b |\n"), std::string::npos);
+  EXPECT_NE(md.find("| `atan2` | `T(T, T)`, T: float, color"), std::string::npos);
+  std::string doc = read(LOBE_SOURCE_DIR "/docs/language.md");
+  EXPECT_NE(doc.find(kMathDocsBegin), std::string::npos) << "docs/language.md lost its markers";
+}
+
 TEST(ClosureDocs, ReplaceNeedsBothMarkers) {
   std::string doc = "x\n" + std::string(kDocsBegin) + "\nold\n";
   EXPECT_FALSE(replace_generated_section(doc));

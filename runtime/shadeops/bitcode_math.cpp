@@ -31,28 +31,12 @@ using lobe::math::MathMode;
   }
 
 extern "C" {
-LOBE_UNARY(sin, Sin)
-LOBE_UNARY(cos, Cos)
-LOBE_UNARY(tan, Tan)
-LOBE_UNARY(asin, Asin)
-LOBE_UNARY(acos, Acos)
-LOBE_UNARY(atan, Atan)
-LOBE_UNARY(sinh, Sinh)
-LOBE_UNARY(cosh, Cosh)
-LOBE_UNARY(tanh, Tanh)
-LOBE_UNARY(exp, Exp)
-LOBE_UNARY(exp2, Exp2)
-LOBE_UNARY(expm1, Expm1)
-LOBE_UNARY(log, Log)
-LOBE_UNARY(log2, Log2)
-LOBE_UNARY(log10, Log10)
-LOBE_UNARY(logb, Logb)
-LOBE_UNARY(cbrt, Cbrt)
-LOBE_UNARY(erf, Erf)
-LOBE_UNARY(erfc, Erfc)
-LOBE_BINARY(atan2, Atan2)
-LOBE_BINARY(pow, Pow)
-LOBE_BINARY(fmod, Fmod)
+// One pair of shadeops per row of runtime/registry/math_functions.h, by its arity.
+#define LOBE_MATH_ROW1(name, F) LOBE_UNARY(name, F)
+#define LOBE_MATH_ROW2(name, F) LOBE_BINARY(name, F)
+#define LOBE_MATH_BITCODE_ROW(x, e, name, arity, max, forms, doc) LOBE_MATH_ROW##arity(name, e)
+LOBE_MATH_FUNCTIONS(LOBE_MATH_BITCODE_ROW, _)
+#undef LOBE_MATH_BITCODE_ROW
 
 // hash() of numbers (ops_math.cpp's lobe_hash).
 int32_t lobe_hash(const uint32_t* words, int32_t n) { return lobe::math::osl_hash(words, n); }
@@ -67,6 +51,3 @@ void lobe_transform(float* dst, const float* m, const float* p, int32_t kind) {
   lobe::math::mat_transform(dst, m, p, kind);
 }
 }
-
-// Every math::Fn has a row above (a new one must be added here too; the JIT then links it).
-static_assert(std::size(lobe::math::kFns) == 22, "bitcode_math.cpp lists every math::Fn");
