@@ -3,7 +3,8 @@
 #include "native_materials.h"
 
 #include "closures.h"
-#include "lower/pipeline.h"
+#include "driver/driver.h"
+#include "instance_values.h"
 
 #include "lobe/context.h"
 #include "lobe/install.h"
@@ -37,6 +38,7 @@ struct ParamSpec {
   PType type;
   std::vector<float> def; // Float: 1 value, Color: 3
   std::string def_s;      // String
+  ir::Type ir_type;       // as declared (instance values are read for it)
 };
 struct DeclaredParams {
   std::vector<ParamSpec> params;
@@ -46,21 +48,19 @@ struct DeclaredParams {
 DeclaredParams read_declared_params(const std::string& shader) {
   DeclaredParams out;
   std::string path = stdlib_shader_dir() + "/" + shader + ".osl";
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  if (!std::ifstream(path, std::ios::binary)) {
     out.error = "cannot read stdlib shader " + path;
     return out;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  lower::PipelineResult r = lower::compile_osl({path, text.str()}, lower::PipelineOptions{});
+  // Through the one compile driver, as the JIT's materials load their shaders.
+  driver::Loaded r = driver::load_file(path, driver::Options{});
   if (!r.ok || !r.shader) {
-    out.error = "stdlib shader " + path + " does not compile:\n" + r.diagnostics;
+    out.error = "stdlib shader " + path + " does not compile:\n" + r.rendered();
     return out;
   }
   for (const ir::Symbol& sym : r.shader->symbols) {
     if (sym.kind != ir::SymKind::Param) continue;
-    ParamSpec ps{sym.name, PType::Float, {}, {}};
+    ParamSpec ps{sym.name, PType::Float, {}, {}, sym.type};
     if (sym.type.is_array() || sym.init.empty() ||
         !(sym.type.base == ir::BaseType::Float || sym.type.is_triple() ||
           sym.type.base == ir::BaseType::String)) {
@@ -90,9 +90,10 @@ const DeclaredParams& declared_params(const std::string& shader) {
   return it->second;
 }
 
-// Instance values by name, checked against the shader's parameters as the JIT checks them
-// (runtime/group/instance_values.cpp): a string parameter takes the text; a float exactly one
-// number; a color one number (grey) or three. Messages match the JIT's. A parameter without an
+// Instance values by name, read for the shader's parameters by the JIT's own rules
+// (group::fit_instance_value, runtime/group/instance_values.cpp), so both backends take and
+// refuse the same values with the same words. A value OSL ignores with a warning (a type that
+// does not fit, group text's rules) leaves the default, as in the JIT. A parameter without an
 // instance value has its declared default.
 class ParamValues {
 public:
@@ -108,26 +109,18 @@ public:
                 iv.name + "' (its parameters: " + names + ")";
         return false;
       }
-      if (spec->type == PType::String) {
-        strings_[iv.name] = iv.value;
-        continue;
-      }
-      std::istringstream in(iv.value);
-      std::vector<float> v;
-      bool ok = true;
-      for (std::string w; in >> w;) {
-        char* end = nullptr;
-        float x = std::strtof(w.c_str(), &end);
-        ok &= end != w.c_str() && !*end;
-        v.push_back(x);
-      }
-      ok &= spec->type == PType::Float ? v.size() == 1 : (v.size() == 1 || v.size() == 3);
-      if (!ok) {
-        error = "layer '" + layer.name + "': value '" + iv.value + "' does not fit parameter '" +
-                iv.name + "' of type " + (spec->type == PType::Float ? "float" : "color");
+      group::ValueFit fit = group::fit_instance_value(iv, spec->ir_type);
+      if (!fit.error.empty()) {
+        error = "layer '" + layer.name + "': " + fit.error;
         return false;
       }
-      nums_[iv.name] = v;
+      if (!fit.ok || fit.values.empty()) continue;
+      if (spec->type == PType::String) {
+        strings_[iv.name] = fit.values[0].s;
+        continue;
+      }
+      std::vector<float>& v = nums_[iv.name];
+      for (const ir::ConstValue& c : fit.values) v.push_back(c.f);
     }
     return true;
   }

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "codegen.h"
+#include "instance_values.h"
 #include "lobe/shadingsys.h"
 
 #include <cstdint>
@@ -36,20 +37,5 @@ struct GroupBuild {
 bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
                  bool specialize, GroupBuild& out, DiagnosticList& diags,
                  bool lockgeom_default = true, bool elide_known_outputs = false);
-
-// An instance value for a parameter of type `param` (the rules are InstanceValue's). `ok`:
-// use `values` (`arraylen` sizes an unsized array); else `warning` (OSL's: the value is ignored
-// and the default kept) or `error` (the value cannot be read) says why.
-struct ValueFit {
-  bool ok = false;
-  std::vector<ir::ConstValue> values;
-  int arraylen = 0;
-  std::string warning, error;
-  std::string note; // a remark on a value that was used (Lobe's; OSL is silent)
-};
-ValueFit fit_instance_value(const InstanceValue& v, const ir::Type& param);
-
-// The same kind of value: one base type, or both triples (color, point, vector, normal).
-bool same_kind(const ir::Type& a, const ir::Type& b);
 
 } // namespace lobe::group

@@ -1,6 +1,6 @@
 // Instance values: the text or words of a `param` turned into constants of a parameter's type,
 // with OSL's rules when the value says its type (see InstanceValue in lobe/shadingsys.h).
-#include "group_build.h"
+#include "instance_values.h"
 
 #include <cstdlib>
 #include <sstream>

@@ -1,0 +1,29 @@
+// Instance values read for a parameter's type (instance_values.cpp), by the rules of
+// InstanceValue (lobe/shadingsys.h). Apart from group_build.h so that a reader of values alone
+// (the native material twins, renderer/native) needs no code generator.
+#pragma once
+
+#include "ir/ir.h"
+#include "lobe/shadingsys.h"
+
+#include <string>
+#include <vector>
+
+namespace lobe::group {
+
+// An instance value for a parameter of type `param` (the rules are InstanceValue's). `ok`:
+// use `values` (`arraylen` sizes an unsized array); else `warning` (OSL's: the value is ignored
+// and the default kept) or `error` (the value cannot be read) says why.
+struct ValueFit {
+  bool ok = false;
+  std::vector<ir::ConstValue> values;
+  int arraylen = 0;
+  std::string warning, error;
+  std::string note; // a remark on a value that was used (Lobe's; OSL is silent)
+};
+ValueFit fit_instance_value(const InstanceValue& v, const ir::Type& param);
+
+// The same kind of value: one base type, or both triples (color, point, vector, normal).
+bool same_kind(const ir::Type& a, const ir::Type& b);
+
+} // namespace lobe::group
