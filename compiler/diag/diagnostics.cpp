@@ -61,18 +61,11 @@ std::string caret_lines(const SourceManager& sm, SourceRange r) {
   std::string_view line = sm.line_text(r.begin);
   PresumedLoc b = sm.presumed(r.begin);
   if (!b.valid()) return {};
-  std::string out(line);
-  out += '\n';
-  size_t col = size_t(b.column - 1);
-  for (size_t i = 0; i < col && i < line.size(); ++i) out += line[i] == '\t' ? '\t' : ' ';
-  out += '^';
+  size_t col = size_t(b.column - 1), len = 1;
   SourceLoc fb = sm.file_loc(r.begin), fe = sm.file_loc(r.end);
-  if (fe.offset > fb.offset + 1 && sm.buffer_of(fb) == sm.buffer_of(fe)) {
-    size_t len = std::min<size_t>(fe.offset - fb.offset, line.size() > col ? line.size() - col : 1);
-    out.append(len > 1 ? len - 1 : 0, '~');
-  }
-  out += '\n';
-  return out;
+  if (fe.offset > fb.offset + 1 && sm.buffer_of(fb) == sm.buffer_of(fe))
+    len = std::min<size_t>(fe.offset - fb.offset, line.size() > col ? line.size() - col : 1);
+  return caret_under(line, col, len);
 }
 
 // "In file included from a.osl:3:" lines, outermost last (as Clang prints them).
@@ -105,6 +98,17 @@ std::string render(const Diagnostic& d, const SourceManager& sm) {
            "\n";
     out += caret_lines(sm, SourceRange(seg->macro_def));
   }
+  return out;
+}
+
+std::string caret_under(std::string_view line, size_t column, size_t length) {
+  std::string out(line);
+  out += '\n';
+  for (size_t i = 0; i < column && i < line.size(); ++i) out += line[i] == '\t' ? '\t' : ' ';
+  for (size_t i = line.size(); i < column; ++i) out += ' '; // a place just past the end
+  out += '^';
+  out.append(length > 1 ? length - 1 : 0, '~');
+  out += '\n';
   return out;
 }
 

@@ -14,6 +14,7 @@
 
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace lobe::diag {
@@ -75,6 +76,12 @@ private:
 std::string render(const Diagnostic& d, const SourceManager& sm);
 // All diagnostics of the engine, in order.
 std::string render_all(const DiagnosticEngine& engine, const SourceManager& sm);
+
+// The caret form under one line of text: the line, then `^` at 0-based `column` followed by
+// `~` to cover `length` characters (tabs before the caret kept, so it lines up), each line
+// ending in '\n'. The one caret renderer: render() uses it, and so does a tool that reports a
+// place in a line of its own (`lobe brdf`'s closure expressions).
+std::string caret_under(std::string_view line, size_t column, size_t length = 1);
 // A diagnostic resolved for a caller that does not hold the SourceManager: where it is as a
 // person reads it (the presumed file, 1-based line and column, after #line; "" and 0 when it
 // has no location), the message alone, and render()'s text.

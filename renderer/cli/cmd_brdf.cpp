@@ -10,6 +10,8 @@
 // closure is flattened into a Bsdf that evaluates through the material's JIT closure kernels.
 #include "command.h"
 
+#include "diag/diagnostics.h"
+
 #include "albedo.h"
 #include "chi2.h"
 #include "closure_expr.h"
@@ -80,9 +82,17 @@ bool finite_direction(const std::vector<double>& v, size_t at) {
   return d.x != 0 || d.y != 0 || d.z != 0;
 }
 
+// The message, then the expression with a caret under the place (the diagnostics' caret
+// renderer), indented by two spaces.
 void print_expr_error(const std::string& expr, const ExprError& e) {
-  std::fprintf(stderr, "lobe brdf: error: %s\n  %s\n  %*s^\n", e.message.c_str(), expr.c_str(),
-               static_cast<int>(e.pos), "");
+  std::string out = "lobe brdf: error: " + e.message + "\n";
+  std::string carets = diag::caret_under(expr, e.pos);
+  for (size_t b = 0; b < carets.size();) {
+    size_t n = carets.find('\n', b);
+    out.append("  ").append(carets, b, n + 1 - b);
+    b = n + 1;
+  }
+  std::fputs(out.c_str(), stderr);
 }
 
 float lum(const Vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
