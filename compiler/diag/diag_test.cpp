@@ -172,3 +172,12 @@ TEST(Engine, FileReports) {
   EXPECT_EQ(file_report(DiagId::err_shader_not_found, "", {"m"}).text,
             "error: shader 'm' not found\n");
 }
+
+// The one caret form: under the column, tildes to the length, tabs kept before the caret so it
+// lines up, a place just past the line's end padded out.
+TEST(Render, CaretUnder) {
+  EXPECT_EQ(caret_under("x = nope;", 4, 4), "x = nope;\n    ^~~~\n");
+  EXPECT_EQ(caret_under("\tx = y", 5), "\tx = y\n\t    ^\n");
+  EXPECT_EQ(caret_under("f(1", 3), "f(1\n   ^\n");
+  EXPECT_EQ(caret_under("f(1", 5), "f(1\n     ^\n");
+}
