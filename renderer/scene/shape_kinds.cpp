@@ -1,6 +1,8 @@
 // The table of shape kinds made of triangles (shape_kinds.h) and their mesh builders.
 #include "shape_kinds.h"
 
+#include "generated_docs.h"
+
 #include <cctype>
 #include <cmath>
 #include <sstream>
@@ -163,13 +165,8 @@ std::string shape_reference_markdown() {
 }
 
 bool replace_shape_section(std::string& doc) {
-  size_t b = doc.find(kShapeDocsBegin);
-  if (b == std::string::npos) return false;
-  size_t body = doc.find('\n', b);
-  size_t e = doc.find(kShapeDocsEnd, b);
-  if (body == std::string::npos || e == std::string::npos || e < body) return false;
-  doc.replace(body + 1, e - (body + 1), shape_reference_markdown());
-  return true;
+  return registry::replace_between(doc, kShapeDocsBegin, kShapeDocsEnd,
+                                   shape_reference_markdown()) > 0;
 }
 
 } // namespace lobe::scene

@@ -143,24 +143,8 @@ void op_string(LayerEmitter& e, const ir::Op& op) {
 // ---- library calls (runtime/registry/library_calls.h) ---------------------------------------
 
 // How a library call passes a value: its OSL base type (none for the Env parameter).
-template <class T> constexpr std::optional<BaseType> library_base() {
-  namespace lib = ir::library;
-  if constexpr (std::is_same_v<T, lib::Int>)
-    return BaseType::Int;
-  else if constexpr (std::is_same_v<T, lib::Float>)
-    return BaseType::Float;
-  else if constexpr (std::is_same_v<T, lib::String>)
-    return BaseType::String;
-  else if constexpr (std::is_same_v<T, lib::Color>)
-    return BaseType::Color;
-  else if constexpr (std::is_same_v<T, lib::Point>)
-    return BaseType::Point;
-  else if constexpr (std::is_same_v<T, lib::Vector>)
-    return BaseType::Vector;
-  else if constexpr (std::is_same_v<T, lib::Normal>)
-    return BaseType::Normal;
-  else
-    return std::nullopt;
+template <class T> std::optional<BaseType> library_base() {
+  return T::kName ? ir::base_type_from_string(T::kName) : std::nullopt;
 }
 template <class F> struct LibraryParams;
 template <class... P> struct LibraryParams<void(P...)> {

@@ -1,5 +1,6 @@
 // The generated closures reference (closure_docs.h).
 #include "closure_docs.h"
+#include "generated_docs.h"
 
 #include "library_calls.h"
 #include "math_functions.h"
@@ -86,17 +87,6 @@ template <class... P> struct LibrarySignature<void(P...)> {
     return s;
   }
 };
-
-// Replaces the text between `begin` and `end`; 0 when there is no such pair, -1 when broken.
-int replace_between(std::string& doc, const char* begin, const char* end, const std::string& text) {
-  size_t b = doc.find(begin);
-  if (b == std::string::npos) return 0;
-  size_t body = doc.find('\n', b);
-  size_t e = doc.find(end, b);
-  if (body == std::string::npos || e == std::string::npos || e < body) return -1;
-  doc.replace(body + 1, e - (body + 1), text);
-  return 1;
-}
 
 } // namespace
 

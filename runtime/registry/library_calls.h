@@ -43,14 +43,31 @@ namespace lobe::ir::library {
 
 // The type tags of the rows (unqualified in LOBE_LIBRARY_CALLS; expand it where these are
 // visible, e.g. inside this namespace or after `using namespace lobe::ir::library`).
-struct Int {};
-struct Float {};
-struct String {};
-struct Color {};
-struct Point {};
-struct Vector {};
-struct Normal {};
-struct Env {};
+// Each names its OSL type (kName; none for Env).
+struct Int {
+  static constexpr const char* kName = "int";
+};
+struct Float {
+  static constexpr const char* kName = "float";
+};
+struct String {
+  static constexpr const char* kName = "string";
+};
+struct Color {
+  static constexpr const char* kName = "color";
+};
+struct Point {
+  static constexpr const char* kName = "point";
+};
+struct Vector {
+  static constexpr const char* kName = "vector";
+};
+struct Normal {
+  static constexpr const char* kName = "normal";
+};
+struct Env {
+  static constexpr const char* kName = nullptr;
+};
 
 // The library calls in table order.
 enum class Call : int {
@@ -82,24 +99,7 @@ inline constexpr int kArity[] = {
 };
 inline constexpr size_t kCount = sizeof(kArity) / sizeof(kArity[0]);
 
-// OSL's name of a tag type.
-template <class T> constexpr const char* type_name() {
-  if constexpr (std::is_same_v<T, Int>)
-    return "int";
-  else if constexpr (std::is_same_v<T, Float>)
-    return "float";
-  else if constexpr (std::is_same_v<T, String>)
-    return "string";
-  else if constexpr (std::is_same_v<T, Color>)
-    return "color";
-  else if constexpr (std::is_same_v<T, Point>)
-    return "point";
-  else if constexpr (std::is_same_v<T, Vector>)
-    return "vector";
-  else if constexpr (std::is_same_v<T, Normal>)
-    return "normal";
-  else
-    return "";
-}
+// OSL's name of a tag type ("" for Env).
+template <class T> constexpr const char* type_name() { return T::kName ? T::kName : ""; }
 
 } // namespace lobe::ir::library
