@@ -4,7 +4,9 @@
 //
 // Each entry has an id (the enum), a default severity and a message template where %0, %1, ...
 // are replaced by the arguments given when the diagnostic is reported. Naming the messages in
-// one place keeps wording consistent and lets tests refer to a diagnostic by id.
+// one place keeps wording consistent and lets tests refer to a diagnostic by id. The runtime's
+// rows are mostly "%0": their ids are the published contract, the message is worded where
+// it is reported (docs/diagnostics.md).
 #pragma once
 
 #include <cstdint>

@@ -23,7 +23,7 @@ namespace lobe::render {
 
 MaterialCompiler native_compiler() {
   return [](const scene::MaterialDesc& m, std::string& error) {
-    return make_native_material(m.group, error);
+    return make_native_material(m.group, error, m.unknown_params_warn);
   };
 }
 
@@ -98,15 +98,15 @@ const DeclaredParams& declared_params(const std::string& shader) {
 class ParamValues {
 public:
   bool parse(const ShaderGroup::Layer& layer, const std::vector<ParamSpec>& specs,
-             std::string& error) {
+             bool unknown_params_ignored, std::string& error) {
     specs_ = &specs;
     for (const InstanceValue& iv : layer.values) {
       const ParamSpec* spec = find(iv.name);
-      if (!spec) { // as the renderer reports the JIT's warning for it
-        std::string names;
-        for (const ParamSpec& ps : specs) names += (names.empty() ? "" : ", ") + ps.name;
-        error = "layer '" + layer.name + "': shader '" + layer.shader + "' has no parameter '" +
-                iv.name + "' (its parameters: " + names + ")";
+      if (!spec) { // the JIT's note for it (the renderer makes it an error in JSON scenes)
+        if (unknown_params_ignored) continue; // testrender XML: ignored, as the JIT ignores it
+        std::vector<std::string> names;
+        for (const ParamSpec& ps : specs) names.push_back(ps.name);
+        error = group::nonexistent_param_note(layer.name, layer.shader, iv.name, names);
         return false;
       }
       group::ValueFit fit = group::fit_instance_value(iv, spec->ir_type);
@@ -316,7 +316,8 @@ bool has_native_material(const std::string& shader) {
   return false;
 }
 
-std::shared_ptr<const Material> make_native_material(const ShaderGroup& group, std::string& error) {
+std::shared_ptr<const Material> make_native_material(const ShaderGroup& group, std::string& error,
+                                                     bool unknown_params_ignored) {
   if (group.layers.size() != 1 || !group.connections.empty()) {
     error = "native materials take a single layer without connections";
     return nullptr;
@@ -332,7 +333,7 @@ std::shared_ptr<const Material> make_native_material(const ShaderGroup& group, s
     return nullptr;
   }
   ParamValues p;
-  if (!p.parse(l, declared.params, error)) return nullptr;
+  if (!p.parse(l, declared.params, unknown_params_ignored, error)) return nullptr;
   return std::make_shared<NativeMaterial>(make_shader(l.shader, p), reads_of(l.shader));
 }
 

@@ -26,8 +26,11 @@
 namespace lobe::render {
 
 // Null (with `error` set) when the group is not a single layer of a known stdlib shader or an
-// instance value does not parse.
-std::shared_ptr<const Material> make_native_material(const ShaderGroup& group, std::string& error);
+// instance value does not parse (the JIT's rules and words). An instance value for a parameter
+// the shader lacks is an error, or, with `unknown_params_ignored` (testrender XML scenes, as
+// MaterialDesc::unknown_params_warn says), ignored as the JIT ignores it.
+std::shared_ptr<const Material> make_native_material(const ShaderGroup& group, std::string& error,
+                                                     bool unknown_params_ignored = false);
 
 // True if `shader` names a stdlib shader that has a native version.
 bool has_native_material(const std::string& shader);

@@ -140,6 +140,16 @@ TEST(ShapeKinds, XmlElementsFollowTheTable) {
   EXPECT_NE(err.find("Sphere, Quad, Disk, Box, Background"), std::string::npos);
 }
 
+// A row named as a loader's own kind would never be reached: none is, and names are unique.
+TEST(ShapeKinds, NamesAreTheirOwn) {
+  std::span<const ShapeKind> kinds = shape_kinds();
+  for (size_t i = 0; i < kinds.size(); ++i) {
+    for (const char* own : {"sphere", "quad", "mesh"})
+      EXPECT_EQ(find_shape_kind(own, true) == &kinds[i], false) << kinds[i].name;
+    EXPECT_EQ(find_shape_kind(kinds[i].name), &kinds[i]) << kinds[i].name;
+  }
+}
+
 TEST(ShapeKinds, ValuesParseAsTheirType) {
   const ShapeParam point{ShapeParam::Type::Point, "p", "0 0 0", ""};
   const ShapeParam count{ShapeParam::Type::Count, "n", "1", ""};

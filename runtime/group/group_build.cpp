@@ -362,18 +362,17 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       if (v.lockgeom >= 0) lockgeom[i][v.name] = v.lockgeom;
       int s = sources[i]->find_symbol(v.name);
       if (s < 0 || !is_param(sources[i]->symbols[size_t(s)])) {
-        std::string names; // the shader's parameters, as a hint
+        std::vector<std::string> names; // the shader's parameters, as a hint
         for (const ir::Symbol& ps : sources[i]->symbols)
-          if (is_param(ps)) names += (names.empty() ? "" : ", ") + ps.name;
+          if (is_param(ps)) names.push_back(ps.name);
         // OSL's warning, then Lobe's hint as a note (a scene reader turns the pair into an
         // error: a misspelt parameter in a scene is a mistake).
         diags.push_back(
             warn("attempting to set nonexistent parameter: " + v.name, DiagId::nonexistent_param));
-        diags.push_back(runtime_diag(DiagId::nonexistent_param,
-                                     "layer '" + group.layers[i].name + "': shader '" +
-                                         sources[i]->name + "' has no parameter '" + v.name +
-                                         "' (its parameters: " + names + ")",
-                                     diag::Severity::Note));
+        diags.push_back(runtime_diag(
+            DiagId::nonexistent_param,
+            nonexistent_param_note(group.layers[i].name, sources[i]->name, v.name, names),
+            diag::Severity::Note));
         continue;
       }
       ValueFit fit = fit_instance_value(v, sources[i]->symbols[size_t(s)].type);

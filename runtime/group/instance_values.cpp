@@ -148,4 +148,13 @@ bool same_kind(const ir::Type& a, const ir::Type& b) {
   return a.base == b.base || (a.is_triple() && b.is_triple());
 }
 
+std::string nonexistent_param_note(const std::string& layer, const std::string& shader,
+                                   const std::string& param,
+                                   const std::vector<std::string>& params) {
+  std::string names;
+  for (const std::string& n : params) names.append(names.empty() ? "" : ", ").append(n);
+  return "layer '" + layer + "': shader '" + shader + "' has no parameter '" + param +
+         "' (its parameters: " + names + ")";
+}
+
 } // namespace lobe::group

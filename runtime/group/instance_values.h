@@ -23,6 +23,12 @@ struct ValueFit {
 };
 ValueFit fit_instance_value(const InstanceValue& v, const ir::Type& param);
 
+// The note after OSL's "attempting to set nonexistent parameter" warning, naming what the
+// shader has: "layer 'l': shader 's' has no parameter 'p' (its parameters: a, b)".
+std::string nonexistent_param_note(const std::string& layer, const std::string& shader,
+                                   const std::string& param,
+                                   const std::vector<std::string>& params);
+
 // The same kind of value: one base type, or both triples (color, point, vector, normal).
 bool same_kind(const ir::Type& a, const ir::Type& b);
 

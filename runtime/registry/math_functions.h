@@ -9,7 +9,8 @@
 // (compiler/sema/builtins.cpp; extra overloads such as pow(color, float) are listed there),
 // the constant folder's case (compiler/passes/consteval.cpp), the code generator's row
 // (runtime/codegen/ops_math.cpp) and the shadeops lobe_math_<name>[_slope|_dual], native and in
-// bitcode (runtime/shadeops/ops_math.cpp, bitcode_math.cpp). Adding one is its row plus its
+// bitcode (runtime/shadeops/ops_math.cpp, bitcode_math.cpp), and its line in docs/language.md
+// (`closure_docs --update docs/language.md`, checked by a test). Adding one is its row plus its
 // formulas in mathops.h: the value (apply1/apply2, per math library) and the derivative
 // (slope_of, or dual2 for two arguments).
 #pragma once

@@ -281,3 +281,24 @@ TEST(JitMaterials, KernelModesRenderTheSamePixels) {
   EXPECT_EQ(differ_setup, 0u);
   EXPECT_EQ(differ_background, 0u);
 }
+
+// A value for a parameter the shader lacks: the native twins answer as the JIT does, an error
+// worded as the JIT's note, or, for a testrender XML scene (unknown_params_ignored), ignored;
+// a value that does not fit is refused in the JIT's words (group::fit_instance_value).
+TEST(JitMaterials, NativeTwinsReadInstanceValuesAsTheJit) {
+  ShaderGroup g;
+  g.layers.push_back({"matte", "m", {}});
+  g.layers[0].values.push_back(InstanceValue{"float", "shininess", "3"});
+  std::string error;
+  EXPECT_EQ(make_native_material(g, error), nullptr);
+  EXPECT_EQ(error.rfind("layer 'm': shader 'matte' has no parameter 'shininess' (its "
+                        "parameters: ",
+                        0),
+            0u)
+      << error;
+  error.clear();
+  EXPECT_NE(make_native_material(g, error, true), nullptr) << error;
+  g.layers[0].values[0] = InstanceValue{"color", "Cs", "red"};
+  EXPECT_EQ(make_native_material(g, error, true), nullptr);
+  EXPECT_EQ(error, "layer 'm': value 'red' does not fit parameter 'Cs' of type color");
+}
