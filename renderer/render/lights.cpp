@@ -1,6 +1,8 @@
 // Light selection and sampling (see lights.h).
 #include "lights.h"
 
+#include "light_kinds.h"
+
 #include "sampling.h"
 
 #include <algorithm>
@@ -16,9 +18,7 @@ void LightSet::build(const Geometry& geo, const std::vector<scene::Light>& light
   points_ = lights;
   std::vector<float> power;
   for (const scene::Light& l : lights) {
-    float solid = 4 * kPi;
-    if (l.kind == scene::Light::Kind::Spot)
-      solid = 2 * kPi * (1 - std::cos(l.cone_angle * kPi / 180.0f));
+    float solid = l.kind ? l.kind->solid_angle(l.values) : 4 * kPi; // no kind: a point light
     power.push_back(solid * luminance(l.intensity));
   }
   shape_to_area_.assign(geo.shapes().size(), -1);
@@ -69,14 +69,7 @@ bool LightSet::sample(const Vec3& p, const Vec3& n, float u_select, float u1, fl
     out.dist = std::sqrt(d2);
     out.wi = d / out.dist;
     out.L = l.intensity / d2;
-    if (l.kind == scene::Light::Kind::Spot) {
-      float c = dot(-out.wi, l.direction);
-      float c_out = std::cos(l.cone_angle * kPi / 180.0f);
-      float c_in = std::cos((l.cone_angle - l.falloff_angle) * kPi / 180.0f);
-      float t = c_in > c_out ? std::clamp((c - c_out) / (c_in - c_out), 0.0f, 1.0f)
-                             : (c >= c_out ? 1.0f : 0.0f);
-      out.L *= t * t * (3 - 2 * t); // smoothstep edge
-    }
+    if (l.kind) out.L *= l.kind->profile(l.values, -out.wi); // its emission profile
     out.pdf = prob;
     return !is_zero(out.L);
   }

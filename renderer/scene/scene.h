@@ -66,13 +66,13 @@ struct Shape {
   std::string where;
 };
 
+struct LightKind; // light_kinds.h
+
 struct Light {
-  enum class Kind { Point, Spot } kind = Kind::Point;
+  const LightKind* kind = nullptr; // a row of light_kinds.cpp; null: a point light
   Vec3 position;
-  Vec3 direction{0, -1, 0};  // spot axis
-  Color3 intensity{1, 1, 1}; // radiant intensity (W/sr per channel) along the axis
-  float cone_angle = 30;     // spot: half-angle where the light ends, degrees
-  float falloff_angle = 5;   // spot: width of the smooth edge inside the cone, degrees
+  Color3 intensity{1, 1, 1}; // radiant intensity (W/sr per channel) where it is strongest
+  std::vector<Vec3> values;  // the kind's parameters, in its row's order, after its build
   std::string where;
 };
 

@@ -2,6 +2,7 @@
 // shapes, lights and environment. Every error names the file, the JSON pointer and what was
 // expected; unknown keys are errors, so a misspelt setting is never silently ignored.
 #include "json_reader.h"
+#include "light_kinds.h"
 #include "mesh_io.h"
 #include "scene.h"
 #include "scene_group.h"
@@ -297,16 +298,14 @@ private:
 
   // A kind of the shape table (shape_kinds.h): its parameters, read and checked as its row
   // says, build its mesh, which the transform then places.
-  void generated_shape(const json& j, const std::string& p, const ShapeKind& k, const Mat4& xf,
-                       Shape& s) {
-    std::vector<const char*> allowed = {"type", "material", "transform", "userdata"};
-    for (const ShapeParam& q : k.params) allowed.push_back(q.name);
-    r_.check_keys(j, p, allowed);
+  // A table row's parameters (shape_kinds.h, light_kinds.h), read and checked as the row says.
+  ShapeArgs row_args(const json& j, const std::string& p, const std::vector<ShapeParam>& params) {
     ShapeArgs args;
-    for (const ShapeParam& q : k.params) {
+    for (const ShapeParam& q : params) {
       const std::string qp = p + "/" + q.name;
       Vec3 v;
-      if (j.contains(q.name)) {
+      bool given = j.contains(q.name);
+      if (given) {
         const json& x = j.at(q.name);
         if (q.type == ShapeParam::Type::Point || q.type == ShapeParam::Type::Vector)
           v = r_.vec3(x, qp);
@@ -316,33 +315,53 @@ private:
           v.x = float(r_.integer(x, qp, 1, 1 << 20));
       } else if (!q.default_value) {
         r_.fail(p, std::string("expected \"") + q.name + "\"");
-      } else {
+      } else if (*q.default_value) {
         parse_shape_value(q, q.default_value, v);
       }
       args.values.push_back(v);
+      args.given.push_back(given);
     }
+    return args;
+  }
+
+  // A kind of the shape table (shape_kinds.h): its parameters, read and checked as its row
+  // says, build its mesh, which the transform then places.
+  void generated_shape(const json& j, const std::string& p, const ShapeKind& k, const Mat4& xf,
+                       Shape& s) {
+    std::vector<const char*> allowed = {"type", "material", "transform", "userdata"};
+    for (const ShapeParam& q : k.params) allowed.push_back(q.name);
+    r_.check_keys(j, p, allowed);
+    ShapeArgs args = row_args(j, p, k.params);
     s.kind = Shape::Kind::Mesh;
     if (std::string e = k.build(args, s.mesh); !e.empty()) r_.fail(p, k.name + (": " + e));
     transform_mesh(s.mesh, xf);
   }
 
+  // The kinds of the light table, as a list for messages: "point" or "spot".
+  static std::string light_types() {
+    std::string out;
+    std::span<const LightKind> kinds = light_kinds();
+    for (size_t i = 0; i < kinds.size(); ++i)
+      out += std::string(i == 0                  ? ""
+                         : i + 1 == kinds.size() ? " or "
+                                                 : ", ") +
+             "\"" + kinds[i].name + "\"";
+    return out;
+  }
+
+  // A light: its kind's row (light_kinds.h) says what it takes beyond position, intensity and
+  // color.
   Light light(const json& j, const std::string& p) {
     r_.object(j, p);
-    if (!j.contains("type")) r_.fail(p, "expected \"type\": \"point\" or \"spot\"");
+    if (!j.contains("type")) r_.fail(p, "expected \"type\": " + light_types());
     std::string type = r_.string(j.at("type"), p + "/type");
     Light l;
     l.where = r_.file() + ": " + p;
-    if (type == "point") {
-      r_.check_keys(j, p, {"type", "position", "intensity", "color"});
-      l.kind = Light::Kind::Point;
-    } else if (type == "spot") {
-      r_.check_keys(j, p,
-                    {"type", "position", "intensity", "color", "direction", "look_at", "cone_angle",
-                     "falloff_angle"});
-      l.kind = Light::Kind::Spot;
-    } else {
-      r_.fail(p + "/type", "expected \"point\" or \"spot\", found \"" + type + "\"");
-    }
+    l.kind = find_light_kind(type);
+    if (!l.kind) r_.fail(p + "/type", "expected " + light_types() + ", found \"" + type + "\"");
+    std::vector<const char*> allowed = {"type", "position", "intensity", "color"};
+    for (const ShapeParam& q : l.kind->params) allowed.push_back(q.name);
+    r_.check_keys(j, p, allowed);
     if (!j.contains("position")) r_.fail(p, "expected \"position\"");
     l.position = r_.vec3(j.at("position"), p + "/position");
     Color3 tint{1, 1, 1};
@@ -352,19 +371,11 @@ private:
     if (!(std::isfinite(l.intensity.x) && std::isfinite(l.intensity.y) &&
           std::isfinite(l.intensity.z)))
       r_.fail(p, "intensity x color overflows a 32-bit float");
-    if (l.kind == Light::Kind::Spot) {
-      if (j.contains("look_at"))
-        l.direction = r_.vec3(j.at("look_at"), p + "/look_at") - l.position;
-      r_.opt(j, p, "direction", l.direction, &JsonReader::vec3);
-      l.direction = normalize(l.direction);
-      if (is_zero(l.direction)) r_.fail(p, "spot direction is zero");
-      r_.opt(j, p, "cone_angle", l.cone_angle, &JsonReader::number);
-      r_.opt(j, p, "falloff_angle", l.falloff_angle, &JsonReader::number);
-      if (!(l.cone_angle > 0 && l.cone_angle <= 90))
-        r_.fail(p + "/cone_angle", "expected degrees in (0, 90]");
-      if (!(l.falloff_angle >= 0 && l.falloff_angle <= l.cone_angle))
-        r_.fail(p + "/falloff_angle", "expected degrees in [0, cone_angle]");
-    }
+    ShapeArgs args = row_args(j, p, l.kind->params);
+    std::string key;
+    if (std::string e = l.kind->build(args, l.position, key); !e.empty())
+      r_.fail(key.empty() ? p : p + "/" + key, e);
+    l.values = std::move(args.values);
     return l;
   }
 

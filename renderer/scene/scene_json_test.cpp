@@ -1,5 +1,6 @@
 // JSON scene loading: values land where the format says, and errors name file, JSON pointer
 // and what was expected.
+#include "light_kinds.h"
 #include "scene.h"
 
 #include <gtest/gtest.h>
@@ -64,7 +65,9 @@ TEST(SceneJson, FullSceneLoads) {
   EXPECT_FLOAT_EQ(s.shapes[0].radius, 1.0f);
   EXPECT_EQ(s.shapes[1].material, 1);
   ASSERT_EQ(s.lights.size(), 1u);
-  EXPECT_FLOAT_EQ(s.lights[0].direction.y, -1.0f);
+  ASSERT_NE(s.lights[0].kind, nullptr);
+  EXPECT_STREQ(s.lights[0].kind->name, "spot");
+  EXPECT_FLOAT_EQ(s.lights[0].values[0].y, -1.0f); // the axis, towards look_at (light_kinds.cpp)
   EXPECT_EQ(s.environment.kind, Environment::Kind::Sky);
 }
 

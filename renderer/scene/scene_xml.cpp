@@ -17,8 +17,10 @@
 // camera: defaults eye 0, dir (0,0,1), up +Y, fov 90; `look_at` overrides `dir`; the image
 // plane spans tan(fov/2) in height at distance 2 (so Lobe's vertical field of view is
 // 2 atan(tan(fov/2) / 2)). Lobe adds <Settings resolution="W H" spp max_depth seed exposure/>
-// and <PointLight position intensity/>. Unknown attributes and options become warnings;
-// unknown elements are errors. Every message names the file and line.
+// and the light kinds (<PointLight position intensity/>, <SpotLight ...>: light_kinds.h). Unknown
+// attributes and options become warnings; unknown elements are errors. Every message names the file
+// and line.
+#include "light_kinds.h"
 #include "scene.h"
 #include "scene_group.h"
 #include "shape_kinds.h"
@@ -61,13 +63,13 @@ public:
                 : name == "Background"  ? background(n, s)
                 : name == "Option"      ? option(n, s.settings)
                 : name == "Settings"    ? settings(n, s.settings)
-                : name == "PointLight"  ? point_light(n, s)
-                : xml_kind(name)
-                    ? generated_shape(n, *xml_kind(name), s)
-                    : fail(n, "unknown element <" + name +
-                                  "> (expected Option, Camera, ShaderGroup, "
-                                  "Sphere, Quad, " +
-                                  xml_kind_names() + "Background, Settings, PointLight)");
+                : xml_light(name)       ? light(n, *xml_light(name), s)
+                : xml_kind(name)        ? generated_shape(n, *xml_kind(name), s)
+                                        : fail(n, "unknown element <" + name +
+                                                      "> (expected Option, Camera, ShaderGroup, "
+                                                             "Sphere, Quad, " +
+                                                      xml_kind_names() + "Background, Settings, " +
+                                                      xml_light_names() + ")");
       if (!ok) return false;
     }
     return true;
@@ -332,29 +334,40 @@ private:
     for (const ShapeKind& k : shape_kinds()) out += xml_element(k) + ", ";
     return out;
   }
+  // Attributes neither `known` nor read are reported (as check_attrs does).
+  void warn_unknown_attrs(const pugi::xml_node& n, const std::vector<std::string>& known) {
+    for (pugi::xml_attribute a : n.attributes())
+      if (std::find(known.begin(), known.end(), a.name()) == known.end())
+        warnings.push_back(at(n) + ": <" + n.name() + "> attribute '" + a.name() + "' ignored");
+  }
+  // A table row's parameters as attributes (shape_kinds.h, light_kinds.h), defaults where
+  // left out.
+  bool row_args(const pugi::xml_node& n, const std::vector<ShapeParam>& params, ShapeArgs& args) {
+    for (const ShapeParam& q : params) {
+      pugi::xml_attribute a = n.attribute(q.name);
+      if (!a && !q.default_value)
+        return fail(n, std::string("<") + n.name() + "> needs attribute '" + q.name + "'");
+      Vec3 v;
+      if (a || *q.default_value)
+        if (std::string e = parse_shape_value(q, a ? a.value() : q.default_value, v); !e.empty())
+          return fail(n, std::string("attribute '") + q.name + "' " + e + ", found \"" + a.value() +
+                             "\"");
+      args.values.push_back(v);
+      args.given.push_back(bool(a));
+    }
+    return true;
+  }
   // <Disk center="..." .../>: the row's parameters as attributes (defaults where left out).
   bool generated_shape(const pugi::xml_node& n, const ShapeKind& k, SceneDesc& s) {
     std::vector<std::string> known = {"is_light"};
     for (const ShapeParam& q : k.params) known.push_back(q.name);
-    for (pugi::xml_attribute a : n.attributes())
-      if (std::find(known.begin(), known.end(), a.name()) == known.end())
-        warnings.push_back(at(n) + ": <" + n.name() + "> attribute '" + a.name() + "' ignored");
+    warn_unknown_attrs(n, known);
     Shape sh;
     sh.kind = Shape::Kind::Mesh;
     sh.where = at(n);
     sh.material = current_;
     ShapeArgs args;
-    for (const ShapeParam& q : k.params) {
-      pugi::xml_attribute a = n.attribute(q.name);
-      if (!a && !q.default_value)
-        return fail(n, std::string("<") + n.name() + "> needs attribute '" + q.name + "'");
-      Vec3 v;
-      if (std::string e = parse_shape_value(q, a ? a.value() : q.default_value, v); !e.empty())
-        return fail(n, std::string("attribute '") + q.name + "' " + e + ", found \"" + a.value() +
-                           "\"");
-      args.values.push_back(v);
-    }
-    if (!light_flag(n, sh)) return false;
+    if (!row_args(n, k.params, args) || !light_flag(n, sh)) return false;
     if (std::string e = k.build(args, sh.mesh); !e.empty()) return fail(n, e);
     s.shapes.push_back(std::move(sh));
     return true;
@@ -400,15 +413,37 @@ private:
     }
     return true;
   }
-  bool point_light(const pugi::xml_node& n, SceneDesc& s) {
-    check_attrs(n, {"position", "intensity"});
+  // The kinds of the light table (light_kinds.h) as elements: <PointLight>, <SpotLight>.
+  static const LightKind* xml_light(const std::string& element) {
+    for (const LightKind& k : light_kinds())
+      if (light_element(k) == element) return &k;
+    return nullptr;
+  }
+  static std::string xml_light_names() {
+    std::string out;
+    for (const LightKind& k : light_kinds()) out += (out.empty() ? "" : ", ") + light_element(k);
+    return out;
+  }
+  // <PointLight position="..." intensity="..." .../>: position and intensity, then the kind's
+  // parameters (defaults where left out).
+  bool light(const pugi::xml_node& n, const LightKind& k, SceneDesc& s) {
+    std::vector<std::string> known = {"position", "intensity"};
+    for (const ShapeParam& q : k.params) known.push_back(q.name);
+    warn_unknown_attrs(n, known);
     Light l;
+    l.kind = &k;
     l.where = at(n);
     if (!vec(n, "position", l.position, true) || !vec(n, "intensity", l.intensity, true))
       return false;
     if (!(l.intensity.x >= 0 && l.intensity.y >= 0 && l.intensity.z >= 0))
       return fail(n, "intensity expects components >= 0 (emitted light cannot be negative)");
-    s.lights.push_back(l);
+    ShapeArgs args;
+    if (!row_args(n, k.params, args)) return false;
+    std::string key;
+    if (std::string e = k.build(args, l.position, key); !e.empty())
+      return fail(n, (key.empty() ? "" : key + ": ") + e);
+    l.values = std::move(args.values);
+    s.lights.push_back(std::move(l));
     return true;
   }
 

@@ -1,6 +1,8 @@
 // The table of shape kinds made of triangles (shape_kinds.h) and their mesh builders.
 #include "shape_kinds.h"
 
+#include "light_kinds.h"
+
 #include "generated_docs.h"
 
 #include <cctype>
@@ -164,9 +166,12 @@ std::string shape_reference_markdown() {
   return out;
 }
 
-bool replace_shape_section(std::string& doc) {
-  return registry::replace_between(doc, kShapeDocsBegin, kShapeDocsEnd,
-                                   shape_reference_markdown()) > 0;
+bool replace_scene_sections(std::string& doc) {
+  int s =
+      registry::replace_between(doc, kShapeDocsBegin, kShapeDocsEnd, shape_reference_markdown());
+  int l =
+      registry::replace_between(doc, kLightDocsBegin, kLightDocsEnd, light_reference_markdown());
+  return s >= 0 && l >= 0 && (s > 0 || l > 0);
 }
 
 } // namespace lobe::scene

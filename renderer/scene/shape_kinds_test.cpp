@@ -42,7 +42,7 @@ TEST(ShapeKinds, CommittedDocsAreTheGeneratedOnes) {
   std::stringstream ss;
   ss << in.rdbuf();
   std::string doc = ss.str(), regenerated = doc;
-  ASSERT_TRUE(replace_shape_section(regenerated)) << "docs/scene-format.md lost its markers";
+  ASSERT_TRUE(replace_scene_sections(regenerated)) << "docs/scene-format.md lost its markers";
   EXPECT_EQ(doc, regenerated)
       << "docs/scene-format.md is out of date: run scene_docs --update docs/scene-format.md";
   EXPECT_NE(shape_reference_markdown().find("| `disk` | `center` (point, 0 0 0): its centre; "),
