@@ -63,20 +63,6 @@ const LightKind kKinds[] = {
      solid_spot},
 };
 
-const char* type_word(T t) {
-  switch (t) {
-  case T::Point:
-    return "point";
-  case T::Vector:
-    return "vector";
-  case T::Number:
-    return "number";
-  case T::Count:
-    return "whole number";
-  }
-  return "";
-}
-
 } // namespace
 
 std::span<const LightKind> light_kinds() { return kKinds; }
@@ -97,15 +83,8 @@ std::string light_reference_markdown() {
   std::string out = "| type | XML | parameters (type, default) | what |\n"
                     "|---|---|---|---|\n";
   for (const LightKind& k : kKinds) {
-    std::string params;
-    for (const ShapeParam& p : k.params) {
-      if (!params.empty()) params += "; ";
-      params.append("`").append(p.name).append("` (").append(type_word(p.type)).append(", ");
-      params.append(p.default_value && *p.default_value ? p.default_value : "none");
-      params.append("): ").append(p.doc);
-    }
     out.append("| `").append(k.name).append("` | `<").append(light_element(k)).append(">` | ");
-    out.append(params.empty() ? "-" : params).append(" | ").append(k.doc).append(" |\n");
+    out.append(params_markdown(k.params)).append(" | ").append(k.doc).append(" |\n");
   }
   return out;
 }

@@ -149,19 +149,24 @@ std::string parse_shape_value(const ShapeParam& p, std::string_view text, Vec3& 
   return "";
 }
 
+std::string params_markdown(const std::vector<ShapeParam>& params) {
+  std::string out;
+  for (const ShapeParam& p : params) {
+    if (!out.empty()) out += "; ";
+    // appended piece by piece: `"literal" + std::string` trips GCC 12's -Wrestrict
+    out.append("`").append(p.name).append("` (").append(type_word(p.type)).append(", ");
+    out.append(!p.default_value ? "required" : *p.default_value ? p.default_value : "none");
+    out.append("): ").append(p.doc);
+  }
+  return out.empty() ? "-" : out;
+}
+
 std::string shape_reference_markdown() {
   std::string out = "| type | parameters (type, default) | what |\n"
                     "|---|---|---|\n";
   for (const ShapeKind& k : kKinds) {
-    std::string params;
-    for (const ShapeParam& p : k.params) {
-      if (!params.empty()) params += "; ";
-      // appended piece by piece: `"literal" + std::string` trips GCC 12's -Wrestrict
-      params.append("`").append(p.name).append("` (").append(type_word(p.type)).append(", ");
-      params.append(p.default_value ? p.default_value : "required").append("): ").append(p.doc);
-    }
-    out.append("| `").append(k.name).append("` | ").append(params).append(" | ");
-    out.append(k.doc).append(" |\n");
+    out.append("| `").append(k.name).append("` | ").append(params_markdown(k.params));
+    out.append(" | ").append(k.doc).append(" |\n");
   }
   return out;
 }
