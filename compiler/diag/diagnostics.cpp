@@ -36,8 +36,6 @@ void DiagnosticEngine::clear() {
   stopped_ = last_dropped_ = false;
 }
 
-namespace {
-
 const char* severity_word(Severity s) {
   switch (s) {
   case Severity::Note:
@@ -51,6 +49,8 @@ const char* severity_word(Severity s) {
   }
   return "error";
 }
+
+namespace {
 
 std::string loc_prefix(const PresumedLoc& p) {
   return std::string(p.file) + ":" + std::to_string(p.line) + ":" + std::to_string(p.column);

@@ -77,6 +77,9 @@ std::string render(const Diagnostic& d, const SourceManager& sm);
 // All diagnostics of the engine, in order.
 std::string render_all(const DiagnosticEngine& engine, const SourceManager& sm);
 
+// "note", "warning", "error" or "fatal error", as the rendered text words a severity.
+const char* severity_word(Severity s);
+
 // The caret form under one line of text: the line, then `^` at 0-based `column` followed by
 // `~` to cover `length` characters (tabs before the caret kept, so it lines up), each line
 // ending in '\n'. The one caret renderer: render() uses it, and so does a tool that reports a

@@ -50,7 +50,7 @@ void math_function(Builder& b, const char* name, int arity, MathForms forms) {
 
 void math(Builder& b) {
   // The functions computed by formula (runtime/registry/math_functions.h), then the rest.
-#define LOBE_MATH_SIG_ROW(x, e, name, arity, max, forms, doc)                                     \
+#define LOBE_MATH_SIG_ROW(x, e, name, arity, max, forms, doc)                                      \
   math_function(b, #name, arity, MathForms::forms);
   LOBE_MATH_FUNCTIONS(LOBE_MATH_SIG_ROW, _)
 #undef LOBE_MATH_SIG_ROW

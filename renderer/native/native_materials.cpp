@@ -9,14 +9,12 @@
 #include "lobe/context.h"
 #include "lobe/install.h"
 
-#include <cstdlib>
 #include <cstring>
-#include <fstream>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <mutex>
 #include <new>
-#include <sstream>
 #include <vector>
 
 namespace lobe::render {
@@ -48,14 +46,13 @@ struct DeclaredParams {
 DeclaredParams read_declared_params(const std::string& shader) {
   DeclaredParams out;
   std::string path = stdlib_shader_dir() + "/" + shader + ".osl";
-  if (!std::ifstream(path, std::ios::binary)) {
-    out.error = "cannot read stdlib shader " + path;
-    return out;
-  }
-  // Through the one compile driver, as the JIT's materials load their shaders.
+  // Through the one compile driver, as the JIT's materials load their shaders (it reads the
+  // file once; whether it exists is asked only when that fails).
   driver::Loaded r = driver::load_file(path, driver::Options{});
   if (!r.ok || !r.shader) {
-    out.error = "stdlib shader " + path + " does not compile:\n" + r.rendered();
+    out.error = !std::filesystem::exists(path)
+                    ? "cannot read stdlib shader " + path
+                    : "stdlib shader " + path + " does not compile:\n" + r.rendered();
     return out;
   }
   for (const ir::Symbol& sym : r.shader->symbols) {

@@ -320,18 +320,14 @@ private:
     return true;
   }
   // The kinds of the shape table (shape_kinds.h) as elements: the name capitalised (<Disk>).
-  static std::string xml_element(const ShapeKind& k) {
-    std::string e = k.name;
-    if (!e.empty()) e[0] = char(std::toupper((unsigned char)e[0]));
-    return e;
-  }
   static const ShapeKind* xml_kind(const std::string& element) {
-    const ShapeKind* k = find_shape_kind(element, true);
-    return k && xml_element(*k) == element ? k : nullptr;
+    for (const ShapeKind& k : shape_kinds())
+      if (shape_element(k) == element) return &k;
+    return nullptr;
   }
   static std::string xml_kind_names() {
     std::string out;
-    for (const ShapeKind& k : shape_kinds()) out += xml_element(k) + ", ";
+    for (const ShapeKind& k : shape_kinds()) out += shape_element(k) + ", ";
     return out;
   }
   // Attributes neither `known` nor read are reported (as check_attrs does).

@@ -108,27 +108,20 @@ const char* type_word(T t) {
   return "";
 }
 
-bool same(std::string_view a, std::string_view b, bool ignore_case) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i) {
-    char x = a[i], y = b[i];
-    if (ignore_case) {
-      x = char(std::tolower((unsigned char)x));
-      y = char(std::tolower((unsigned char)y));
-    }
-    if (x != y) return false;
-  }
-  return true;
-}
-
 } // namespace
 
 std::span<const ShapeKind> shape_kinds() { return kKinds; }
 
-const ShapeKind* find_shape_kind(std::string_view name, bool ignore_case) {
+const ShapeKind* find_shape_kind(std::string_view name) {
   for (const ShapeKind& k : kKinds)
-    if (same(k.name, name, ignore_case)) return &k;
+    if (name == k.name) return &k;
   return nullptr;
+}
+
+std::string shape_element(const ShapeKind& k) {
+  std::string e = k.name;
+  if (!e.empty()) e[0] = char(std::toupper((unsigned char)e[0]));
+  return e;
 }
 
 std::string parse_shape_value(const ShapeParam& p, std::string_view text, Vec3& out) {

@@ -54,8 +54,10 @@ struct ShapeKind {
 };
 
 std::span<const ShapeKind> shape_kinds();
-// The row named `name` (the JSON type; the XML element matches ignoring case), or nullptr.
-const ShapeKind* find_shape_kind(std::string_view name, bool ignore_case = false);
+// The row named `name` (the JSON type), or nullptr.
+const ShapeKind* find_shape_kind(std::string_view name);
+// Its XML element: the name capitalised ("disk" -> "Disk").
+std::string shape_element(const ShapeKind& k);
 
 // Parses a parameter's value as its type from text ("1 2 3", "1,2,3" or "4"); "" on success,
 // else what was expected. A Point or Vector takes three numbers, a Number one, a Count one

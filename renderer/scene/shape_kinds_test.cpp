@@ -145,7 +145,7 @@ TEST(ShapeKinds, NamesAreTheirOwn) {
   std::span<const ShapeKind> kinds = shape_kinds();
   for (size_t i = 0; i < kinds.size(); ++i) {
     for (const char* own : {"sphere", "quad", "mesh"})
-      EXPECT_EQ(find_shape_kind(own, true) == &kinds[i], false) << kinds[i].name;
+      EXPECT_EQ(find_shape_kind(own) == &kinds[i], false) << kinds[i].name;
     EXPECT_EQ(find_shape_kind(kinds[i].name), &kinds[i]) << kinds[i].name;
   }
 }

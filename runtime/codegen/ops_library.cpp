@@ -12,6 +12,7 @@
 #include <llvm/IR/Constants.h>
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cstddef>
 #include <cstdlib>
@@ -157,20 +158,19 @@ struct LibraryCall {
   std::vector<std::optional<BaseType>> params; // none: the RuntimeEnv
 };
 
-// The row of each library call's opcode (null for the other opcodes).
+// The row of each library call, indexed by its opcode (null for the other opcodes).
 const LibraryCall* library_call(ir::Opcode o) {
-  static const std::vector<std::pair<ir::Opcode, LibraryCall>> kRows = [] {
+  static const std::array<std::optional<LibraryCall>, ir::kOpcodeCount> kByOpcode = [] {
     using namespace ir::library;
-    return std::vector<std::pair<ir::Opcode, LibraryCall>>{
+    std::array<std::optional<LibraryCall>, ir::kOpcodeCount> a;
 #define LOBE_LIBRARY_CODEGEN_ROW(x, e, name, R, P, fn, doc)                                        \
-  {ir::Opcode::e, LibraryCall{#fn, *library_base<R>(), LibraryParams<void P>::get()}},
-        LOBE_LIBRARY_CALLS(LOBE_LIBRARY_CODEGEN_ROW, _)
+  a[size_t(ir::Opcode::e)] = LibraryCall{#fn, *library_base<R>(), LibraryParams<void P>::get()};
+    LOBE_LIBRARY_CALLS(LOBE_LIBRARY_CODEGEN_ROW, _)
 #undef LOBE_LIBRARY_CODEGEN_ROW
-    };
+    return a;
   }();
-  for (const auto& [op, row] : kRows)
-    if (op == o) return &row;
-  return nullptr;
+  const std::optional<LibraryCall>& row = kByOpcode[size_t(o)];
+  return row ? &*row : nullptr;
 }
 
 // result = shadeop(arguments as C values): ints and floats by value (converted to the

@@ -24,11 +24,8 @@ Diagnostic runtime_diag(diag::DiagId id, const std::string& arg,
   const diag::DiagInfo& info = diag::diag_info(id);
   diag::Report r{id, severity.value_or(info.severity),         file, line,
                  0,  diag::format_message(info.format, {arg}), ""};
-  const char* word = r.severity == diag::Severity::Note      ? "note"
-                     : r.severity == diag::Severity::Warning ? "warning"
-                                                             : "error";
   std::string place = file.empty() ? "" : line > 0 ? file + ":" + std::to_string(line) : file;
-  r.text = (place.empty() ? "" : place + ": ") + word + ": " + r.message;
+  r.text = (place.empty() ? "" : place + ": ") + diag::severity_word(r.severity) + ": " + r.message;
   return to_public(r);
 }
 

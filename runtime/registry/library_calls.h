@@ -44,30 +44,19 @@ namespace lobe::ir::library {
 // The type tags of the rows (unqualified in LOBE_LIBRARY_CALLS; expand it where these are
 // visible, e.g. inside this namespace or after `using namespace lobe::ir::library`).
 // Each names its OSL type (kName; none for Env).
-struct Int {
-  static constexpr const char* kName = "int";
-};
-struct Float {
-  static constexpr const char* kName = "float";
-};
-struct String {
-  static constexpr const char* kName = "string";
-};
-struct Color {
-  static constexpr const char* kName = "color";
-};
-struct Point {
-  static constexpr const char* kName = "point";
-};
-struct Vector {
-  static constexpr const char* kName = "vector";
-};
-struct Normal {
-  static constexpr const char* kName = "normal";
-};
-struct Env {
-  static constexpr const char* kName = nullptr;
-};
+#define LOBE_LIBRARY_TAG(T, name)                                                                  \
+  struct T {                                                                                       \
+    static constexpr const char* kName = name;                                                     \
+  };
+LOBE_LIBRARY_TAG(Int, "int")
+LOBE_LIBRARY_TAG(Float, "float")
+LOBE_LIBRARY_TAG(String, "string")
+LOBE_LIBRARY_TAG(Color, "color")
+LOBE_LIBRARY_TAG(Point, "point")
+LOBE_LIBRARY_TAG(Vector, "vector")
+LOBE_LIBRARY_TAG(Normal, "normal")
+LOBE_LIBRARY_TAG(Env, nullptr)
+#undef LOBE_LIBRARY_TAG
 
 // The library calls in table order.
 enum class Call : int {
