@@ -24,7 +24,10 @@ t1=$(date +%s)
 # signal 11", every time) in any process that read or wrote an image through the dlopen'd
 # liblobe_oiio.so (OpenImageIO's dynamic thread_locals). Off, LSan does not scan dynamic TLS:
 # that can only add false leak reports, never hide one.
-export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1:new_delete_type_mismatch=0:intercept_tls_get_addr=0}
+# A caller's ASAN_OPTIONS adds to the defaults; the two checks above stay off whatever it says
+# (later options win; an inherited new_delete_type_mismatch=1 once failed a local run).
+asan_defaults=detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1
+export ASAN_OPTIONS="$asan_defaults${ASAN_OPTIONS:+:$ASAN_OPTIONS}:new_delete_type_mismatch=0:intercept_tls_get_addr=0"
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 # One suppression, glibc's dlerror() bookkeeping (its reason in the file).
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/.ci/lsan.supp:print_suppressions=0}
