@@ -81,7 +81,7 @@ TEST(Distribution2D, PdfIntegratesToOneAndMatchesSamples) {
   EXPECT_NEAR(sum, 1.0, 1e-5);
   // Expected pdf of cell (1, 1): f / mean(f) = 5 / 2.
   EXPECT_NEAR(d.pdf(0.5f, 0.75f), 2.5f, 1e-5);
-  lobe::render::Sampler s(1, 2, 3);
+  lobe::render::RandomStream s(1, 2, 3);
   for (int i = 0; i < 1000; ++i) {
     float u, v, pdf;
     d.sample(s.next(), s.next(), u, v, pdf);

@@ -26,7 +26,7 @@ EnvironmentLight gradient_env(float rotation) {
 
 TEST(Environment, UvMappingRoundTrips) {
   EnvironmentLight env = gradient_env(30);
-  Sampler s(0, 0, 0);
+  RandomStream s(0, 0, 0);
   for (int i = 0; i < 200; ++i) {
     Vec3 d = square_to_uniform_sphere(s.next(), s.next());
     float u, v;
@@ -44,7 +44,7 @@ TEST(Environment, UvMappingRoundTrips) {
 TEST(Environment, PdfIntegratesToOneAndMatchesSample) {
   EnvironmentLight env = gradient_env(10);
   // Uniform-sphere Monte Carlo of the pdf's integral.
-  Sampler s(5, 0, 0);
+  RandomStream s(5, 0, 0);
   double sum = 0;
   const int n = 200000;
   for (int i = 0; i < n; ++i) sum += env.pdf(square_to_uniform_sphere(s.next(), s.next()));
@@ -60,7 +60,7 @@ TEST(Environment, PdfIntegratesToOneAndMatchesSample) {
 TEST(Environment, TableSampleWithNormalReturnsTheTexelAndEvalPdfAgrees) {
   EnvironmentLight env = gradient_env(25);
   const Vec3 n{0, 1, 0};
-  Sampler s(2, 7, 3);
+  RandomStream s(2, 7, 3);
   for (int i = 0; i < 500; ++i) {
     float p, q;
     Color3 L;
@@ -79,7 +79,7 @@ TEST(Environment, ImportanceSampledIrradianceMatchesClosedForm) {
   // Irradiance at an upward-facing point: integral over the upper hemisphere of
   // (1 + 3 cos^2) cos dw = pi + 3 * 2pi/4 = 2.5 pi (red channel).
   EnvironmentLight env = gradient_env(0);
-  Sampler s(9, 0, 0);
+  RandomStream s(9, 0, 0);
   double sum = 0;
   const int n = 100000;
   for (int i = 0; i < n; ++i) {
@@ -107,7 +107,7 @@ TEST(Environment, ConstantSamplerPdfsAreClosedFormsAndIntegrateToOne) {
   EnvironmentLight env(std::vector<float>(3, 0.7f), 1, 1, 0);
   ASSERT_TRUE(env.is_constant());
   const Vec3 n = normalize(Vec3{0.3f, -0.5f, 0.8f});
-  Sampler s(3, 1, 4);
+  RandomStream s(3, 1, 4);
   double sum_u = 0, sum_c = 0, above = 0;
   const int n_mc = 200000;
   for (int i = 0; i < n_mc; ++i) {
@@ -143,7 +143,7 @@ TEST(Environment, ConstantIrradianceIsPiTimesRadiance) {
   // Irradiance of a constant radiance L on a surface: pi L, estimated from either sampler.
   EnvironmentLight env(std::vector<float>(3, 0.7f), 1, 1, 0);
   const Vec3 n = normalize(Vec3{-0.2f, 0.9f, 0.1f});
-  Sampler s(8, 2, 1);
+  RandomStream s(8, 2, 1);
   double sum_u = 0, sum_c = 0;
   const int n_mc = 100000;
   for (int i = 0; i < n_mc; ++i) {
@@ -164,7 +164,7 @@ TEST(Sky, SunDiskDeliversItsIrradiance) {
   Vec3 sun = normalize(Vec3{0.3f, 0.8f, 0.2f});
   float diam = 2.0f, cos_r = std::cos(0.5f * diam * float(M_PI) / 180);
   Frame f(sun);
-  Sampler s(1, 1, 1);
+  RandomStream s(1, 1, 1);
   double sum = 0;
   const int n = 20000;
   for (int i = 0; i < n; ++i) {

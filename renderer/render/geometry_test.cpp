@@ -75,7 +75,7 @@ TEST(Geometry, OffsetOriginsAvoidSelfIntersection) {
   auto shapes = two_shapes();
   Geometry g;
   ASSERT_EQ(g.build(shapes), "");
-  Sampler s(3, 0, 0);
+  RandomStream s(3, 0, 0);
   int self_hits = 0, leaks = 0;
   for (int i = 0; i < 2000; ++i) {
     // Random points on the sphere far from the origin's float grid, rays leaving outwards.

@@ -160,7 +160,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
 
     // Next-event estimation.
     if (strategy_ != Strategy::BsdfOnly && v.bsdf.has_non_delta()) {
-      float us = sampler.next(), u1 = sampler.next(), u2 = sampler.next();
+      float us = sampler.next(), u1, u2;
+      sampler.next2(u1, u2);
       LightSample ls;
       lap(&P::other);
       bool sampled = lights.sample(v.hit.P, n_lit, us, u1, u2, ls);

@@ -46,7 +46,9 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
       Accum& a = acc[pixel];
       for (int s = s0; s < s1; ++s) {
         Sampler sampler(pixel, uint64_t(s), opt.seed);
-        float jx = sampler.next(), jy = sampler.next(), l1 = sampler.next(), l2 = sampler.next();
+        float jx, jy, l1, l2;
+        sampler.next2(jx, jy);
+        sampler.next2(l1, l2);
         Ray ray = scene.camera().generate(x + jx, y + jy, l1, l2);
         bool timed = opt.profile && (pixel + uint64_t(s)) % kProfileEvery == 0;
         PathResult r = pt.trace(ray, sampler, ts.ctx, ts.light_ctx, ts.counters, timed);
@@ -142,7 +144,7 @@ double raw_traversal_rate(const RenderScene& s, int w, int h, int spp, int threa
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
       for (int k = 0; k < spp; ++k) {
-        Sampler smp(uint64_t(y) * w + x, k, 99);
+        RandomStream smp(uint64_t(y) * w + x, k, 99);
         Ray r = s.camera().generate(x + smp.next(), y + smp.next(), 0.5f, 0.5f);
         rays.push_back(r);
         SurfaceHit hit;

@@ -1,8 +1,8 @@
 // Random numbers and warps for the path tracer.
 //
-// Determinism: every random number of a path is a pure function of (pixel index, sample
-// index, seed, dimension counter), hashed with a 64-bit finaliser (SplitMix64-style). Nothing
-// depends on which thread ran the pixel, so images are bit-identical across thread counts.
+// Paths draw Owen-scrambled Sobol numbers (Sampler); tests and set-up draw independent
+// uniforms (RandomStream). Both are pure functions of their indices and seed, so nothing
+// depends on which thread ran a pixel: images are bit-identical across thread counts.
 #pragma once
 
 #include "lobe/vec.h"
@@ -22,12 +22,12 @@ inline uint64_t mix64(uint64_t z) {
   return z ^ (z >> 31);
 }
 
-// A counter-based stream: the n-th number of stream (pixel, sample, seed).
-class Sampler {
+// A counter-based stream of independent uniforms: the n-th number of stream (index, sub, seed).
+// For tests and set-up work that wants plain random numbers; paths use Sampler below.
+class RandomStream {
 public:
-  Sampler(uint64_t pixel, uint64_t sample, uint64_t seed)
-      : key_(mix64(mix64(pixel * 0x9e3779b97f4a7c15ull + seed) ^
-                   (sample * 0xd1b54a32d192ed03ull))) {}
+  RandomStream(uint64_t index, uint64_t sub, uint64_t seed)
+      : key_(mix64(mix64(index * 0x9e3779b97f4a7c15ull + seed) ^ (sub * 0xd1b54a32d192ed03ull))) {}
   // Uniform in [0, 1): 24 random bits, so 1 is never returned.
   float next() {
     uint64_t h = mix64(key_ + (counter_++) * 0x9e3779b97f4a7c15ull);
@@ -40,6 +40,131 @@ public:
 
 private:
   uint64_t key_;
+  uint64_t counter_ = 0;
+};
+
+namespace sobol {
+
+// Generator matrices of the first four Sobol dimensions as 32 column vectors each (bit 31 is
+// 1/2), built from Joe and Kuo's primitive polynomials and initial numbers: dimension 0 is van
+// der Corput's; 1: degree 1, m = {1}; 2: x^2 + x + 1, m = {1, 3}; 3: x^3 + x + 1, m = {1, 3, 1}.
+struct Matrices {
+  uint32_t v[4][32];
+};
+constexpr Matrices make_matrices() {
+  Matrices m{};
+  constexpr int degree[4] = {0, 1, 2, 3};
+  constexpr uint32_t poly[4] = {0, 0, 1, 1}; // inner coefficients a (x^s and 1 implied)
+  constexpr uint32_t init[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 3, 0}, {1, 3, 1}};
+  for (int i = 0; i < 32; ++i) m.v[0][i] = 1u << (31 - i);
+  for (int d = 1; d < 4; ++d) {
+    const int s = degree[d];
+    for (int i = 0; i < 32; ++i) {
+      if (i < s) {
+        m.v[d][i] = init[d][i] << (31 - i);
+        continue;
+      }
+      uint32_t x = m.v[d][i - s] ^ (m.v[d][i - s] >> s);
+      for (int k = 1; k < s; ++k)
+        if ((poly[d] >> (s - 1 - k)) & 1) x ^= m.v[d][i - k];
+      m.v[d][i] = x;
+    }
+  }
+  return m;
+}
+inline constexpr Matrices kMatrices = make_matrices();
+
+// The matrices applied a byte of the index at a time: kBytes.t[dim][k][b] is the point of
+// index b << 8k (16 kB; a point is three or four lookups instead of a loop over 32 bits).
+struct ByteTables {
+  uint32_t t[4][4][256];
+};
+constexpr ByteTables make_byte_tables() {
+  ByteTables bt{};
+  for (int d = 0; d < 4; ++d)
+    for (int k = 0; k < 4; ++k)
+      for (int b = 0; b < 256; ++b) {
+        uint32_t x = 0;
+        for (int i = 0; i < 8; ++i)
+          if ((b >> i) & 1) x ^= kMatrices.v[d][8 * k + i];
+        bt.t[d][k][b] = x;
+      }
+  return bt;
+}
+inline constexpr ByteTables kBytes = make_byte_tables();
+
+// Point `index` of Sobol dimension `dim` (< 4) as 32 bits of a fraction.
+inline uint32_t point(uint32_t index, int dim) {
+  const auto& t = kBytes.t[dim];
+  return t[0][index & 0xff] ^ t[1][(index >> 8) & 0xff] ^ t[2][(index >> 16) & 0xff] ^
+         t[3][index >> 24];
+}
+
+inline uint32_t reverse_bits(uint32_t x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  return __builtin_bswap32(x);
+}
+
+// Owen scrambling by hashing (Burley, "Practical Hash-based Owen Scrambling", JCGT 2020): a
+// Laine-Karras style hash on the bit-reversed value, in which a bit changes only bits below it
+// (after reversal: only finer digits), is a nested uniform scramble of the fraction. A
+// bijection on 32-bit values that maps every aligned block of 2^k values onto one.
+inline uint32_t owen_scramble(uint32_t x, uint32_t seed) {
+  x = reverse_bits(x);
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return reverse_bits(x);
+}
+
+} // namespace sobol
+
+// The numbers of one path sample: Owen-scrambled Sobol points, padded (Burley 2020). Each call
+// takes the next group of 1 to 3 dimensions; a group is the first dimensions of the Sobol
+// sequence at the sample index shuffled by the group's own scramble, each dimension then
+// scrambled with its own seed. So the `spp` samples of a pixel are stratified in every group
+// (the first 2^k samples of a 2-D group put one point in each of 2^k elementary intervals
+// of every shape), and groups are decorrelated from each other and from other pixels.
+// Determinism: every number is a pure function of (pixel, sample index, seed, group counter),
+// so images are bit-identical across thread counts.
+class Sampler {
+public:
+  Sampler(uint64_t pixel, uint64_t sample, uint64_t seed)
+      : key_(mix64(pixel * 0x9e3779b97f4a7c15ull + mix64(seed))),
+        index_(static_cast<uint32_t>(sample)) {}
+  // Uniform in [0, 1) (24 bits, so 1 is never returned).
+  float next() {
+    float u[1];
+    group(u, 1);
+    return u[0];
+  }
+  void next2(float& a, float& b) {
+    float u[2];
+    group(u, 2);
+    a = u[0], b = u[1];
+  }
+  Vec3 next3() {
+    float u[3];
+    group(u, 3);
+    return {u[0], u[1], u[2]};
+  }
+
+private:
+  void group(float* out, int n) {
+    uint64_t h = mix64(key_ + (++counter_) * 0xd1b54a32d192ed03ull);
+    uint32_t shuffled = sobol::owen_scramble(index_, static_cast<uint32_t>(h));
+    for (int d = 0; d < n; ++d) {
+      uint32_t seed = static_cast<uint32_t>(mix64(h + uint64_t(d + 1)) >> 32);
+      uint32_t x = sobol::owen_scramble(sobol::point(shuffled, d), seed);
+      out[d] = float(x >> 8) * 0x1p-24f;
+    }
+  }
+  uint64_t key_;
+  uint32_t index_;
   uint64_t counter_ = 0;
 };
 

@@ -1,8 +1,12 @@
 // Determinism and convergence:
 //  - the image depends only on scene, samples and seed: 1 and 2 threads give identical bits;
 //  - a different seed gives a different image (the seed is used);
-//  - consistency: relMSE against a converged reference falls as 1/N, so doubling the samples
-//    halves it (ratio in [1.5, 2.7], averaged over 4 seeds to tame the noise of the estimate).
+//  - consistency: relMSE against a converged reference falls at least as fast as 1/N, so
+//    doubling the samples at least halves it (ratio above 1.5, averaged over 4 seeds to tame the
+//    noise of the estimate). Paths draw Owen-scrambled Sobol numbers, whose error falls faster
+//    than independent sampling's where the integrand is smooth in the stratified dimensions (up
+//    to N^-1.5 in relMSE for a 2-D one: a ratio of 2.8); above 4 would mean the reference and the
+//    renders share samples.
 #include "render_test_util.h"
 
 #include <cstring>
@@ -67,7 +71,7 @@ TEST(Consistency, ErrorHalvesWhenSamplesDouble) {
   for (int k = 0; k < 2; ++k) {
     double ratio = err[k] / err[k + 1];
     EXPECT_GT(ratio, 1.5) << spp[k] << " -> " << spp[k + 1];
-    EXPECT_LT(ratio, 2.7) << spp[k] << " -> " << spp[k + 1];
+    EXPECT_LT(ratio, 4.0) << spp[k] << " -> " << spp[k + 1];
   }
 }
 

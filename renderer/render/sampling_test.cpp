@@ -1,0 +1,121 @@
+// The path sampler (Owen-scrambled Sobol, sampling.h) against closed-form properties: the
+// unscrambled points are Sobol's published ones, the scramble is a bijection that keeps
+// aligned blocks, and the first 2^m samples of a pixel put exactly one point in every
+// elementary interval of area 2^-m in each 2-D group ((0,m,2)-nets), whatever the pixel,
+// seed and group. A random sampler fails these with near certainty.
+#include "sampling.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+#include <vector>
+
+using namespace lobe::render;
+
+TEST(Sobol, FirstPointsAreSobols) {
+  // Sobol's sequence in its first two dimensions, direct (not Gray-code) order: dimension 0
+  // is van der Corput's radical inverse, dimension 1 applies Pascal's matrix mod 2 (columns
+  // 1/2, 3/4, 5/8, ...): (0,0) (1/2,1/2) (1/4,3/4) (3/4,1/4) (1/8,5/8) (5/8,1/8) (3/8,3/8)
+  // (7/8,7/8).
+  const double want[8][2] = {{0, 0},         {0.5, 0.5},     {0.25, 0.75},   {0.75, 0.25},
+                             {0.125, 0.625}, {0.625, 0.125}, {0.375, 0.375}, {0.875, 0.875}};
+  for (uint32_t i = 0; i < 8; ++i) {
+    EXPECT_EQ(sobol::point(i, 0) * 0x1p-32, want[i][0]) << i;
+    EXPECT_EQ(sobol::point(i, 1) * 0x1p-32, want[i][1]) << i;
+  }
+  // Dimensions 2 and 3 (Joe and Kuo's x^2+x+1, m = {1, 3}; x^3+x+1, m = {1, 3, 1}):
+  // points 1..3 are (1/2, 1/2), (3/4, 3/4) / (1/4, 1/4) and (1/4, 3/4) for index 3.
+  EXPECT_EQ(sobol::point(1, 2) * 0x1p-32, 0.5);
+  EXPECT_EQ(sobol::point(2, 2) * 0x1p-32, 0.75);
+  EXPECT_EQ(sobol::point(3, 2) * 0x1p-32, 0.25);
+  EXPECT_EQ(sobol::point(1, 3) * 0x1p-32, 0.5);
+  EXPECT_EQ(sobol::point(2, 3) * 0x1p-32, 0.75);
+  EXPECT_EQ(sobol::point(3, 3) * 0x1p-32, 0.25);
+}
+
+TEST(Sobol, OwenScrambleMapsAlignedBlocksOntoAlignedBlocks) {
+  // A nested uniform scramble permutes the digits of a fraction: values sharing their top k
+  // bits still share them (possibly other ones) afterwards, and distinct values stay distinct.
+  for (uint32_t seed : {0u, 1u, 0xdeadbeefu}) {
+    std::set<uint32_t> seen;
+    for (uint32_t hi = 0; hi < 16; ++hi) {
+      uint32_t top = sobol::owen_scramble(hi << 28, seed) >> 28;
+      for (uint32_t lo = 0; lo < 64; ++lo) {
+        uint32_t x = (hi << 28) | (lo * 0x0400001u & 0x0fffffffu);
+        uint32_t y = sobol::owen_scramble(x, seed);
+        EXPECT_EQ(y >> 28, top) << seed << " " << x;
+        seen.insert(y);
+      }
+    }
+    EXPECT_EQ(seen.size(), 16u * 64u);
+  }
+}
+
+namespace {
+
+// True when the points fill every elementary interval of shape 2^-a x 2^-(m-a) exactly once.
+bool is_net(const std::vector<std::pair<float, float>>& pts, int m) {
+  for (int a = 0; a <= m; ++a) {
+    std::vector<int> count(size_t(1) << m, 0);
+    for (const auto& [x, y] : pts) {
+      int i = int(x * float(1 << a)), j = int(y * float(1 << (m - a)));
+      if (++count[size_t(i) << (m - a) | size_t(j)] > 1) return false;
+    }
+  }
+  return true;
+}
+
+} // namespace
+
+TEST(Sampler, EveryTwoDimensionalGroupIsANetOverAPixelsSamples) {
+  const int m = 6; // 64 samples
+  for (uint64_t pixel : {0ull, 7ull, 123456ull})
+    for (uint64_t seed : {0ull, 42ull})
+      for (int group = 0; group < 5; ++group) {
+        std::vector<std::pair<float, float>> pts;
+        for (uint64_t s = 0; s < (1u << m); ++s) {
+          Sampler smp(pixel, s, seed);
+          for (int g = 0; g < group; ++g) smp.next();
+          float a, b;
+          smp.next2(a, b);
+          ASSERT_GE(a, 0.0f);
+          ASSERT_LT(a, 1.0f);
+          ASSERT_LT(b, 1.0f);
+          pts.push_back({a, b});
+        }
+        EXPECT_TRUE(is_net(pts, m)) << pixel << " " << seed << " group " << group;
+      }
+  // Independent uniforms make a 64-point net with probability about 64!/64^64 (1e-27).
+  std::vector<std::pair<float, float>> rnd;
+  RandomStream r(1, 2, 3);
+  for (int s = 0; s < 64; ++s) {
+    float a = r.next();
+    rnd.push_back({a, r.next()});
+  }
+  EXPECT_FALSE(is_net(rnd, m));
+}
+
+TEST(Sampler, OneDimensionalGroupsAreStratifiedAndThreeDimensionalPairsAreNets) {
+  // 1-D: the first 2^m samples put one number in each interval [k/2^m, (k+1)/2^m).
+  // 3-D groups: dimensions (x, y) of next3 (the BSDF's direction pair) form a net too.
+  const int m = 5;
+  std::vector<int> bins(1u << m, 0);
+  std::vector<std::pair<float, float>> xy;
+  for (uint64_t s = 0; s < (1u << m); ++s) {
+    Sampler smp(99, s, 5);
+    ++bins[size_t(smp.next() * float(1 << m))];
+    lobe::Vec3 u = smp.next3();
+    xy.push_back({u.x, u.y});
+  }
+  for (int b : bins) EXPECT_EQ(b, 1);
+  EXPECT_TRUE(is_net(xy, m));
+}
+
+TEST(Sampler, NumbersArePureFunctionsOfPixelSampleSeedAndGroup) {
+  Sampler a(3, 9, 1), b(3, 9, 1), c(4, 9, 1), d(3, 9, 2);
+  float x = a.next(), y = b.next();
+  EXPECT_EQ(x, y);
+  EXPECT_NE(x, c.next()); // another pixel is scrambled differently
+  EXPECT_NE(x, d.next()); // and so is another seed
+  EXPECT_NE(a.next(), x); // the next group is not the same number
+}
