@@ -207,11 +207,19 @@ int run_render(int argc, char** argv) {
   if (app.count("--exposure")) st.exposure = a.exposure;
   if (app.count("--clamp")) st.clamp = a.clamp;
   std::string out = !a.output.empty() ? a.output : (!st.output.empty() ? st.output : "lobe.png");
-  // A bad output path is found now, not after a long render.
-  if (std::string e = lobe::image::check_writable(out); !e.empty()) {
+  // A bad output path is found now, not after a long render; OpenImageIO, needed to write the
+  // image (and by textures), loads meanwhile on a thread of its own, and the format is checked
+  // once the scene is set up, before anything is rendered.
+  if (std::string e = lobe::image::check_output_path(out); !e.empty()) {
     std::fprintf(stderr, "lobe render: %s\n", e.c_str());
     return 1;
   }
+  struct Joined {
+    std::thread t;
+    ~Joined() {
+      if (t.joinable()) t.join();
+    }
+  } image_io{lobe::image::prefetch_image_io()};
 
   // The image's cost, checked before anything is allocated: per pixel the accumulator (44
   // bytes), the resolved image and the writer's copy (4 bytes a channel each).
@@ -249,6 +257,11 @@ int run_render(int argc, char** argv) {
     std::signal(SIGINT, SIG_DFL);
     std::fprintf(stderr, "lobe render: %s\n", e.c_str());
     return g_cancel.load() ? 130 : 1;
+  }
+  if (std::string e = lobe::image::check_output_format(out); !e.empty()) {
+    std::signal(SIGINT, SIG_DFL);
+    std::fprintf(stderr, "lobe render: %s\n", e.c_str());
+    return 1;
   }
   double setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const std::string& w : backend.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());

@@ -38,16 +38,11 @@ bool is_float_format(const std::string& path) {
 
 bool keeps_all_channels(const std::string& path) { return lower_extension(path) == "exr"; }
 
-std::string check_writable(const std::string& path) {
+std::string check_output_path(const std::string& path) {
   namespace fs = std::filesystem;
   std::string ext = lower_extension(path);
   if (ext.empty() || fs::path(path).filename().string().find('.') == std::string::npos)
     return path + ": no image extension (expected .exr, .png, .jpg, .tif or .hdr)";
-  std::string why;
-  const oiio::Api* io = oiio::module(&why);
-  if (!io) return path + ": " + why;
-  if (!io->can_write(path))
-    return path + ": cannot write ." + ext + " images (expected .exr, .png, .jpg, .tif or .hdr)";
   fs::path dir = fs::path(path).parent_path();
   if (dir.empty()) dir = ".";
   std::error_code ec;
@@ -55,6 +50,27 @@ std::string check_writable(const std::string& path) {
   if (fs::exists(path, ec) ? access(path.c_str(), W_OK) != 0 : access(dir.c_str(), W_OK) != 0)
     return path + ": not writable";
   return "";
+}
+
+std::string check_output_format(const std::string& path) {
+  std::string why;
+  const oiio::Api* io = oiio::module(&why);
+  if (!io) return path + ": " + why;
+  if (!io->can_write(path))
+    return path + ": cannot write ." + lower_extension(path) +
+           " images (expected .exr, .png, .jpg, .tif or .hdr)";
+  return "";
+}
+
+std::string check_writable(const std::string& path) {
+  std::string ext = lower_extension(path);
+  if (ext.empty()) return check_output_path(path);
+  if (std::string e = check_output_format(path); !e.empty()) return e;
+  return check_output_path(path);
+}
+
+std::thread prefetch_image_io() {
+  return std::thread([] { oiio::module(); });
 }
 
 float srgb_encode(float x) {

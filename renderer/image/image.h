@@ -10,6 +10,7 @@
 #pragma once
 
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace lobe::image {
@@ -52,6 +53,16 @@ bool keeps_all_channels(const std::string& path);
 // OpenImageIO has a writer for, and an existing, writable folder (and file, if it exists).
 // "" if so, else "path: why".
 std::string check_writable(const std::string& path);
+// The two halves of check_writable: the path (an extension, an existing writable folder and
+// file; no OpenImageIO needed) and the format (loads OpenImageIO and asks for a writer). A
+// command may check the path at once and the format after work that overlaps the loading
+// (see prefetch_image_io).
+std::string check_output_path(const std::string& path);
+std::string check_output_format(const std::string& path);
+// Starts loading OpenImageIO on a thread of its own (about 0.25 s of dynamic linking), so that
+// work done meanwhile overlaps it; the first image or texture call waits for it to finish.
+// Returns the thread: join it before the process exits.
+std::thread prefetch_image_io();
 
 // Writes `img` to `path`, format chosen from the extension.
 std::string write_image(const std::string& path, const Image& img, const WriteOptions& opt = {});

@@ -3,6 +3,8 @@
 
 #include "sampling.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -42,20 +44,23 @@ EnvironmentLight::EnvironmentLight(std::vector<float> rgb, int w, int h, float r
 }
 
 EnvironmentLight EnvironmentLight::from_function(const std::function<Color3(const Vec3&)>& radiance,
-                                                 int w, int h, float rotation_deg) {
+                                                 int w, int h, float rotation_deg, int per_axis) {
   std::vector<float> rgb(size_t(w) * h * 3);
   EnvironmentLight probe({0, 0, 0}, 1, 1, rotation_deg); // only for uv_to_dir
-  for (int y = 0; y < h; ++y)
+  const int n = std::max(1, per_axis);
+  const float step = 1.0f / float(n), inv = 1.0f / float(n * n);
+  tbb::parallel_for(0, h, [&](int y) {
     for (int x = 0; x < w; ++x) {
       Color3 sum;
-      for (int s = 0; s < 4; ++s) {
-        float u = (x + 0.25f + 0.5f * (s & 1)) / float(w),
-              v = (y + 0.25f + 0.5f * (s >> 1)) / float(h);
-        sum += radiance(probe.uv_to_dir(u, v));
-      }
+      for (int sy = 0; sy < n; ++sy)
+        for (int sx = 0; sx < n; ++sx) {
+          float u = (x + (sx + 0.5f) * step) / float(w), v = (y + (sy + 0.5f) * step) / float(h);
+          sum += radiance(probe.uv_to_dir(u, v));
+        }
       float* p = &rgb[(size_t(y) * w + x) * 3];
-      p[0] = sum.x * 0.25f, p[1] = sum.y * 0.25f, p[2] = sum.z * 0.25f;
+      p[0] = sum.x * inv, p[1] = sum.y * inv, p[2] = sum.z * inv;
     }
+  });
   return EnvironmentLight(std::move(rgb), w, h, rotation_deg);
 }
 

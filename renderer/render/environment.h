@@ -31,9 +31,11 @@ public:
   EnvironmentLight() = default;
   // `rgb`: w*h*3 linear radiance, rows from +Y down to -Y.
   EnvironmentLight(std::vector<float> rgb, int w, int h, float rotation_deg);
-  // Tabulates `radiance(direction)` at w x h (supersampled 2x2 per texel).
+  // Tabulates `radiance(direction)` at w x h, averaging per_axis^2 directions in each texel
+  // (per_axis 1: the texel's centre). Rows are tabulated in parallel (oneTBB): `radiance` must
+  // be safe to call from several threads at once.
   static EnvironmentLight from_function(const std::function<Color3(const Vec3&)>& radiance, int w,
-                                        int h, float rotation_deg);
+                                        int h, float rotation_deg, int per_axis = 2);
 
   bool valid() const { return w_ > 0; }
   Color3 eval(const Vec3& dir) const {

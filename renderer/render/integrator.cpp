@@ -110,7 +110,18 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
     bool found = geo.traverse(ray, raw);
     lap(&P::traverse);
     if (!found) {
-      if (lights.environment()) {
+      if (after_delta && scene_.has_background_shader()) {
+        // Seen by the camera or through specular bounces (no light sample competes: weight
+        // 1): the background shader itself, not its table (as testrender shades camera rays).
+        lap(&P::other);
+        ctx.renderer = &scene_.services();
+        Color3 Le = scene_.shade_background(ray.dir, raytype, ctx, c.messages);
+        if (ctx.stopped && ctx.errors && c.stopped.empty())
+          c.stopped = scene_.stop_reason(ctx, scene_.desc().environment.material, "rendering");
+        lap(&P::shade);
+        Color3 col = beta * Le;
+        out.L += depth >= 2 ? clamped(col, clamp_) : col;
+      } else if (lights.environment()) {
         float lp;
         Color3 Le = lights.environment_hit(ray.dir, prev_n, lp);
         Color3 c = beta * Le * weight_bsdf_hit(strategy_, after_delta, prev_pdf, lp);

@@ -10,13 +10,16 @@
 #include "lobe/context.h"
 #include "lobe/memory.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <mutex>
 #include <set>
 
 namespace lobe::render {
@@ -291,32 +294,52 @@ std::string RenderScene::build_environment() {
     return "";
   }
   case scene::Environment::Kind::Shader: {
-    // Tabulate the background shader (one context: tabulation runs on this thread).
-    const Material& m = *materials_[e.material];
-    ShadingContext ctx;
-    ctx.renderer = &services_;
-    ctx.cancel = cancel_;
+    // Tabulate the background shader at texel centres, rows in parallel, one shading context
+    // and message list per thread. The table serves light sampling and rays that escape after
+    // a diffuse or glossy bounce; camera rays and rays after a specular bounce run the shader
+    // itself (shade_background), so the picture's background is exact at any table size.
+    tbb::enumerable_thread_specific<ShadingContext> contexts;
+    tbb::enumerable_thread_specific<ShaderMessages> messages;
+    std::mutex mu;
     std::string stopped;
+    std::atomic<bool> stop{false};
     env_ = EnvironmentLight::from_function(
         [&](const Vec3& d) {
-          if (!stopped.empty()) return Color3{};
-          SurfaceHit h;
-          h.N = h.Ng = -d;
-          ShaderGlobals sg;
-          fill_globals(sg, h, d, kRayCamera, ctx);
-          ctx.reset();
-          m.shade(sg);
-          if (ctx.stopped) stopped = stop_reason(ctx, e.material, "tabulating the background");
-          if (!ctx.output.empty()) collect_messages(ctx, e.material, stats_.messages);
-          Bsdf b;
-          b.build(sg.Ci, -d, h.Ng);
-          return b.background * k;
+          if (stop.load(std::memory_order_relaxed)) return Color3{};
+          ShadingContext& ctx = contexts.local();
+          ctx.renderer = &services_;
+          ctx.cancel = cancel_;
+          Color3 L = shade_background(d, kRayCamera, ctx, messages.local());
+          if (ctx.stopped) {
+            std::lock_guard<std::mutex> lock(mu);
+            if (stopped.empty())
+              stopped = stop_reason(ctx, e.material, "tabulating the background");
+            stop.store(true);
+          }
+          return L;
         },
-        2 * res, res, e.rotation);
+        2 * res, res, e.rotation, 1);
+    for (const ShaderMessages& m : messages) merge_messages(m, stats_.messages);
     return stopped;
   }
   }
   return "";
+}
+
+Color3 RenderScene::shade_background(const Vec3& d, int raytype, ShadingContext& ctx,
+                                     ShaderMessages& messages) const {
+  const scene::Environment& e = desc_.environment;
+  SurfaceHit h;
+  h.N = h.Ng = -d;
+  ShaderGlobals sg;
+  fill_globals(sg, h, d, raytype, ctx);
+  ctx.reset();
+  materials_[e.material]->shade(sg);
+  if (!ctx.output.empty()) collect_messages(ctx, e.material, messages);
+  if (ctx.stopped) return {};
+  Bsdf b;
+  b.build(sg.Ci, -d, h.Ng);
+  return b.background * e.intensity;
 }
 
 // An emitter is a shape whose material emits at a probe point; its power estimate

@@ -110,6 +110,15 @@ public:
   const Camera& camera() const { return camera_; }
   const LightSet& lights() const { return lights_; }
   const EnvironmentLight& environment() const { return env_; }
+  // True when the environment is a background shader (shade_background applies).
+  bool has_background_shader() const {
+    return desc_.environment.kind == scene::Environment::Kind::Shader;
+  }
+  // Runs the background shader for a ray leaving in direction `d` (the ray type as given):
+  // its background() radiance times the environment's intensity. Shader messages go to
+  // `messages`; a stopped shader (ctx.stopped) gives black.
+  Color3 shade_background(const Vec3& d, int raytype, ShadingContext& ctx,
+                          ShaderMessages& messages) const;
   // Material of a shape (a grey matte for shapes without one).
   const Material& material(int shape) const { return *shape_material_[shape]; }
   // Area of a shape (surfacearea() in its shaders, as testrender gives: sphere 4 pi r^2, quad

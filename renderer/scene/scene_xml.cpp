@@ -372,9 +372,9 @@ private:
     check_attrs(n, {"resolution"});
     Environment& e = s.environment;
     e.where = at(n);
-    // testrender's resolution sizes its importance-sampling table (it shades camera rays that
-    // miss directly); Lobe looks every escaped ray up in its table, so the table keeps at
-    // least 256 rows whatever is asked (OSL's own scenes say 1).
+    // testrender's resolution sizes its importance-sampling table; Lobe's table also answers
+    // rays that escape after diffuse or glossy bounces (camera and specular rays run the
+    // shader), so it keeps at least 256 rows whatever is asked (OSL's own scenes say 1).
     float res = 256;
     if (!floats(n, "resolution", &res, 1, false)) return false;
     if (!(res >= 0 && res <= 8192)) return fail(n, "resolution expects a number in [0, 8192]");

@@ -169,3 +169,34 @@ TEST(TestrenderScenes, WarningsDoNotStopTheRender) {
   EXPECT_NE(out.find("shininess"), std::string::npos) << out;
   EXPECT_NE(out.find("(ignored)"), std::string::npos) << out;
 }
+
+// Camera rays that escape run the background shader itself, as testrender's do, so the
+// picture's background is exact at any table size. The background is 0 on one side of the
+// plane x = 0.07344 (-z) through the eye (4.2 degrees off -Z) and 1 on the other; a 10-degree
+// camera looking down -Z sees it as a vertical edge at x_ndc = 0.07344 / tan(5 deg) = 0.839,
+// pixel column 58.9 of 64. Columns clear of it are exactly 0 or 1. The 128 x 64 table
+// (resolution 64: texels of 2.8 degrees, the one holding the edge spans columns 50 to past the
+// image's edge) reads about 0.5 there, which a lookup in the table would show.
+TEST(BackgroundShader, CameraRaysSeeTheShaderNotItsTable) {
+  fs::path d = lobe::testing::temp_dir("testrender", "bg_exact");
+  std::ofstream(d / "edge_bg.osl")
+      << "surface edge_bg() { vector d = normalize(I);\n"
+         "  Ci = (d[0] > -0.07344 * d[2] ? color(1) : color(0)) * background(); }\n";
+  std::ofstream(d / "s.json") << R"({"camera": {"eye": [0, 0, 0], "look_at": [0, 0, -1], "fov": 10},
+             "settings": {"resolution": [64, 64], "spp": 4},
+             "materials": {"bg": {"shader": "edge_bg"}},
+             "environment": {"type": "shader", "material": "bg", "resolution": 64}})";
+  fs::path out = d / "o.exr";
+  CmdResult r = run_cmd(std::string(LOBE_EXE) + " render -q " + (d / "s.json").string() + " -o " +
+                        out.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  lobe::image::Image img;
+  ASSERT_EQ(lobe::image::read_image(out.string(), img), "");
+  int c = img.channel("R");
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      float v = img.pixel(x, y)[c];
+      if (x <= 57) EXPECT_EQ(v, 0.0f) << x << " " << y;
+      if (x >= 60) EXPECT_EQ(v, 1.0f) << x << " " << y;
+    }
+}
