@@ -81,7 +81,7 @@ static void shade_into(const RenderScene& scene, const SurfaceHit& hit, const Ve
   // Messages from shader code (a missing texture...), collected per thread, reported after.
   if (!ctx.output.empty()) collect_messages(ctx, scene.material_index(hit.shape), c.messages);
   lap(&PhaseTicks::shade);
-  bsdf.build(sg.Ci, -dir, hit.Ng, scene.closure_kernels(hit.shape));
+  bsdf.build(sg.Ci, -dir, hit.Ng, scene.closure_kernels(hit.shape), sg.backfacing != 0);
   lap(&PhaseTicks::bsdf);
   ++c.shades;
   if (timed)

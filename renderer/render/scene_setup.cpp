@@ -151,8 +151,11 @@ void fill_globals(ShaderGlobals& sg, const SurfaceHit& hit, const Vec3& dir, int
   sg = ShaderGlobals{};
   sg.P = hit.P;
   sg.I = dir;
-  sg.N = hit.N;
-  sg.Ng = hit.Ng;
+  // N and Ng face the viewer, as OSL's testrender gives them (backfacing() says which side
+  // was hit; OSL's shaders pass 1/eta to refraction() from inside).
+  sg.backfacing = dot(dir, hit.Ng) > 0;
+  sg.N = sg.backfacing ? -hit.N : hit.N;
+  sg.Ng = sg.backfacing ? -hit.Ng : hit.Ng;
   sg.u = hit.u;
   sg.v = hit.v;
   if (reads & (tangent_bits() | derivative_bits())) {
@@ -161,7 +164,6 @@ void fill_globals(ShaderGlobals& sg, const SurfaceHit& hit, const Vec3& dir, int
   }
   if ((reads & derivative_bits()) && fp.width > 0) fill_derivatives(sg, fp);
   sg.raytype = raytype;
-  sg.backfacing = dot(dir, hit.Ng) > 0;
   sg.surfacearea = 0;
   sg.context = &ctx;
 }

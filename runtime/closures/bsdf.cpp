@@ -16,10 +16,15 @@
 #include "components.h"
 #include "lobe/detail/closure_kernels.h"
 
+#include <cstring>
+
 namespace lobe {
 namespace {
 
 using closures::luminance;
+
+// Room for a parameter block copied to turn its N (kSidedIor closures; theirs are ~100 bytes).
+constexpr size_t kMaxParamBlock = 256;
 
 bool usable_weight(const Color3& w) {
   return is_finite(w) && (w.x > 0.0f || w.y > 0.0f || w.z > 0.0f);
@@ -103,7 +108,20 @@ struct BsdfBuilder {
     if (!(fl & (registry::kReflect | registry::kTransmit))) return;
     int& n = bsdf.n_lobes_;
     if (n >= Bsdf::kMaxLobes) return;
-    uint32_t lobe_flags = lobe_setup(bsdf.kernels_, id, p, bsdf.states_[n]);
+    const unsigned char* setup_params = p;
+    alignas(16) unsigned char turned[kMaxParamBlock];
+    if (bsdf.backfacing_ && (fl & registry::kSidedIor)) {
+      // N (a vector, the first parameter) turned back to the outside of the object.
+      const auto& params = registry::closures()[id].params;
+      size_t size = registry::param_block_size(params);
+      if (size > sizeof(turned) || params.empty() || params[0].type != registry::ArgType::Vector)
+        return;
+      std::memcpy(turned, p, size);
+      float* normal = reinterpret_cast<float*>(turned);
+      normal[0] = -normal[0], normal[1] = -normal[1], normal[2] = -normal[2];
+      setup_params = turned;
+    }
+    uint32_t lobe_flags = lobe_setup(bsdf.kernels_, id, setup_params, bsdf.states_[n]);
     if (lobe_flags == 0) return;
     bsdf.lobes_[n] = Lobe{id, w, p, 0.0f, lobe_flags};
     albedo[n] = bsdf.lobe_albedo(n, wo);
@@ -136,7 +154,8 @@ bool side_ok(uint32_t flags, const Vec3& wo, const Vec3& wi, const Vec3& ng) {
 } // namespace
 
 void Bsdf::build(const ClosureNode* closure, const Vec3& wo, const Vec3& Ng,
-                 const ClosureKernels* kernels) {
+                 const ClosureKernels* kernels, bool backfacing) {
+  backfacing_ = backfacing;
   // Only what build() fills is reset: the lobe slots past n_lobes_ and their states are unused.
   emission = transparency = holdout = background = debug_weight = Color3{};
   debug_tag = nullptr;

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <deque>
 #include <vector>
@@ -150,6 +151,39 @@ TEST(Bsdf, GeometricSideTestBlocksLeaks) {
   EXPECT_EQ(b.eval(dir_cos(0.5), wi).value.x, 0.0f);
   b.build(t.comp(d), dir_cos(0.5), Vec3{});
   EXPECT_GT(b.eval(dir_cos(0.5), wi).value.x, 0.0f); // no Ng: no side test
+}
+
+// Seen from inside (wo below the outward Ng = +Z, cos 0.9), with N turned towards the viewer
+// and `backfacing`: dielectric_bsdf (kSidedIor) keeps its IOR as the object's inside over
+// outside and leaves the glass (relative index 1/1.5: |cos t| = sqrt(1 - 1.5^2 (1 - 0.81)) =
+// 0.7566), exactly as with N outward and no flag; refraction() takes eta across the side N
+// faces, i.e. enters a denser medium (|cos t| = sqrt(1 - 0.19 / 1.5^2) = 0.9569).
+TEST(Bsdf, BackfacingTurnsNBackOnlyForSidedIorClosures) {
+  const Vec3 wo = dir_cos(-0.9, 0.4), down{0, 0, -1};
+  const Vec3 u{0.5f, 0.3f, 0.999f}; // picks transmission
+  Tree t;
+  Params glass_in("dielectric_bsdf"), glass_out("dielectric_bsdf"), refr("refraction");
+  glass_in.set("N", down);
+  glass_in.set("ior", 1.5f);
+  glass_out.set("N", kUp);
+  glass_out.set("ior", 1.5f);
+  refr.set("N", down);
+  refr.set("eta", 1.5f);
+  Bsdf turned, outward, classic;
+  turned.build(t.comp(glass_in), wo, kUp, nullptr, /*backfacing=*/true);
+  outward.build(t.comp(glass_out), wo, kUp);
+  classic.build(t.comp(refr), wo, kUp, nullptr, /*backfacing=*/true);
+  auto a = turned.sample(wo, u), b = outward.sample(wo, u), c = classic.sample(wo, u);
+  ASSERT_TRUE(a && b && c);
+  EXPECT_NEAR(a->eta, 1.0f / 1.5f, 1e-6f);
+  EXPECT_NEAR(std::fabs(a->wi.z), 0.7566f, 1e-4f);
+  EXPECT_GT(a->wi.z, 0.0f); // out of the object
+  EXPECT_EQ(a->wi.x, b->wi.x);
+  EXPECT_EQ(a->wi.z, b->wi.z);
+  EXPECT_EQ(a->weight.x, b->weight.x);
+  EXPECT_NEAR(c->eta, 1.5f, 1e-6f);
+  EXPECT_NEAR(std::fabs(c->wi.z), 0.9569f, 1e-4f);
+  EXPECT_GT(c->wi.z, 0.0f);
 }
 
 TEST(ClosureString, OslPrintFormat) {

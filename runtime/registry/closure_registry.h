@@ -55,6 +55,10 @@ enum Flags : uint32_t {
                           // surface contribution in Lobe, which renders no volumes
   kNativeOnly = 1u << 10, // a BSDF lobe only the native library has (measured_bsdf reads
                           // files): no bitcode kernel, the Bsdf calls the native code
+  kSidedIor = 1u << 11,   // its IOR is the object's inside over outside from either side
+                          // (MaterialX's convention; OSL's own microfacet/refraction/reflection
+                          // take eta across the side N faces): Bsdf::build's `backfacing`
+                          // turns its N back to the outside
 };
 
 struct ClosureEntry {

@@ -75,8 +75,14 @@ public:
   // `kernels` (may be null: the native library) evaluates and samples the lobes. Each lobe is
   // set up here, once (frame, parameter clamping, Fresnel averages), and eval/sample/albedo
   // read it.
+  // `backfacing`: the point is seen from the back of its surface and the renderer turned the
+  // shader's N and Ng to face the viewer (as OSL's testrender does). OSL's own closures then
+  // take their eta across the side N faces (a shader passes 1/eta from inside, as OSL's do);
+  // closures whose IOR is the object's inside over outside (MaterialX's dielectric_bsdf and
+  // generalized_schlick_bsdf) are set up with N turned back, so they stay physical, as
+  // testrender treats them.
   void build(const ClosureNode* closure, const Vec3& wo, const Vec3& Ng,
-             const ClosureKernels* kernels = nullptr);
+             const ClosureKernels* kernels = nullptr, bool backfacing = false);
 
   BsdfEval eval(const Vec3& wo, const Vec3& wi, Transport mode = Transport::Radiance) const;
   float pdf(const Vec3& wo, const Vec3& wi) const;
@@ -108,6 +114,7 @@ private:
   float total_select_ = 0;
   Vec3 ng_; // normalised geometric normal, (0,0,0) when unknown: no side test
   const ClosureKernels* kernels_ = nullptr;
+  bool backfacing_ = false;
 };
 
 // Human-readable form of a closure tree in OSL's print format:

@@ -29,7 +29,8 @@ enum RayType : int32_t {
 };
 
 // The shading globals of one point. Directions follow OSL: I points from the eye towards P
-// (the incoming ray direction), N and Ng face wherever the geometry says (backfacing tells).
+// (the incoming ray direction); N and Ng as the renderer gives them (lobe render turns them
+// towards the viewer, as OSL's testrender does; backfacing tells which side was hit).
 struct ShaderGlobals {
   Vec3 P, dPdx, dPdy;  // position and its screen-space derivatives
   Vec3 dPdz;           // volumes only
