@@ -372,13 +372,15 @@ private:
     check_attrs(n, {"resolution"});
     Environment& e = s.environment;
     e.where = at(n);
-    // testrender's resolution sizes its importance-sampling table; Lobe's table also answers
-    // rays that escape after diffuse or glossy bounces (camera and specular rays run the
-    // shader), so it keeps at least 256 rows whatever is asked (OSL's own scenes say 1).
+    // testrender's resolution R sizes its importance-sampling table (R x R texels); Lobe's
+    // lat-long table (2:1) gets about as many texels, R / sqrt(2) rows, so set-up runs the
+    // shader as often as testrender's. The table also answers rays that escape after diffuse
+    // or glossy bounces (camera and specular rays run the shader), so it keeps at least 256
+    // rows whatever is asked (OSL's own scenes say 1).
     float res = 256;
     if (!floats(n, "resolution", &res, 1, false)) return false;
     if (!(res >= 0 && res <= 8192)) return fail(n, "resolution expects a number in [0, 8192]");
-    e.resolution = std::max(int(res), 256);
+    e.resolution = std::max(int(std::lround(res / std::sqrt(2.0f))), 256);
     if (current_ < 0)
       return fail(n, "<Background> needs a <ShaderGroup> before it (the background shader)");
     e.kind = Environment::Kind::Shader;

@@ -126,6 +126,20 @@ TEST(SceneXml, LightsGroupsAndBackground) {
   EXPECT_EQ(s->environment.resolution, 256);
 }
 
+// testrender's <Background resolution="R"> tabulates R x R texels; Lobe's 2:1 table gets about
+// as many (R / sqrt(2) rows: 1024 -> 724, 2 x 724 x 724 = 1.05 M texels), never under 256 rows.
+TEST(SceneXml, BackgroundResolutionKeepsTestrendersTexelCount) {
+  for (auto [r, rows] : {std::pair{1024, 724}, {2048, 1448}, {362, 256}, {1, 256}}) {
+    std::string err;
+    auto s =
+        parse_xml_scene("<World><ShaderGroup>shader sky s;</ShaderGroup><Background resolution=\"" +
+                            std::to_string(r) + "\"/></World>",
+                        "t.xml", err);
+    ASSERT_TRUE(s) << err;
+    EXPECT_EQ(s->environment.resolution, rows) << r;
+  }
+}
+
 TEST(SceneXml, ErrorsCarryLines) {
   std::string err;
   EXPECT_FALSE(
