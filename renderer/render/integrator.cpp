@@ -102,6 +102,10 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
   Vec3 prev_p, prev_n; // the previous vertex and its normal on the side of the sampled ray
   int raytype = kRayCamera;
   float path_length = 0; // distance from the camera along the path (for ray footprints)
+  // The radiance scaling of the refractions so far (product of eta^2): Russian roulette looks
+  // at beta * eta_scale, so a path inside glass (beta / eta^2 until it leaves) is not culled
+  // for a drop that leaving undoes (a survivor's beta / q would come out eta^2 too high).
+  float eta_scale = 1;
   Vertex v;
   for (int depth = 0;; ++depth) {
     ++c.rays;
@@ -224,8 +228,9 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
     raytype = after_delta ? (s->flags & kLobeTransmit ? kRayRefraction : kRayReflection)
                           : (s->flags & kLobeDiffuse ? kRayDiffuse : kRayGlossy);
     ray = Ray{offset_ray_origin(v.hit.P, v.hit.Ng, s->wi), s->wi};
+    if (s->flags & kLobeTransmit) eta_scale *= s->eta * s->eta;
     if (depth >= 3) {
-      float q = std::min(0.95f, max_component(beta));
+      float q = std::min(0.95f, max_component(beta) * eta_scale);
       if (sampler.next() >= q) break;
       beta = beta / q;
     }

@@ -183,3 +183,34 @@ TEST(WhiteFurnace, XmlBackgroundShaderScene) {
   test::mean_and_error(r.img, 1, mean, e);
   EXPECT_NEAR(mean, 0.6, 4 * e + 1e-6);
 }
+
+// Russian roulette inside glass: a path in smooth lossless glass carries beta / eta^2 until it
+// leaves (radiance scaling). Roulette judges beta with the scaling undone, so in the white
+// furnace every sample that escapes brings back 1 / 0.95^k (k roulette steps survived, each at
+// most 0.95) and none 2.25 / 0.95^k, which judging beta alone gave (a path culled with
+// probability 1 - 1/2.25 inside, its survivors boosted 2.25x when they leave). A glass cube
+// seen corner-on keeps paths inside by total internal reflection past the depth where
+// roulette starts. One sample a pixel: samples are pixels.
+TEST(WhiteFurnace, GlassPathsAreNotBoostedByRouletteInside) {
+  const int w = 48, h = 48;
+  auto s = test::setup_scene(R"({
+    "camera": {"eye": [3, 2.5, 3.5], "look_at": [0, 0, 0], "fov": 30},
+    "materials": {"m": {"shader": "glass", "params": {"ior": 1.5}}},
+    "shapes": [{"type": "box", "min": [-1, -1, -1], "max": [1, 1, 1], "material": "m"}],
+    "environment": {"type": "constant", "color": 1}
+  })",
+                             w, h);
+  ASSERT_TRUE(s);
+  RenderOptions opt;
+  opt.spp = 1;
+  opt.max_depth = 12; // at most 9 roulette steps: 1 / 0.95^9 = 1.59
+  auto r = test::render(*s, w, h, opt);
+  int over = 0, inside = 0;
+  for (int p = 0; p < w * h; ++p) {
+    float v = r.img.pixels[size_t(p) * r.img.nchannels()];
+    over += v > 1.6f;
+    inside += v > 0.0f && v != 1.0f;
+  }
+  EXPECT_EQ(over, 0);
+  EXPECT_GT(inside, 100); // paths that met roulette: the test sees them
+}
