@@ -152,6 +152,24 @@ def interp_loglog(pts, t):
     return None
 
 
+def save_loglog(path, curves, xlabel, ylabel, title):
+    """A log-log plot of relMSE against time: curves are (points (t, e), style, label)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for points, style, label in curves:
+        p = sorted(points)
+        ax.loglog([x for x, _ in p], [y for _, y in p], style, label=label)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--lobe", required=True)
@@ -231,24 +249,15 @@ def main():
                 print("  at %.2f s (%s %d spp): %s %.5f  %s %.5f  ratio %s/%s %.2f"
                       % (t, ref_name, s, ref_name, e, lobe_name, le, lobe_name, ref_name, le / e))
 
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(7, 5))
     style = {"embree": "s-", "lobe": "o-", "testrender": "^--", "lobe_xml": "v--"}
     label = {"embree": "Embree pathtracer (OBJ)", "lobe": "Lobe (OBJ)",
              "testrender": "OSL testrender (analytic spheres)",
              "lobe_xml": "Lobe (analytic spheres, XML)"}
-    for r in renderers:
-        p = sorted(pts[r.name])
-        ax.loglog([x for x, _ in p], [y for _, y in p], style[r.name], label=label[r.name])
-    ax.set_xlabel("whole-process time (s), %d threads" % a.threads)
-    ax.set_ylabel("relMSE against own %d-spp image" % a.ref_spp)
-    ax.set_title("64 spheres, 524k triangles, uniform light, %dx%d" % (a.res, a.res))
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    fig.savefig(os.path.join(d, "embree_compare.png"), dpi=100)
+    save_loglog(os.path.join(d, "embree_compare.png"),
+                [(pts[r.name], style[r.name], label[r.name]) for r in renderers],
+                "whole-process time (s), %d threads" % a.threads,
+                "relMSE against own %d-spp image" % a.ref_spp,
+                "64 spheres, 524k triangles, uniform light, %dx%d" % (a.res, a.res))
     print("wrote %s/embree_compare.csv and %s/embree_compare.png" % (d, d))
 
 

@@ -34,7 +34,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "embree_compare"))
-from run import interp_loglog, read_image, rel_mse, timed  # noqa: E402  (re-execs for numpy)
+from run import interp_loglog, read_image, rel_mse, save_loglog, timed  # noqa: E402 (re-execs for numpy)
 
 import numpy as np  # noqa: E402
 
@@ -160,20 +160,11 @@ def main():
             print("  at %.2f s (testrender %d spp): testrender %.5f  lobe %.5f  ratio lobe/testrender"
                   " %.2f" % (t, s, e, le, le / e))
 
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(7, 5))
-    for n, style, label in (("testrender", "^--", "OSL testrender"), ("lobe", "o-", "Lobe")):
-        p = sorted(pts[n])
-        ax.loglog([x for x, _ in p], [y for _, y in p], style, label=label)
-    ax.set_xlabel("whole-process time (s), %d threads" % a.threads)
-    ax.set_ylabel("relMSE against own %d-spp image" % (a.ref_aa ** 2))
-    ax.set_title("testrender envmap scene, %dx%d" % tuple(a.res))
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    fig.savefig(os.path.join(d, "testrender_compare.png"), dpi=100)
+    save_loglog(os.path.join(d, "testrender_compare.png"),
+                [(pts["testrender"], "^--", "OSL testrender"), (pts["lobe"], "o-", "Lobe")],
+                "whole-process time (s), %d threads" % a.threads,
+                "relMSE against own %d-spp image" % (a.ref_aa ** 2),
+                "testrender envmap scene, %dx%d" % tuple(a.res))
     print("wrote %s/testrender_compare.csv and %s/testrender_compare.png" % (d, d))
 
 
