@@ -207,11 +207,15 @@ int run_render(int argc, char** argv) {
   if (app.count("--exposure")) st.exposure = a.exposure;
   if (app.count("--clamp")) st.clamp = a.clamp;
   std::string out = !a.output.empty() ? a.output : (!st.output.empty() ? st.output : "lobe.png");
-  // A bad output path is found now, not after a long render; OpenImageIO, needed to write the
-  // image (and by textures), loads meanwhile on a thread of its own, and the format is checked
-  // once the scene is set up, before anything is rendered.
-  if (std::string e = lobe::image::check_output_path(out); !e.empty()) {
-    std::fprintf(stderr, "lobe render: %s\n", e.c_str());
+  // A bad output path is found now, not after a long render. OpenImageIO, needed to write the
+  // image (and by textures), loads meanwhile on a thread of its own; the format of a common
+  // extension is confirmed once the scene is set up, before anything is rendered, any other
+  // (.pfm, .xyz) at once.
+  std::string e_out = lobe::image::check_output_path(out);
+  if (e_out.empty() && !lobe::image::is_common_output(out))
+    e_out = lobe::image::check_output_format(out);
+  if (!e_out.empty()) {
+    std::fprintf(stderr, "lobe render: %s\n", e_out.c_str());
     return 1;
   }
   struct Joined {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <system_error>
 
 namespace lobe::image {
 
@@ -69,8 +70,19 @@ std::string check_writable(const std::string& path) {
   return check_output_path(path);
 }
 
+bool is_common_output(const std::string& path) {
+  std::string ext = lower_extension(path);
+  for (const char* e : {"exr", "png", "jpg", "jpeg", "tif", "tiff", "hdr"})
+    if (ext == e) return true;
+  return false;
+}
+
 std::thread prefetch_image_io() {
-  return std::thread([] { oiio::module(); });
+  try {
+    return std::thread([] { oiio::module(); });
+  } catch (const std::system_error&) {
+    return {};
+  }
 }
 
 float srgb_encode(float x) {

@@ -59,9 +59,13 @@ std::string check_writable(const std::string& path);
 // (see prefetch_image_io).
 std::string check_output_path(const std::string& path);
 std::string check_output_format(const std::string& path);
+// True for the extensions every OpenImageIO build writes (.exr .png .jpg .jpeg .tif .tiff
+// .hdr): a command may defer check_output_format for them, and should check others at once.
+bool is_common_output(const std::string& path);
 // Starts loading OpenImageIO on a thread of its own (about 0.25 s of dynamic linking), so that
 // work done meanwhile overlaps it; the first image or texture call waits for it to finish.
-// Returns the thread: join it before the process exits.
+// Returns the thread (join it before the process exits), or no thread when none can be
+// started (OpenImageIO then loads on first use, as without this call).
 std::thread prefetch_image_io();
 
 // Writes `img` to `path`, format chosen from the extension.

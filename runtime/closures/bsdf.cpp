@@ -111,15 +111,21 @@ struct BsdfBuilder {
     const unsigned char* setup_params = p;
     alignas(16) unsigned char turned[kMaxParamBlock];
     if (bsdf.backfacing_ && (fl & registry::kSidedIor)) {
-      // N (a vector, the first parameter) turned back to the outside of the object.
+      // N (a vector, the first parameter) turned back to the outside of the object when it
+      // faces the viewer, i.e. points into the object (a shader that already passes the
+      // outside normal keeps it).
       const auto& params = registry::closures()[id].params;
       size_t size = registry::param_block_size(params);
       if (size > sizeof(turned) || params.empty() || params[0].type != registry::ArgType::Vector)
         return;
-      std::memcpy(turned, p, size);
-      float* normal = reinterpret_cast<float*>(turned);
-      normal[0] = -normal[0], normal[1] = -normal[1], normal[2] = -normal[2];
-      setup_params = turned;
+      Vec3 normal;
+      std::memcpy(&normal, p, sizeof(normal));
+      if (is_zero(bsdf.ng_) || dot(normal, bsdf.ng_) < 0.0f) {
+        std::memcpy(turned, p, size);
+        normal = -normal;
+        std::memcpy(turned, &normal, sizeof(normal));
+        setup_params = turned;
+      }
     }
     uint32_t lobe_flags = lobe_setup(bsdf.kernels_, id, setup_params, bsdf.states_[n]);
     if (lobe_flags == 0) return;

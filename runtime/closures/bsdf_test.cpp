@@ -173,7 +173,14 @@ TEST(Bsdf, BackfacingTurnsNBackOnlyForSidedIorClosures) {
   turned.build(t.comp(glass_in), wo, kUp, nullptr, /*backfacing=*/true);
   outward.build(t.comp(glass_out), wo, kUp);
   classic.build(t.comp(refr), wo, kUp, nullptr, /*backfacing=*/true);
+  // A shader that passes the outside normal itself (N = backfacing() ? -N : N) keeps it.
+  Bsdf kept;
+  kept.build(t.comp(glass_out), wo, kUp, nullptr, /*backfacing=*/true);
   auto a = turned.sample(wo, u), b = outward.sample(wo, u), c = classic.sample(wo, u);
+  auto k = kept.sample(wo, u);
+  ASSERT_TRUE(k);
+  EXPECT_EQ(k->wi.z, b->wi.z);
+  EXPECT_EQ(k->eta, b->eta);
   ASSERT_TRUE(a && b && c);
   EXPECT_NEAR(a->eta, 1.0f / 1.5f, 1e-6f);
   EXPECT_NEAR(std::fabs(a->wi.z), 0.7566f, 1e-4f);

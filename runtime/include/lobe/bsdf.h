@@ -79,8 +79,8 @@ public:
   // shader's N and Ng to face the viewer (as OSL's testrender does). OSL's own closures then
   // take their eta across the side N faces (a shader passes 1/eta from inside, as OSL's do);
   // closures whose IOR is the object's inside over outside (MaterialX's dielectric_bsdf and
-  // generalized_schlick_bsdf) are set up with N turned back, so they stay physical, as
-  // testrender treats them.
+  // generalized_schlick_bsdf) are set up with N turned back to Ng's side (Ng: the surface's
+  // outward geometric normal, not turned), so they stay physical, as testrender treats them.
   void build(const ClosureNode* closure, const Vec3& wo, const Vec3& Ng,
              const ClosureKernels* kernels = nullptr, bool backfacing = false);
 
