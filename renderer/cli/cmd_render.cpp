@@ -218,12 +218,7 @@ int run_render(int argc, char** argv) {
     std::fprintf(stderr, "lobe render: %s\n", e_out.c_str());
     return 1;
   }
-  struct Joined {
-    std::thread t;
-    ~Joined() {
-      if (t.joinable()) t.join();
-    }
-  } image_io{lobe::image::prefetch_image_io()};
+  std::jthread image_io = lobe::image::prefetch_image_io(); // joined on every return
 
   // The image's cost, checked before anything is allocated: per pixel the accumulator (44
   // bytes), the resolved image and the writer's copy (4 bytes a channel each).

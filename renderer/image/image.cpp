@@ -77,9 +77,9 @@ bool is_common_output(const std::string& path) {
   return false;
 }
 
-std::thread prefetch_image_io() {
+std::jthread prefetch_image_io() {
   try {
-    return std::thread([] { oiio::module(); });
+    return std::jthread([] { oiio::module(); });
   } catch (const std::system_error&) {
     return {};
   }

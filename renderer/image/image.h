@@ -64,9 +64,9 @@ std::string check_output_format(const std::string& path);
 bool is_common_output(const std::string& path);
 // Starts loading OpenImageIO on a thread of its own (about 0.25 s of dynamic linking), so that
 // work done meanwhile overlaps it; the first image or texture call waits for it to finish.
-// Returns the thread (join it before the process exits), or no thread when none can be
+// Returns the thread (it joins when destroyed), or no thread when none can be
 // started (OpenImageIO then loads on first use, as without this call).
-std::thread prefetch_image_io();
+std::jthread prefetch_image_io();
 
 // Writes `img` to `path`, format chosen from the extension.
 std::string write_image(const std::string& path, const Image& img, const WriteOptions& opt = {});

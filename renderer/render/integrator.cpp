@@ -118,7 +118,6 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
         // Seen by the camera or through specular bounces (no light sample competes: weight
         // 1): the background shader itself, not its table (as testrender shades camera rays).
         lap(&P::other);
-        ctx.renderer = &scene_.services();
         Color3 Le = scene_.shade_background(ray.dir, raytype, ctx, c.messages);
         if (ctx.stopped && ctx.errors && c.stopped.empty())
           c.stopped = scene_.stop_reason(ctx, scene_.desc().environment.material, "rendering");

@@ -309,7 +309,6 @@ std::string RenderScene::build_environment() {
         [&](const Vec3& d) {
           if (stop.load(std::memory_order_relaxed)) return Color3{};
           ShadingContext& ctx = contexts.local();
-          ctx.renderer = &services_;
           ctx.cancel = cancel_;
           Color3 L = shade_background(d, kRayCamera, ctx, messages.local());
           if (ctx.stopped) {
@@ -335,6 +334,7 @@ Color3 RenderScene::shade_background(const Vec3& d, int raytype, ShadingContext&
   h.N = h.Ng = -d;
   ShaderGlobals sg;
   fill_globals(sg, h, d, raytype, ctx);
+  ctx.renderer = &services_;
   ctx.reset();
   materials_[e.material]->shade(sg);
   if (!ctx.output.empty()) collect_messages(ctx, e.material, messages);

@@ -115,7 +115,8 @@ public:
     return desc_.environment.kind == scene::Environment::Kind::Shader;
   }
   // Runs the background shader for a ray leaving in direction `d` (the ray type as given):
-  // its background() radiance times the environment's intensity. Shader messages go to
+  // its background() radiance times the environment's intensity (`ctx` gets the scene's
+  // services as its renderer). Shader messages go to
   // `messages`; a stopped shader (ctx.stopped) gives black.
   Color3 shade_background(const Vec3& d, int raytype, ShadingContext& ctx,
                           ShaderMessages& messages) const;

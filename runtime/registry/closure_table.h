@@ -198,8 +198,8 @@ using registry::kBackground, registry::kDebug, registry::kEmission, registry::kH
   X(reflection, kReflection, kR | kDelta, "mirror with Fresnel(eta); eta 0: no Fresnel")           \
   X(refraction, kRefraction, kTransmit | kDelta, "perfect refraction")                             \
   X(conductor_bsdf, kConductor, kR, "microfacet metal, complex Fresnel")                           \
-  X(dielectric_bsdf, kDielectric, kRT | kSidedIor, "microfacet glass/coat")                                    \
-  X(generalized_schlick_bsdf, kGeneralizedSchlick, kRT | kSidedIor,                                            \
+  X(dielectric_bsdf, kDielectric, kRT | kSidedIor, "microfacet glass/coat")                        \
+  X(generalized_schlick_bsdf, kGeneralizedSchlick, kRT | kSidedIor,                                \
     "microfacet with generalised Schlick Fresnel")                                                 \
   X(sheen_bsdf, kNormalAlbedoRoughness, kR, "Charlie microfibre sheen")                            \
   X(transparent, {}, kTransparent, "straight pass-through")                                        \
