@@ -66,13 +66,6 @@ std::string DataType::str() const {
   return s;
 }
 
-void* ShadingContext::allocate(size_t bytes) {
-  size_t start = (used_ + 7) & ~size_t(7);
-  if (start > capacity_ || bytes > capacity_ - start) return nullptr;
-  used_ = start + bytes;
-  return arena_.get() + start;
-}
-
 void ShadingContext::message(MessageKind kind, const std::string& text) noexcept {
   try {
     if (report) {

@@ -60,7 +60,12 @@ struct Output {
   std::string layer; // resolved
   DataType type;
   bool closure = false;
-  image::Image img;
+  image::Image img; // allocated only when written (written())
+
+  // Whether the output goes to an image file (not "null", not --print, a number type).
+  bool written(bool print) const {
+    return spec.file != "null" && !print && !closure && type.base != DataType::Base::String;
+  }
 };
 
 // What one point's shaders said, in order.
@@ -368,8 +373,7 @@ bool Shade::resolve_outputs() {
   double per_point = 0;
   if (job_.print) per_point += sizeof(std::string) + 64;
   for (const Output& o : outputs_)
-    if (!o.closure && o.type.base != DataType::Base::String)
-      per_point += 2.0 * 4 * o.type.elements() * o.type.components();
+    if (o.written(job_.print)) per_point += 2.0 * 4 * o.type.elements() * o.type.components();
   std::string setting = "-g " + std::to_string(job_.xres) + " " + std::to_string(job_.yres);
   if (std::string e = check_memory(setting, points * per_point, "the grid's outputs and messages");
       !e.empty()) {
@@ -378,7 +382,7 @@ bool Shade::resolve_outputs() {
   }
   said_budget_ = available_memory_bytes() / 4;
   for (Output& o : outputs_)
-    if (!o.closure && o.type.base != DataType::Base::String)
+    if (o.written(job_.print))
       o.img = image::Image(job_.xres, job_.yres,
                            channel_names(o.type.elements() * o.type.components()));
   for (const Output& o : outputs_)
@@ -426,6 +430,11 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
     if (o.closure || o.type.base == DataType::Base::String) continue;
     if (auto info = m.output_info(o.layer, o.spec.var)) offsets[i] = info->offset;
   }
+  // The outputs a point's values go to (an image or --print); a "null" one was computed and
+  // is not copied anywhere.
+  std::vector<size_t> kept;
+  for (size_t i = 0; i < outputs_.size(); ++i)
+    if (job_.print || outputs_[i].written(false)) kept.push_back(i);
   tbb::enumerable_thread_specific<ShadingContext> contexts;
   tbb::enumerable_thread_specific<std::vector<unsigned char>> scratch;
   tbb::enumerable_thread_specific<std::vector<std::pair<size_t, Said>>> said;
@@ -450,12 +459,13 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
       }
     };
     size_t finished = 0;
+    ShaderGlobals sg;
     for (int x = 0; x < job_.xres; ++x) {
       if (g_cancel.load(std::memory_order_relaxed)) break;
       size_t p = size_t(y) * size_t(job_.xres) + size_t(x);
       key = first + p;
       ctx.reset();
-      ShaderGlobals sg = globals.at(x, y);
+      globals.at(x, y, sg);
       m.shade(sg);
       if (ctx.stopped) {
         // Past max_loop_iterations (the error is in this point's messages), or cancelled.
@@ -464,11 +474,11 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
         break;
       }
       ++finished;
-      if (!last_iteration) continue;
+      if (!last_iteration || (kept.empty() && !job_.print)) continue;
       std::string block;
       if (job_.print) block = "Pixel (" + std::to_string(x) + ", " + std::to_string(y) + "):\n";
       const unsigned char* data = m.output_data(ctx);
-      for (size_t i = 0; i < outputs_.size(); ++i) {
+      for (size_t i : kept) {
         Output& o = outputs_[i];
         const unsigned char* value;
         if (data && offsets[i]) {
@@ -482,6 +492,7 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
           bytes.assign(value, value + o.type.bytes());
           block += "  " + o.spec.var + " : " + value_text(o.type, bytes) + "\n";
         }
+        if (!o.written(job_.print)) continue;
         float* px = o.img.pixel(x, y);
         for (int c = 0; c < o.img.nchannels(); ++c) {
           if (o.type.base == DataType::Base::Int) {
@@ -513,8 +524,7 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
 int Shade::write_outputs() {
   int status = 0;
   for (const Output& o : outputs_) {
-    if (o.spec.file == "null" || job_.print || o.closure || o.type.base == DataType::Base::String)
-      continue;
+    if (!o.written(job_.print)) continue;
     std::string format =
         job_.dataformat == "uint8" || job_.dataformat == "half" || job_.dataformat == "float"
             ? job_.dataformat

@@ -29,7 +29,13 @@ ShaderGlobals grid_globals(const GridSpec& g, int x, int y, ShadingContext* ctx)
 class GridGlobals {
 public:
   GridGlobals(const GridSpec& g, ShadingContext* ctx);
-  ShaderGlobals at(int x, int y) const;
+  ShaderGlobals at(int x, int y) const {
+    ShaderGlobals sg;
+    at(x, y, sg);
+    return sg;
+  }
+  // The same into `sg`, every field overwritten (the grid's per-point loop reuses one).
+  void at(int x, int y, ShaderGlobals& sg) const;
 
 private:
   GridSpec g_;

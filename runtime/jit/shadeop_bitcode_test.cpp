@@ -198,6 +198,16 @@ TEST(ShadeopBitcode, OnlyTheLinkableShadeopsAreLinked) {
       "lobe_math_sin",
       llvm::FunctionType::get(b.getFloatTy(), {b.getFloatTy(), b.getInt32Ty()}, false));
   EXPECT_EQ(jit::link_shadeop_bitcode(mod2), 1); // (and dropped again: nothing calls it)
+  // The closure builders link too: the context's arena is bumped inline (lobe/context.h), so
+  // they need nothing outside the bitcode (their results: group_test's ClosureBuilders).
+  llvm::Module mod3("closures", ctx);
+  auto* p = b.getPtrTy();
+  mod3.getOrInsertFunction("lobe_closure_mul", llvm::FunctionType::get(p, {p, p, p}, false));
+  mod3.getOrInsertFunction("lobe_closure_add", llvm::FunctionType::get(p, {p, p, p}, false));
+  mod3.getOrInsertFunction(
+      "lobe_closure_component",
+      llvm::FunctionType::get(p, {p, b.getInt32Ty(), p, b.getInt32Ty()}, false));
+  EXPECT_EQ(jit::link_shadeop_bitcode(mod3), 3);
 }
 
 } // namespace

@@ -32,8 +32,14 @@ public:
   void reset() { used_ = 0; }
 
   // 8-byte-aligned storage from the arena; null when the arena is exhausted (the closure
-  // builder then drops the component and counts it in closures_dropped).
-  void* allocate(size_t bytes);
+  // builder then drops the component and counts it in closures_dropped). Inline: the closure
+  // shadeops are linked into shader code from bitcode (runtime/shadeops/CMakeLists.txt).
+  void* allocate(size_t bytes) {
+    size_t start = (used_ + 7) & ~size_t(7);
+    if (start > capacity_ || bytes > capacity_ - start) return nullptr;
+    used_ = start + bytes;
+    return arena_.get() + start;
+  }
 
   // What shader code says: printf text as is; a warning or an error as one line without its
   // "WARNING: " / "ERROR: " prefix and newline, as OSL words them ("Shader error [name]: ...",
