@@ -1,6 +1,8 @@
 // testshade's renderer services (see shade_services.h).
 #include "shade_services.h"
 
+#include "matrix44.h"
+
 #include <cmath>
 #include <cstring>
 
@@ -91,13 +93,17 @@ ShadeServices::ShadeServices(std::vector<ShadeUserDatum> data, int xres, int yre
   };
   const char* names[] = {"object", "shader", "myspace"};
   for (int k = 0; k < 3; ++k) {
-    Space s{names[k], {}};
+    Space s{names[k], {}, {}};
     invert(common_to[k], s.m);
+    if (math::mat_is_identity(s.m))
+      std::memcpy(s.inv, s.m, sizeof s.m);
+    else
+      math::mat_invert(s.inv, s.m);
     spaces_.push_back(s);
   }
   // The camera spaces, kept as common -> space.
   // NDC = screen * (x, y in [-1, 1] -> [0, 1]); raster = NDC * scale(xres, yres, 1).
-  Space camera{"camera", {}}, screen{"screen", {}}, ndc{"NDC", {}}, raster{"raster", {}};
+  Space camera{"camera", {}, {}}, screen{"screen", {}, {}}, ndc{"NDC", {}, {}}, raster{"raster", {}, {}};
   for (int k = 0; k < 16; ++k) camera.m[k] = k % 5 == 0 ? 1.0f : 0.0f;
   std::memcpy(screen.m, common_to[3], sizeof screen.m);
   const float to_ndc[16] = {0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 1, 0, 0.5f, 0.5f, 0, 1};
@@ -182,7 +188,12 @@ bool ShadeServices::get_inverse_matrix(const ShaderGlobals&, std::string_view sp
       std::memcpy(m, s.m, sizeof s.m);
       return true;
     }
-  return false; // the others: the inverse of get_matrix's
+  for (const Space& s : spaces_)
+    if (space == s.name) {
+      std::memcpy(m, s.inv, sizeof s.inv);
+      return true;
+    }
+  return false;
 }
 
 bool ShadeServices::get_matrix(const ShaderGlobals&, std::string_view space, float* m) const {

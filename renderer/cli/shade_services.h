@@ -40,6 +40,9 @@ private:
   struct Space {
     const char* name;
     float m[16]; // spaces_: space -> common; camera_spaces_: common -> space
+    // spaces_: common -> space, as the shadeops would invert `m` at every point otherwise
+    // (lobe_get_matrix: math::mat_invert, so the same bits).
+    float inv[16];
   };
   std::vector<Space> spaces_;
   // common -> camera, screen, NDC, raster: testshade knows these only as destinations.

@@ -266,6 +266,26 @@ TEST(ShadeCli, CameraSpacesAreDestinationsOnlyAsInTestshade) {
             "1 1 0 0 0 0 1 0 0 0 0 1.0001 1 0 0 -0.10001 0 | 1 2 3\n\n");
 }
 
+// common -> object, shader and myspace to nine digits: lobe shade keeps each space's inverse
+// (computed once, as the shadeops would at every point) and the bits are testshade's.
+// Expected: OSL 1.13.12, `oslc inv.osl; testshade -g 1 1 inv`.
+TEST(ShadeCli, InverseSpaceMatricesAsTestshade) {
+  auto dir = scratch_dir(
+      "inv.osl",
+      "shader inv()\n{\n    matrix m;\n"
+      "    getmatrix(\"common\", \"object\", m);\n    printf(\"%.9g\\n\", m);\n"
+      "    getmatrix(\"world\", \"shader\", m);\n    printf(\"%.9g\\n\", m);\n"
+      "    getmatrix(\"common\", \"myspace\", m);\n    printf(\"%.9g\\n\", m);\n"
+      "    printf(\"%.9g | %.9g\\n\", transform(\"object\", point(1.5, -2, 3)),"
+      " transform(\"common\", \"shader\", vector(0.25, 1, -4)));\n}\n");
+  EXPECT_EQ(run_in(dir, "-g 1 1 inv"),
+            "-4.37113883e-08 -1 0 0 1 -4.37113883e-08 0 0 0 0 1 0 -1 4.37113883e-08 0 1\n"
+            "0.707106829 -0.707106829 0 0 0.707106829 0.707106829 0 0 0 0 1 0 -0.707106829 "
+            "0.707106829 0 1\n"
+            "1 0 0 0 0 0.5 0 0 0 0 1 0 0 0 0 1\n"
+            "-3 -1.49999988 3 | 0.883883536 0.530330122 -4\n\n");
+}
+
 // matrix("space", 16 values) is space -> common times the values, and the kind of a mixed
 // triple sum decides its transform (point + vector is a point, which moves with the
 // translation). Expected: OSL 1.13.12, `oslc ms.osl; testshade -g 1 1 ms`.
