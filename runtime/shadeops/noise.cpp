@@ -187,6 +187,41 @@ template <class T> inline T grad(uint32_t hash, const T& x, const T& y, const T&
   return neg_if(u, h & 1) + neg_if(v, h & 2) + neg_if(s, h & 4);
 }
 
+// The value-only 3-D case of perlin_cell below with one vector lane per corner: the same
+// operations as the scalar code, lane by lane (grad's selects, then the z, x and y lerps), so
+// the bits are the same. Left to the compiler, the scalar form was vectorised with partial
+// vectors shuffled through the stack, one reload spanning two stores (perf: the costliest
+// instructions of marble's noise).
+typedef float F8 __attribute__((vector_size(32)));
+typedef float F4 __attribute__((vector_size(16)));
+typedef float F2 __attribute__((vector_size(8)));
+inline void perlin3_lanes(const uint32_t* hashes, const float* f, const float* u, int nout,
+                          float* out) {
+  using U8 = Lanes<8>::type;
+  U8 lane, hv;
+  lane_indices(lane, std::make_integer_sequence<uint32_t, 8>());
+  std::memcpy(&hv, hashes, sizeof hv);
+  // Corner b's offsets: f[k] - 1 where bit k of b is set, else f[k].
+  F8 r[3];
+  for (int k = 0; k < 3; ++k) {
+    F8 f0 = F8{} + f[k], f1 = F8{} + (f[k] - 1.0f);
+    r[k] = ((lane >> k) & 1u) != 0u ? f1 : f0;
+  }
+  for (int j = 0; j < nout; ++j) {
+    U8 hj = (hv >> (nout == 1 ? 0u : 8u * uint32_t(j))) & 15u;
+    F8 gu = hj < 8u ? r[0] : r[1];
+    F8 gv = hj < 4u ? r[1] : ((hj == 12u) | (hj == 14u)) ? r[0] : r[2];
+    F8 g = ((hj & 1u) != 0u ? -gu : gu) + ((hj & 2u) != 0u ? -gv : gv);
+    F4 lo, hi;
+    std::memcpy(&lo, &g, sizeof lo);
+    std::memcpy(&hi, reinterpret_cast<const char*>(&g) + sizeof lo, sizeof hi);
+    F4 m = lo * (F4{} + (1.0f - u[2])) + hi * (F4{} + u[2]); // lerp(g[i], g[i + 4], u[2])
+    F2 a = {m[0], m[2]}, b = {m[1], m[3]};
+    F2 xy = a * (F2{} + (1.0f - u[0])) + b * (F2{} + u[0]); // lerp along x, both y rows
+    out[j] = 0.9820f * (xy[0] * (1.0f - u[1]) + xy[1] * u[1]);
+  }
+}
+
 // OSL's perlin(): signed gradient noise, T = float (no derivatives) or D2, in N dimensions, for
 // nout = 1 or 3 channels. The corner hash is OSL's HashScalar / HashVector (and the periodic
 // variants): one inthash of the integer corner (wrapped by the period); channel j of a vector
@@ -227,6 +262,8 @@ inline __attribute__((always_inline)) void perlin_cell(const T* xin, const int* 
   constexpr int kCorners = 1 << N;
   uint32_t h[kCorners];
   corner_hashes<N>(K0, K1, h);
+  if constexpr (std::is_same_v<T, float> && N == 3)
+    return perlin3_lanes(h, f, u, nout, out);
   for (int j = 0; j < nout; ++j) {
     const int shift = nout == 1 ? 0 : 8 * j;
     T g[kCorners];
