@@ -113,6 +113,10 @@ struct Symbol {
   // (`float(3)`, `2 * 3.5`, `S(1, c)`, an array field of a struct): OSL's tools report such a
   // default as unknown, and so does `lobe info` (the value still serves as the default).
   bool folded = false;
+  // An output parameter nothing reads: no connection takes it downstream and the group's
+  // renderer outputs do not name it. The group builder marks it at -O2 (OSL's elision of
+  // unconnected outputs) so that dead-code elimination drops what only computes it.
+  bool unread = false;
   SourceLoc loc;
 };
 

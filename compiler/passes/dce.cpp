@@ -41,7 +41,8 @@ bool trivial(const Op& op, int index) {
 }
 
 bool observable(const Symbol& s) {
-  return s.kind == SymKind::Global || s.kind == SymKind::Param || s.kind == SymKind::OutputParam;
+  return s.kind == SymKind::Global || s.kind == SymKind::Param ||
+         (s.kind == SymKind::OutputParam && !s.unread);
 }
 
 // Ops whose every written symbol is unobservable and never read by a kept op.
@@ -53,8 +54,12 @@ bool drop_unread_writes(const Shader& sh, std::vector<bool>& keep) {
     for (size_t i = 0; i < sh.ops.size(); ++i) {
       if (!keep[i]) continue;
       const Op& op = sh.ops[i];
-      for (size_t a = 0; a < op.args.size(); ++a)
+      for (size_t a = 0; a < op.args.size(); ++a) {
+        // `useparam` readies an output for the ops after it; of an unread output it reads
+        // nothing anyone observes.
+        if (op.opcode == Opcode::UseParam && sh.symbols[size_t(op.args[a])].unread) continue;
         if (op_reads(op, int(a))) ++reads[op.args[a]];
+      }
     }
     for (size_t i = 0; i < sh.ops.size(); ++i) {
       const Op& op = sh.ops[i];
@@ -64,8 +69,10 @@ bool drop_unread_writes(const Shader& sh, std::vector<bool>& keep) {
       for (size_t a = 0; a < op.args.size() && dead; ++a) {
         if (!op.writes(int(a))) continue;
         int s = op.args[a];
-        // A read-modify-write op (aassign) counts its own read: discount it.
-        int own = op_reads(op, int(a)) ? 1 : 0;
+        // The op's own reads of what it writes (aassign's read-modify-write, `add x x y`)
+        // are discounted.
+        int own = 0;
+        for (size_t b = 0; b < op.args.size(); ++b) own += op.args[b] == s && op_reads(op, int(b));
         dead = !observable(sh.symbols[s]) && reads[s] - own == 0;
       }
       if (dead) keep[i] = false, grew = any = true;

@@ -3,7 +3,8 @@
 //  * jumps to the next op, `nop`s and self-assignments are removed; a `cbr` whose targets are
 //    equal becomes a `br`;
 //  * ops without effects (not kEffect, not a jump) whose written symbols are never read, and
-//    are not observable (globals, parameters), are removed, to a fixed point;
+//    are not observable (globals, parameters; not an output marked `unread`), are removed, to
+//    a fixed point;
 //  * Temp, Local and Const symbols no op references any more are removed.
 #pragma once
 

@@ -276,3 +276,50 @@ end
 }
 
 } // namespace
+
+namespace {
+
+// A value only the op updating it reads (`add x x t` in a loop) is dead, and so is an output
+// the group marked unread (its `useparam` is no read); an output not so marked is kept.
+TEST(Dce, SelfUpdatesAndUnreadOutputs) {
+  const char* in = R"(lobe-ir 1
+shader s
+symbols
+  oparam float kept = 0
+  oparam float dropped = 0
+  global float u
+  local float acc
+  local int i
+  temp int $t1
+  temp float $t2
+  const int $c0 = 0
+  const int $c1 = 4
+  const int $c3 = 1
+main
+  assign i $c0
+L1:
+  lt $t1 i $c1
+  cbr $t1 -> L3 L9
+L3:
+  sin $t2 u
+  add acc acc $t2
+  useparam dropped
+  add dropped dropped $t2
+  add kept kept $t2
+  add i i $c3
+  br -> L1
+L9:
+end
+)";
+  std::string out = run_pass(in, [](lobe::ir::Shader& sh) {
+    for (auto& s : sh.symbols)
+      if (s.name == "dropped") s.unread = true;
+    return eliminate_dead_code(sh);
+  });
+  EXPECT_EQ(out.find("add acc"), std::string::npos) << out;
+  EXPECT_EQ(out.find("add dropped"), std::string::npos) << out;
+  EXPECT_NE(out.find("add kept kept $t2"), std::string::npos) << out;
+  EXPECT_NE(out.find("sin $t2 u"), std::string::npos) << out;
+}
+
+} // namespace

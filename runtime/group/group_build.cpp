@@ -571,6 +571,23 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     // User data arrives at run time: those params stay params, as connected ones do.
     std::set<std::string> runtime_valued = connected;
     runtime_valued.insert(interp[i].begin(), interp[i].end());
+    // OSL -O2's unconnected outputs: with renderer outputs named (and no entry layers), an
+    // output no connection takes downstream and no renderer output names is computed only for
+    // what else reads it in its layer.
+    if (specialize && elide_known_outputs && !group.renderer_outputs.empty() &&
+        group.entry_layers.empty())
+      for (ir::Symbol& s : sh->symbols) {
+        if (s.kind != SymKind::OutputParam) continue;
+        bool read = false;
+        for (const Link& l : links) read |= l.src_layer == int(i) && l.src.symbol == s.name;
+        for (const std::string& ro : group.renderer_outputs) {
+          size_t dot = ro.find('.');
+          std::string layer = dot == std::string::npos ? "" : ro.substr(0, dot);
+          std::string var = dot == std::string::npos ? ro : ro.substr(dot + 1);
+          read |= (layer.empty() || layer == group.layers[i].name) && var == s.name;
+        }
+        s.unread = !read;
+      }
     if (specialize) specialize_layer(*sh, values[i], runtime_valued, {out.plan.fast_math});
     new_index[i] = int(out.shaders.size());
     out.shaders.push_back(std::move(sh));
