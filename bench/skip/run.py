@@ -1,0 +1,142 @@
+#!/usr/bin/env python3
+"""bench/skip: what Lobe avoids computing, each with its measured effect.
+
+Each row runs the same work twice through `lobe shade` (shaders in bench/skip/shaders/): once
+where Lobe can skip part of it, once where that part is needed, interleaved repetition by
+repetition, and prints medians. The difference is what the skip saves:
+
+  unused layer        an expensive layer nothing reads, against the same layer connected
+                      (and the cheap layer alone)
+  unread output       an expensive output not requested, against requested
+  derivatives         noise whose derivatives nothing reads, against read
+  zero-weight lobes   three lobes weighted by a parameter 0, against 1
+  unused texture      a texture lookup on a branch not taken, against taken (whole process
+                      at 1x1: opening OpenImageIO and the file)
+  closure kernels     the closure code of the lobes the default scene's materials can produce
+                      (lobe render --closures jit-setup, no disk cache), against every BSDF's
+                      (bench/closures_jit's one module of all of them)
+
+Per point: (whole process at RES x RES minus at 1x1) / RES^2, one thread.
+
+  python3 bench/skip/run.py --lobe build/lobe [--reps 5] [--res 2048]
+                            [--closures-jit build/bench/closures_jit]
+
+Nothing here is asserted: the figures are reported (docs/runtime.md, "What Lobe skips").
+"""
+import argparse
+import os
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SHADERS = os.path.join(HERE, "shaders")
+sys.path.insert(0, os.path.join(HERE, "..", "osl_compare"))
+from run import make_texture, timed  # noqa: E402 (bench/osl_compare/run.py)
+
+# name: (what is skipped, the run that can skip it, the run that needs it[, a third reference]).
+PER_POINT = {
+    "unused layer": [
+        ["-layer", "h", "heavy", "-layer", "l", "light", "-o", "l.g", "null"],
+        ["-layer", "h", "heavy", "-layer", "l", "light", "-connect", "h", "f", "l", "x",
+         "-o", "l.g", "null"],
+        ["light", "-o", "g", "null"],
+    ],
+    "unread output": [
+        ["twoout", "-o", "cheap", "null"],
+        ["twoout", "-o", "cheap", "null", "-o", "costly", "null"],
+    ],
+    "derivatives": [
+        ["derivs", "-o", "f", "null"],
+        ["-param", "read_derivs", "1", "derivs", "-o", "f", "null", "-o", "d", "null"],
+    ],
+    "zero-weight lobes": [
+        ["-param", "w", "0.0", "zerow", "-o", "Cout", "null"],
+        ["-param", "w", "1.0", "zerow", "-o", "Cout", "null"],
+    ],
+}
+LATENCY = {
+    "unused texture": [
+        ["tex", "-o", "c", "null"],
+        ["-param", "use", "1", "tex", "-o", "c", "null"],
+    ],
+}
+
+
+def kernels(lobe, closures_jit, work):
+    """(materials' kernel compile time in s, their count) and (all BSDFs' time in s, count)."""
+    env = dict(os.environ, LOBE_CACHE_DIR="off")
+    r = subprocess.run([lobe, "render", "--res", "32", "16", "--spp", "1", "--closures",
+                        "jit-setup", "--stats", "-o", os.path.join(work, "k.exr")],
+                       env=env, capture_output=True, text=True)
+    m = re.search(r"(\d+) compiled in ([\d.]+)s, (\d+) with closure kernels", r.stdout + r.stderr)
+    mats = (float(m.group(2)), int(m.group(3))) if m else None
+    every = None
+    if closures_jit and os.path.exists(closures_jit):
+        r = subprocess.run([closures_jit, "--benchmark_filter=^$"], env=env, capture_output=True,
+                           text=True)
+        m = re.search(r"kernels for (\d+) closures: optimise ([\d.]+) ms, machine code ([\d.]+) ms",
+                      r.stdout)
+        if m:
+            every = ((float(m.group(2)) + float(m.group(3))) / 1000, int(m.group(1)))
+    return mats, every
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[1])
+    ap.add_argument("--lobe", default="build/lobe")
+    ap.add_argument("--reps", type=int, default=5)
+    ap.add_argument("--res", type=int, default=2048)
+    ap.add_argument("--closures-jit", default="build/bench/closures_jit")
+    a = ap.parse_args()
+    lobe = os.path.abspath(a.lobe)
+    work = tempfile.mkdtemp(prefix="lobe_skip_")
+    for f in os.listdir(SHADERS):
+        if f.endswith(".osl"):
+            shutil.copy(os.path.join(SHADERS, f), work)
+            subprocess.run([lobe, "compile", f], cwd=work, check=True, capture_output=True)
+    if not make_texture(work):
+        del LATENCY["unused texture"]  # no oiiotool/maketx to make the texture
+    grid1 = ["-g", "1", "1", "-t", "1"]
+    gridn = ["-g", str(a.res), str(a.res), "-t", "1"]
+    times = {}
+    for rep in range(a.reps):
+        for name, runs in PER_POINT.items():
+            for i, args in enumerate(runs):
+                for g, grid in (("1", grid1), ("n", gridn)):
+                    times.setdefault((name, i, g), []).append(
+                        timed([lobe, "shade"] + grid + args, work))
+        for name, runs in LATENCY.items():
+            for i, args in enumerate(runs):
+                times.setdefault((name, i, "1"), []).append(
+                    timed([lobe, "shade"] + grid1 + args, work))
+        print("repetition %d of %d done" % (rep + 1, a.reps), file=sys.stderr)
+    med = lambda k: statistics.median(times[k])
+    print("\n%s: medians of %d runs; per point at %dx%d, one thread" % (a.lobe, a.reps, a.res,
+                                                                          a.res))
+    print("| skipped | where skipped | where needed | saved |")
+    print("|---|---|---|---|")
+    for name, runs in PER_POINT.items():
+        ns = [(med((name, i, "n")) - med((name, i, "1"))) / (a.res * a.res) * 1e9
+              for i in range(len(runs))]
+        extra = " (cheap layer alone %.1f ns)" % ns[2] if len(ns) > 2 else ""
+        print("| %s | %.1f ns/pt%s | %.1f ns/pt | %.1fx |" % (name, ns[0], extra, ns[1],
+                                                             ns[1] / max(ns[0], 1e-9)))
+    for name, runs in LATENCY.items():
+        ms = [med((name, i, "1")) * 1000 for i in range(len(runs))]
+        print("| %s | %.0f ms (1x1 process) | %.0f ms | %.0f ms |" % (name, ms[0], ms[1],
+                                                                      ms[1] - ms[0]))
+    mats, every = kernels(lobe, os.path.abspath(a.closures_jit), work)
+    if mats and every:
+        print("| closure kernels | %d materials' own lobes: %.2f s on 2 threads | all %d BSDFs: "
+              "%.2f s a material | %.1fx |" % (mats[1], mats[0], every[1], every[0],
+                                               every[0] * mats[1] / 2 / mats[0]))
+    shutil.rmtree(work, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()
