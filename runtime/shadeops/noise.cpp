@@ -222,6 +222,45 @@ inline void perlin3_lanes(const uint32_t* hashes, const float* f, const float* u
   }
 }
 
+// The same for 4-D: two vectors of eight corners (w = 0, then w = 1), OSL's 4-D gradient
+// selects, then on each w face z, x and y, then w (the value-only order).
+inline void perlin4_lanes(const uint32_t* hashes, const float* f, const float* u, int nout,
+                          float* out) {
+  using U8 = Lanes<8>::type;
+  U8 lane, hv[2];
+  lane_indices(lane, std::make_integer_sequence<uint32_t, 8>());
+  std::memcpy(&hv, hashes, sizeof hv);
+  F8 r[4];
+  for (int k = 0; k < 3; ++k) {
+    F8 f0 = F8{} + f[k], f1 = F8{} + (f[k] - 1.0f);
+    r[k] = ((lane >> k) & 1u) != 0u ? f1 : f0;
+  }
+  const float w[2] = {f[3], f[3] - 1.0f};
+  auto face = [&](const F8& g) { // z, then x, then y, over one w face's eight corners
+    F4 lo, hi;
+    std::memcpy(&lo, &g, sizeof lo);
+    std::memcpy(&hi, reinterpret_cast<const char*>(&g) + sizeof lo, sizeof hi);
+    F4 m = lo * (F4{} + (1.0f - u[2])) + hi * (F4{} + u[2]);
+    F2 a = {m[0], m[2]}, b = {m[1], m[3]};
+    F2 xy = a * (F2{} + (1.0f - u[0])) + b * (F2{} + u[0]);
+    return xy[0] * (1.0f - u[1]) + xy[1] * u[1];
+  };
+  for (int j = 0; j < nout; ++j) {
+    float faces[2];
+    for (int side = 0; side < 2; ++side) {
+      U8 hj = (hv[side] >> (nout == 1 ? 0u : 8u * uint32_t(j))) & 31u;
+      F8 rw = F8{} + w[side];
+      F8 gu = hj < 24u ? r[0] : r[1];
+      F8 gv = hj < 16u ? r[1] : r[2];
+      F8 gs = hj < 8u ? r[2] : rw;
+      F8 g = ((hj & 1u) != 0u ? -gu : gu) + ((hj & 2u) != 0u ? -gv : gv);
+      g = g + ((hj & 4u) != 0u ? -gs : gs);
+      faces[side] = face(g);
+    }
+    out[j] = 0.8344f * (faces[0] * (1.0f - u[3]) + faces[1] * u[3]);
+  }
+}
+
 // OSL's perlin(): signed gradient noise, T = float (no derivatives) or D2, in N dimensions, for
 // nout = 1 or 3 channels. The corner hash is OSL's HashScalar / HashVector (and the periodic
 // variants): one inthash of the integer corner (wrapped by the period); channel j of a vector
@@ -264,6 +303,8 @@ inline __attribute__((always_inline)) void perlin_cell(const T* xin, const int* 
   corner_hashes<N>(K0, K1, h);
   if constexpr (std::is_same_v<T, float> && N == 3)
     return perlin3_lanes(h, f, u, nout, out);
+  if constexpr (std::is_same_v<T, float> && N == 4)
+    return perlin4_lanes(h, f, u, nout, out);
   for (int j = 0; j < nout; ++j) {
     const int shift = nout == 1 ? 0 : 8 * j;
     T g[kCorners];

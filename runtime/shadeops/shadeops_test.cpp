@@ -374,6 +374,33 @@ TEST(Noise, OslValues) {
   EXPECT_EQ(v, 0.291080922f);
 }
 
+// Value-only 3-D and 4-D gradient noise, float and vector, at ordinary, negative, large and
+// lattice points (the vector-lane code paths of noise.cpp). Expected: OSL 1.13.12, `oslc n4.osl;
+// testshade -g 1 1 n4` printing `noise("perlin", p, w)`, `snoise(p, w)` and
+// `vector(snoise(p))` with %.9g at these p and w.
+TEST(Noise, GradientNoise3dAnd4dAsOsl) {
+  const float p[4][3] = {{0.3f, 1.7f, -0.4f}, {-12.25f, 3.5f, 7.75f}, {101.1f, -0.02f, 44.4f},
+                         {5, 6, 7}};
+  const float w[4] = {2.6f, -3.3f, 0.5f, 8};
+  const float n4[4][3] = {{0.380862951f, 0.113822117f, -0.632481456f},
+                          {0.49426201f, 0.371457756f, -0.0644355342f},
+                          {-0.378766119f, -0.043003656f, 0.436642349f},
+                          {0, 0, 0}};
+  const float n3[4][3] = {{0.0186578184f, 0.0256961975f, -0.489490867f},
+                          {0.0710552186f, 0.256891221f, 0.0240977593f},
+                          {0.091456905f, -0.29080084f, 0.235086024f},
+                          {0, 0, 0}};
+  for (int i = 0; i < 4; ++i) {
+    float x[4] = {p[i][0], p[i][1], p[i][2], w[i]}, v3[3], v;
+    lobe_noise(kPerlin, x, 4, nullptr, v3, 3, nullptr);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(v3[c], n4[i][c]) << i << " " << c;
+    lobe_noise(kPerlin, x, 4, nullptr, &v, 1, nullptr);
+    EXPECT_EQ(v, n4[i][0]) << i;
+    lobe_noise(kPerlin, x, 3, nullptr, v3, 3, nullptr);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(v3[c], n3[i][c]) << i << " " << c;
+  }
+}
+
 // Simplex noise values as OSL's simplexnoise.cpp computes them, from the independent Python
 // transcription runtime/shadeops/noise_reference.py (binary32 rounding after every operation),
 // not from this C++: channel j of a vector result is the noise with seed j.
