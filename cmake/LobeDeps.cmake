@@ -11,12 +11,28 @@ message(STATUS "LLVM ${LLVM_PACKAGE_VERSION} at ${LLVM_DIR}")
 find_program(LOBE_CLANG19 NAMES clang-19 clang HINTS ${LLVM_TOOLS_BINARY_DIR} REQUIRED)
 find_program(LOBE_LLVM_LINK llvm-link HINTS ${LLVM_TOOLS_BINARY_DIR} REQUIRED)
 
-# lobe_llvm: the shared libLLVM plus its include paths and definitions.
+# lobe_llvm: libLLVM plus its include paths and definitions. An executable with the property
+# LOBE_STATIC_LLVM set links the static component libraries it uses instead of the shared
+# libLLVM: loading libLLVM.so (its 360k relocations and static constructors) costs about 60 ms
+# of every process's start-up, the static components about 20 (measured on a hello-world that
+# creates an LLJIT; docs/runtime.md). Only the `lobe` executable does: linking them takes tens
+# of seconds, which every test binary would pay.
 add_library(lobe_llvm INTERFACE)
 target_include_directories(lobe_llvm SYSTEM INTERFACE ${LLVM_INCLUDE_DIRS})
 separate_arguments(_llvm_defs NATIVE_COMMAND "${LLVM_DEFINITIONS}")
 target_compile_definitions(lobe_llvm INTERFACE ${_llvm_defs})
-target_link_libraries(lobe_llvm INTERFACE LLVM)
+# LLVMSupport's link interface names zstd's CMake target; the libzstd1 package (a dependency of
+# libLLVM) has the library without the CMake files of libzstd-dev.
+if(NOT TARGET zstd::libzstd_shared)
+  find_library(LOBE_ZSTD_LIBRARY NAMES zstd libzstd.so.1 REQUIRED)
+  add_library(zstd::libzstd_shared SHARED IMPORTED)
+  set_target_properties(zstd::libzstd_shared PROPERTIES IMPORTED_LOCATION ${LOBE_ZSTD_LIBRARY})
+endif()
+llvm_map_components_to_libnames(LOBE_LLVM_STATIC_LIBS orcjit native passes linker bitreader
+                                bitwriter irreader asmparser)
+set(_static_llvm "$<BOOL:$<TARGET_PROPERTY:LOBE_STATIC_LLVM>>")
+target_link_libraries(lobe_llvm INTERFACE "$<${_static_llvm}:${LOBE_LLVM_STATIC_LIBS}>"
+                                          "$<$<NOT:${_static_llvm}>:LLVM>")
 
 # OpenImageIO 2.4.7: its CMake config is unusable on a fresh bookworm machine (it lists
 # /usr/include/opencv4, which the package does not install, and imported targets for the
