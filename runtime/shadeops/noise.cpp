@@ -187,38 +187,51 @@ template <class T> inline T grad(uint32_t hash, const T& x, const T& y, const T&
   return neg_if(u, h & 1) + neg_if(v, h & 2) + neg_if(s, h & 4);
 }
 
+// Vector lanes for perlin_cell's value-only 3-D and 4-D cases (GCC/Clang vector extension).
+typedef float F8 __attribute__((vector_size(32)));
+typedef float F4 __attribute__((vector_size(16)));
+typedef float F2 __attribute__((vector_size(8)));
+using U8 = Lanes<8>::type;
+
+// Lane b's offset along x, y and z from corner b of a cell's eight (bit k of b for axis k):
+// f[k] - 1 where the bit is set, else f[k].
+inline void corner_offsets(const float* f, F8* r) {
+  U8 lane;
+  lane_indices(lane, std::make_integer_sequence<uint32_t, 8>());
+  for (int k = 0; k < 3; ++k) {
+    F8 f0 = F8{} + f[k], f1 = F8{} + (f[k] - 1.0f);
+    r[k] = ((lane >> k) & 1u) != 0u ? f1 : f0;
+  }
+}
+
+// perlin_cell's interpolation of eight corner values: along z (g[i], g[i + 4]), then x, then y.
+inline float lerp_zxy(const F8& g, const float* u) {
+  F4 lo, hi;
+  std::memcpy(&lo, &g, sizeof lo);
+  std::memcpy(&hi, reinterpret_cast<const char*>(&g) + sizeof lo, sizeof hi);
+  F4 m = lo * (F4{} + (1.0f - u[2])) + hi * (F4{} + u[2]);
+  F2 a = {m[0], m[2]}, b = {m[1], m[3]};
+  F2 xy = a * (F2{} + (1.0f - u[0])) + b * (F2{} + u[0]); // both y rows at once
+  return xy[0] * (1.0f - u[1]) + xy[1] * u[1];
+}
+
 // The value-only 3-D case of perlin_cell below with one vector lane per corner: the same
 // operations as the scalar code, lane by lane (grad's selects, then the z, x and y lerps), so
 // the bits are the same. Left to the compiler, the scalar form was vectorised with partial
 // vectors shuffled through the stack, one reload spanning two stores (perf: the costliest
 // instructions of marble's noise).
-typedef float F8 __attribute__((vector_size(32)));
-typedef float F4 __attribute__((vector_size(16)));
-typedef float F2 __attribute__((vector_size(8)));
 inline void perlin3_lanes(const uint32_t* hashes, const float* f, const float* u, int nout,
                           float* out) {
-  using U8 = Lanes<8>::type;
-  U8 lane, hv;
-  lane_indices(lane, std::make_integer_sequence<uint32_t, 8>());
+  U8 hv;
   std::memcpy(&hv, hashes, sizeof hv);
-  // Corner b's offsets: f[k] - 1 where bit k of b is set, else f[k].
   F8 r[3];
-  for (int k = 0; k < 3; ++k) {
-    F8 f0 = F8{} + f[k], f1 = F8{} + (f[k] - 1.0f);
-    r[k] = ((lane >> k) & 1u) != 0u ? f1 : f0;
-  }
+  corner_offsets(f, r);
   for (int j = 0; j < nout; ++j) {
     U8 hj = (hv >> (nout == 1 ? 0u : 8u * uint32_t(j))) & 15u;
     F8 gu = hj < 8u ? r[0] : r[1];
     F8 gv = hj < 4u ? r[1] : ((hj == 12u) | (hj == 14u)) ? r[0] : r[2];
     F8 g = ((hj & 1u) != 0u ? -gu : gu) + ((hj & 2u) != 0u ? -gv : gv);
-    F4 lo, hi;
-    std::memcpy(&lo, &g, sizeof lo);
-    std::memcpy(&hi, reinterpret_cast<const char*>(&g) + sizeof lo, sizeof hi);
-    F4 m = lo * (F4{} + (1.0f - u[2])) + hi * (F4{} + u[2]); // lerp(g[i], g[i + 4], u[2])
-    F2 a = {m[0], m[2]}, b = {m[1], m[3]};
-    F2 xy = a * (F2{} + (1.0f - u[0])) + b * (F2{} + u[0]); // lerp along x, both y rows
-    out[j] = 0.9820f * (xy[0] * (1.0f - u[1]) + xy[1] * u[1]);
+    out[j] = 0.9820f * lerp_zxy(g, u);
   }
 }
 
@@ -226,25 +239,11 @@ inline void perlin3_lanes(const uint32_t* hashes, const float* f, const float* u
 // selects, then on each w face z, x and y, then w (the value-only order).
 inline void perlin4_lanes(const uint32_t* hashes, const float* f, const float* u, int nout,
                           float* out) {
-  using U8 = Lanes<8>::type;
-  U8 lane, hv[2];
-  lane_indices(lane, std::make_integer_sequence<uint32_t, 8>());
+  U8 hv[2];
   std::memcpy(&hv, hashes, sizeof hv);
-  F8 r[4];
-  for (int k = 0; k < 3; ++k) {
-    F8 f0 = F8{} + f[k], f1 = F8{} + (f[k] - 1.0f);
-    r[k] = ((lane >> k) & 1u) != 0u ? f1 : f0;
-  }
+  F8 r[3];
+  corner_offsets(f, r);
   const float w[2] = {f[3], f[3] - 1.0f};
-  auto face = [&](const F8& g) { // z, then x, then y, over one w face's eight corners
-    F4 lo, hi;
-    std::memcpy(&lo, &g, sizeof lo);
-    std::memcpy(&hi, reinterpret_cast<const char*>(&g) + sizeof lo, sizeof hi);
-    F4 m = lo * (F4{} + (1.0f - u[2])) + hi * (F4{} + u[2]);
-    F2 a = {m[0], m[2]}, b = {m[1], m[3]};
-    F2 xy = a * (F2{} + (1.0f - u[0])) + b * (F2{} + u[0]);
-    return xy[0] * (1.0f - u[1]) + xy[1] * u[1];
-  };
   for (int j = 0; j < nout; ++j) {
     float faces[2];
     for (int side = 0; side < 2; ++side) {
@@ -255,7 +254,7 @@ inline void perlin4_lanes(const uint32_t* hashes, const float* f, const float* u
       F8 gs = hj < 8u ? r[2] : rw;
       F8 g = ((hj & 1u) != 0u ? -gu : gu) + ((hj & 2u) != 0u ? -gv : gv);
       g = g + ((hj & 4u) != 0u ? -gs : gs);
-      faces[side] = face(g);
+      faces[side] = lerp_zxy(g, u);
     }
     out[j] = 0.8344f * (faces[0] * (1.0f - u[3]) + faces[1] * u[3]);
   }
