@@ -75,6 +75,37 @@ void zero_missing_derivs(LayerEmitter& e, Val& a, Val& b) {
     }
 }
 
+// Whether closure operand `ci` of `op` is a temporary that a `closure` op makes earlier in the
+// same straight run of ops and that nothing else reads: each component it holds is then
+// weighted by `op` alone, so the weight can go into the component (lobe_closure_weight) rather
+// than into a ClosureMul node over it.
+bool fresh_component(LayerEmitter& e, const ir::Op& op, int ci) {
+  const auto& ops = e.shader().ops;
+  if (ops.empty() || &op < ops.data() || &op >= ops.data() + ops.size()) return false;
+  const int at = int(&op - ops.data()), s = op.args[size_t(ci)];
+  if (e.sym(s).kind != ir::SymKind::Temp) return false;
+  int producer = -1, reads = 0;
+  for (int i = 0; i < int(ops.size()); ++i) {
+    const ir::Op& o = ops[size_t(i)];
+    for (size_t a = 0; a < o.args.size(); ++a) {
+      if (o.args[a] != s) continue;
+      reads += ir::op_reads(o, int(a));
+      if (o.writes(int(a))) {
+        if (producer >= 0 || o.opcode != ir::Opcode::Closure) return false;
+        producer = i;
+      }
+    }
+  }
+  if (reads != 1 || producer < 0 || producer >= at) return false;
+  for (int i = producer; i < at; ++i) // no jump out of the run, none into it
+    if (ir::is_jump(ops[size_t(i)].opcode) || ops[size_t(i)].opcode == ir::Opcode::Exit)
+      return false;
+  for (const ir::Op& o : ops)
+    for (int t : o.jumps)
+      if (t > producer && t <= at) return false;
+  return true;
+}
+
 // Closure arithmetic: sums and weights built at run time by shadeops.
 void closure_arith(LayerEmitter& e, const ir::Op& op) {
   auto& B = e.b();
@@ -95,10 +126,12 @@ void closure_arith(LayerEmitter& e, const ir::Op& op) {
       for (const Dual& c : wv) inv.push_back(d.div(d.constant(1), c).v);
       w = e.spill(inv);
     }
-    r = e.call("lobe_closure_mul", {e.sg(), e.load(op.args[size_t(ci)])[0].v, w});
+    r = e.call(fresh_component(e, op, ci) ? "lobe_closure_weight" : "lobe_closure_mul",
+               {e.sg(), e.load(op.args[size_t(ci)])[0].v, w});
   } else if (op.opcode == ir::Opcode::Neg) {
     llvm::Value* w = e.spill({e.fconst(-1), e.fconst(-1), e.fconst(-1)});
-    r = e.call("lobe_closure_mul", {e.sg(), e.load(op.args[1])[0].v, w});
+    r = e.call(fresh_component(e, op, 1) ? "lobe_closure_weight" : "lobe_closure_mul",
+               {e.sg(), e.load(op.args[1])[0].v, w});
   } else {
     e.fail(op, "not defined on closures");
     return;

@@ -783,3 +783,57 @@ TEST(GroupOutputs, UnreadOutputsAreNotComputedAtO2) {
   EXPECT_EQ(run(1, {"a.cheap", "b.y"}), "253|3");
   EXPECT_EQ(run(2, {}), "253|3");
 }
+
+// A component read only by the op weighting it gets the weight in place (codegen's
+// lobe_closure_weight: no ClosureMul node); one read twice, as a variable or as a temporary the
+// optimiser shares, keeps a node per weight, so each use has its own. Either way the tree's
+// terms and weights are those of the source, at every -O level.
+TEST(ClosureBuilders, FreshComponentsAreWeightedInPlaceSharedOnesAreNot) {
+  ShadingSystem ss;
+  DiagnosticList d;
+  ASSERT_TRUE(ss.add_shader_source("w",
+                                   "surface w(int mode = 0) {\n"
+                                   "  closure color c = diffuse(N);\n"
+                                   "  if (mode == 0) Ci = 0.5 * translucent(N) + u * diffuse(N);\n"
+                                   "  else if (mode == 1) Ci = 0.5 * c + 0.25 * c;\n"
+                                   "  else Ci = 0.5 * diffuse(N) + 0.25 * diffuse(N);\n"
+                                   "}\n",
+                                   "w.osl", d))
+      << (d.empty() ? "" : d[0].text);
+  for (int opt : {0, 1, 2})
+    for (int mode : {0, 1, 2}) {
+      auto g = ss.parse_group("param int mode " + std::to_string(mode) + " ; shader w l ;", "g", d);
+      ASSERT_TRUE(g);
+      ss.options().opt_level = opt;
+      auto mat = ss.compile(*g, d);
+      ASSERT_TRUE(mat) << (d.empty() ? "" : d[0].text);
+      ShadingContext ctx;
+      ShaderGlobals sg{};
+      sg.context = &ctx;
+      sg.u = 0.75f;
+      sg.N = sg.Ng = {0, 0, 1};
+      mat->shade(sg);
+      std::string t = closure_tree(sg.Ci);
+      // Weights multiply down the tree: a node [w]* over a component, or its own weight.
+      auto weight_of = [](const ClosureNode* c, float& w) {
+        w = 1;
+        while (c && c->id == kClosureMul) {
+          w *= static_cast<const ClosureMul*>(c)->weight.x;
+          c = static_cast<const ClosureMul*>(c)->closure;
+        }
+        if (c && c->id >= 0) w *= static_cast<const ClosureComponent*>(c)->weight.x;
+        return c ? c->id : -100;
+      };
+      ASSERT_TRUE(sg.Ci && sg.Ci->id == kClosureAdd) << t;
+      auto* add = static_cast<const ClosureAdd*>(sg.Ci);
+      float wa, wb;
+      int ia = weight_of(add->a, wa), ib = weight_of(add->b, wb);
+      const float want_b = mode == 0 ? 0.75f : 0.25f;
+      EXPECT_EQ(wa, 0.5f) << "opt " << opt << " mode " << mode << ": " << t;
+      EXPECT_EQ(wb, want_b) << "opt " << opt << " mode " << mode << ": " << t;
+      EXPECT_GE(ia, 0) << t;
+      EXPECT_GE(ib, 0) << t;
+      if (mode == 0) EXPECT_EQ(t.find("]*"), std::string::npos) << t; // no ClosureMul node
+      if (mode == 1) EXPECT_NE(add->a, add->b); // two nodes over the one component
+    }
+}

@@ -50,7 +50,7 @@ bool linkable(llvm::StringRef name) {
   return name.starts_with("lobe_math_") || name == "lobe_mat_mul" || name == "lobe_transform" ||
          name == "lobe_mat_transpose" || name == "lobe_noise_d" || name == "lobe_noise" ||
          name == "lobe_hash" || name == "lobe_closure_component" || name == "lobe_closure_add" ||
-         name == "lobe_closure_mul";
+         name == "lobe_closure_mul" || name == "lobe_closure_weight";
 }
 
 // What linked code may still call: intrinsics and the JIT's runtime symbols (shadeops.h).

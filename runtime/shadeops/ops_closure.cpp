@@ -73,4 +73,15 @@ const ClosureNode* lobe_closure_mul(ShaderGlobals* sg, const ClosureNode* c, con
   return n;
 }
 
+// `c` is a ClosureComponent fresh from lobe_closure_component (weight 1) that nothing else
+// refers to: weighting it in place gives the tree a ClosureMul over it would (a weight times 1
+// is the weight, exactly), with one node fewer.
+const ClosureNode* lobe_closure_weight(ShaderGlobals* sg, const ClosureNode* c, const float* w) {
+  (void)sg;
+  if (!c || (w[0] == 0.0f && w[1] == 0.0f && w[2] == 0.0f)) return nullptr;
+  auto* k = const_cast<ClosureComponent*>(static_cast<const ClosureComponent*>(c));
+  k->weight = {w[0], w[1], w[2]};
+  return c;
+}
+
 } // extern "C"

@@ -65,6 +65,10 @@ const lobe::ClosureNode* lobe_closure_declared(lobe::ShaderGlobals* sg,
                                                const void* block);
 const lobe::ClosureNode* lobe_closure_mul(lobe::ShaderGlobals* sg, const lobe::ClosureNode* c,
                                           const float* w);
+// A component just made and read by nothing else, weighted in place: as lobe_closure_mul, without
+// the node (codegen uses it for a `closure` result whose only reader is the weighting op).
+const lobe::ClosureNode* lobe_closure_weight(lobe::ShaderGlobals* sg, const lobe::ClosureNode* c,
+                                             const float* w);
 void lobe_mat_mul(float* dst, const float* a, const float* b);
 void lobe_mat_inverse(float* dst, const float* src);
 void lobe_mat_div(float* dst, const float* a, const float* b);

@@ -59,6 +59,7 @@ const ShadeOpSymbol kTable[] = {
     LOBE_SHADEOP(lobe_closure_add),
     LOBE_SHADEOP(lobe_closure_declared),
     LOBE_SHADEOP(lobe_closure_mul),
+    LOBE_SHADEOP(lobe_closure_weight),
     LOBE_SHADEOP(lobe_mat_mul),
     LOBE_SHADEOP(lobe_mat_inverse),
     LOBE_SHADEOP(lobe_mat_div),
