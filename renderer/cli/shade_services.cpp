@@ -103,7 +103,8 @@ ShadeServices::ShadeServices(std::vector<ShadeUserDatum> data, int xres, int yre
   }
   // The camera spaces, kept as common -> space.
   // NDC = screen * (x, y in [-1, 1] -> [0, 1]); raster = NDC * scale(xres, yres, 1).
-  Space camera{"camera", {}, {}}, screen{"screen", {}, {}}, ndc{"NDC", {}, {}}, raster{"raster", {}, {}};
+  Space camera{"camera", {}, {}}, screen{"screen", {}, {}}, ndc{"NDC", {}, {}},
+      raster{"raster", {}, {}};
   for (int k = 0; k < 16; ++k) camera.m[k] = k % 5 == 0 ? 1.0f : 0.0f;
   std::memcpy(screen.m, common_to[3], sizeof screen.m);
   const float to_ndc[16] = {0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 1, 0, 0.5f, 0.5f, 0, 1};

@@ -755,8 +755,8 @@ TEST(GroupOutputs, UnreadOutputsAreNotComputedAtO2) {
                                    " output float fed = 0) {\n"
                                    "  cheap = 2;\n  costly = sqrt(u + 16);\n  fed = u - 6;\n}\n",
                                    "two.osl", d));
-  ASSERT_TRUE(ss.add_shader_source("sink", "shader sink(float x = 0, output float y = 0) { y = x; }",
-                                   "sink.osl", d));
+  ASSERT_TRUE(ss.add_shader_source(
+      "sink", "shader sink(float x = 0, output float y = 0) { y = x; }", "sink.osl", d));
   auto run = [&](int opt, std::vector<std::string> outputs) {
     auto g = ss.parse_group("shader two a ; shader sink b ; connect a.fed b.x ;", "g", d);
     EXPECT_TRUE(g);

@@ -44,8 +44,9 @@ const std::string& bitcode_bytes() {
 
 // The shadeops worth linking: pure functions of their arguments on the hot path whose calls
 // carry constants to specialise on (noise) or that are small (math, hash, the closure
-// builders, which bump the context's arena, and the matrix product, transpose and transform; inverse, division and determinant cost more compile time
-// than they save: docs/runtime.md, "Shadeop bitcode").
+// builders, which bump the context's arena, and the matrix product, transpose and transform;
+// inverse, division and determinant cost more compile time than they save: docs/runtime.md,
+// "Shadeop bitcode").
 bool linkable(llvm::StringRef name) {
   return name.starts_with("lobe_math_") || name == "lobe_mat_mul" || name == "lobe_transform" ||
          name == "lobe_mat_transpose" || name == "lobe_noise_d" || name == "lobe_noise" ||

@@ -300,10 +300,8 @@ inline __attribute__((always_inline)) void perlin_cell(const T* xin, const int* 
   constexpr int kCorners = 1 << N;
   uint32_t h[kCorners];
   corner_hashes<N>(K0, K1, h);
-  if constexpr (std::is_same_v<T, float> && N == 3)
-    return perlin3_lanes(h, f, u, nout, out);
-  if constexpr (std::is_same_v<T, float> && N == 4)
-    return perlin4_lanes(h, f, u, nout, out);
+  if constexpr (std::is_same_v<T, float> && N == 3) return perlin3_lanes(h, f, u, nout, out);
+  if constexpr (std::is_same_v<T, float> && N == 4) return perlin4_lanes(h, f, u, nout, out);
   for (int j = 0; j < nout; ++j) {
     const int shift = nout == 1 ? 0 : 8 * j;
     T g[kCorners];

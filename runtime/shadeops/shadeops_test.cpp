@@ -379,8 +379,8 @@ TEST(Noise, OslValues) {
 // testshade -g 1 1 n4` printing `noise("perlin", p, w)`, `snoise(p, w)` and
 // `vector(snoise(p))` with %.9g at these p and w.
 TEST(Noise, GradientNoise3dAnd4dAsOsl) {
-  const float p[4][3] = {{0.3f, 1.7f, -0.4f}, {-12.25f, 3.5f, 7.75f}, {101.1f, -0.02f, 44.4f},
-                         {5, 6, 7}};
+  const float p[4][3] = {
+      {0.3f, 1.7f, -0.4f}, {-12.25f, 3.5f, 7.75f}, {101.1f, -0.02f, 44.4f}, {5, 6, 7}};
   const float w[4] = {2.6f, -3.3f, 0.5f, 8};
   const float n4[4][3] = {{0.380862951f, 0.113822117f, -0.632481456f},
                           {0.49426201f, 0.371457756f, -0.0644355342f},

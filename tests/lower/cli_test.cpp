@@ -207,8 +207,7 @@ TEST(LobeCompile, EmitLlvmPrintsTheGroupAfterTheJitPipeline) {
     EXPECT_NE(r.out.find("define void @group_entry(ptr"), std::string::npos) << opt << r.out;
     EXPECT_NE(r.out.find("ret void"), std::string::npos) << opt;
     // The closure builder is called below -O2 and inlined from the shadeop bitcode at -O2.
-    EXPECT_EQ(r.out.find("@lobe_closure_component") != std::string::npos,
-              std::string(opt) != "-O2")
+    EXPECT_EQ(r.out.find("@lobe_closure_component") != std::string::npos, std::string(opt) != "-O2")
         << opt;
     EXPECT_TRUE(r.err.empty()) << r.err;
   }
@@ -243,8 +242,7 @@ TEST(LobeCompile, EmitAsmPrintsHostAssembly) {
     EXPECT_NE(r.out.find("\ngroup_entry:"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("\n\tret"), std::string::npos) << r.out;
     // Called at -O0, inlined at -O2 (the shadeop bitcode).
-    EXPECT_EQ(r.out.find("lobe_closure_component") != std::string::npos,
-              std::string(opt) == "-O0")
+    EXPECT_EQ(r.out.find("lobe_closure_component") != std::string::npos, std::string(opt) == "-O0")
         << r.out;
     EXPECT_EQ(r.out.find("define "), std::string::npos) << "assembly, not LLVM IR";
   }

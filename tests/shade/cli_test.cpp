@@ -270,14 +270,13 @@ TEST(ShadeCli, CameraSpacesAreDestinationsOnlyAsInTestshade) {
 // (computed once, as the shadeops would at every point) and the bits are testshade's.
 // Expected: OSL 1.13.12, `oslc inv.osl; testshade -g 1 1 inv`.
 TEST(ShadeCli, InverseSpaceMatricesAsTestshade) {
-  auto dir = scratch_dir(
-      "inv.osl",
-      "shader inv()\n{\n    matrix m;\n"
-      "    getmatrix(\"common\", \"object\", m);\n    printf(\"%.9g\\n\", m);\n"
-      "    getmatrix(\"world\", \"shader\", m);\n    printf(\"%.9g\\n\", m);\n"
-      "    getmatrix(\"common\", \"myspace\", m);\n    printf(\"%.9g\\n\", m);\n"
-      "    printf(\"%.9g | %.9g\\n\", transform(\"object\", point(1.5, -2, 3)),"
-      " transform(\"common\", \"shader\", vector(0.25, 1, -4)));\n}\n");
+  auto dir = scratch_dir("inv.osl",
+                         "shader inv()\n{\n    matrix m;\n"
+                         "    getmatrix(\"common\", \"object\", m);\n    printf(\"%.9g\\n\", m);\n"
+                         "    getmatrix(\"world\", \"shader\", m);\n    printf(\"%.9g\\n\", m);\n"
+                         "    getmatrix(\"common\", \"myspace\", m);\n    printf(\"%.9g\\n\", m);\n"
+                         "    printf(\"%.9g | %.9g\\n\", transform(\"object\", point(1.5, -2, 3)),"
+                         " transform(\"common\", \"shader\", vector(0.25, 1, -4)));\n}\n");
   EXPECT_EQ(run_in(dir, "-g 1 1 inv"),
             "-4.37113883e-08 -1 0 0 1 -4.37113883e-08 0 0 0 0 1 0 -1 4.37113883e-08 0 1\n"
             "0.707106829 -0.707106829 0 0 0.707106829 0.707106829 0 0 0 0 1 0 -0.707106829 "
