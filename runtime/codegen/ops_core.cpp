@@ -97,6 +97,15 @@ bool fresh_component(LayerEmitter& e, const ir::Op& op, int ci) {
     }
   }
   if (reads != 1 || producer < 0 || producer >= at) return false;
+  // Both in the main body, or both in one parameter's default (regions run separately).
+  const int body = e.shader().main_begin;
+  if ((producer >= body) != (at >= body)) return false;
+  if (at < body) {
+    bool same = false;
+    for (const ir::Symbol& p : e.shader().symbols)
+      same |= p.init_begin <= producer && at < p.init_end;
+    if (!same) return false;
+  }
   for (int i = producer; i < at; ++i) // no jump out of the run, none into it
     if (ir::is_jump(ops[size_t(i)].opcode) || ops[size_t(i)].opcode == ir::Opcode::Exit)
       return false;
