@@ -5,6 +5,7 @@
 #include "group_build.h"
 #include "ir/parser.h"
 #include "ir/printer.h"
+#include "lobe/bsdf.h"
 #include "lobe/shadingsys.h"
 #include "shader_source.h"
 
@@ -681,12 +682,9 @@ std::string closure_tree(const ClosureNode* c) {
     std::snprintf(w, sizeof w, "[%.9g %.9g %.9g]*", m->weight.x, m->weight.y, m->weight.z);
     return w + closure_tree(m->closure);
   }
-  auto* k = static_cast<const ClosureComponent*>(c);
-  float n[4]; // the first 16 bytes of the parameters (N and one float, for most)
-  std::memcpy(n, k->params(), sizeof n);
-  char s[128];
-  std::snprintf(s, sizeof s, "c%d{%.9g %.9g %.9g %.9g}", int(c->id), n[0], n[1], n[2], n[3]);
-  return s;
+  // The component and its parameters as Lobe prints them (weight 1 here: the nodes above it
+  // are printed by this function, a weight set in place by closure_to_string).
+  return "{" + closure_to_string(c) + "}";
 }
 } // namespace
 
@@ -738,7 +736,9 @@ TEST(ClosureBuilders, InlinedAtO2BuildWhatTheNativeOnesBuild) {
             ++adds;
           EXPECT_EQ(adds, 2u) << tree[1];
         }
-        if (arena == 0) EXPECT_EQ(tree[1], "null");
+        if (arena == 0) {
+          EXPECT_EQ(tree[1], "null");
+        }
       }
   EXPECT_GT(dropped_somewhere, 0);
 }
@@ -833,7 +833,11 @@ TEST(ClosureBuilders, FreshComponentsAreWeightedInPlaceSharedOnesAreNot) {
       EXPECT_EQ(wb, want_b) << "opt " << opt << " mode " << mode << ": " << t;
       EXPECT_GE(ia, 0) << t;
       EXPECT_GE(ib, 0) << t;
-      if (mode == 0) EXPECT_EQ(t.find("]*"), std::string::npos) << t; // no ClosureMul node
-      if (mode == 1) EXPECT_NE(add->a, add->b); // two nodes over the one component
+      if (mode == 0) { // no ClosureMul node
+        EXPECT_EQ(t.find("]*"), std::string::npos) << t;
+      }
+      if (mode == 1) { // two nodes over the one component
+        EXPECT_NE(add->a, add->b);
+      }
     }
 }
