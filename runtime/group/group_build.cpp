@@ -83,6 +83,20 @@ struct Link { // a resolved connection, by names
   bool dead = false; // replaced by the source's known value (elide_known_outputs)
 };
 
+// Whether one of the group's renderer outputs ("var", or "layer.var") names `var` of `layer`.
+bool renderer_reads(const ShaderGroup& group, const std::string& layer, const std::string& var) {
+  for (const std::string& ro : group.renderer_outputs) {
+    size_t dot = ro.find('.');
+    if (dot == std::string::npos) {
+      if (ro == var) return true;
+    } else if ((dot == 0 || ro.compare(0, dot, layer) == 0) &&
+               ro.compare(dot + 1, std::string::npos, var) == 0) {
+      return true;
+    }
+  }
+  return false;
+}
+
 bool is_param(const ir::Symbol& s) {
   return s.kind == SymKind::Param || s.kind == SymKind::OutputParam;
 }
@@ -491,15 +505,9 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     for (const std::string& e : group.entry_layers)
       if (e == group.layers[i].name) needed[i] = entry[i] = true;
   for (size_t i = 0; i + 1 < n && group.entry_layers.empty(); ++i)
-    for (const std::string& ro : group.renderer_outputs) {
-      size_t dot = ro.find('.');
-      std::string layer = dot == std::string::npos ? "" : ro.substr(0, dot);
-      std::string var = dot == std::string::npos ? ro : ro.substr(dot + 1);
-      int s = sources[i]->find_symbol(var);
-      if ((layer.empty() || layer == group.layers[i].name) && s >= 0 &&
-          sources[i]->symbols[size_t(s)].kind == ir::SymKind::OutputParam)
+    for (const ir::Symbol& s : sources[i]->symbols)
+      if (s.kind == ir::SymKind::OutputParam && renderer_reads(group, group.layers[i].name, s.name))
         needed[i] = entry[i] = true;
-    }
   for (size_t i = n; i-- > 0;)
     for (const Link& l : links)
       if (l.dst_layer == int(i) && needed[i]) needed[size_t(l.src_layer)] = true;
@@ -580,13 +588,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         if (s.kind != SymKind::OutputParam) continue;
         bool read = false;
         for (const Link& l : links) read |= l.src_layer == int(i) && l.src.symbol == s.name;
-        for (const std::string& ro : group.renderer_outputs) {
-          size_t dot = ro.find('.');
-          std::string layer = dot == std::string::npos ? "" : ro.substr(0, dot);
-          std::string var = dot == std::string::npos ? ro : ro.substr(dot + 1);
-          read |= (layer.empty() || layer == group.layers[i].name) && var == s.name;
-        }
-        s.unread = !read;
+        s.unread = !read && !renderer_reads(group, group.layers[i].name, s.name);
       }
     if (specialize) specialize_layer(*sh, values[i], runtime_valued, {out.plan.fast_math});
     new_index[i] = int(out.shaders.size());
