@@ -780,6 +780,9 @@ llvm::Value* texture_args(LayerEmitter& e, const ir::Op& op, size_t first) {
     B.CreateStore(e.fconst(0), at(offsetof(TextureArgs, missing) + 4 * k));
   B.CreateStore(llvm::ConstantPointerNull::get(B.getPtrTy()),
                 at(offsetof(TextureArgs, errormessage)));
+  const std::vector<ir::Op>& ops = e.shader().ops;
+  int op_index = &op >= ops.data() && &op < ops.data() + ops.size() ? int(&op - ops.data()) : 0;
+  B.CreateStore(e.iconst(layer_index(e) * 131 + op_index), at(offsetof(TextureArgs, site)));
   for (size_t i = first; i + 1 < op.args.size(); i += 2) {
     std::string kw = const_string(e.arg(op, int(i)));
     int v = int(i + 1);

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <cstring>
 #include <iterator>
 #include <mutex>
 #include <string>
@@ -74,25 +75,66 @@ void destroy_texture_system(void* p) {
   delete t;
 }
 
-// This thread's record for `t`, created on the thread's first lookup. A thread remembers its
-// records for the last few texture systems it used (one, unless a plugin runs several).
-Perthread* thread_info(Textures* t) {
+// This thread's record for `t` and the lookup site `site` (TextureArgs::site), created on the
+// thread's first lookup from a site. OpenImageIO keeps the last two tiles a record read: with one
+// record per thread, a shader that reads three places in turn (a texture, the same one tiled, a
+// blurred lookup at a coarser level) missed that cache on every lookup and went to the shared
+// tile table, timed with a clock read each time. Sites share kSites records per thread by their
+// number modulo kSites. A thread remembers its records for the last few texture systems it used
+// (one, unless a plugin runs several).
+constexpr size_t kSites = 8;
+Perthread* thread_info(Textures* t, int32_t site = 0) {
   struct Slot {
     uint64_t id = 0;
-    Perthread* info = nullptr;
+    Perthread* info[kSites] = {};
   };
   thread_local Slot slots[4];
   thread_local size_t next = 0;
-  for (const Slot& s : slots)
-    if (s.id == t->id) return t->ts->get_perthread_info(s.info); // (its housekeeping)
+  size_t k = size_t(uint32_t(site)) % kSites;
+  Slot* slot = nullptr;
+  for (Slot& s : slots)
+    if (s.id == t->id) slot = &s;
+  if (!slot) {
+    slot = &slots[next];
+    next = (next + 1) % std::size(slots);
+    *slot = Slot{t->id, {}};
+  }
+  if (Perthread* info = slot->info[k]) return t->ts->get_perthread_info(info); // (housekeeping)
   Perthread* info = t->ts->create_thread_info();
   {
     std::lock_guard<std::mutex> lock(t->mutex);
     t->threads.push_back(info);
   }
-  slots[next] = Slot{t->id, info};
-  next = (next + 1) % std::size(slots);
+  slot->info[k] = info;
   return t->ts->get_perthread_info(info);
+}
+
+// OpenImageIO's wrap mode of `name`, as TextureOpt::decode_wrapmode reads it (which compares
+// the name with each mode's in turn): the common names by their first letter and one comparison.
+OIIO::TextureOpt::Wrap wrap_mode(const char* name) {
+  using W = OIIO::TextureOpt;
+  const char* full = nullptr;
+  W::Wrap mode = W::WrapDefault;
+  switch (name[0]) {
+  case 'b':
+    full = "black", mode = W::WrapBlack;
+    break;
+  case 'c':
+    full = "clamp", mode = W::WrapClamp;
+    break;
+  case 'p':
+    full = "periodic", mode = W::WrapPeriodic;
+    break;
+  case 'm':
+    full = "mirror", mode = W::WrapMirror;
+    break;
+  case 'd':
+    full = "default", mode = W::WrapDefault;
+    break;
+  default:
+    break;
+  }
+  return full && std::strcmp(name, full) == 0 ? mode : W::decode_wrapmode(name);
 }
 
 OIIO::TextureOpt options(const TextureArgs* a) {
@@ -105,9 +147,10 @@ OIIO::TextureOpt options(const TextureArgs* a) {
   opt.rwidth = a->width[2];
   opt.fill = a->fill;
   opt.firstchannel = a->firstchannel;
-  if (a->wrap[0]) opt.swrap = OIIO::TextureOpt::decode_wrapmode(a->wrap[0]);
-  if (a->wrap[1]) opt.twrap = OIIO::TextureOpt::decode_wrapmode(a->wrap[1]);
-  if (a->wrap[2]) opt.rwrap = OIIO::TextureOpt::decode_wrapmode(a->wrap[2]);
+  // "wrap" names all three with one string: decoded once.
+  if (a->wrap[0]) opt.swrap = wrap_mode(a->wrap[0]);
+  if (a->wrap[1]) opt.twrap = a->wrap[1] == a->wrap[0] ? opt.swrap : wrap_mode(a->wrap[1]);
+  if (a->wrap[2]) opt.rwrap = a->wrap[2] == a->wrap[1] ? opt.twrap : wrap_mode(a->wrap[2]);
   if (a->interp) { // OSL's names; any other (e.g. "bilinear") is the default, as in OSL
     std::string m = a->interp;
     opt.interpmode = m == "closest"  ? OIIO::TextureOpt::InterpClosest
@@ -161,7 +204,7 @@ struct Lookup {
   Perthread* info = nullptr;
 };
 
-Lookup find(Textures* t, const char* file) {
+Lookup find(Textures* t, const char* file, int32_t site) {
   struct Passed {
     uint64_t id = 0;
     const char* ptr = nullptr;
@@ -171,7 +214,7 @@ Lookup find(Textures* t, const char* file) {
   thread_local Passed passed[8];
   thread_local size_t next = 0;
   Lookup l;
-  l.info = thread_info(t);
+  l.info = thread_info(t, site);
   for (const Passed& p : passed)
     if (p.id == t->id && p.ptr == file && p.name == file) return {p.handle, l.info};
   l.handle = t->ts->get_texture_handle(OIIO::ustring(file), l.info);
@@ -204,7 +247,7 @@ Lookup find(Textures* t, const char* file) {
 bool texture(void* tv, const char* file, const TextureArgs* a, float s, float t, float dsdx,
              float dtdx, float dsdy, float dtdy, int n, float* out, float* dds, float* ddt) {
   Textures* x = textures_of(tv);
-  Lookup l = find(x, file);
+  Lookup l = find(x, file, a->site);
   if (!l.handle) return false;
   OIIO::TextureOpt opt = options(a);
   return x->ts->texture(l.handle, l.info, opt, s, t, dsdx, dtdx, dsdy, dtdy, n, out, dds, ddt);
@@ -215,7 +258,7 @@ Imath::V3f v3(const float* p) { return Imath::V3f(p[0], p[1], p[2]); }
 bool texture3d(void* tv, const char* file, const TextureArgs* a, const float* p, const float* dpdx,
                const float* dpdy, const float* dpdz, int n, float* out) {
   Textures* x = textures_of(tv);
-  Lookup l = find(x, file);
+  Lookup l = find(x, file, a->site);
   if (!l.handle) return false;
   OIIO::TextureOpt opt = options(a);
   return x->ts->texture3d(l.handle, l.info, opt, v3(p), v3(dpdx), v3(dpdy), v3(dpdz), n, out);
@@ -224,7 +267,7 @@ bool texture3d(void* tv, const char* file, const TextureArgs* a, const float* p,
 bool environment(void* tv, const char* file, const TextureArgs* a, const float* r,
                  const float* drdx, const float* drdy, int n, float* out) {
   Textures* x = textures_of(tv);
-  Lookup l = find(x, file);
+  Lookup l = find(x, file, a->site);
   if (!l.handle) return false;
   OIIO::TextureOpt opt = options(a);
   return x->ts->environment(l.handle, l.info, opt, v3(r), v3(drdx), v3(drdy), n, out);

@@ -65,7 +65,7 @@ struct Api {
   std::string (*read)(const std::string& path, ImageData& out);
 };
 
-constexpr int kAbi = 1;
+constexpr int kAbi = 2; // 2: TextureArgs::site
 inline constexpr const char* kNoExplanation = "\n";
 
 // The loaded module (loaded once, thread-safe), or null with `why` set.

@@ -52,6 +52,10 @@ struct TextureArgs {
   // "errormessage": the string the lookup writes (null: none): "" when it succeeds, else why it
   // failed (then no error is reported), as OSL.
   const char** errormessage = nullptr;
+  // The lookup's call site (its layer and op), for OpenImageIO's per-thread tile cache: lookups
+  // from one site keep their own, so that a shader reading several places or files in turn does
+  // not evict the tile its other lookups read next (results do not depend on it).
+  int32_t site = 0;
 };
 
 // Noise kinds for lobe_noise (noise("name", ...) and the named functions).
