@@ -39,11 +39,17 @@ inline void mat_mul(float* dst, const float* a, const float* b) {
 }
 
 // Gauss-Jordan with partial pivoting, in float: forward elimination below each pivot, then
-// back substitution. False (and the identity) when a pivot is 0.
+// back substitution. False (and the identity) when a pivot is 0. A row is one 4-lane vector:
+// every element gets the same single operations (a product, a difference, a quotient) as
+// element by element, so the bits are the same; the quotients of a row are one division.
 inline bool mat_invert_gauss_jordan(float* dst, const float* src) {
-  float t[4][4], s[4][4];
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) t[i][j] = src[i * 4 + j], s[i][j] = i == j ? 1.0f : 0.0f;
+  typedef float Row __attribute__((vector_size(16)));
+  Row t[4], s[4];
+  for (int i = 0; i < 4; ++i) {
+    std::memcpy(&t[i], src + 4 * i, sizeof(Row));
+    s[i] =
+        Row{i == 0 ? 1.0f : 0.0f, i == 1 ? 1.0f : 0.0f, i == 2 ? 1.0f : 0.0f, i == 3 ? 1.0f : 0.0f};
+  }
   for (int i = 0; i < 3; ++i) {
     int pivot = i;
     float size = std::fabs(t[i][i]);
@@ -53,11 +59,11 @@ inline bool mat_invert_gauss_jordan(float* dst, const float* src) {
       mat_identity(dst);
       return false;
     }
-    if (pivot != i)
-      for (int j = 0; j < 4; ++j) std::swap(t[i][j], t[pivot][j]), std::swap(s[i][j], s[pivot][j]);
+    if (pivot != i) std::swap(t[i], t[pivot]), std::swap(s[i], s[pivot]);
     for (int j = i + 1; j < 4; ++j) {
       float f = t[j][i] / t[i][i];
-      for (int k = 0; k < 4; ++k) t[j][k] -= f * t[i][k], s[j][k] -= f * s[i][k];
+      t[j] -= f * t[i];
+      s[j] -= f * s[i];
     }
   }
   for (int i = 3; i >= 0; --i) {
@@ -66,10 +72,12 @@ inline bool mat_invert_gauss_jordan(float* dst, const float* src) {
       mat_identity(dst);
       return false;
     }
-    for (int j = 0; j < 4; ++j) t[i][j] /= f, s[i][j] /= f;
+    t[i] /= f;
+    s[i] /= f;
     for (int j = 0; j < i; ++j) {
       f = t[j][i];
-      for (int k = 0; k < 4; ++k) t[j][k] -= f * t[i][k], s[j][k] -= f * s[i][k];
+      t[j] -= f * t[i];
+      s[j] -= f * s[i];
     }
   }
   std::memcpy(dst, s, sizeof s);

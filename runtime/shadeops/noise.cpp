@@ -16,6 +16,7 @@
 #include "lobe/context.h"
 #include "lobe/shading.h"
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -437,29 +438,31 @@ const float* simplex_grad(const int* c, int n, uint32_t seed) {
 
 // OSL's simplexnoise1: corners floor(x) and floor(x) + 1, gradients +-1..8 (grad1), scale 0.36.
 // The derivative is summed in OSL's (Gustavson's sdnoise1) order: -8 * (t0^3 g0 x0^2 + t1^3 g1
-// x1^2) + (t0^4 g0 + t1^4 g1), times the scale.
-LOBE_VARIANT D simplex1(float x, uint32_t seed) {
+// x1^2) + (t0^4 g0 + t1^4 g1), times the scale; only when kPartials (the value is the same).
+template <bool kPartials> LOBE_VARIANT D simplex1(float x, uint32_t seed) {
   int i0 = ifloor(x);
   float x0 = x - float(i0), x1 = x0 - 1.0f;
   float g[2], t[2], t2[2], t4[2], xx[2], n[2];
   for (int c = 0; c < 2; ++c) {
     float xc = c ? x1 : x0;
     uint32_t h = scramble(uint32_t(i0) + uint32_t(c), seed) & 15;
-    g[c] = float(1 + (h & 7));
-    if (h & 8) g[c] = -g[c];
+    // 1 + (h & 7), negated when h & 8: the sign bit set without a branch (a taken-or-not branch
+    // on a hash bit is mispredicted half the time).
+    g[c] = std::bit_cast<float>(std::bit_cast<uint32_t>(float(1 + (h & 7))) | (h & 8) << 28);
     xx[c] = xc * xc;
     t[c] = 1.0f - xx[c]; // |xc| <= 1, so t >= 0
     t2[c] = t[c] * t[c];
     t4[c] = t2[c] * t2[c];
     n[c] = t4[c] * g[c] * xc;
   }
-  float dn = t2[0] * t[0] * g[0] * xx[0];
-  dn += t2[1] * t[1] * g[1] * xx[1];
-  dn *= -8.0f;
-  dn += t4[0] * g[0] + t4[1] * g[1];
-  dn *= 0.36f;
   D r = dconst(0.36f * (n[0] + n[1]));
-  r.d[0] = dn;
+  if constexpr (kPartials) {
+    float dn = t2[0] * t[0] * g[0] * xx[0];
+    dn += t2[1] * t[1] * g[1] * xx[1];
+    dn *= -8.0f;
+    dn += t4[0] * g[0] + t4[1] * g[1];
+    r.d[0] = dn * 0.36f;
+  }
   return r;
 }
 
@@ -539,7 +542,7 @@ template <int N, bool kPartials> LOBE_VARIANT D simplex_n(Inputs in, uint32_t se
 template <bool kPartials> D simplex(const float* x, int n, uint32_t seed) {
   switch (n) {
   case 1:
-    return simplex1(x[0], seed);
+    return simplex1<kPartials>(x[0], seed);
   case 2:
     return simplex_n<2, kPartials>(inputs(x, 2), seed);
   case 3:

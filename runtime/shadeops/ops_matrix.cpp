@@ -26,12 +26,16 @@ using lobe::math::mat_invert;
 using lobe::math::mat_is_identity;
 using lobe::math::mat_mul;
 
+// Whether `s` is `name` (strcmp stops at the first difference; a string_view would first
+// measure `s`, on every transform of every point).
+bool is(const char* s, const char* name) { return std::strcmp(s, name) == 0; }
+
 // space -> common; false for an unknown name. The renderer answers first (any name but
 // "common" and "world").
 bool space_to_common(const ShaderGlobals* sg, const char* space, float* m) {
-  std::string_view s = space;
   mat_identity(m);
-  if (s == "common" || s == "world") return true;
+  if (is(space, "common") || is(space, "world")) return true;
+  std::string_view s = space;
   if (sg && sg->context && sg->context->renderer && sg->context->renderer->get_matrix(*sg, s, m))
     return true;
   mat_identity(m);
@@ -73,10 +77,9 @@ int lobe_get_matrix(ShaderGlobals* sg, const char* from, const char* to, float* 
   float a[16], b[16], binv[16];
   bool ok = space_to_common(sg, from, a);
   if (!ok) unknown_space(sg, from);
-  std::string_view t = to;
   bool ok2 = true;
-  if (t == "common" || t == "world" || !sg || !sg->context || !sg->context->renderer ||
-      !sg->context->renderer->get_inverse_matrix(*sg, t, binv)) {
+  if (is(to, "common") || is(to, "world") || !sg || !sg->context || !sg->context->renderer ||
+      !sg->context->renderer->get_inverse_matrix(*sg, to, binv)) {
     ok2 = space_to_common(sg, to, b);
     if (!ok2) unknown_space(sg, to);
     // To "common" or "world" (or any space that is the identity): the inversion is skipped and
