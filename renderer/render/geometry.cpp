@@ -50,7 +50,9 @@ std::string Geometry::build(const std::vector<scene::Shape>& shapes) {
     if (s.kind == scene::Shape::Kind::Mesh) triangles += s.mesh.indices.size() / 3;
   rtcSetSceneBuildQuality(scene_, triangles > kMediumBuildTriangles ? RTC_BUILD_QUALITY_MEDIUM
                                                                     : RTC_BUILD_QUALITY_HIGH);
-  meshes_.assign(shapes.size(), {});
+  static const scene::Mesh kNoMesh;
+  mesh_of_.assign(shapes.size(), &kNoMesh);
+  quads_.clear();
   for (size_t i = 0; i < shapes.size(); ++i) {
     const scene::Shape& s = shapes[i];
     RTCGeometry g;
@@ -60,8 +62,13 @@ std::string Geometry::build(const std::vector<scene::Shape>& shapes) {
           rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 16, 1));
       v[0] = s.center.x, v[1] = s.center.y, v[2] = s.center.z, v[3] = s.radius;
     } else {
-      meshes_[i] = s.kind == scene::Shape::Kind::Quad ? quad_mesh(s) : s.mesh;
-      const scene::Mesh& m = meshes_[i];
+      if (s.kind == scene::Shape::Kind::Quad) {
+        quads_.push_back(std::make_unique<scene::Mesh>(quad_mesh(s)));
+        mesh_of_[i] = quads_.back().get();
+      } else {
+        mesh_of_[i] = &s.mesh;
+      }
+      const scene::Mesh& m = *mesh_of_[i];
       g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
       auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
           g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, m.positions.size()));
@@ -177,7 +184,7 @@ void Geometry::surface(int shape, int prim, float bu, float bv, SurfaceHit& hit)
     hit.dPdv = Vec3{d.y * d.x * inv, -st, d.y * d.z * inv} * (kPi * s.radius);
     return;
   }
-  const scene::Mesh& m = meshes_[shape];
+  const scene::Mesh& m = *mesh_of_[size_t(shape)];
   const uint32_t* tri = &m.indices[3 * size_t(prim)];
   Vec3 p[3] = {m.positions[tri[0]], m.positions[tri[1]], m.positions[tri[2]]};
   float b0 = 1 - bu - bv;

@@ -13,6 +13,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -68,13 +69,16 @@ public:
   Vec3 center() const { return center_; }
   float radius() const { return radius_; }
   // World-space triangles of a mesh or quad shape (3 vertex indices each).
-  const scene::Mesh& mesh(int shape) const { return meshes_[shape]; }
+  const scene::Mesh& mesh(int shape) const { return *mesh_of_[size_t(shape)]; }
 
 private:
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   const std::vector<scene::Shape>* shapes_ = nullptr;
-  std::vector<scene::Mesh> meshes_; // per shape; quads converted, spheres empty
+  // Per shape: its own mesh (read in place: a mesh shape's triangles are not copied), a quad's
+  // two triangles (in quads_), or an empty mesh for a sphere.
+  std::vector<const scene::Mesh*> mesh_of_;
+  std::vector<std::unique_ptr<scene::Mesh>> quads_;
   std::vector<int> geom_to_shape_;
   std::vector<char> tangents_;
   Vec3 center_;

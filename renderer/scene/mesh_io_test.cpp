@@ -162,3 +162,68 @@ TEST(MeshIo, PlyBadListsAndEmptyElementsAreErrors) {
             std::string::npos)
       << e;
 }
+
+// Quads are split along the shorter diagonal (as tinyobjloader's ObjReader splits them), on the
+// streaming path that reads them.
+TEST(MeshIo, ObjQuadsSplitAlongTheShorterDiagonal) {
+  Mesh m;
+  // Diagonal 1-3 (length^2 2) is shorter than 0-2 (10): triangles 0 1 3 and 1 2 3, whose
+  // vertices are numbered in order of first use (0 1 3 2), so 0 1 2 and 1 3 2.
+  ASSERT_EQ(load_mesh(write_file("q13.obj", "v 0 0 0\nv 1 0 0\nv 3 1 0\nv 0 1 0\nf 1 2 3 4\n"), m),
+            "");
+  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 1, 3, 2}));
+  ASSERT_EQ(m.positions.size(), 4u);
+  EXPECT_FLOAT_EQ(m.positions[2].y, 1.0f); // the file's fourth vertex, (0, 1, 0)
+  EXPECT_FLOAT_EQ(m.positions[3].x, 3.0f); // its third, (3, 1, 0)
+  // Diagonal 0-2 (2) shorter than 1-3 (13): 0 1 2 and 0 2 3.
+  ASSERT_EQ(load_mesh(write_file("q02.obj", "v 0 0 0\nv 2 0 0\nv 1 1 0\nv 0 3 0\nf 1 2 3 4\n"), m),
+            "");
+  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
+}
+
+TEST(MeshIo, ObjRelativeIndicesAndLateNormals) {
+  Mesh m;
+  // -1 is the last vertex read so far; the second face's -3 -2 -1 are vertices 4 5 6.
+  ASSERT_EQ(load_mesh(write_file("rel.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n"
+                                            "v 0 0 1\nv 1 0 1\nv 0 1 1\nf -3 -2 -1\n"),
+                      m),
+            "");
+  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));
+  EXPECT_FLOAT_EQ(m.positions[3].z, 1.0f);
+  // A positive index may name a normal written after the face.
+  ASSERT_EQ(load_mesh(write_file("late.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//1 2//1 3//1\n"
+                                             "vn 0 0 -1\n"),
+                      m),
+            "");
+  ASSERT_EQ(m.normals.size(), 3u);
+  EXPECT_FLOAT_EQ(m.normals[2].z, -1.0f);
+}
+
+// A polygon of five or more corners is triangulated by ObjReader (the whole file is read again
+// that way): a convex pentagon is three triangles over its five corners.
+TEST(MeshIo, ObjPentagonIsTriangulated) {
+  Mesh m;
+  ASSERT_EQ(load_mesh(write_file("pent.obj", "v 0 0 0\nv 2 0 0\nv 3 1 0\nv 1 2 0\nv -1 1 0\n"
+                                             "f 1 2 3 4 5\nf 1 2 3\n"),
+                      m),
+            "");
+  EXPECT_EQ(m.indices.size(), 12u);
+  EXPECT_EQ(m.positions.size(), 5u);
+}
+
+TEST(MeshIo, ObjIndexErrorsNameTheFace) {
+  Mesh m;
+  std::string e = load_mesh(write_file("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"), m);
+  EXPECT_NE(e.find("face vertex index 0 out of range (3 vertices), in face 1"), std::string::npos)
+      << e;
+  e = load_mesh(write_file("face2.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n"), m);
+  EXPECT_NE(e.find("face vertex index 4 out of range (3 vertices), in face 2"), std::string::npos)
+      << e;
+  e = load_mesh(write_file("relq.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf -1 -2 -3 -4\n"), m);
+  EXPECT_NE(e.find("face vertex index -4 out of range (3 vertices), in face 2"), std::string::npos)
+      << e;
+  e = load_mesh(write_file("nofile.obj", ""), m);
+  EXPECT_NE(e.find("no faces"), std::string::npos) << e;
+  e = load_mesh("/nonexistent/dir/x.obj", m);
+  EXPECT_NE(e.find("/nonexistent/dir/x.obj: cannot read OBJ file"), std::string::npos) << e;
+}
