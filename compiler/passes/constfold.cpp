@@ -93,7 +93,9 @@ bool Folder::fold_closure(Op& op) {
   return false;
 }
 
-// pow(x, k) of a varying x and a constant float k, as OSL's optimizer rewrites it: k = 0.5 is
+// pow(x, k) of a varying x and a constant float k, as OSL's optimizer rewrites it: k = 2 is
+// x * x (OSL 1.13.12 prints "inf 3.40282347e+38" for printf("%.9g %.9g", pow(x, 2), pow(x, 2 +
+// z)) with x = 1e20 + floor(u) and z = floor(u), testshade -g 1 1), k = 0.5 is
 // sqrt(x), -0.5 inversesqrt(x), 1/3 cbrt(x) (so pow(-8, 1.0/3) is -2 for a varying -8, while
 // fully constant pow folds with pow's own rules, to 0). OSL 1.13.12 prints "pw -2 0 0" for
 // printf("pw %g %g %g", pow(a, 1.0/3), pow(a, 0.5), pow(a, -0.5)) with a = -8 a lockgeom=0
@@ -105,6 +107,12 @@ bool Folder::fold_pow(Op& op) {
   const Symbol& k = sh_.symbols[op.args[2]];
   if (k.type != Type{BaseType::Float} || k.init.size() != 1) return false;
   float e = k.init[0].f;
+  if (e == 2.0f) { // x * x: a square that overflows is inf, where pow gives the largest float
+    op.opcode = Opcode::Mul;
+    op.args[2] = op.args[1];
+    changed_ = true;
+    return true;
+  }
   std::optional<Opcode> fn = e == 0.5f               ? Opcode::Sqrt
                              : e == -0.5f            ? Opcode::InverseSqrt
                              : e == float(1.0 / 3.0) ? std::optional(Opcode::Cbrt)

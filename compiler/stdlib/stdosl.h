@@ -97,16 +97,25 @@ void fresnel(vector I, normal N, float eta, output float Kr, output float Kt) {
   fresnel(I, N, eta, Kr, Kt, R, T);
 }
 
-// Rotation of a point by `angle` radians about the axis through a and b (Rodrigues' formula).
+// Rotation of a point by `angle` radians about the axis through a and b: the rotation matrix
+// about the unit axis (x, y, z), entry by entry as OSL's stdosl.h writes it, applied to p - a, so
+// that results agree with OSL's to the bit. A matrix carries no derivatives, so only those of p
+// reach the result (as in OSL).
 point rotate(point p, float angle, point a, point b) {
   vector axis = normalize(b - a);
-  vector v = p - a;
-  float cosang = cos(angle), sinang = sin(angle);
-  vector r = v * cosang + cross(axis, v) * sinang + axis * dot(axis, v) * (1 - cosang);
-  return a + r;
+  float cosang, sinang;
+  sincos(angle, sinang, cosang);
+  float cosang1 = 1.0 - cosang;
+  float x = axis[0], y = axis[1], z = axis[2];
+  matrix M = matrix(x * x + (1.0 - x * x) * cosang, x * y * cosang1 + z * sinang,
+                    x * z * cosang1 - y * sinang, 0.0, x * y * cosang1 - z * sinang,
+                    y * y + (1.0 - y * y) * cosang, y * z * cosang1 + x * sinang, 0.0,
+                    x * z * cosang1 + y * sinang, y * z * cosang1 - x * sinang,
+                    z * z + (1.0 - z * z) * cosang, 0.0, 0.0, 0.0, 0.0, 1.0);
+  return transform(M, p - a) + a;
 }
 point rotate(point p, float angle, vector axis) {
-  return rotate(p, angle, point(0, 0, 0), point(axis));
+  return rotate(p, angle, point(0), point(axis));
 }
 
 // Steps
@@ -140,7 +149,7 @@ float smooth_linearstep(float edge0, float edge1, float x_, float eps_) {
     else if (x < eps)
       result = rampup(x + eps, 2.0 * eps);
     else
-      result = 1.0 - rampup(1.0 - x + eps, 2.0 * eps);
+      result = 1.0 - rampup(1.0 + eps - x, 2.0 * eps);
   } else {
     result = step(edge0, x_);
   }
