@@ -5,6 +5,7 @@
 
 #include "closure_registry.h"
 #include "env.h"
+#include "format.h"
 #include "lobe/renderer_services.h"
 #include "lobe/shading.h"
 #include "shadeops.h"
@@ -85,6 +86,13 @@ void op_printf(LayerEmitter& e, const ir::Op& op) {
   format_args(e, op, fmt_i + 1, codes, argv);
   llvm::Value* fmt = e.load(op.args[fmt_i])[0].v;
   if (returns) {
+    // OSL's optimizer folds a format() of constants with C's conversions; run while shading,
+    // it rounds exact ties away from zero (shadeops/format.h, FormatRule).
+    bool folded = e.group().opt_level > 0;
+    for (size_t i = fmt_i; i < op.args.size(); ++i)
+      folded = folded && e.arg(op, int(i)).kind == ir::SymKind::Const;
+    codes.insert(codes.begin(),
+                 folded ? shadeops::kFormatFoldedCode : shadeops::kFormatRuntimeCode);
     e.store(op.args[0],
             Val{Dual{e.call("lobe_format", {e.env_ptr(), fmt, e.string_const(codes), argv})}});
     return;

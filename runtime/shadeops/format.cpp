@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 
 namespace lobe::shadeops {
 namespace {
@@ -56,15 +58,54 @@ std::string pad(const std::string& head, std::string body, bool right, bool zero
 
 // A string through OSL's printf: truncated to the precision and, unlike C, left-aligned in its
 // width (OSL 1.13 prints "%10s" of "str" as "str       "); a 0 flag pads with zeros on the left.
-std::string format_string(const std::string& head, const char* s) {
+// Through format() it is right-aligned, as in C, unless the - flag says otherwise.
+std::string format_string(const std::string& head, const char* s, FormatRule rule) {
   std::string body = s ? s : "";
   size_t dot = head.find('.');
   if (dot != std::string::npos)
     body = body.substr(0, size_t(std::max(0, std::atoi(head.c_str() + dot + 1))));
-  bool zeros = head.find('0') != std::string::npos && head.find('-') == std::string::npos &&
+  bool left = head.find('-') != std::string::npos;
+  bool zeros = head.find('0') != std::string::npos && !left &&
                head.find_first_of("0") < head.find_first_of("123456789.");
   std::string h = head.substr(0, dot);
-  return pad(h, body, zeros, zeros);
+  return pad(h, body, zeros || (rule != FormatRule::Printf && !left), zeros);
+}
+
+// Whether `v` lies exactly halfway between two values of the conversion's precision: its exact
+// decimal expansion (a float's has at most 149 fractional digits and 112 significant ones) has
+// a 5 and nothing after it at the first digit the conversion drops.
+bool exact_tie(const std::string& head, char conv, double v) {
+  if (!std::isfinite(v)) return false;
+  size_t dot = head.find('.');
+  int prec = dot == std::string::npos ? 6 : std::max(0, std::atoi(head.c_str() + dot + 1));
+  char buf[400];
+  std::string_view digits; // the digits that decide, from the first one dropped
+  if (conv == 'f' || conv == 'F') {
+    std::snprintf(buf, sizeof buf, "%.160f", std::fabs(v));
+    const char* point = std::strchr(buf, '.');
+    if (!point || size_t(prec) >= std::strlen(point + 1)) return false;
+    digits = std::string_view(point + 1 + prec);
+  } else { // e, E, g, G: significant digits, precision + 1 for e, the precision (1 for 0) for g
+    int sig = (conv == 'e' || conv == 'E') ? prec + 1 : std::max(prec, 1);
+    std::snprintf(buf, sizeof buf, "%.160e", std::fabs(v));
+    std::string mant(buf, std::strcspn(buf, "eE"));
+    mant.erase(std::remove(mant.begin(), mant.end(), '.'), mant.end());
+    if (size_t(sig) >= mant.size()) return false;
+    static thread_local std::string keep;
+    keep = mant.substr(size_t(sig));
+    digits = keep;
+  }
+  if (digits.empty() || digits[0] != '5') return false;
+  return digits.find_first_not_of('0', 1) == std::string_view::npos;
+}
+
+// A float through format() while shading: C's conversion, but an exact tie rounds away from
+// zero (C rounds it to even) and the # flag is ignored.
+std::string format_float_runtime(std::string head, char conv, double v) {
+  head.erase(std::remove(head.begin(), head.end(), '#'), head.end());
+  if (exact_tie(head, conv, v)) // the next double away from zero is past the tie, not on it
+    v = std::nextafter(v, v < 0 ? -INFINITY : INFINITY);
+  return printf1(head + conv, v);
 }
 
 // An int through OSL's printf: ints are 32 bits, %x and %X print them unsigned (-1 is
@@ -90,10 +131,10 @@ std::string format_int(const std::string& head, char conv, int32_t v) {
 // which converts as OSL does: a float to an int conversion truncates, an int to a float one
 // widens, and %s prints a number as %g would.
 std::string format_scalar(const RuntimeEnv& env, const std::string& head, char conv, bool length,
-                          char code, const void* p) {
+                          char code, const void* p, FormatRule rule) {
   bool int_conv = conv == 'd' || conv == 'i' || conv == 'x' || conv == 'X' || conv == 'o' ||
                   conv == 'u' || conv == 'c';
-  if (code == 's') return format_string(head, *static_cast<const char* const*>(p));
+  if (code == 's') return format_string(head, *static_cast<const char* const*>(p), rule);
   if (code == 'c') { // a closure prints its whole tree, ignoring width and precision (as OSL)
     auto* node = *static_cast<const ClosureNode* const*>(p);
     return closure_text(env, node);
@@ -102,6 +143,8 @@ std::string format_scalar(const RuntimeEnv& env, const std::string& head, char c
   // A float: its own conversions as in C; any other prints as %f, or %g after a length
   // modifier ("%ld" of -3.75 is -3.75), as OSL 1.13 does.
   double v = *static_cast<const float*>(p);
+  if (rule == FormatRule::Format && std::strchr("fFgGeE", conv))
+    return format_float_runtime(head, conv, v);
   if (std::strchr("fFgGeEaA", conv)) return printf1(head + conv, v);
   return printf1(head + (int_conv && length ? 'g' : 'f'), v);
 }
@@ -139,7 +182,7 @@ bool append_bare(std::string& out, char conv, char code, const void* p) {
 // Out of line: its general path's temporaries would burden the bare conversions' caller.
 __attribute__((noinline)) void append_arg(std::string& out, const RuntimeEnv& env,
                                           std::string_view head, char conv, bool length, ArgDesc d,
-                                          const void* p) {
+                                          const void* p, FormatRule rule) {
   size_t stride = (d.code == 's' || d.code == 'c') ? sizeof(void*) : 4;
   int n = components(d.code) * d.count;
   bool bare = head.size() == 1;
@@ -149,7 +192,7 @@ __attribute__((noinline)) void append_arg(std::string& out, const RuntimeEnv& en
     const void* c = static_cast<const char*>(p) + k * stride;
     if (bare && append_bare(out, conv, d.code, c)) continue;
     if (spec.empty()) spec = head;
-    out += format_scalar(env, spec, conv, length, d.code, c);
+    out += format_scalar(env, spec, conv, length, d.code, c, rule);
   }
 }
 
@@ -199,7 +242,7 @@ bool append_all_bare(std::string& out, std::string_view fmt, std::string_view co
 } // namespace
 
 void append_formatted(std::string& out, const RuntimeEnv& env, std::string_view fmt,
-                      std::string_view codes, const void* const* args) {
+                      std::string_view codes, const void* const* args, FormatRule rule) {
   if (append_all_bare(out, fmt, codes, args)) return;
   size_t argpos = 0;
   int argi = 0;
@@ -234,16 +277,16 @@ void append_formatted(std::string& out, const RuntimeEnv& env, std::string_view 
     } else if (head.size() == 1 && d.count == 1 && append_bare(out, conv, d.code, args[argi])) {
       ++argi;
     } else {
-      append_arg(out, env, head, conv, length, d, args[argi++]);
+      append_arg(out, env, head, conv, length, d, args[argi++], rule);
     }
     i = j;
   }
 }
 
 std::string format_values(const RuntimeEnv& env, std::string_view fmt, std::string_view codes,
-                          const void* const* args) {
+                          const void* const* args, FormatRule rule) {
   std::string out;
-  append_formatted(out, env, fmt, codes, args);
+  append_formatted(out, env, fmt, codes, args, rule);
   return out;
 }
 
@@ -263,7 +306,11 @@ constexpr size_t kFormatMemoSlots = 256;
 const char* format_interned(RuntimeEnv& env, const char* fmt, const char* codes,
                             const void* const* args) {
   thread_local std::string text; // keeps its capacity
-  // The memo's key: up to kMemoInts scalar ints ("", "i", "ii", ...) and the format.
+  FormatRule rule = FormatRule::Format;
+  if (codes[0] == kFormatRuntimeCode || codes[0] == kFormatFoldedCode)
+    rule = *codes++ == kFormatFoldedCode ? FormatRule::FormatFolded : FormatRule::Format;
+  // The memo's key: up to kMemoInts scalar ints ("", "i", "ii", ...) and the format (ints
+  // print alike under every rule).
   int count = 0;
   std::array<int32_t, kMemoInts> ints{};
   while (count < kMemoInts && codes[count] == 'i' && codes[count + 1] != '{') {
@@ -281,7 +328,7 @@ const char* format_interned(RuntimeEnv& env, const char* fmt, const char* codes,
       return memo->result;
   }
   text.clear();
-  append_formatted(text, env, fmt, codes, args);
+  append_formatted(text, env, fmt, codes, args, rule);
   const char* result = env.strings.intern(text);
   if (memo) {
     memo->serial = env.strings.serial();
