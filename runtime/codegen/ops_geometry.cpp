@@ -273,7 +273,38 @@ void op_transform(LayerEmitter& e, const ir::Op& op) {
     return e.reload(out, 3);
   };
   Val r = from_values(apply(values(x), kind));
-  if (e.wants_derivs(op.args[0]) && x[0].dx) {
+  if (kind == 0 && e.wants_derivs(op.args[0]) && x[0].dx) {
+    // A point's derivatives through the whole projective map, as OSL's dual arithmetic
+    // computes them: a = p.M's column j (plus its translation), w = p.M's last column, and each
+    // component a / w differentiated by the quotient rule, (1/w) (a' - (a/w) w'); 0 where w is
+    // 0. (For an affine matrix w is 1 and w' 0; through a perspective one the divide matters:
+    // transform("raster", P) with derivatives.)
+    auto& B = e.b();
+    std::vector<llvm::Value*> M = e.reload(m, 16);
+    auto col = [&](int j, llvm::Value* a, llvm::Value* b, llvm::Value* c, bool translate) {
+      llvm::Value* s =
+          B.CreateFAdd(B.CreateFMul(a, M[size_t(j)]), B.CreateFMul(b, M[size_t(4 + j)]));
+      s = B.CreateFAdd(s, B.CreateFMul(c, M[size_t(8 + j)]));
+      return translate ? B.CreateFAdd(s, M[size_t(12 + j)]) : s;
+    };
+    auto part = [&](llvm::Value* v) { return v ? v : e.fconst(0); };
+    llvm::Value* w = col(3, x[0].v, x[1].v, x[2].v, true);
+    llvm::Value* w0 = B.CreateFCmpOEQ(w, e.fconst(0));
+    llvm::Value* safe_w = B.CreateSelect(w0, e.fconst(1), w);
+    llvm::Value* winv = B.CreateFDiv(e.fconst(1), safe_w);
+    llvm::Value* wdx = col(3, part(x[0].dx), part(x[1].dx), part(x[2].dx), false);
+    llvm::Value* wdy = col(3, part(x[0].dy), part(x[1].dy), part(x[2].dy), false);
+    for (int j = 0; j < 3; ++j) {
+      llvm::Value* a = col(j, x[0].v, x[1].v, x[2].v, true);
+      llvm::Value* q = B.CreateFDiv(a, safe_w);
+      auto d = [&](llvm::Value* ad, llvm::Value* wd) {
+        llvm::Value* v = B.CreateFMul(winv, B.CreateFSub(ad, B.CreateFMul(q, wd)));
+        return B.CreateSelect(w0, e.fconst(0), v);
+      };
+      r[size_t(j)].dx = d(col(j, part(x[0].dx), part(x[1].dx), part(x[2].dx), false), wdx);
+      r[size_t(j)].dy = d(col(j, part(x[0].dy), part(x[1].dy), part(x[2].dy), false), wdy);
+    }
+  } else if (e.wants_derivs(op.args[0]) && x[0].dx) {
     std::vector<llvm::Value*> dx, dy;
     for (const Dual& c : x) {
       dx.push_back(c.dx ? c.dx : e.fconst(0));

@@ -157,6 +157,26 @@ void op_isclass(LayerEmitter& e, const ir::Op& op) {
   e.store(op.args[0], Val{Dual{B.CreateZExt(r, e.i32())}});
 }
 
+// fmod(a, b) for a divisor not known while compiling, as OSL computes it then: a - int(a/b) * b
+// (one rounding: an fma) with the quotient truncated as x86's cvttss2si does (INT_MIN outside int32
+// and for NaN), 0 where b is 0. It is not C's fmod: a quotient that rounds up to a whole number
+// leaves a tiny remainder, not about b, and a huge one is garbage. OSL 1.13.12 prints
+// "3.7252903e-08 1.64424509e+10 0" for printf("%.9g %.9g %.9g", fmod(-2.5 + z, 0.1 + z), fmod(1e10
+// + z, 3 + z), fmod(-7.5 + z, 2.5 + z)) with z = floor(u) (testshade -g 1 1); with a constant
+// divisor, C's fmod ("-0.0999999642" for fmod(-2.5 + z, 0.1)).
+llvm::Value* fmod_varying(LayerEmitter& e, llvm::Value* a, llvm::Value* b) {
+  auto& B = e.b();
+  llvm::Value* b0 = B.CreateFCmpOEQ(b, e.fconst(0));
+  llvm::Value* q = B.CreateFDiv(a, B.CreateSelect(b0, e.fconst(1), b));
+  llvm::Value* in_range =
+      B.CreateFCmpOLT(B.CreateUnaryIntrinsic(llvm::Intrinsic::fabs, q), e.fconst(2147483648.0f));
+  llvm::Value* n = B.CreateSelect(in_range, B.CreateFPToSI(q, e.i32()), e.iconst(INT32_MIN));
+  // a - n b rounded once (OSL's shadeop is C++ compiled with contraction: an fma)
+  llvm::Value* r = B.CreateIntrinsic(llvm::Intrinsic::fma, {e.f32()},
+                                     {B.CreateFNeg(B.CreateSIToFP(n, e.f32())), b, a});
+  return B.CreateSelect(b0, e.fconst(0), r);
+}
+
 // Binary and ternary per-component functions.
 void op_nary(LayerEmitter& e, const ir::Op& op) {
   auto& B = e.b();
@@ -194,7 +214,9 @@ void op_nary(LayerEmitter& e, const ir::Op& op) {
     Dual out;
     if (const math::FnInfo* f = passes::math_fn(o, 2)) { // atan2, pow, fmod
       bool has = x.dx || x.dy || y.dx || y.dy;
-      if (f->fn == math::Fn::Fmod || !has) // fmod passes a's derivatives on
+      if (f->fn == math::Fn::Fmod && e.arg(op, 2).kind != ir::SymKind::Const)
+        out = Dual{fmod_varying(e, x.v, y.v), x.dx, x.dy};
+      else if (f->fn == math::Fn::Fmod || !has) // fmod passes a's derivatives on
         out = Dual{call_math(e, f->fn, MathForm::Value, {x.v, y.v}), x.dx, x.dy};
       else
         out = binary_dual(e, f->fn, x, y);
