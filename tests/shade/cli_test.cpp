@@ -285,6 +285,17 @@ TEST(ShadeCli, InverseSpaceMatricesAsTestshade) {
             "-3 -1.49999988 3 | 0.883883536 0.530330122 -4\n\n");
 }
 
+// testshade's "screen" and "raster" are perspective spaces: a point's derivatives follow the
+// divide by w (at z = 3, one third of P's). Expected: OSL 1.13.12, `oslc scr.osl; testshade
+// -g 1 1 scr`.
+TEST(ShadeCli, PerspectiveSpaceDerivativesAsTestshade) {
+  auto dir = scratch_dir("scr.osl", "shader scr()\n{\n    point p = P + point(0, 0, 2);\n"
+                                    "    point q = transform(\"screen\", p);\n"
+                                    "    printf(\"%.9g | %.9g | %.9g\\n\", q, Dx(q), Dy(q));\n}\n");
+  EXPECT_EQ(run_in(dir, "-g 1 1 scr"),
+            "0.166666672 0.166666672 0.966763318 | 0.333333343 0 0 | 0 0.333333343 0\n\n");
+}
+
 // matrix("space", 16 values) is space -> common times the values, and the kind of a mixed
 // triple sum decides its transform (point + vector is a point, which moves with the
 // translation). Expected: OSL 1.13.12, `oslc ms.osl; testshade -g 1 1 ms`.
