@@ -290,6 +290,9 @@ Token Lexer::string_literal() {
   } else {
     ++pos_;
   }
+  // OSL's strings are C strings: a literal ends at an escaped NUL ("a\0bc" is "a"; OSL 1.13.12
+  // prints 1 for strlen("a\0bc")).
+  if (size_t nul = value.find('\0'); nul != std::string::npos) value.resize(nul);
   Token t = make(Tok::StringLit, b);
   t.str = uint32_t(strings_.size());
   strings_.push_back(std::move(value));

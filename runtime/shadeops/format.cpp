@@ -33,11 +33,16 @@ ArgDesc next_arg(std::string_view codes, size_t& pos) {
 
 int components(char code) { return code == 't' ? 3 : (code == 'm' ? 16 : 1); }
 
-// C's printf of one value with `spec`, truncated to 511 characters.
+// C's printf of one value with `spec`, whatever its length (a width or precision of hundreds
+// prints in full, as OSL's does).
 template <class T> std::string printf1(const std::string& spec, T v) {
   char buf[512];
-  std::snprintf(buf, sizeof buf, spec.c_str(), v);
-  return buf;
+  int n = std::snprintf(buf, sizeof buf, spec.c_str(), v);
+  if (n < int(sizeof buf)) return n < 0 ? std::string() : std::string(buf, size_t(n));
+  std::string out(size_t(n) + 1, '\0');
+  std::snprintf(out.data(), out.size(), spec.c_str(), v);
+  out.resize(size_t(n));
+  return out;
 }
 
 std::string closure_text(const RuntimeEnv& env, const ClosureNode* c) {
@@ -59,15 +64,31 @@ std::string pad(const std::string& head, std::string body, bool right, bool zero
 // A string through OSL's printf: truncated to the precision and, unlike C, left-aligned in its
 // width (OSL 1.13 prints "%10s" of "str" as "str       "); a 0 flag pads with zeros on the left.
 // Through format() it is right-aligned, as in C, unless the - flag says otherwise.
+// Width and precision count UTF-8 characters, not bytes, as OSL's printf and folded format()
+// do ("%5s" of "é" pads four spaces, "%.1s" keeps the whole "é"); format() run while shading
+// counts bytes, as OSL's does (its "%.1s" of "日本" is one byte of 日).
 std::string format_string(const std::string& head, const char* s, FormatRule rule) {
   std::string body = s ? s : "";
+  auto continuation = [rule](char c) {
+    return rule != FormatRule::Format && (static_cast<unsigned char>(c) & 0xC0) == 0x80;
+  };
   size_t dot = head.find('.');
-  if (dot != std::string::npos)
-    body = body.substr(0, size_t(std::max(0, std::atoi(head.c_str() + dot + 1))));
+  if (dot != std::string::npos) {
+    size_t keep = size_t(std::max(0, std::atoi(head.c_str() + dot + 1))), at = 0;
+    for (size_t chars = 0; at < body.size() && chars < keep; ++chars)
+      for (++at; at < body.size() && continuation(body[at]);) ++at;
+    body.resize(at);
+  }
+  size_t extra = size_t(std::count_if(body.begin(), body.end(), continuation));
   bool left = head.find('-') != std::string::npos;
   bool zeros = head.find('0') != std::string::npos && !left &&
                head.find_first_of("0") < head.find_first_of("123456789.");
   std::string h = head.substr(0, dot);
+  if (extra) { // widen the field by the bytes that are not characters of their own
+    size_t k = 1;
+    while (k < h.size() && std::strchr("-+ #0", h[k])) ++k;
+    if (k < h.size()) h = h.substr(0, k) + std::to_string(std::atoi(h.c_str() + k) + int(extra));
+  }
   return pad(h, body, zeros || (rule != FormatRule::Printf && !left), zeros);
 }
 

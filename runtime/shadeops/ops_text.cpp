@@ -217,9 +217,10 @@ int lobe_stoi(const char* s) {
   return int(std::clamp<long long>(v, INT_MIN, INT_MAX));
 }
 float lobe_stof(const char* s) { return std::strtof(s, nullptr); }
+// The byte's value as a signed char, as OSL's (getchar("é", 0) is -61 in OSL 1.13.12).
 int lobe_getchar(const char* s, int i) {
   int n = int(std::strlen(s));
-  return (i >= 0 && i < n) ? int((unsigned char)s[i]) : 0;
+  return (i >= 0 && i < n) ? int(static_cast<signed char>(s[i])) : 0;
 }
 
 // hash(string): OSL returns int(ustring(s).hash()), and OIIO's ustring hash is
