@@ -244,6 +244,13 @@ void services(Builder& b) {
       b.add("gettextureinfo", t_int(), {t_string(), t_string(), t}).params[2].output = true;
     }
   }
+  // Messages carry closures too (a closure color or an array of them), as OSL's do.
+  for (int len : {0, -1}) {
+    Type c(BaseType::Closure, len);
+    b.add("getmessage", t_int(), {t_string(), c}).params[1].output = true;
+    b.add("getmessage", t_int(), {t_string(), t_string(), c}).params[2].output = true;
+    b.add("setmessage", t_void(), {t_string(), c});
+  }
   for (BaseType v : values) {
     // gettextureinfo(file, s, t, query, dest): the UDIM tile at (s, t) of a UDIM file name.
     for (int len : {0, -1})

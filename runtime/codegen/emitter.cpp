@@ -329,9 +329,11 @@ llvm::Value* LayerEmitter::checked_index(const ir::Op& op, int index_arg, int le
                op.opcode == ir::Opcode::MxCompAssign;
   const ir::Symbol& what = arg(op, store ? 0 : 1);
   std::string where = "(" + layer_description() + ")";
-  call("lobe_range_error", {sg_, idx, iconst(length), string_const(what.name),
-                            string_const(op.loc.file.empty() ? shader().name : op.loc.file),
-                            iconst(op.loc.line), string_const(where)});
+  // A name a nested scope reused is `s~2` inside Lobe; the message gives the source's name.
+  call("lobe_range_error",
+       {sg_, idx, iconst(length), string_const(what.name.substr(0, what.name.find('~'))),
+        string_const(op.loc.file.empty() ? shader().name : op.loc.file), iconst(op.loc.line),
+        string_const(where)});
   b_.CreateBr(ok);
   b_.SetInsertPoint(ok);
   llvm::Value* lo = b_.CreateSelect(b_.CreateICmpSLT(idx, iconst(0)), iconst(0), idx);
