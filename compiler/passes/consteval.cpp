@@ -173,7 +173,17 @@ std::optional<Values> arith(Opcode op, const Type& dst, const std::vector<ConstA
   }
   Values out(size_t(dst.components()));
   bool ok = true;
+  // Division by a constant that is not all zero divides plainly, a zero component giving inf,
+  // as the generated code divides (and OSL: vector(4) / vector(0, 1, 2) is "inf 4 2" in OSL
+  // 1.13.12, folded or not); an all-zero divisor gives 0.
+  bool plain_div = false;
+  if (op == Opcode::Div && args.size() == 2 && dst.base != BaseType::Int)
+    for (const ConstValue& b : args[1]) plain_div = plain_div || b.f != 0.0f;
   for (size_t c = 0; c < out.size(); ++c) {
+    if (plain_div) {
+      out[c] = ConstValue::of_float(args[0][c].f / args[1][c].f);
+      continue;
+    }
     if (dst.base == BaseType::Int) {
       if (args.size() == 1 && op == Opcode::Neg)
         out[c] = ConstValue::of_int(int32_t(0u - uint32_t(args[0][c].i)));
