@@ -114,9 +114,7 @@ point rotate(point p, float angle, point a, point b) {
                     z * z + (1.0 - z * z) * cosang, 0.0, 0.0, 0.0, 0.0, 1.0);
   return transform(M, p - a) + a;
 }
-point rotate(point p, float angle, vector axis) {
-  return rotate(p, angle, point(0), point(axis));
-}
+point rotate(point p, float angle, vector axis) { return rotate(p, angle, point(0), point(axis)); }
 
 // Steps
 float linearstep(float edge0, float edge1, float x) {
