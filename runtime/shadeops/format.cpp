@@ -100,24 +100,22 @@ bool exact_tie(const std::string& head, char conv, double v) {
   size_t dot = head.find('.');
   int prec = dot == std::string::npos ? 6 : std::max(0, std::atoi(head.c_str() + dot + 1));
   char buf[400];
-  std::string_view digits; // the digits that decide, from the first one dropped
-  if (conv == 'f' || conv == 'F') {
+  std::string digits; // the exact digits, without the point, and where the conversion cuts them
+  size_t cut;
+  if (conv == 'f' || conv == 'F') { // after `prec` fractional digits
     std::snprintf(buf, sizeof buf, "%.160f", std::fabs(v));
     const char* point = std::strchr(buf, '.');
-    if (!point || size_t(prec) >= std::strlen(point + 1)) return false;
-    digits = std::string_view(point + 1 + prec);
-  } else { // e, E, g, G: significant digits, precision + 1 for e, the precision (1 for 0) for g
-    int sig = (conv == 'e' || conv == 'E') ? prec + 1 : std::max(prec, 1);
+    if (!point) return false;
+    digits = point + 1;
+    cut = size_t(prec);
+  } else { // e, E, g, G: after prec + 1 significant digits for e, prec (1 for 0) for g
     std::snprintf(buf, sizeof buf, "%.160e", std::fabs(v));
-    std::string mant(buf, std::strcspn(buf, "eE"));
-    mant.erase(std::remove(mant.begin(), mant.end(), '.'), mant.end());
-    if (size_t(sig) >= mant.size()) return false;
-    static thread_local std::string keep;
-    keep = mant.substr(size_t(sig));
-    digits = keep;
+    digits.assign(buf, std::strcspn(buf, "eE"));
+    digits.erase(std::remove(digits.begin(), digits.end(), '.'), digits.end());
+    cut = size_t((conv == 'e' || conv == 'E') ? prec + 1 : std::max(prec, 1));
   }
-  if (digits.empty() || digits[0] != '5') return false;
-  return digits.find_first_not_of('0', 1) == std::string_view::npos;
+  if (cut >= digits.size() || digits[cut] != '5') return false;
+  return digits.find_first_not_of('0', cut + 1) == std::string::npos;
 }
 
 // A float through format() while shading: C's conversion, but an exact tie rounds away from
