@@ -290,13 +290,11 @@ void op_transform(LayerEmitter& e, const ir::Op& op) {
     auto part = [&](llvm::Value* v) { return v ? v : e.fconst(0); };
     llvm::Value* w = col(3, x[0].v, x[1].v, x[2].v, true);
     llvm::Value* w0 = B.CreateFCmpOEQ(w, e.fconst(0));
-    llvm::Value* safe_w = B.CreateSelect(w0, e.fconst(1), w);
-    llvm::Value* winv = B.CreateFDiv(e.fconst(1), safe_w);
+    llvm::Value* winv = B.CreateFDiv(e.fconst(1), B.CreateSelect(w0, e.fconst(1), w));
     llvm::Value* wdx = col(3, part(x[0].dx), part(x[1].dx), part(x[2].dx), false);
     llvm::Value* wdy = col(3, part(x[0].dy), part(x[1].dy), part(x[2].dy), false);
     for (int j = 0; j < 3; ++j) {
-      llvm::Value* a = col(j, x[0].v, x[1].v, x[2].v, true);
-      llvm::Value* q = B.CreateFDiv(a, safe_w);
+      llvm::Value* q = r[size_t(j)].v; // a / w, as lobe_transform computed it (0 where w is 0)
       auto d = [&](llvm::Value* ad, llvm::Value* wd) {
         llvm::Value* v = B.CreateFMul(winv, B.CreateFSub(ad, B.CreateFMul(q, wd)));
         return B.CreateSelect(w0, e.fconst(0), v);

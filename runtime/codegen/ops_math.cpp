@@ -168,9 +168,7 @@ llvm::Value* fmod_varying(LayerEmitter& e, llvm::Value* a, llvm::Value* b) {
   auto& B = e.b();
   llvm::Value* b0 = B.CreateFCmpOEQ(b, e.fconst(0));
   llvm::Value* q = B.CreateFDiv(a, B.CreateSelect(b0, e.fconst(1), b));
-  llvm::Value* in_range =
-      B.CreateFCmpOLT(B.CreateUnaryIntrinsic(llvm::Intrinsic::fabs, q), e.fconst(2147483648.0f));
-  llvm::Value* n = B.CreateSelect(in_range, B.CreateFPToSI(q, e.i32()), e.iconst(INT32_MIN));
+  llvm::Value* n = e.convert(Val{Dual{q}}, BaseType::Float, BaseType::Int)[0].v; // x86's truncation
   // a - n b rounded once (OSL's shadeop is C++ compiled with contraction: an fma)
   llvm::Value* r = B.CreateIntrinsic(llvm::Intrinsic::fma, {e.f32()},
                                      {B.CreateFNeg(B.CreateSIToFP(n, e.f32())), b, a});

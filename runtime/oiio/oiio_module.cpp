@@ -113,28 +113,14 @@ Perthread* thread_info(Textures* t, int32_t site = 0) {
 // the name with each mode's in turn): the common names by their first letter and one comparison.
 OIIO::TextureOpt::Wrap wrap_mode(const char* name) {
   using W = OIIO::TextureOpt;
-  const char* full = nullptr;
-  W::Wrap mode = W::WrapDefault;
-  switch (name[0]) {
-  case 'b':
-    full = "black", mode = W::WrapBlack;
-    break;
-  case 'c':
-    full = "clamp", mode = W::WrapClamp;
-    break;
-  case 'p':
-    full = "periodic", mode = W::WrapPeriodic;
-    break;
-  case 'm':
-    full = "mirror", mode = W::WrapMirror;
-    break;
-  case 'd':
-    full = "default", mode = W::WrapDefault;
-    break;
-  default:
-    break;
-  }
-  return full && std::strcmp(name, full) == 0 ? mode : W::decode_wrapmode(name);
+  static constexpr std::pair<const char*, W::Wrap> kModes[] = {{"black", W::WrapBlack},
+                                                               {"clamp", W::WrapClamp},
+                                                               {"periodic", W::WrapPeriodic},
+                                                               {"mirror", W::WrapMirror},
+                                                               {"default", W::WrapDefault}};
+  for (const auto& [full, mode] : kModes)
+    if (full[0] == name[0]) return std::strcmp(name, full) == 0 ? mode : W::decode_wrapmode(name);
+  return W::decode_wrapmode(name);
 }
 
 OIIO::TextureOpt options(const TextureArgs* a) {
