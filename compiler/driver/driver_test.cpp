@@ -63,6 +63,26 @@ TEST(Search, SourceBeforeIrWithinADirectory) {
   EXPECT_EQ(find_shader("n", {t.dir("a"), t.dir("b")}), first);
 }
 
+// For shading, the compiled form comes first when it is at least as new as its source (what
+// `lobe compile -DX` wrote is what runs, as testshade runs what oslc wrote); a source edited
+// after it wins again. Compiling always starts from the source.
+TEST(Search, CompiledFormWhenUpToDate) {
+  TempDir t;
+  std::string osl = t.put("a/m.osl", kMatte);
+  std::string lir = t.put("a/m.lir", "lobe-ir 1\n");
+  auto now = fs::file_time_type::clock::now();
+  fs::last_write_time(osl, now - std::chrono::seconds(10));
+  fs::last_write_time(lir, now);
+  EXPECT_EQ(find_shader("m", {t.dir("a")}, Prefer::Compiled), lir);
+  EXPECT_EQ(find_shader("m.oso", {t.dir("a")}, Prefer::Compiled), lir);
+  EXPECT_EQ(find_shader("m", {t.dir("a")}, Prefer::Source), osl);
+  EXPECT_EQ(find_shader("m.osl", {t.dir("a")}, Prefer::Compiled), osl); // a named file
+  fs::last_write_time(osl, now + std::chrono::seconds(10));             // edited since
+  EXPECT_EQ(find_shader("m", {t.dir("a")}, Prefer::Compiled), osl);
+  std::string only = t.put("b/n.lir", "lobe-ir 1\n");
+  EXPECT_EQ(find_shader("n", {t.dir("b")}, Prefer::Compiled), only);
+}
+
 // A path to an existing file is that file, as given; an absolute name is not searched for in
 // the directories.
 TEST(Search, PathsAndAbsoluteNames) {

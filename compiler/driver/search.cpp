@@ -34,9 +34,16 @@ std::string find_by_declared_name(const std::string& name, const std::vector<std
   return "";
 }
 
+// True when `lir` was written no earlier than `osl` was last changed.
+bool up_to_date(const fs::path& lir, const fs::path& osl) {
+  std::error_code e1, e2;
+  auto tl = fs::last_write_time(lir, e1), ts = fs::last_write_time(osl, e2);
+  return !e1 && !e2 && tl >= ts;
+}
+
 } // namespace
 
-std::string find_shader(std::string name, const std::vector<std::string>& dirs) {
+std::string find_shader(std::string name, const std::vector<std::string>& dirs, Prefer prefer) {
   if (name.size() > 4 && name.ends_with(".oso")) name.resize(name.size() - 4);
   fs::path p(name);
   bool named_file = p.extension() == ".osl" || p.extension() == ".lir";
@@ -44,11 +51,18 @@ std::string find_shader(std::string name, const std::vector<std::string>& dirs) 
   std::vector<std::string> files = {name};
   if (!named_file) files = {name + ".osl", name + ".lir"};
   std::vector<std::string> places = p.is_absolute() ? std::vector<std::string>{""} : dirs;
-  for (const std::string& d : places)
-    for (const std::string& f : files) {
-      fs::path q = d.empty() || d == "." ? fs::path(f) : fs::path(d) / f;
-      if (is_file(q)) return q.lexically_normal().string();
+  for (const std::string& d : places) {
+    auto in_dir = [&](const std::string& f) {
+      return d.empty() || d == "." ? fs::path(f) : fs::path(d) / f;
+    };
+    if (!named_file && prefer == Prefer::Compiled) {
+      fs::path src = in_dir(files[0]), ir = in_dir(files[1]);
+      if (is_file(ir) && (!is_file(src) || up_to_date(ir, src)))
+        return ir.lexically_normal().string();
     }
+    for (const std::string& f : files)
+      if (fs::path q = in_dir(f); is_file(q)) return q.lexically_normal().string();
+  }
   if (named_file || p.has_parent_path()) return "";
   return find_by_declared_name(name, dirs);
 }

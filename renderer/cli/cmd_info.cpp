@@ -106,7 +106,7 @@ bool info(const std::string& name, const Options& o) {
   dirs.insert(dirs.end(), o.search.begin(), o.search.end());
   dirs.insert(dirs.end(), o.includes.begin(), o.includes.end());
   if (std::string stdlib = lobe::stdlib_shader_dir(); !stdlib.empty()) dirs.push_back(stdlib);
-  std::string path = lobe::driver::find_shader(name, dirs);
+  std::string path = lobe::driver::find_shader(name, dirs, lobe::driver::Prefer::Compiled);
   if (path.empty()) {
     std::string base =
         name.size() > 4 && name.ends_with(".oso") ? name.substr(0, name.size() - 4) : name;

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -539,7 +540,7 @@ end
 
 // The ShadingSystem's search path is include_dirs in order (then the current directory): the
 // folder given first wins over a later one (a scene's folder over stdlib_shaders/), and an .osl
-// over an .lir in the same folder.
+// over an older .lir in the same folder (edited since it was compiled).
 TEST(ShaderLookup, IncludeDirsInOrder) {
   namespace fs = std::filesystem;
   fs::path root = fs::temp_directory_path() / ("lobe_order_" + std::to_string(::getpid()));
@@ -549,6 +550,8 @@ TEST(ShaderLookup, IncludeDirsInOrder) {
   std::ofstream(root / "mine" / "m.osl") << "surface m(output float mine = 1) { Ci = 0; }\n";
   std::ofstream(root / "lib" / "m.osl") << "surface m(output float lib = 1) { Ci = 0; }\n";
   std::ofstream(root / "mine" / "m.lir") << "not IR at all\n";
+  fs::last_write_time(root / "mine" / "m.lir",
+                      fs::last_write_time(root / "mine" / "m.osl") - std::chrono::seconds(10));
   for (bool mine_first : {true, false}) {
     ShadingSystem ss;
     ss.options().include_dirs = {(root / (mine_first ? "mine" : "lib")).string(),
