@@ -14,50 +14,6 @@ std::string type_name(const Type& t) {
   return to_string(t);
 }
 
-// `s` quoted with the escapes of OIIO's Strutil::escape_chars (other bytes as they are).
-std::string c_quote(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    const char* e = nullptr;
-    switch (c) {
-    case '\\':
-      e = "\\\\";
-      break;
-    case '"':
-      e = "\\\"";
-      break;
-    case '\n':
-      e = "\\n";
-      break;
-    case '\t':
-      e = "\\t";
-      break;
-    case '\v':
-      e = "\\v";
-      break;
-    case '\b':
-      e = "\\b";
-      break;
-    case '\r':
-      e = "\\r";
-      break;
-    case '\f':
-      e = "\\f";
-      break;
-    case '\a':
-      e = "\\a";
-      break;
-    default:
-      break;
-    }
-    if (e)
-      out += e;
-    else
-      out.push_back(c);
-  }
-  return out + "\"";
-}
-
 // " v v v": each value after a space; numbers as iostream prints them (%d, %g).
 std::string values(const Type& t, const std::vector<ConstValue>& v) {
   std::string out;
@@ -231,6 +187,49 @@ std::string oslquery_params(const Shader& shader) {
     out += "\t" + output + type_name(s.type) + " " + s.name + "\n";
   }
   return out;
+}
+
+std::string c_quote(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    const char* e = nullptr;
+    switch (c) {
+    case '\\':
+      e = "\\\\";
+      break;
+    case '"':
+      e = "\\\"";
+      break;
+    case '\n':
+      e = "\\n";
+      break;
+    case '\t':
+      e = "\\t";
+      break;
+    case '\v':
+      e = "\\v";
+      break;
+    case '\b':
+      e = "\\b";
+      break;
+    case '\r':
+      e = "\\r";
+      break;
+    case '\f':
+      e = "\\f";
+      break;
+    case '\a':
+      e = "\\a";
+      break;
+    default:
+      break;
+    }
+    if (e)
+      out += e;
+    else
+      out.push_back(c);
+  }
+  return out + "\"";
 }
 
 } // namespace lobe::ir

@@ -41,4 +41,8 @@ std::string describe(const Shader& shader, const DescribeOptions& options = {});
 // announced as `unknown name` before its fields `type name.field`, a closure a `pointer`.
 std::string oslquery_params(const Shader& shader);
 
+// `s` in double quotes with the escapes of OIIO's Strutil::escape_chars (\\, \", \n, \t, \v,
+// \b, \r, \f, \a; other bytes as they are), as oslinfo and OSL's group text print strings.
+std::string c_quote(const std::string& s);
+
 } // namespace lobe::ir

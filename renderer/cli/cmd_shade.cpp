@@ -15,6 +15,7 @@
 #include "diag/diagnostics.h"
 #include "grid.h"
 #include "image.h"
+#include "instance_values.h"
 #include "ir/query.h"
 #include "lobe/memory.h"
 #include "lobe/shadingsys.h"
@@ -167,15 +168,65 @@ void print_diagnostics(const DiagnosticList& diags, bool notes, const std::strin
   if (connect_error && !group.empty()) std::fprintf(stderr, "        group: %s\n", group.c_str());
 }
 
+// One layer's instance values as OSL's group text prints them (ShaderGroup serialisation, as
+// `testshade -v` shows it): the values its shader took, in the order the shader declares its
+// parameters (a struct's fields flattened, `st.a`), each with the parameter's type (`float[3]`
+// for an unsized array given three), floats as %.9g, strings quoted and escaped, and
+// ` [[int interpolated=1]]` for a value that is not locked to the geometry (and
+// ` [[int interactive=1]]`); values OSL refused (no such parameter, the wrong type) and values of
+// connected parameters are left out. Without the shader's IR, the values as given.
+std::string group_params(const ShaderGroup::Layer& l, const ir::Shader* sh,
+                         const std::vector<Connection>& connections) {
+  std::string out;
+  if (!sh) {
+    for (const InstanceValue& v : l.values)
+      out += "param " + v.type + " " + v.name + " " + v.value + " ;\n";
+    return out;
+  }
+  for (const ir::Symbol& s : sh->symbols) {
+    if (s.kind != ir::SymKind::Param && s.kind != ir::SymKind::OutputParam) continue;
+    const InstanceValue* given = nullptr; // the last value given for it is the one used
+    for (const InstanceValue& v : l.values)
+      if (v.name == s.name) given = &v;
+    if (!given) continue;
+    bool connected = false; // a connected parameter's value is the connection's
+    for (const Connection& c : connections)
+      connected = connected || (c.dst_layer == l.name &&
+                                (c.dst_param == s.name || s.name.rfind(c.dst_param + ".", 0) == 0));
+    if (connected) continue;
+    group::ValueFit fit = group::fit_instance_value(*given, s.type);
+    if (!fit.ok) continue;
+    ir::Type t = s.type;
+    if (t.arraylen < 0) t.arraylen = fit.arraylen;
+    out += "param " + ir::to_string(t) + " " + s.name;
+    for (const ir::ConstValue& c : fit.values) {
+      char num[32];
+      if (t.base == ir::BaseType::String) {
+        out += " " + ir::c_quote(c.s);
+        continue;
+      }
+      if (t.base == ir::BaseType::Int)
+        std::snprintf(num, sizeof(num), "%d", c.i);
+      else
+        std::snprintf(num, sizeof(num), "%.9g", double(c.f));
+      out += std::string(" ") + num;
+    }
+    if (given->interpolated || given->lockgeom == 0) out += " [[int interpolated=1]]";
+    if (given->interactive) out += " [[int interactive=1]]";
+    out += " ;\n";
+  }
+  return out;
+}
+
 // The group as -v prints it (in OSL's group-text form), each layer's shader as it was named;
 // with `params` (--oslquery), each layer's parameters under its name.
 void print_group(const ShaderGroup& g, const std::vector<std::string>& shaders,
+                 const std::vector<const ir::Shader*>& irs,
                  const std::vector<std::string>* params) {
   std::printf("Shader group:\n---\n");
   for (size_t k = 0; k < g.layers.size(); ++k) {
     const ShaderGroup::Layer& l = g.layers[k];
-    for (const InstanceValue& v : l.values)
-      std::printf("param %s %s %s ;\n", v.type.c_str(), v.name.c_str(), v.value.c_str());
+    std::printf("%s", group_params(l, irs[k], g.connections).c_str());
     std::printf("shader %s %s ;\n", shaders[k].c_str(), l.name.c_str());
   }
   for (const Connection& c : g.connections)
@@ -642,11 +693,14 @@ int Shade::run() {
   }
   if (job_.verbose || job_.oslquery) {
     std::vector<std::string> params; // --oslquery: each layer's, as OSLQuery lists them
+    std::vector<const ir::Shader*> irs;
     for (const ShaderGroup::Layer& l : g.layers) {
-      const ir::Shader* sh = job_.oslquery ? layer_ir(l) : nullptr;
-      params.push_back(sh ? ir::oslquery_params(*sh) : "");
+      irs.push_back(layer_ir(l));
+      params.push_back(job_.oslquery && irs.back() ? ir::oslquery_params(*irs.back()) : "");
     }
-    print_group(g, named, job_.oslquery ? &params : nullptr);
+    if (job_.verbose && !job_.group_spec.empty())
+      std::printf("Processing group specification:\n---\n%s\n---\n", job_.group_spec.c_str());
+    print_group(g, named, irs, job_.oslquery ? &params : nullptr);
   }
   // Ctrl-C from here on: compiling finishes, then nothing is shaded; shading stops promptly.
   std::signal(SIGINT, on_shade_sigint);

@@ -75,6 +75,7 @@ struct Parser {
     groups_begun += 2; // testshade counts a --group twice (unnamed_group_2 for the first)
     group_open = true;
     job.group = std::move(*g);
+    job.group_spec = text;
   }
 };
 

@@ -29,6 +29,7 @@ struct ShadeReparam {
 
 struct ShadeJob {
   ShaderGroup group;                // layers from the command line or --group, then connections
+  std::string group_spec;           // --group's text (a file's contents), which -v echoes
   std::vector<Connection> connects; // from --connect (made after every layer is declared)
   std::vector<ShadeUserDatum> userdata;
   std::vector<ShadeReparam> reparams;

@@ -206,4 +206,26 @@ bool ShadeServices::get_matrix(const ShaderGlobals&, std::string_view space, flo
   return false;
 }
 
+// testshade's stand-in for ray tracing: repeatable answers from u and the ray (measured
+// against OSL 1.13.12's testshade; tests/shade/trace_testshade.osl).
+bool ShadeServices::trace(const ShaderGlobals& sg, const TraceOptions&, const Vec3& P, const Vec3&,
+                          const Vec3&, const Vec3& R, const Vec3&, const Vec3&, TraceHit&) const {
+  return sg.u / dot(P, R) > 0.5f; // 0 / 0 (u = 0 along a perpendicular ray) is no hit
+}
+
+std::optional<bool> ShadeServices::trace_message(const ShaderGlobals& sg, std::string_view name,
+                                                 DataType type, void* val) const {
+  bool hit = sg.u > 0.5f;
+  if (name == "hit" && type == DataType{Base::Int}) static_cast<int32_t*>(val)[0] = hit ? 1 : 0;
+  if (!hit) return false;
+  if (name == "hitdist" && type == DataType{Base::Float}) static_cast<float*>(val)[0] = 0.5f;
+  if (name == "geom:name" && type == DataType{Base::String})
+    static_cast<const char**>(val)[0] = "teapot";
+  if (name == "N" && type == DataType{Base::Normal}) {
+    float* n = static_cast<float*>(val);
+    n[0] = 1.0f - sg.v, n[1] = 0.25f, n[2] = 1.0f - sg.u;
+  }
+  return true;
+}
+
 } // namespace lobe::cli

@@ -10,6 +10,10 @@
 //   "screen", "NDC" and "raster" of its camera, and "camera" (= common = world), these four only
 //   as a destination: as a source they are unknown spaces (an error; transform leaves the
 //   value, getmatrix returns 0), as in testshade.
+// - trace(P, R): no scene; a hit when u / dot(P, R) > 0.5 (mindist and maxdist unused), and
+//   getmessage("trace", name) answers by u alone, whatever was traced: for u > 0.5 every name
+//   gives 1, writing "hitdist" (a float) 0.5, "hit" (an int) 1, "geom:name" (a string)
+//   "teapot" and "N" (a normal) (1 - v, 0.25, 1 - u); else "hit" writes 0 and all give 0.
 #pragma once
 
 #include "lobe/renderer_services.h"
@@ -31,6 +35,11 @@ public:
   bool get_matrix(const ShaderGlobals& sg, std::string_view space, float* m) const override;
   bool get_inverse_matrix(const ShaderGlobals& sg, std::string_view space, float* m) const override;
   bool camera_spaces_default_to_identity() const override { return false; }
+  bool trace(const ShaderGlobals& sg, const TraceOptions& opt, const Vec3& P, const Vec3& dPdx,
+             const Vec3& dPdy, const Vec3& R, const Vec3& dRdx, const Vec3& dRdy,
+             TraceHit& hit) const override;
+  std::optional<bool> trace_message(const ShaderGlobals& sg, std::string_view name, DataType type,
+                                    void* val) const override;
 
   bool has_userdata(std::string_view name) const;
 

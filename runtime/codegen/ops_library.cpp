@@ -686,10 +686,11 @@ void op_getmessage(LayerEmitter& e, const ir::Op& op) {
   bool sourced = op.args.size() == 4;
   llvm::Value* source = sourced ? e.load(op.args[2])[0].v : null_ptr(e);
   llvm::Value* name = e.load(op.args[sourced ? 3 : 2])[0].v;
-  llvm::Value* r = e.call(
-      "lobe_getmessage", {e.sg(), source, name, e.iconst(LayerEmitter::type_code(e.sym(dest).type)),
-                          e.iconst(e.wants_derivs(dest) ? 1 : 0), e.storage_address(dest),
-                          op_file(e, op), e.iconst(op.loc.line), e.iconst(layer_index(e))});
+  llvm::Value* r =
+      e.call("lobe_getmessage", {e.sg(), e.env_ptr(), source, name,
+                                 e.iconst(LayerEmitter::type_code(e.sym(dest).type)),
+                                 e.iconst(e.wants_derivs(dest) ? 1 : 0), e.storage_address(dest),
+                                 op_file(e, op), e.iconst(op.loc.line), e.iconst(layer_index(e))});
   e.store(op.args[0], e.convert(Val{Dual{r}}, BaseType::Int, e.arg(op, 0).type.base));
 }
 

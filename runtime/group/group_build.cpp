@@ -311,18 +311,46 @@ std::vector<ir::ConstValue> convert_const(const std::vector<ir::ConstValue>& v,
 // What OSL's -O2 knows of an upstream layer's output param at the end of the layer: written by
 // one `assign` of a constant or of a shading global (that the layer never writes; a copy as
 // written, not one the optimiser made of x * 1 or x + 0, which OSL keeps), with no jump before
-// it, or never written and holding a constant default. `global` names the global
-// of a copy; else `value` is the constant (in the param's type). Neither: not known.
+// it, or never written and holding a constant default. An input parameter connected onward is
+// known (a shader cannot write one) from its instance value (`given`, when there is one) or
+// its constant default, or from a computed default that is one copy (of a constant or a
+// global) when no instance value is given. `runtime_valued`: the param's value arrives while
+// shading (user data, a connection into it), so only a write in the layer could make it known.
+// `global` names the global of a copy; else `value` is the constant (in the param's type). Neither:
+// not known.
 struct KnownOutput {
   std::vector<ir::ConstValue> value;
   std::string global;
 };
-KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool runtime_valued) {
+KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool runtime_valued,
+                         const std::vector<ir::ConstValue>* given) {
   KnownOutput k;
   int si = sh.find_symbol(name);
   if (si < 0) return k;
   const ir::Symbol& s = sh.symbols[size_t(si)];
-  if (s.kind != SymKind::OutputParam || s.type.base == ir::BaseType::Closure) return k;
+  if (s.type.base == ir::BaseType::Closure) return k;
+  if (s.kind == SymKind::Param) {
+    std::set<int> written = written_symbols(sh);
+    if (runtime_valued || written.count(si)) return k;
+    if (s.init_begin < 0) {
+      k.value = given ? *given : s.init;
+      return k;
+    }
+    // A computed default: known when it is one copy of a constant or of a global the layer
+    // never writes, and no instance value replaces it (OSL 1.13.12 -O2 then keeps the layer).
+    if (given || s.init_end - s.init_begin != 1) return k;
+    const ir::Op& op = sh.ops[size_t(s.init_begin)];
+    if (op.opcode != ir::Opcode::Assign || op.args.size() != 2 || op.args[0] != si) return k;
+    const ir::Symbol& src = sh.symbols[size_t(op.args[1])];
+    if (src.kind == SymKind::Const)
+      k.value = convert_const(src.init, src.type, s.type);
+    else if (src.kind == SymKind::Global && !written.count(op.args[1]) && !src.type.is_array() &&
+             !s.type.is_array() && src.type.components() == s.type.components() &&
+             same_kind(src.type, s.type))
+      k.global = src.name;
+    return k;
+  }
+  if (s.kind != SymKind::OutputParam) return k;
   int writer = -1, writes = 0;
   bool jump_before = false;
   std::set<int> written_globals;
@@ -536,7 +564,10 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         bool src_runtime = interp[size_t(l.src_layer)].count(l.src.symbol) > 0;
         for (const Link& up : links)
           src_runtime |= up.dst_layer == l.src_layer && up.dst.symbol == l.src.symbol;
-        KnownOutput k = known_output(src, l.src.symbol, src_runtime);
+        auto given = values[size_t(l.src_layer)].find(l.src.symbol);
+        KnownOutput k =
+            known_output(src, l.src.symbol, src_runtime,
+                         given == values[size_t(l.src_layer)].end() ? nullptr : &given->second);
         int ds = sh->find_symbol(l.dst.symbol);
         if (ds < 0 || (k.value.empty() && k.global.empty())) continue;
         ir::Symbol& dsym = sh->symbols[size_t(ds)];
@@ -590,7 +621,12 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         for (const Link& l : links) read |= l.src_layer == int(i) && l.src.symbol == s.name;
         s.unread = !read && !renderer_reads(group, group.layers[i].name, s.name);
       }
-    if (specialize) specialize_layer(*sh, values[i], runtime_valued, {out.plan.fast_math});
+    // A parameter a connection reads from (an input parameter connected onward) keeps its
+    // storage: the downstream layer reads it there, so it does not become a constant.
+    std::set<std::string> kept = runtime_valued;
+    for (const Link& l : links)
+      if (l.src_layer == int(i) && !l.dead) kept.insert(l.src.symbol);
+    if (specialize) specialize_layer(*sh, values[i], kept, {out.plan.fast_math});
     new_index[i] = int(out.shaders.size());
     out.shaders.push_back(std::move(sh));
     out.layer_names.push_back(group.layers[i].name);

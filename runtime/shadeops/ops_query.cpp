@@ -13,6 +13,7 @@
 #include <climits>
 #include <cstring>
 #include <initializer_list>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -197,13 +198,29 @@ void lobe_setmessage(lobe::ShaderGlobals* sg, const char* name, int code, const 
 
 // getmessage([source,] name, dest): 1 and `dest` written when this shade set `name` with a
 // value of exactly the destination's type (a color is not a vector, as in OSL); another type
-// is an error. Source "trace" reads the last trace() (trace_message); other sources give 0.
-int lobe_getmessage(lobe::ShaderGlobals* sg, const char* source, const char* name, int code,
-                    int derivs, void* dest, const char* file, int line, int layer) {
+// is an error. Source "trace" asks the renderer (RendererServices::trace_message), else reads
+// the last trace() (trace_message); any other source is ignored, as OSL ignores it.
+int lobe_getmessage(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* source,
+                    const char* name, int code, int derivs, void* dest, const char* file, int line,
+                    int layer) {
   if (!sg || !sg->context || !name) return 0;
-  if (source && std::string_view(source) == "trace")
+  if (source && std::string_view(source) == "trace") {
+    const lobe::RendererServices* rs = sg->context->renderer;
+    if (code_base(code) == kClosureBase) return 0;
+    if (std::optional<bool> r =
+            rs ? rs->trace_message(*sg, name, code_type(code), dest) : std::nullopt) {
+      if (code_base(code) == int(lobe::DataType::Base::String))
+        for (size_t i = 0; i < plane_bytes(code) / sizeof(const char*); ++i) {
+          auto& s = static_cast<const char**>(dest)[i];
+          s = env->strings.intern(s ? s : "");
+        }
+      if (*r && derivs)
+        std::memset(static_cast<unsigned char*>(dest) + plane_bytes(code), 0,
+                    2 * plane_bytes(code));
+      return *r ? 1 : 0;
+    }
     return trace_message(sg->context->trace_hit, name, code, derivs, dest);
-  if (source && *source) return 0;
+  }
   lobe::detail::MessageStore& store = sg->context->messages();
   lobe::detail::MessageStore::Entry* e = store.find(name);
   if (!e) { // remembered, so that setting it later in this shade is reported

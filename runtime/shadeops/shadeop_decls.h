@@ -114,8 +114,9 @@ int lobe_get_userdata(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, 
                       int code, int derivs, void* dest);
 void lobe_setmessage(lobe::ShaderGlobals* sg, const char* name, int code, const void* src,
                      const char* file, int line, int layer);
-int lobe_getmessage(lobe::ShaderGlobals* sg, const char* source, const char* name, int code,
-                    int derivs, void* dest, const char* file, int line, int layer);
+int lobe_getmessage(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* source,
+                    const char* name, int code, int derivs, void* dest, const char* file, int line,
+                    int layer);
 int lobe_gettextureinfo(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env,
                         const char* shader, const char* file, int udim, float s, float t,
                         const char* query, int code, void* dest);

@@ -6,6 +6,8 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 namespace {
@@ -470,6 +472,84 @@ TEST(ShadeCli, ErrorsAndUsage) {
             "Did you mistakenly put --param after the shader declaration?\n");
   EXPECT_EQ(run(""), "ERROR: No shader or group was specified.\n\n"
                      "Try `lobe shade --help` for an explanation of all arguments\n");
+}
+
+// trace() and getmessage("trace", ...) answer as testshade's stand-in renderer does (no scene:
+// layers/trace_testshade.osl says how), at both levels. Expected: layers/trace_testshade.expected,
+// from OSL 1.13.12 (`testshade -g 3 3 trace_testshade`; testshade's final blank line added here).
+TEST(ShadeCli, TraceAnswersAsTestshade) {
+  std::ifstream f(std::string(LOBE_SHADE_CORPUS) + "/layers/trace_testshade.expected");
+  std::stringstream expected;
+  expected << f.rdbuf();
+  ASSERT_FALSE(expected.str().empty());
+  EXPECT_EQ(both("-g 3 3 trace_testshade"), expected.str() + "\n");
+}
+
+// A connection from an input parameter: the downstream layer reads the value the parameter
+// holds (its instance value, not the garbage of a parameter folded to a constant), and at -O2,
+// as in OSL, a value known before shading replaces the connection and the upstream layer does
+// not run; a computed default given an instance value keeps it running (OSL 1.13.12 -O2).
+// Expected: OSL 1.13.12, `oslc inparam_src.osl inparam_dst.osl; testshade -g 2 1 -O2|-O0
+// -param ... -layer a inparam_src -layer b inparam_dst -connect a f b g -connect a k b h`.
+TEST(ShadeCli, InputParamConnectedOnward) {
+  const std::string group =
+      " -layer a inparam_src -layer b inparam_dst -connect a f b g -connect a k b h";
+  const std::string connects = "Connect a.f to b.g\nConnect a.k to b.h\n";
+  EXPECT_EQ(run_here("-g 2 1 -O2 -param f 3.0" + group), connects + "dst g 3 h 0\ndst g 3 h 1\n\n");
+  EXPECT_EQ(run_here("-g 2 1 -O2 -param k 2.0" + group),
+            connects + "src f 1 k 2\ndst g 1 h 2\nsrc f 1 k 2\ndst g 1 h 2\n\n");
+  EXPECT_EQ(run_here("-g 2 1 -O0 -param f 3.0" + group),
+            connects + "src f 3 k 0\ndst g 3 h 0\nsrc f 3 k 1\ndst g 3 h 1\n\n");
+}
+
+// -v prints the group as OSL's group text: the instance values a layer took, in the shader's
+// parameter order, with the parameter's type, %.9g floats, quoted strings and their
+// interpolated/interactive marks (a value given twice: the last); connected parameters' values
+// left out; --group's text echoed first. Expected: OSL 1.13.12, `oslc group_verbose.osl;
+// testshade ARGS` with the same arguments.
+TEST(ShadeCli, VerboseGroupText) {
+  EXPECT_EQ(run_here("-v -param:lockgeom=0 f 0.25 -param:type=float[3] ua 1,2,3 -param st.a 2.0 "
+                     "-param s 'he\"l\\lo' -param:interpolated=1 i 4 -param:type=matrix m "
+                     "1,0,0,0,0,2,0,0,0,0,1,0,0,0,0,1 -param l 1e-10 -param:type=color p 0.1 "
+                     "-param:interactive=1 k 2.0 -param i 7 group_verbose"),
+            "Shader group:\n---\n"
+            "param float f 0.25 [[int interpolated=1]] ;\n"
+            "param float[3] ua 1 2 3 ;\n"
+            "param float st.a 2 ;\n"
+            "param string s \"he\\\"l\\\\lo\" ;\n"
+            "param int i 7 ;\n"
+            "param matrix m 1 0 0 0 0 2 0 0 0 0 1 0 0 0 0 1 ;\n"
+            "param float l 1.00000001e-10 ;\n"
+            "param point p 0.100000001 0 0 ;\n"
+            "param float k 2 [[int interactive=1]] ;\n"
+            "shader group_verbose group_verbose_0 ;\n\n---\n\n"
+            "Shader group \"unnamed_group_1\" layers are:\n    group_verbose_0\n\n"
+            "f 0.25 ua 3 l 1e-10 p 0.1 0 0\n\n");
+  EXPECT_EQ(run_here("-v -group 'param float f 0.5 ; shader group_verbose a ; param float l 0.25 "
+                     "; param float k 3.0 ; shader group_verbose b ; connect a.f b.l ;'"),
+            "Processing group specification:\n---\n"
+            "param float f 0.5 ; shader group_verbose a ; param float l 0.25 ; param float k 3.0 "
+            "; shader group_verbose b ; connect a.f b.l ;\n---\n"
+            "Shader group:\n---\n"
+            "param float f 0.5 ;\nshader group_verbose a ;\n"
+            "param float k 3 ;\nshader group_verbose b ;\n"
+            "connect a.f b.l ;\n\n---\n\n"
+            "Shader group \"unnamed_group_2\" layers are:\n    a\n    b\n\n"
+            "f 0 ua 1 l 0.5 p 0 0 0\n\n");
+}
+
+// getmessage ignores a source other than "trace": a message set upstream is read whatever
+// source is named, and a query naming one counts as a query (the "queried before being set"
+// error points at it). Expected: OSL 1.13.12, `oslc msg_src_set.osl msg_src_get.osl;
+// testshade -O0 -layer A msg_src_set [-param early 1] -layer B msg_src_get -connect A o B i`.
+TEST(ShadeCli, GetmessageIgnoresItsSource) {
+  const std::string group = "-layer A msg_src_set -layer B msg_src_get -connect A o B i";
+  EXPECT_EQ(run_here("-O0 " + group), "Connect A.o to B.i\n1: 1 3 1 3 1 3\n\n");
+  EXPECT_EQ(run_here("-O0 -layer A msg_src_set -param early 1 -layer B msg_src_get -connect A o "
+                     "B i"),
+            "Connect A.o to B.i\nearly 0\nERROR: message \"msg\" was queried before being set "
+            "(queried here: msg_src_get.osl:5) setting it now (msg_src_set.osl:3) would lead to "
+            "inconsistent results\n1: 0 -1 0 -1 0 -1\n\n");
 }
 
 // --debugnan at -O0, as `testshade -t 1 -O0 --debugnan -g 2 1 debug_nan` (OSL 1.13.12) prints

@@ -119,6 +119,18 @@ public:
         (void)hit;
     return false;
   }
+
+  // getmessage("trace", name, dest), as OSL asks its renderer: an answer is the call's result,
+  // `val` (the shader's variable, of `type`; its derivatives Lobe zeroes on a true answer, and
+  // strings written are interned by Lobe) written or not as the renderer chooses. nullopt (the
+  // default) leaves the query to Lobe, which answers from the TraceHit the last trace() of
+  // this shade filled: "hit" (int), and after a hit "hitdist", "u", "v" (float), "P", "N",
+  // "Ng" (any triple).
+  virtual std::optional<bool> trace_message(const ShaderGlobals& sg, std::string_view name,
+                                            DataType type, void* val) const {
+    (void)sg, (void)name, (void)type, (void)val;
+    return std::nullopt;
+  }
 };
 
 } // namespace lobe
