@@ -27,7 +27,7 @@ void DiagnosticEngine::report(DiagId id, SourceRange range, std::vector<std::str
   }
   if (severity >= Severity::Error) ++errors_;
   if (severity == Severity::Warning) ++warnings_;
-  diags_.push_back({id, severity, range, format_message(info.format, args)});
+  diags_.push_back({id, severity, range, format_message(info.format, args), oslc_repeat_});
 }
 
 void DiagnosticEngine::clear() {
@@ -121,7 +121,7 @@ std::string render_all(const DiagnosticEngine& engine, const SourceManager& sm) 
 std::vector<Report> resolve_all(const DiagnosticEngine& engine, const SourceManager& sm) {
   std::vector<Report> out;
   for (const auto& d : engine.diagnostics()) {
-    Report r{d.id, d.severity, "", 0, 0, d.message, render(d, sm)};
+    Report r{d.id, d.severity, "", 0, 0, d.message, render(d, sm), d.oslc_repeat};
     if (PresumedLoc p = sm.presumed(d.range.begin); p.valid()) {
       r.file = p.file;
       r.line = p.line;

@@ -35,6 +35,10 @@ struct Diagnostic {
   Severity severity;
   SourceRange range;
   std::string message;
+  // How many times oslc prints it (a warning raised inside the arguments of printf, format,
+  // fprintf, warning or error: oslc type-checks argument i of such a call i + 1 times);
+  // Lobe's own rendering prints it once.
+  int oslc_repeat = 1;
 };
 
 class DiagnosticEngine {
@@ -60,6 +64,10 @@ public:
   void clear();
   // -Werror: warnings reported from now on are errors (and counted as errors).
   void set_warnings_as_errors(bool on) { werror_ = on; }
+  // Diagnostic::oslc_repeat of what is reported from now on (the type checker sets it while it
+  // checks a format call's arguments).
+  void set_oslc_repeat(int n) { oslc_repeat_ = n; }
+  int oslc_repeat() const { return oslc_repeat_; }
 
 private:
   std::vector<Diagnostic> diags_;
@@ -69,6 +77,7 @@ private:
   bool stopped_ = false;
   bool last_dropped_ = false;
   bool werror_ = false;
+  int oslc_repeat_ = 1;
 };
 
 // One diagnostic as text: include trail, location line, source line, caret line, and an
@@ -94,7 +103,8 @@ struct Report {
   std::string file;
   int line = 0, column = 0;
   std::string message;
-  std::string text; // rendered, ending in '\n'
+  std::string text;    // rendered, ending in '\n'
+  int oslc_repeat = 1; // Diagnostic::oslc_repeat
 };
 // One Report per diagnostic of the engine, in order (notes are Severity::Note entries).
 std::vector<Report> resolve_all(const DiagnosticEngine& engine, const SourceManager& sm);

@@ -12,6 +12,12 @@
 
 namespace lobe::sema {
 
+// The builtins that take a format string and its arguments.
+static bool is_printer(const std::string& name) {
+  return name == "printf" || name == "format" || name == "error" || name == "warning" ||
+         name == "fprintf";
+}
+
 using ast::Type;
 
 namespace {
@@ -124,8 +130,15 @@ void Sema::call(ast::CallExpr* e, const Type* expected) {
     if (const ast::StructDecl* s = find_struct(e->name)) return struct_constructor(e, s);
   // oslc types every argument with the call's own expected type, not the parameter's: it
   // decides ties inside (`color c = g(noise(P))` takes the color noise).
-  for (auto& a : e->args)
-    if (a->kind != ast::ExprKind::InitList) expr(a, expected);
+  // oslc checks argument i of a printf-like call i + 1 times (its format check re-checks the
+  // arguments before each one), printing a warning inside it as often: counted for its output.
+  bool printer = is_printer(e->name);
+  int repeat = diags_.oslc_repeat();
+  for (size_t i = 0; i < e->args.size(); ++i) {
+    if (printer) diags_.set_oslc_repeat(repeat * int(i + 1));
+    if (e->args[i]->kind != ast::ExprKind::InitList) expr(e->args[i], expected);
+  }
+  diags_.set_oslc_repeat(repeat);
   bool is_closure = std::any_of(opts_.closures.begin(), opts_.closures.end(),
                                 [&](const registry::ClosureEntry& c) { return e->name == c.name; });
   std::vector<Candidate> chain = overloads(e->name, is_closure);
@@ -391,10 +404,7 @@ void Sema::check_builtin_keyword(ast::CallExpr* e, const ast::StringLit* name, E
 // an int; %f %g %e (and F G E a A) a float, triple or matrix, or an array of them; a string or
 // closure only %s; %s prints anything). `%%` is a literal percent sign.
 void Sema::check_format_args(ast::CallExpr* e) {
-  static const char* const kPrinters[] = {"printf", "format", "error", "warning", "fprintf"};
-  if (std::find_if(std::begin(kPrinters), std::end(kPrinters),
-                   [&](const char* n) { return e->name == n; }) == std::end(kPrinters))
-    return;
+  if (!is_printer(e->name)) return;
   size_t fmt_i = e->name == "fprintf" ? 1 : 0;
   if (e->args.size() <= fmt_i) return;
   auto* lit = ast::as<ast::StringLit>(e->args[fmt_i].get());

@@ -150,7 +150,7 @@ void print_diagnostics(const DiagnosticList& diags, bool notes, const std::strin
         for (size_t k = size_t(&d - diags.data()) + 1;
              k < diags.size() && diags[k].severity == Diagnostic::Severity::Note; ++k)
           own.push_back(&diags[k]);
-        print_oslc_warning(d, own);
+        for (int r = 0; r < std::max(1, d.oslc_repeat); ++r) print_oslc_warning(d, own);
       }
       continue;
     }

@@ -16,6 +16,7 @@ Diagnostic to_public(const diag::Report& r) {
   d.line = r.line;
   d.column = r.column;
   d.message = r.message;
+  d.oslc_repeat = r.oslc_repeat;
   return d;
 }
 

@@ -538,6 +538,19 @@ TEST(ShadeCli, VerboseGroupText) {
             "f 0 ua 1 l 0.5 p 0 0 0\n\n");
 }
 
+// A warning inside argument i of printf, format, fprintf, warning or error prints i + 1 times
+// (the format string is argument 0), as oslc prints it (its format check re-checks the
+// arguments), nested calls multiplying: 13 ambiguous-call blocks here. Expected:
+// layers/ambiguous_printf.expected, from OSL 1.13.12 (`oslc ambiguous_printf.osl; testshade
+// ambiguous_printf`, oslc's "Compiled" line dropped; testshade's final blank line added here).
+TEST(ShadeCli, WarningsInFormatArgumentsRepeatAsOslcPrintsThem) {
+  std::ifstream f(std::string(LOBE_SHADE_CORPUS) + "/layers/ambiguous_printf.expected");
+  std::stringstream expected;
+  expected << f.rdbuf();
+  ASSERT_FALSE(expected.str().empty());
+  EXPECT_EQ(run_here("ambiguous_printf"), expected.str() + "\n");
+}
+
 // getmessage ignores a source other than "trace": a message set upstream is read whatever
 // source is named, and a query naming one counts as a query (the "queried before being set"
 // error points at it). Expected: OSL 1.13.12, `oslc msg_src_set.osl msg_src_get.osl;

@@ -37,6 +37,9 @@ struct Diagnostic {
   std::string file;
   int line = 0, column = 0;
   std::string message;
+  // How many times OSL's oslc prints the same warning (a warning inside the arguments of a
+  // printf-like call: oslc checks argument i of one i + 1 times); `text` is printed once.
+  int oslc_repeat = 1;
 };
 using DiagnosticList = std::vector<Diagnostic>;
 
