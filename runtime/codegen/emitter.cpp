@@ -359,7 +359,8 @@ std::string osl_opname(const ir::Op& op, const ir::Shader& sh) {
 // The op numbers OSL's debug_uninit messages give, for a shader as oslc compiles it: Lobe's
 // `br` ops (the jump back of a loop, over an else) are part of OSL's `for`/`if` ops, and OSL
 // inserts its own `useparam` ops: before an op, one for each input parameter the op reads
-// that no earlier op outside a conditional read (Lobe's useparam ops are not counted).
+// that no earlier op outside a conditional read, and one at the start of the main code for the
+// outputs read downstream (LayerPlan::osl_output_useparam); Lobe's useparam ops are not counted.
 void LayerEmitter::number_ops_as_osl() {
   const auto& ops = shader().ops;
   osl_opnum_.assign(ops.size(), 0);
@@ -368,6 +369,7 @@ void LayerEmitter::number_ops_as_osl() {
   int n = 0;
   for (size_t i = 0; i < ops.size(); ++i) {
     const ir::Op& op = ops[i];
+    if (int(i) == shader().main_begin && plan().osl_output_useparam) ++n;
     bool conditional = furthest > int(i);
     if (op.opcode != ir::Opcode::UseParam && op.opcode != ir::Opcode::Br) {
       std::vector<int> fresh;

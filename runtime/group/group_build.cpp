@@ -740,6 +740,11 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         write_value(out.groupdata.data() + lp.symbol_offset[s], sym, sym.init, out.plan.env);
       lp.run_default[s] = !has_value && !connected.count(sym.name) && sym.init_begin >= 0;
       lp.userdata[s] = !connected.count(sym.name) && interp[i].count(sym.name);
+      if (sym.kind == SymKind::OutputParam) {
+        bool read_down = lp.run_default[s] || renderer_reads(group, group.layers[i].name, sym.name);
+        for (const Link& l : links) read_down |= l.src_layer == int(i) && l.src.symbol == sym.name;
+        lp.osl_output_useparam |= read_down;
+      }
     }
     out.globals_read |= globals_mask(sh);
   }

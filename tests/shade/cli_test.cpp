@@ -551,6 +551,22 @@ TEST(ShadeCli, WarningsInFormatArgumentsRepeatAsOslcPrintsThem) {
   EXPECT_EQ(run_here("ambiguous_printf"), expected.str() + "\n");
 }
 
+// --debuguninit numbers ops as OSL does with output parameters that are read downstream (the
+// default renderer output Cout, a computed default): OSL begins the main code with a useparam
+// op of them, so the first printf is op 2 (after g's default). Expected: OSL 1.13.12, `oslc
+// debug_uninit_outputs.osl; testshade -O0 --debuguninit debug_uninit_outputs`.
+TEST(ShadeCli, DebugUninitCountsOslsOutputUseparam) {
+  auto line = [](const char* var, int l, int op) {
+    return "ERROR: Detected possible use of uninitialized value in float " + std::string(var) +
+           " at debug_uninit_outputs.osl:" + std::to_string(l) +
+           " (group unnamed_group_1, layer 0 debug_uninit_outputs_0, shader "
+           "debug_uninit_outputs, op " +
+           std::to_string(op) + " 'printf', arg 1)\n";
+  };
+  EXPECT_EQ(run_here("-O0 --debuguninit debug_uninit_outputs"),
+            line("a", 5, 2) + "a 0\n" + line("b", 7, 3) + "b 0\n\n");
+}
+
 // getmessage ignores a source other than "trace": a message set upstream is read whatever
 // source is named, and a query naming one counts as a query (the "queried before being set"
 // error points at it). Expected: OSL 1.13.12, `oslc msg_src_set.osl msg_src_get.osl;
