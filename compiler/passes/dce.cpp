@@ -138,9 +138,10 @@ void step_back(const Shader& sh, const Op& op, std::vector<char>& live) {
 }
 
 // Dead stores in the main body by liveness over its control-flow graph: a pure op whose
-// written temporaries and locals are read on no path before being overwritten. (Init ops
+// written temporaries and locals are read on no path before being overwritten (with
+// `part_stores`, an element or component store: read on no path after it). (Init ops
 // run before the main body, so nothing they read is written here.)
-bool drop_dead_stores(const Shader& sh, std::vector<bool>& keep) {
+bool drop_dead_stores(const Shader& sh, std::vector<bool>& keep, bool part_stores) {
   std::vector<int> block_of;
   std::vector<Block> blocks = main_blocks(sh, block_of);
   size_t ns = sh.symbols.size();
@@ -172,7 +173,13 @@ bool drop_dead_stores(const Shader& sh, std::vector<bool>& keep) {
       for (size_t a = 0; a < op.args.size() && dead; ++a) {
         if (!op.writes(int(a))) continue;
         int s = op.args[a];
-        dead = tracked(sh.symbols[size_t(s)]) && !live[size_t(s)] && !op_reads(op, int(a));
+        // An element or component store reads its target only to keep the rest of it: with
+        // `part_stores`, dead when the target is not read afterwards.
+        bool part_store =
+            part_stores && (op.opcode == Opcode::AAssign || op.opcode == Opcode::CompAssign ||
+                            op.opcode == Opcode::MxCompAssign);
+        dead = tracked(sh.symbols[size_t(s)]) && !live[size_t(s)] &&
+               (part_store || !op_reads(op, int(a)));
       }
       if (dead) {
         keep[size_t(i)] = false;
@@ -188,7 +195,7 @@ bool drop_dead_stores(const Shader& sh, std::vector<bool>& keep) {
 } // namespace
 
 // One round; removing ops can expose more (a jump now to the next op): the entry loops.
-static bool dce_round(Shader& sh) {
+static bool dce_round(Shader& sh, bool part_stores) {
   int n = int(sh.ops.size());
   std::vector<bool> keep(n, false);
   reach(sh, sh.main_begin, n, keep);
@@ -211,16 +218,16 @@ static bool dce_round(Shader& sh) {
     }
     if (trivial(op, i)) keep[i] = false, changed = true;
   }
-  changed |= drop_dead_stores(sh, keep);
+  changed |= drop_dead_stores(sh, keep, part_stores);
   changed |= drop_unread_writes(sh, keep);
   if (changed) remove_ops(sh, keep);
   changed |= remove_unused_symbols(sh);
   return changed;
 }
 
-bool eliminate_dead_code(Shader& sh) {
+bool eliminate_dead_code(Shader& sh, bool part_stores) {
   bool changed = false;
-  while (dce_round(sh)) changed = true;
+  while (dce_round(sh, part_stores)) changed = true;
   return changed;
 }
 

@@ -10,7 +10,7 @@ bool optimize(ir::Shader& shader, const OptimizeOptions& options) {
   bool any = false;
   for (int round = 0; round < options.max_rounds; ++round) {
     bool changed = fold_constants(shader, options.math, options.algebraic);
-    changed |= eliminate_dead_code(shader);
+    changed |= eliminate_dead_code(shader, options.part_stores);
     any |= changed;
     if (!changed) break;
   }

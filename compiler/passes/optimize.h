@@ -11,9 +11,10 @@
 namespace lobe::passes {
 
 struct OptimizeOptions {
-  EvalOptions math;       // how folded math builtins compute
-  int max_rounds = 8;     // see above
-  bool algebraic = false; // x * 0 and x - x fold (fold_constants): the runtime's pass only
+  EvalOptions math;         // how folded math builtins compute
+  int max_rounds = 8;       // see above
+  bool algebraic = false;   // x * 0 and x - x fold (fold_constants): the runtime's pass only
+  bool part_stores = false; // eliminate_dead_code's: the runtime's pass at OSL's -O2 only
 };
 
 // Folds and eliminates to a fixed point. Returns whether the shader changed.

@@ -180,7 +180,8 @@ std::set<int> written_symbols(const ir::Shader& sh) {
 // Instance values -> constants; unconnected, unwritten params with known values -> Const.
 void specialize_layer(ir::Shader& sh,
                       const std::map<std::string, std::vector<ir::ConstValue>>& values,
-                      const std::set<std::string>& connected, const passes::EvalOptions& math) {
+                      const std::set<std::string>& connected, const passes::EvalOptions& math,
+                      bool osl_o2) {
   // isconstant answers for the shader before specialisation (docs/language.md), as codegen
   // does without it: resolve it now, before params become constants.
   for (ir::Op& op : sh.ops) {
@@ -213,6 +214,7 @@ void specialize_layer(ir::Shader& sh,
   passes::OptimizeOptions opt;
   opt.math = math;
   opt.algebraic = true; // as OSL's runtime optimizer, which oslc's folding is not
+  opt.part_stores = osl_o2;
   passes::optimize(sh, opt);
 }
 
@@ -626,7 +628,8 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     std::set<std::string> kept = runtime_valued;
     for (const Link& l : links)
       if (l.src_layer == int(i) && !l.dead) kept.insert(l.src.symbol);
-    if (specialize) specialize_layer(*sh, values[i], kept, {out.plan.fast_math});
+    if (specialize)
+      specialize_layer(*sh, values[i], kept, {out.plan.fast_math}, elide_known_outputs);
     new_index[i] = int(out.shaders.size());
     out.shaders.push_back(std::move(sh));
     out.layer_names.push_back(group.layers[i].name);

@@ -567,6 +567,25 @@ TEST(ShadeCli, DebugUninitCountsOslsOutputUseparam) {
             line("a", 5, 2) + "a 0\n" + line("b", 7, 3) + "b 0\n\n");
 }
 
+// An out-of-range element or component store that no path reads afterwards: OSL's -O2 drops
+// the store and its range error, -O0 and -O1 report it. Expected: OSL 1.13.12, `oslc
+// range_dead_store.osl; testshade -O0|-O1|-O2 range_dead_store`.
+TEST(ShadeCli, DeadStoresOutOfRange) {
+  auto err = [](const char* v, const char* idx, int line) {
+    return "ERROR: Index [" + std::string(idx) + "] out of range " + v +
+           "[0..2]: range_dead_store.osl:" + std::to_string(line) +
+           " (group unnamed_group_1, layer 0 range_dead_store_0, shader range_dead_store)\n";
+  };
+  const std::string all = err("a", "-1", 5) + "a[-1] = 0.5\n" + err("a", "5", 6) +
+                          err("c", "5", 8) + err("c", "-1", 9) + "c 0.5\n" + err("c", "5", 10) +
+                          "\n";
+  EXPECT_EQ(run_here("-O0 range_dead_store"), all);
+  EXPECT_EQ(run_here("-O1 range_dead_store"), all);
+  EXPECT_EQ(run_here("-O2 range_dead_store"), err("a", "-1", 5) + "a[-1] = 0.5\n" +
+                                                  err("c", "5", 8) + err("c", "-1", 9) +
+                                                  "c 0.5\n\n");
+}
+
 // getmessage ignores a source other than "trace": a message set upstream is read whatever
 // source is named, and a query naming one counts as a query (the "queried before being set"
 // error points at it). Expected: OSL 1.13.12, `oslc msg_src_set.osl msg_src_get.osl;
