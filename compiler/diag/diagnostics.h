@@ -35,9 +35,8 @@ struct Diagnostic {
   Severity severity;
   SourceRange range;
   std::string message;
-  // How many times oslc prints it (a warning raised inside the arguments of printf, format,
-  // fprintf, warning or error: oslc type-checks argument i of such a call i + 1 times);
-  // Lobe's own rendering prints it once.
+  // How many times oslc prints it (a warning raised inside argument i of a call: oslc checks
+  // argument i i + 1 times, nested calls multiplying); Lobe's own rendering prints it once.
   int oslc_repeat = 1;
 };
 

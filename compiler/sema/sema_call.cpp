@@ -12,15 +12,15 @@
 
 namespace lobe::sema {
 
-// The builtins that take a format string and its arguments.
-static bool is_printer(const std::string& name) {
-  return name == "printf" || name == "format" || name == "error" || name == "warning" ||
-         name == "fprintf";
-}
-
 using ast::Type;
 
 namespace {
+
+// The builtins that take a format string and its arguments.
+bool is_printer(const std::string& name) {
+  return name == "printf" || name == "format" || name == "error" || name == "warning" ||
+         name == "fprintf";
+}
 
 std::string tname(const Type& t) { return ast::to_string(t); }
 
@@ -130,12 +130,11 @@ void Sema::call(ast::CallExpr* e, const Type* expected) {
     if (const ast::StructDecl* s = find_struct(e->name)) return struct_constructor(e, s);
   // oslc types every argument with the call's own expected type, not the parameter's: it
   // decides ties inside (`color c = g(noise(P))` takes the color noise).
-  // oslc checks argument i of a printf-like call i + 1 times (its format check re-checks the
-  // arguments before each one), printing a warning inside it as often: counted for its output.
-  bool printer = is_printer(e->name);
+  // oslc checks argument i of a call i + 1 times, printing a warning inside it as often
+  // (counted for `lobe shade`'s oslc-style output; nested calls multiply).
   int repeat = diags_.oslc_repeat();
   for (size_t i = 0; i < e->args.size(); ++i) {
-    if (printer) diags_.set_oslc_repeat(repeat * int(i + 1));
+    diags_.set_oslc_repeat(repeat * int(i + 1));
     if (e->args[i]->kind != ast::ExprKind::InitList) expr(e->args[i], expected);
   }
   diags_.set_oslc_repeat(repeat);

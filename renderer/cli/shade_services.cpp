@@ -207,14 +207,15 @@ bool ShadeServices::get_matrix(const ShaderGlobals&, std::string_view space, flo
 }
 
 // testshade's stand-in for ray tracing: repeatable answers from u and the ray (measured
-// against OSL 1.13.12's testshade; tests/shade/trace_testshade.osl).
+// against OSL 1.13.12's testshade; tests/shade/layers/trace_testshade.osl).
 bool ShadeServices::trace(const ShaderGlobals& sg, const TraceOptions&, const Vec3& P, const Vec3&,
                           const Vec3&, const Vec3& R, const Vec3&, const Vec3&, TraceHit&) const {
   return sg.u / dot(P, R) > 0.5f; // 0 / 0 (u = 0 along a perpendicular ray) is no hit
 }
 
+// The derivatives of what is written are left as they were, as testshade leaves them.
 std::optional<bool> ShadeServices::trace_message(const ShaderGlobals& sg, std::string_view name,
-                                                 DataType type, void* val) const {
+                                                 DataType type, bool, void* val) const {
   bool hit = sg.u > 0.5f;
   if (name == "hit" && type == DataType{Base::Int}) static_cast<int32_t*>(val)[0] = hit ? 1 : 0;
   if (!hit) return false;

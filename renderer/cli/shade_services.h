@@ -39,7 +39,7 @@ public:
              const Vec3& dPdy, const Vec3& R, const Vec3& dRdx, const Vec3& dRdy,
              TraceHit& hit) const override;
   std::optional<bool> trace_message(const ShaderGlobals& sg, std::string_view name, DataType type,
-                                    void* val) const override;
+                                    bool derivatives, void* val) const override;
 
   bool has_userdata(std::string_view name) const;
 

@@ -208,15 +208,8 @@ int lobe_getmessage(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, co
     const lobe::RendererServices* rs = sg->context->renderer;
     if (code_base(code) == kClosureBase) return 0;
     if (std::optional<bool> r =
-            rs ? rs->trace_message(*sg, name, code_type(code), dest) : std::nullopt) {
-      if (code_base(code) == int(lobe::DataType::Base::String))
-        for (size_t i = 0; i < plane_bytes(code) / sizeof(const char*); ++i) {
-          auto& s = static_cast<const char**>(dest)[i];
-          s = env->strings.intern(s ? s : "");
-        }
-      if (*r && derivs)
-        std::memset(static_cast<unsigned char*>(dest) + plane_bytes(code), 0,
-                    2 * plane_bytes(code));
+            rs ? rs->trace_message(*sg, name, code_type(code), derivs != 0, dest) : std::nullopt) {
+      lobe::shadeops::intern_strings(env, code, dest);
       return *r ? 1 : 0;
     }
     return trace_message(sg->context->trace_hit, name, code, derivs, dest);

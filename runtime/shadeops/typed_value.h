@@ -30,6 +30,19 @@ inline size_t plane_bytes(int code) {
   return code_type(code).bytes();
 }
 
+// The strings of a value of type `code` at `value` (its value plane), replaced by interned
+// copies (a null pointer by ""); other types are left alone.
+inline void intern_strings(RuntimeEnv* env, int code, void* value) {
+  if (code_base(code) != int(DataType::Base::String)) return;
+  auto* p = static_cast<unsigned char*>(value);
+  for (size_t i = 0; i < plane_bytes(code) / sizeof(const char*); ++i) {
+    const char* s;
+    std::memcpy(&s, p + i * sizeof(s), sizeof(s));
+    s = env->strings.intern(s ? s : "");
+    std::memcpy(p + i * sizeof(s), &s, sizeof(s));
+  }
+}
+
 // Asks `ask(scratch)` for a value of type `code` (not a closure) and copies it to `dest` only
 // on success, so a source that writes part of a value and then says no leaves the shader's
 // variable as it was. Derivative planes (`derivs`) start zeroed; strings are interned, so the
@@ -47,13 +60,7 @@ template <class Ask> int fetch_value(RuntimeEnv* env, int code, int derivs, void
     std::memset(local, 0, total);
   }
   if (!ask(static_cast<void*>(scratch))) return 0;
-  if (code_base(code) == int(DataType::Base::String))
-    for (size_t i = 0; i < plane / sizeof(const char*); ++i) {
-      const char* s;
-      std::memcpy(&s, scratch + i * sizeof(s), sizeof(s));
-      s = env->strings.intern(s ? s : "");
-      std::memcpy(scratch + i * sizeof(s), &s, sizeof(s));
-    }
+  intern_strings(env, code, scratch);
   std::memcpy(dest, scratch, total);
   return 1;
 }

@@ -538,12 +538,11 @@ TEST(ShadeCli, VerboseGroupText) {
             "f 0 ua 1 l 0.5 p 0 0 0\n\n");
 }
 
-// A warning inside argument i of printf, format, fprintf, warning or error prints i + 1 times
-// (the format string is argument 0), as oslc prints it (its format check re-checks the
-// arguments), nested calls multiplying: 13 ambiguous-call blocks here. Expected:
+// A warning inside argument i of a call prints i + 1 times (the first argument is 0), as oslc
+// prints it, nested calls multiplying: 25 ambiguous-call blocks here. Expected:
 // layers/ambiguous_printf.expected, from OSL 1.13.12 (`oslc ambiguous_printf.osl; testshade
 // ambiguous_printf`, oslc's "Compiled" line dropped; testshade's final blank line added here).
-TEST(ShadeCli, WarningsInFormatArgumentsRepeatAsOslcPrintsThem) {
+TEST(ShadeCli, WarningsInArgumentsRepeatAsOslcPrintsThem) {
   std::ifstream f(std::string(LOBE_SHADE_CORPUS) + "/layers/ambiguous_printf.expected");
   std::stringstream expected;
   expected << f.rdbuf();

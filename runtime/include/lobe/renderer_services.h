@@ -121,14 +121,15 @@ public:
   }
 
   // getmessage("trace", name, dest), as OSL asks its renderer: an answer is the call's result,
-  // `val` (the shader's variable, of `type`; its derivatives Lobe zeroes on a true answer, and
-  // strings written are interned by Lobe) written or not as the renderer chooses. nullopt (the
-  // default) leaves the query to Lobe, which answers from the TraceHit the last trace() of
-  // this shade filled: "hit" (int), and after a hit "hitdist", "u", "v" (float), "P", "N",
-  // "Ng" (any triple).
+  // `val` (the shader's variable, of `type`, followed by its d/dx and d/dy planes when
+  // `derivatives`; strings written are interned by Lobe) written or not as the renderer
+  // chooses, derivatives included (OSL leaves them to the renderer too). nullopt (the default)
+  // leaves the query to Lobe, which answers from the TraceHit the last trace() of this shade
+  // filled: "hit" (int), and after a hit "hitdist", "u", "v" (float), "P", "N", "Ng" (any
+  // triple), with zero derivatives.
   virtual std::optional<bool> trace_message(const ShaderGlobals& sg, std::string_view name,
-                                            DataType type, void* val) const {
-    (void)sg, (void)name, (void)type, (void)val;
+                                            DataType type, bool derivatives, void* val) const {
+    (void)sg, (void)name, (void)type, (void)derivatives, (void)val;
     return std::nullopt;
   }
 };

@@ -37,8 +37,8 @@ struct Diagnostic {
   std::string file;
   int line = 0, column = 0;
   std::string message;
-  // How many times OSL's oslc prints the same warning (a warning inside the arguments of a
-  // printf-like call: oslc checks argument i of one i + 1 times); `text` is printed once.
+  // How many times OSL's oslc prints the same warning (a warning inside argument i of a call:
+  // oslc checks argument i i + 1 times, nested calls multiplying); `text` is printed once.
   int oslc_repeat = 1;
 };
 using DiagnosticList = std::vector<Diagnostic>;
