@@ -2,7 +2,7 @@
 // used by the ShadingSystem (and so `lobe shade`, `lobe render` and renderer plugins),
 // `lobe compile` and `lobe info`. Each caller gives its list of directories; the order within
 // the search is this:
-//   1. `x.oso` stands for `x` (oslc's output; Lobe reads the source);
+//   1. `x.oso` stands for `x` (oslc's output; Lobe reads its own compiled form or the source);
 //   2. a name with a directory part or an .osl/.lir extension that is an existing file is that
 //      file, as given;
 //   3. else each directory in order ("." or "" is the current directory; an absolute name is

@@ -172,11 +172,14 @@ void print_diagnostics(const DiagnosticList& diags, bool notes, const std::strin
 // `testshade -v` shows it): the values its shader took, in the order the shader declares its
 // parameters (a struct's fields flattened, `st.a`), each with the parameter's type (`float[3]`
 // for an unsized array given three), floats as %.9g, strings quoted and escaped, and
-// ` [[int interpolated=1]]` for a value that is not locked to the geometry (and
-// ` [[int interactive=1]]`); values OSL refused (no such parameter, the wrong type) and values of
-// connected parameters are left out. Without the shader's IR, the values as given.
+// ` [[int interpolated=1]]` when the value or the parameter is not locked to the geometry (its
+// `[[int lockgeom = 0]]`, the option `lockgeom=0`, or the value's own `lockgeom=0` or
+// `interpolated=1`; OSL prints it whatever the value's `lockgeom=1` says) and
+// ` [[int interactive=1]]`; values OSL refused (no such parameter, the wrong type: the last
+// value it took is printed) and values of connected parameters are left out. Without the
+// shader's IR, the values as given.
 std::string group_params(const ShaderGroup::Layer& l, const ir::Shader* sh,
-                         const std::vector<Connection>& connections) {
+                         const std::vector<Connection>& connections, bool lockgeom_default) {
   std::string out;
   if (!sh) {
     for (const InstanceValue& v : l.values)
@@ -185,17 +188,20 @@ std::string group_params(const ShaderGroup::Layer& l, const ir::Shader* sh,
   }
   for (const ir::Symbol& s : sh->symbols) {
     if (s.kind != ir::SymKind::Param && s.kind != ir::SymKind::OutputParam) continue;
-    const InstanceValue* given = nullptr; // the last value given for it is the one used
-    for (const InstanceValue& v : l.values)
-      if (v.name == s.name) given = &v;
-    if (!given) continue;
     bool connected = false; // a connected parameter's value is the connection's
     for (const Connection& c : connections)
       connected = connected || (c.dst_layer == l.name &&
                                 (c.dst_param == s.name || s.name.rfind(c.dst_param + ".", 0) == 0));
     if (connected) continue;
-    group::ValueFit fit = group::fit_instance_value(*given, s.type);
-    if (!fit.ok) continue;
+    const InstanceValue* given = nullptr; // the last value given for it that fits is used
+    group::ValueFit fit;
+    for (auto v = l.values.rbegin(); v != l.values.rend() && !given; ++v)
+      if (v->name == s.name && (fit = group::fit_instance_value(*v, s.type)).ok) given = &*v;
+    if (!given) continue;
+    bool unlocked = !lockgeom_default || given->interpolated || given->lockgeom == 0;
+    for (const ir::Metadata& m : s.metadata)
+      unlocked |= m.name == "lockgeom" && m.type == ir::Type{ir::BaseType::Int, 0} &&
+                  !m.value.empty() && m.value[0].i == 0;
     ir::Type t = s.type;
     if (t.arraylen < 0) t.arraylen = fit.arraylen;
     out += "param " + ir::to_string(t) + " " + s.name;
@@ -211,7 +217,7 @@ std::string group_params(const ShaderGroup::Layer& l, const ir::Shader* sh,
         std::snprintf(num, sizeof(num), "%.9g", double(c.f));
       out += std::string(" ") + num;
     }
-    if (given->interpolated || given->lockgeom == 0) out += " [[int interpolated=1]]";
+    if (unlocked) out += " [[int interpolated=1]]";
     if (given->interactive) out += " [[int interactive=1]]";
     out += " ;\n";
   }
@@ -221,12 +227,12 @@ std::string group_params(const ShaderGroup::Layer& l, const ir::Shader* sh,
 // The group as -v prints it (in OSL's group-text form), each layer's shader as it was named;
 // with `params` (--oslquery), each layer's parameters under its name.
 void print_group(const ShaderGroup& g, const std::vector<std::string>& shaders,
-                 const std::vector<const ir::Shader*>& irs,
+                 const std::vector<const ir::Shader*>& irs, bool lockgeom_default,
                  const std::vector<std::string>* params) {
   std::printf("Shader group:\n---\n");
   for (size_t k = 0; k < g.layers.size(); ++k) {
     const ShaderGroup::Layer& l = g.layers[k];
-    std::printf("%s", group_params(l, irs[k], g.connections).c_str());
+    std::printf("%s", group_params(l, irs[k], g.connections, lockgeom_default).c_str());
     std::printf("shader %s %s ;\n", shaders[k].c_str(), l.name.c_str());
   }
   for (const Connection& c : g.connections)
@@ -700,7 +706,7 @@ int Shade::run() {
     }
     if (job_.verbose && !job_.group_spec.empty())
       std::printf("Processing group specification:\n---\n%s\n---\n", job_.group_spec.c_str());
-    print_group(g, named, irs, job_.oslquery ? &params : nullptr);
+    print_group(g, named, irs, ss_.options().lockgeom_default, job_.oslquery ? &params : nullptr);
   }
   // Ctrl-C from here on: compiling finishes, then nothing is shaded; shading stops promptly.
   std::signal(SIGINT, on_shade_sigint);

@@ -54,8 +54,8 @@ struct LayerPlan {
   int group_index = 0;            // position among the group's layers (compiled or not)
   bool entry = false; // runs at every shade (the last layer, a renderer output, an entry layer)
   // OSL begins such a layer's main code with one `useparam` op of its output parameters that a
-  // connection or the renderer reads or whose computed default runs: one more op in the op
-  // numbers --debuguninit prints (LayerEmitter::number_ops_as_osl).
+  // connection reads or writes, the renderer reads or whose computed default runs: one more op
+  // in the op numbers --debuguninit prints (LayerEmitter::number_ops_as_osl).
   bool osl_output_useparam = false;
   std::vector<ConnectionPlan> connections;
 };

@@ -565,7 +565,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         const ir::Shader& src = *out.shaders[size_t(new_index[size_t(l.src_layer)])];
         bool src_runtime = interp[size_t(l.src_layer)].count(l.src.symbol) > 0;
         for (const Link& up : links)
-          src_runtime |= up.dst_layer == l.src_layer && up.dst.symbol == l.src.symbol;
+          src_runtime |= !up.dead && up.dst_layer == l.src_layer && up.dst.symbol == l.src.symbol;
         auto given = values[size_t(l.src_layer)].find(l.src.symbol);
         KnownOutput k =
             known_output(src, l.src.symbol, src_runtime,
@@ -624,10 +624,12 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         s.unread = !read && !renderer_reads(group, group.layers[i].name, s.name);
       }
     // A parameter a connection reads from (an input parameter connected onward) keeps its
-    // storage: the downstream layer reads it there, so it does not become a constant.
+    // storage: the downstream layer reads it there, so it does not become a constant. (Whether
+    // a downstream layer will replace the connection by a known value is decided later, when
+    // that layer is built, so every onward source is kept.)
     std::set<std::string> kept = runtime_valued;
     for (const Link& l : links)
-      if (l.src_layer == int(i) && !l.dead) kept.insert(l.src.symbol);
+      if (l.src_layer == int(i)) kept.insert(l.src.symbol);
     if (specialize)
       specialize_layer(*sh, values[i], kept, {out.plan.fast_math}, elide_known_outputs);
     new_index[i] = int(out.shaders.size());
@@ -745,7 +747,9 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       lp.userdata[s] = !connected.count(sym.name) && interp[i].count(sym.name);
       if (sym.kind == SymKind::OutputParam) {
         bool read_down = lp.run_default[s] || renderer_reads(group, group.layers[i].name, sym.name);
-        for (const Link& l : links) read_down |= l.src_layer == int(i) && l.src.symbol == sym.name;
+        for (const Link& l : links) // connected from, or into
+          read_down |= (l.src_layer == int(i) && l.src.symbol == sym.name) ||
+                       (l.dst_layer == int(i) && l.dst.symbol == sym.name);
         lp.osl_output_useparam |= read_down;
       }
     }

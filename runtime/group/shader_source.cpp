@@ -35,7 +35,11 @@ std::vector<std::string> search_dirs(const CompileOptions& options) {
 }
 
 std::string find_shader_file(const std::string& name, const CompileOptions& options) {
-  return driver::find_shader(name, search_dirs(options), driver::Prefer::Compiled);
+  // Preprocessor definitions given now apply to the source: a compiled form made without them
+  // would drop them.
+  bool defines = !options.defines.empty() || !options.undefines.empty();
+  return driver::find_shader(name, search_dirs(options),
+                             defines ? driver::Prefer::Source : driver::Prefer::Compiled);
 }
 
 std::optional<ir::Shader> compile_osl_source(const std::string& path, const std::string& text,

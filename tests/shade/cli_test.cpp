@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -536,6 +537,22 @@ TEST(ShadeCli, VerboseGroupText) {
             "connect a.f b.l ;\n\n---\n\n"
             "Shader group \"unnamed_group_2\" layers are:\n    a\n    b\n\n"
             "f 0 ua 1 l 0.5 p 0 0 0\n\n");
+  // Not locked to the geometry: the shader's lockgeom = 0 (whatever the value says) and the
+  // lockgeom=0 option mark a value; a value of the wrong type given last leaves the one before.
+  // (`testshade -v ... group_lockgeom`, same arguments.)
+  const std::string tail = "shader group_lockgeom group_lockgeom_0 ;\n\n---\n\n"
+                           "Shader group \"unnamed_group_1\" layers are:\n    group_lockgeom_0\n\n";
+  EXPECT_EQ(run_here("-v -param f 1.5 -param f 2 -param g 1.0 -param:lockgeom=1 h 2.0 "
+                     "group_lockgeom"),
+            "WARNING: attempting to set parameter with wrong type: f (expected 'float', received "
+            "'int')\nShader group:\n---\nparam float f 1.5 ;\n"
+            "param float g 1 [[int interpolated=1]] ;\nparam float h 2 ;\n" +
+                tail + "1.5 1 2\n\n");
+  EXPECT_EQ(run_here("-v --options lockgeom=0 -param f 1.0 -param:lockgeom=1 h 2.0 "
+                     "group_lockgeom"),
+            "Shader group:\n---\nparam float f 1 [[int interpolated=1]] ;\n"
+            "param float h 2 [[int interpolated=1]] ;\n" +
+                tail + "1 0 2\n\n");
 }
 
 // A warning inside argument i of a call prints i + 1 times (the first argument is 0), as oslc
@@ -583,6 +600,29 @@ TEST(ShadeCli, DeadStoresOutOfRange) {
   EXPECT_EQ(run_here("-O2 range_dead_store"), err("a", "-1", 5) + "a[-1] = 0.5\n" +
                                                   err("c", "5", 8) + err("c", "-1", 9) +
                                                   "c 0.5\n\n");
+}
+
+// `lobe shade x` runs the x.lir `lobe compile -DX` wrote (testshade runs oslc's x.oso), until
+// x.osl is edited; given -D itself, it compiles the source, where the definition applies.
+TEST(ShadeCli, RunsTheCompiledFormUnlessTheSourceIsNewerOrDefinesAreGiven) {
+  auto dir =
+      std::filesystem::temp_directory_path() / ("lobe_shade_lir_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "w.osl") << "shader w() {\n#ifdef FOO\n  printf(\"foo\\n\");\n#else\n"
+                                  "  printf(\"plain\\n\");\n#endif\n}\n";
+  std::filesystem::last_write_time(dir / "w.osl", std::filesystem::file_time_type::clock::now() -
+                                                      std::chrono::seconds(10));
+  std::string in = "cd " + dir.string() + " && " + LOBE_EXE;
+  run_cmd(in + " compile -DFOO w.osl 2>&1");
+  EXPECT_EQ(run_cmd(in + " shade w 2>&1"), "foo\n\n");
+  run_cmd(in + " compile w.osl 2>&1");
+  EXPECT_EQ(run_cmd(in + " shade -DFOO w 2>&1"), "foo\n\n");
+  std::filesystem::last_write_time(dir / "w.osl", std::filesystem::file_time_type::clock::now() +
+                                                      std::chrono::seconds(10));
+  run_cmd(in + " compile -DFOO w.osl -o w.lir 2>&1"); // still older than the "edited" source
+  std::filesystem::last_write_time(dir / "w.lir", std::filesystem::file_time_type::clock::now());
+  EXPECT_EQ(run_cmd(in + " shade w 2>&1"), "plain\n\n");
+  std::filesystem::remove_all(dir);
 }
 
 // getmessage ignores a source other than "trace": a message set upstream is read whatever
