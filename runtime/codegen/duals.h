@@ -38,6 +38,35 @@ public:
     r.dy = d(x.dy, y.dy);
     return r;
   }
+  // x * y as OSL's Dual product is compiled into its C++ shadeops (dual.h, clang contracting
+  // the partial x.val * y.d + x.d * y.val into fmuladd(x.val, y.d, x.d * y.val)).
+  Dual mul_dual_h(const Dual& x, const Dual& y) {
+    Dual r{b_.CreateFMul(x.v, y.v)};
+    auto d = [&](llvm::Value* xd, llvm::Value* yd) -> llvm::Value* {
+      if (!xd && !yd) return nullptr;
+      if (!yd) return b_.CreateFMul(xd, y.v);
+      llvm::Value* rest = xd ? b_.CreateFMul(xd, y.v) : e_.fconst(0);
+      return b_.CreateIntrinsic(llvm::Intrinsic::fmuladd, {b_.getFloatTy()}, {x.v, yd, rest});
+    };
+    r.dx = d(x.dx, y.dx);
+    r.dy = d(x.dy, y.dy);
+    return r;
+  }
+  // x / y as OSL's Dual division computes it (dual.h, which its C++ shadeops use): the
+  // derivatives are (1 / y) * (dx - q dy), no zero guard.
+  Dual div_dual_h(const Dual& x, const Dual& y) {
+    llvm::Value* q = b_.CreateFDiv(x.v, y.v);
+    Dual r{q};
+    if (!x.dx && !x.dy && !y.dx && !y.dy) return r;
+    llvm::Value* inv = b_.CreateFDiv(e_.fconst(1), y.v);
+    auto d = [&](llvm::Value* dxv, llvm::Value* dyv) -> llvm::Value* {
+      if (!dxv && !dyv) return nullptr;
+      return b_.CreateFMul(inv, dsub(dxv, scale(dyv, q)));
+    };
+    r.dx = d(x.dx, y.dx);
+    r.dy = d(x.dy, y.dy);
+    return r;
+  }
   Dual neg(const Dual& x) {
     return {b_.CreateFNeg(x.v), x.dx ? b_.CreateFNeg(x.dx) : nullptr,
             x.dy ? b_.CreateFNeg(x.dy) : nullptr};

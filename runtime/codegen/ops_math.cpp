@@ -231,9 +231,14 @@ void op_nary(LayerEmitter& e, const ir::Op& op) {
       out = d.select(B.CreateFCmpUNE(z.v, e.fconst(0)), y, x);
     else if (o == ir::Opcode::Step)
       out = Dual{B.CreateSelect(B.CreateFCmpOLT(y.v, x.v), e.fconst(0), e.fconst(1))};
-    else if (o == ir::Opcode::SmoothStep) { // t = clamp((z-x)/(y-x)); t*t*(3-2t)
-      Dual tt = d.div(d.sub(z, x), d.sub(y, x));
-      Dual s = d.mul(d.mul(tt, tt), d.sub(d.constant(3), d.mul(d.constant(2), tt)));
+    else if (o == ir::Opcode::SmoothStep) { // t = (z-x)/(y-x) in [0, 1); t*t*(3-2t)
+      // OSL multiplies in the order of its formula: t*t*(3-2t) for a value alone, (3-2t)*t*t
+      // when the result carries derivatives (dual.h's smoothstep, with its division and its
+      // contracted products; an edge pair with y == x never reaches the quotient: selected
+      // away below). tests/shade/smoothstep_derivs_osl.osl.
+      Dual tt = derivs ? d.div_dual_h(d.sub(z, x), d.sub(y, x)) : d.div(d.sub(z, x), d.sub(y, x));
+      Dual k = d.sub(d.constant(3), d.mul(d.constant(2), tt));
+      Dual s = derivs ? d.mul_dual_h(d.mul_dual_h(k, tt), tt) : d.mul(d.mul(tt, tt), k);
       out = d.select(B.CreateFCmpOLT(z.v, x.v), d.constant(0),
                      d.select(B.CreateFCmpOGE(z.v, y.v), d.constant(1), s));
     } else if (o == ir::Opcode::Hypot) {
