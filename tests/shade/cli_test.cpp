@@ -36,6 +36,14 @@ std::string run_here(const std::string& args) {
                  args + " 2>&1");
 }
 
+// tests/shade/layers/NAME.expected: what OSL printed (its final blank line dropped), "" if none.
+std::string expected_file(const std::string& name) {
+  std::ifstream f(std::string(LOBE_SHADE_CORPUS) + "/layers/" + name + ".expected");
+  std::stringstream text;
+  text << f.rdbuf();
+  return text.str();
+}
+
 // Runs at -O0 and -O2 (specialisation off and on); both must print the same.
 std::string both(const std::string& args) {
   std::string a = run("-O0 " + args), b = run("-O2 " + args);
@@ -479,11 +487,9 @@ TEST(ShadeCli, ErrorsAndUsage) {
 // layers/trace_testshade.osl says how), at both levels. Expected: layers/trace_testshade.expected,
 // from OSL 1.13.12 (`testshade -g 3 3 trace_testshade`; testshade's final blank line added here).
 TEST(ShadeCli, TraceAnswersAsTestshade) {
-  std::ifstream f(std::string(LOBE_SHADE_CORPUS) + "/layers/trace_testshade.expected");
-  std::stringstream expected;
-  expected << f.rdbuf();
-  ASSERT_FALSE(expected.str().empty());
-  EXPECT_EQ(both("-g 3 3 trace_testshade"), expected.str() + "\n");
+  std::string expected = expected_file("trace_testshade");
+  ASSERT_FALSE(expected.empty());
+  EXPECT_EQ(both("-g 3 3 trace_testshade"), expected + "\n");
 }
 
 // A connection from an input parameter: the downstream layer reads the value the parameter
@@ -560,11 +566,9 @@ TEST(ShadeCli, VerboseGroupText) {
 // layers/ambiguous_printf.expected, from OSL 1.13.12 (`oslc ambiguous_printf.osl; testshade
 // ambiguous_printf`, oslc's "Compiled" line dropped; testshade's final blank line added here).
 TEST(ShadeCli, WarningsInArgumentsRepeatAsOslcPrintsThem) {
-  std::ifstream f(std::string(LOBE_SHADE_CORPUS) + "/layers/ambiguous_printf.expected");
-  std::stringstream expected;
-  expected << f.rdbuf();
-  ASSERT_FALSE(expected.str().empty());
-  EXPECT_EQ(run_here("ambiguous_printf"), expected.str() + "\n");
+  std::string expected = expected_file("ambiguous_printf");
+  ASSERT_FALSE(expected.empty());
+  EXPECT_EQ(run_here("ambiguous_printf"), expected + "\n");
 }
 
 // --debuguninit numbers ops as OSL does with output parameters that are read downstream (the
