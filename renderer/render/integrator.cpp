@@ -127,8 +127,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
       } else if (lights.environment()) {
         float lp;
         Color3 Le = lights.environment_hit(ray.dir, prev_n, lp);
-        Color3 c = beta * Le * weight_bsdf_hit(strategy_, after_delta, prev_pdf, lp);
-        out.L += depth >= 2 ? clamped(c, clamp_) : c;
+        Color3 contrib = beta * Le * weight_bsdf_hit(strategy_, after_delta, prev_pdf, lp);
+        out.L += depth >= 2 ? clamped(contrib, clamp_) : contrib;
       }
       lap(&P::lights);
       break;
@@ -142,8 +142,9 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
     const Vec3 n_lit = dot(v.hit.N, wo) < 0 ? -v.hit.N : v.hit.N;
     if (!is_zero(v.bsdf.emission)) {
       float lp = lights.is_emitter(v.hit.shape) ? lights.pdf_area(prev_p, v.hit) : 0;
-      Color3 c = beta * v.bsdf.emission * weight_bsdf_hit(strategy_, after_delta, prev_pdf, lp);
-      out.L += depth >= 2 ? clamped(c, clamp_) : c;
+      Color3 contrib =
+          beta * v.bsdf.emission * weight_bsdf_hit(strategy_, after_delta, prev_pdf, lp);
+      out.L += depth >= 2 ? clamped(contrib, clamp_) : contrib;
       lap(&P::lights);
     }
     if (depth == 0) {
@@ -206,8 +207,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
           if (visible) {
             float w =
                 (delta || strategy_ == Strategy::LightOnly) ? 1 : power_heuristic(ls.pdf, f.pdf);
-            Color3 c = beta * f.value * Le * (w / ls.pdf);
-            out.L += depth >= 1 ? clamped(c, clamp_) : c;
+            Color3 contrib = beta * f.value * Le * (w / ls.pdf);
+            out.L += depth >= 1 ? clamped(contrib, clamp_) : contrib;
           }
         }
       }

@@ -331,10 +331,10 @@ TEST(Globals, TypeCheckerAndShaderGlobalsAgree) {
   // Every global may be written, as in oslc; all but P, I, N, Ci with oslc's warning.
   for (const auto& [name, type] : osl) {
     std::string value = type == "closure" ? "0" : type == "float" ? "1" : type + "(1)";
-    lobe::lower::PipelineResult r =
+    lobe::lower::PipelineResult w =
         compile_text("shader gap() { " + name + " = " + value + "; }\n");
-    EXPECT_TRUE(r.ok) << name << r.diagnostics;
-    bool warned = r.diagnostics.find("cannot write to non-output parameter") != std::string::npos;
+    EXPECT_TRUE(w.ok) << name << w.diagnostics;
+    bool warned = w.diagnostics.find("cannot write to non-output parameter") != std::string::npos;
     EXPECT_EQ(warned, !(name == "P" || name == "I" || name == "N" || name == "Ci")) << name;
   }
 }

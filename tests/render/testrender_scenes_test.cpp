@@ -225,7 +225,11 @@ TEST(BackgroundShader, CameraRaysSeeTheShaderNotItsTable) {
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
       float v = img.pixel(x, y)[c];
-      if (x <= 57) EXPECT_EQ(v, 0.0f) << x << " " << y;
-      if (x >= 60) EXPECT_EQ(v, 1.0f) << x << " " << y;
+      if (x <= 57) {
+        EXPECT_EQ(v, 0.0f) << x << " " << y;
+      }
+      if (x >= 60) {
+        EXPECT_EQ(v, 1.0f) << x << " " << y;
+      }
     }
 }
