@@ -198,10 +198,8 @@ std::string group_params(const ShaderGroup::Layer& l, const ir::Shader* sh,
     for (auto v = l.values.rbegin(); v != l.values.rend() && !given; ++v)
       if (v->name == s.name && (fit = group::fit_instance_value(*v, s.type)).ok) given = &*v;
     if (!given) continue;
-    bool unlocked = !lockgeom_default || given->interpolated || given->lockgeom == 0;
-    for (const ir::Metadata& m : s.metadata)
-      unlocked |= m.name == "lockgeom" && m.type == ir::Type{ir::BaseType::Int, 0} &&
-                  !m.value.empty() && m.value[0].i == 0;
+    bool unlocked = !lockgeom_default || given->interpolated || given->lockgeom == 0 ||
+                    group::metadata_lockgeom(s) == 0;
     ir::Type t = s.type;
     if (t.arraylen < 0) t.arraylen = fit.arraylen;
     out += "param " + ir::to_string(t) + " " + s.name;

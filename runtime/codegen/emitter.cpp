@@ -360,7 +360,8 @@ std::string osl_opname(const ir::Op& op, const ir::Shader& sh) {
 // `br` ops (the jump back of a loop, over an else) are part of OSL's `for`/`if` ops, and OSL
 // inserts its own `useparam` ops: before an op, one for each input parameter the op reads
 // that no earlier op outside a conditional read, and one at the start of the main code for the
-// outputs connected or read downstream (LayerPlan::osl_output_useparam); Lobe's useparam ops are not counted.
+// outputs connected or read downstream (LayerPlan::osl_output_useparam); Lobe's useparam ops are
+// not counted.
 void LayerEmitter::number_ops_as_osl() {
   const auto& ops = shader().ops;
   osl_opnum_.assign(ops.size(), 0);

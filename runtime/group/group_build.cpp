@@ -163,9 +163,7 @@ bool interpolated(const ir::Symbol& s, int instance_lockgeom, bool lockgeom_defa
       s.type.base == ir::BaseType::Closure)
     return false;
   if (instance_lockgeom >= 0) return instance_lockgeom == 0;
-  for (const ir::Metadata& m : s.metadata)
-    if (m.name == "lockgeom" && m.type == ir::Type{ir::BaseType::Int, 0} && !m.value.empty())
-      return m.value[0].i == 0;
+  if (int said = metadata_lockgeom(s); said >= 0) return said == 0;
   return !lockgeom_default;
 }
 
@@ -324,6 +322,24 @@ struct KnownOutput {
   std::vector<ir::ConstValue> value;
   std::string global;
 };
+
+// What `op` gives `s` (symbol `si`) when it is `assign s x` of a constant or of a global the
+// layer never writes (`written`), a copy as written (not one the optimiser made).
+KnownOutput known_copy(const ir::Shader& sh, const ir::Op& op, int si,
+                       const std::set<int>& written) {
+  KnownOutput k;
+  const ir::Symbol& s = sh.symbols[size_t(si)];
+  if (op.opcode != ir::Opcode::Assign || op.args.size() != 2 || op.args[0] != si) return k;
+  const ir::Symbol& src = sh.symbols[size_t(op.args[1])];
+  if (src.kind == SymKind::Const)
+    k.value = convert_const(src.init, src.type, s.type);
+  else if (src.kind == SymKind::Global && !op.identity_copy && !written.count(op.args[1]) &&
+           !src.type.is_array() && !s.type.is_array() &&
+           src.type.components() == s.type.components() && same_kind(src.type, s.type))
+    k.global = src.name;
+  return k;
+}
+
 KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool runtime_valued,
                          const std::vector<ir::ConstValue>* given) {
   KnownOutput k;
@@ -341,16 +357,7 @@ KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool run
     // A computed default: known when it is one copy of a constant or of a global the layer
     // never writes, and no instance value replaces it (OSL 1.13.12 -O2 then keeps the layer).
     if (given || s.init_end - s.init_begin != 1) return k;
-    const ir::Op& op = sh.ops[size_t(s.init_begin)];
-    if (op.opcode != ir::Opcode::Assign || op.args.size() != 2 || op.args[0] != si) return k;
-    const ir::Symbol& src = sh.symbols[size_t(op.args[1])];
-    if (src.kind == SymKind::Const)
-      k.value = convert_const(src.init, src.type, s.type);
-    else if (src.kind == SymKind::Global && !written.count(op.args[1]) && !src.type.is_array() &&
-             !s.type.is_array() && src.type.components() == s.type.components() &&
-             same_kind(src.type, s.type))
-      k.global = src.name;
-    return k;
+    return known_copy(sh, sh.ops[size_t(s.init_begin)], si, written);
   }
   if (s.kind != SymKind::OutputParam) return k;
   int writer = -1, writes = 0;
@@ -375,17 +382,7 @@ KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool run
     return k;
   }
   if (writes > 1 || jump_before) return k;
-  const ir::Op& op = sh.ops[size_t(writer)];
-  if (op.opcode != ir::Opcode::Assign || op.args.size() != 2 || op.args[0] != si) return k;
-  const ir::Symbol& src = sh.symbols[size_t(op.args[1])];
-  if (src.kind == SymKind::Const) {
-    k.value = convert_const(src.init, src.type, s.type);
-  } else if (src.kind == SymKind::Global && !op.identity_copy &&
-             !written_globals.count(op.args[1]) && !src.type.is_array() && !s.type.is_array() &&
-             src.type.components() == s.type.components() && same_kind(src.type, s.type)) {
-    k.global = src.name;
-  }
-  return k;
+  return known_copy(sh, sh.ops[size_t(writer)], si, written_globals);
 }
 
 } // namespace

@@ -157,4 +157,11 @@ std::string nonexistent_param_note(const std::string& layer, const std::string& 
          "' (its parameters: " + names + ")";
 }
 
+int metadata_lockgeom(const ir::Symbol& s) {
+  for (const ir::Metadata& m : s.metadata)
+    if (m.name == "lockgeom" && m.type == ir::Type{ir::BaseType::Int, 0} && !m.value.empty())
+      return m.value[0].i;
+  return -1;
+}
+
 } // namespace lobe::group

@@ -29,6 +29,9 @@ std::string nonexistent_param_note(const std::string& layer, const std::string& 
                                    const std::string& param,
                                    const std::vector<std::string>& params);
 
+// The shader's own `[[ int lockgeom = N ]]` on parameter `s`: N, or -1 when it says nothing.
+int metadata_lockgeom(const ir::Symbol& s);
+
 // The same kind of value: one base type, or both triples (color, point, vector, normal).
 bool same_kind(const ir::Type& a, const ir::Type& b);
 
