@@ -100,25 +100,47 @@ inline uint32_t point(uint32_t index, int dim) {
          t[3][index >> 24];
 }
 
-inline uint32_t reverse_bits(uint32_t x) {
+constexpr uint32_t reverse_bits(uint32_t x) {
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
   x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
   x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
   return __builtin_bswap32(x);
 }
 
+// The same points in the bit-reversed domain: point_reversed(y, dim) is
+// reverse_bits(point(reverse_bits(y), dim)). Byte k of y is byte 3 - k of the index, its bits
+// in reverse order; the columns' XOR commutes with the reversal. Sampler works here so that a
+// group of numbers reverses bits once per number instead of four times.
+constexpr ByteTables make_reversed_byte_tables() {
+  ByteTables bt{};
+  for (int d = 0; d < 4; ++d)
+    for (int k = 0; k < 4; ++k)
+      for (uint32_t b = 0; b < 256; ++b)
+        bt.t[d][k][b] = reverse_bits(kBytes.t[d][3 - k][reverse_bits(b) >> 24]);
+  return bt;
+}
+inline constexpr ByteTables kBytesReversed = make_reversed_byte_tables();
+
+inline uint32_t point_reversed(uint32_t y, int dim) {
+  const auto& t = kBytesReversed.t[dim];
+  return t[0][y & 0xff] ^ t[1][(y >> 8) & 0xff] ^ t[2][(y >> 16) & 0xff] ^ t[3][y >> 24];
+}
+
 // Owen scrambling by hashing (Burley, "Practical Hash-based Owen Scrambling", JCGT 2020): a
 // Laine-Karras style hash on the bit-reversed value, in which a bit changes only bits below it
 // (after reversal: only finer digits), is a nested uniform scramble of the fraction. A
 // bijection on 32-bit values that maps every aligned block of 2^k values onto one.
-inline uint32_t owen_scramble(uint32_t x, uint32_t seed) {
-  x = reverse_bits(x);
+// scramble_reversed is the hash itself, on and to bit-reversed values.
+inline uint32_t scramble_reversed(uint32_t x, uint32_t seed) {
   x += seed;
   x ^= x * 0x6c50b47cu;
   x ^= x * 0xb82f1e52u;
   x ^= x * 0xc7afe638u;
   x ^= x * 0x8d22f6e6u;
-  return reverse_bits(x);
+  return x;
+}
+inline uint32_t owen_scramble(uint32_t x, uint32_t seed) {
+  return reverse_bits(scramble_reversed(reverse_bits(x), seed));
 }
 
 } // namespace sobol
@@ -135,7 +157,7 @@ class Sampler {
 public:
   Sampler(uint64_t pixel, uint64_t sample, uint64_t seed)
       : key_(mix64(pixel * 0x9e3779b97f4a7c15ull + mix64(seed))),
-        index_(static_cast<uint32_t>(sample)) {}
+        index_reversed_(sobol::reverse_bits(static_cast<uint32_t>(sample))) {}
   // Uniform in [0, 1) (24 bits, so 1 is never returned).
   float next() {
     float u[1];
@@ -154,17 +176,19 @@ public:
   }
 
 private:
+  // Worked in the bit-reversed domain (sobol::point_reversed): the same numbers as
+  // owen_scramble(point(owen_scramble(index, h), d), seed_d), one reversal each.
   void group(float* out, int n) {
     uint64_t h = mix64(key_ + (++counter_) * 0xd1b54a32d192ed03ull);
-    uint32_t shuffled = sobol::owen_scramble(index_, static_cast<uint32_t>(h));
+    uint32_t shuffled = sobol::scramble_reversed(index_reversed_, static_cast<uint32_t>(h));
     for (int d = 0; d < n; ++d) {
       uint32_t seed = static_cast<uint32_t>(mix64(h + uint64_t(d + 1)) >> 32);
-      uint32_t x = sobol::owen_scramble(sobol::point(shuffled, d), seed);
-      out[d] = float(x >> 8) * 0x1p-24f;
+      uint32_t x = sobol::scramble_reversed(sobol::point_reversed(shuffled, d), seed);
+      out[d] = float(sobol::reverse_bits(x) >> 8) * 0x1p-24f;
     }
   }
   uint64_t key_;
-  uint32_t index_;
+  uint32_t index_reversed_;
   uint64_t counter_ = 0;
 };
 

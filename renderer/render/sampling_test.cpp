@@ -51,6 +51,41 @@ TEST(Sobol, OwenScrambleMapsAlignedBlocksOntoAlignedBlocks) {
   }
 }
 
+TEST(Sobol, ReversedDomainIsTheReversedPoint) {
+  // point_reversed(y) = reverse(point(reverse(y))), checked bit by bit from the matrices' own
+  // columns (not the byte tables either side uses) at indices spread over all 32 bits.
+  for (int d = 0; d < 4; ++d)
+    for (uint32_t k = 0; k < 4096; ++k) {
+      uint32_t index = k * 0x9e3779b9u ^ (k << 20);
+      uint32_t want = 0;
+      for (int bit = 0; bit < 32; ++bit)
+        if ((index >> bit) & 1) want ^= sobol::kMatrices.v[d][bit];
+      EXPECT_EQ(sobol::point(index, d), want) << d << " " << index;
+      EXPECT_EQ(sobol::point_reversed(sobol::reverse_bits(index), d), sobol::reverse_bits(want))
+          << d << " " << index;
+    }
+}
+
+TEST(Sampler, NumbersAreTheScrambledSobolPointsOfItsDefinition) {
+  // Each group: owen_scramble(point(owen_scramble(sample, h), d), seed_d), with h and seed_d the
+  // hashes documented in sampling.h, recomputed here in the plain (not reversed) domain.
+  for (uint64_t pixel : {0ull, 99ull})
+    for (uint64_t s : {0ull, 1ull, 5ull, 1000ull, 65537ull}) {
+      Sampler smp(pixel, s, 3);
+      uint64_t key = mix64(pixel * 0x9e3779b97f4a7c15ull + mix64(3));
+      for (uint64_t g = 1; g <= 3; ++g) {
+        lobe::Vec3 got = smp.next3();
+        uint64_t h = mix64(key + g * 0xd1b54a32d192ed03ull);
+        uint32_t shuffled = sobol::owen_scramble(uint32_t(s), uint32_t(h));
+        for (int d = 0; d < 3; ++d) {
+          uint32_t seed = uint32_t(mix64(h + uint64_t(d + 1)) >> 32);
+          uint32_t x = sobol::owen_scramble(sobol::point(shuffled, d), seed);
+          EXPECT_EQ(got[d], float(x >> 8) * 0x1p-24f) << pixel << " " << s << " " << g << " " << d;
+        }
+      }
+    }
+}
+
 namespace {
 
 // True when the points fill every elementary interval of shape 2^-a x 2^-(m-a) exactly once.

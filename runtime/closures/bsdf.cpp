@@ -226,6 +226,13 @@ std::optional<BsdfSample> Bsdf::sample(const Vec3& wo, const Vec3& u, Transport 
     s->pdf = p_pick;
     return s;
   }
+  if (n_lobes_ == 1) {
+    // A lone lobe is its own mixture: its sample's weight is its eval / pdf (every closure's
+    // Consistency test checks that), so evaluating it again at wi would add nothing.
+    if (!(s->pdf > 0.0f && s->pdf < INFINITY)) return std::nullopt;
+    s->weight = closures::sanitize(l.weight * s->weight);
+    return s;
+  }
   BsdfEval e = eval(wo, s->wi, mode);
   if (!(e.pdf > 0.0f)) return std::nullopt;
   s->weight = closures::sanitize(e.value / e.pdf);

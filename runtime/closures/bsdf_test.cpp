@@ -94,6 +94,34 @@ TEST(Bsdf, SampleWeightIsValueOverPdf) {
   }
 }
 
+// A lone lobe takes its weight from its own sample (no second evaluation): still the mixture's
+// eval / pdf, scaled by the closure weight, for a diffuse-like and a glossy lobe.
+TEST(Bsdf, LoneLobeSampleWeightIsValueOverPdf) {
+  Tree t;
+  Params on("oren_nayar"), mf("microfacet");
+  on.set("sigma", 0.5f);
+  mf.set("distribution", "ggx").set("xalpha", 0.3f).set("yalpha", 0.3f).set("eta", 1.5f);
+  for (const Params* p : {&on, &mf}) {
+    Bsdf b;
+    Vec3 wo = dir_cos(0.7, 0.3);
+    b.build(t.comp(*p, {0.6f, 0.2f, 0.1f}), wo, kUp);
+    ASSERT_EQ(b.lobe_count(), 1);
+    int n = 0;
+    for (float u1 : {0.1f, 0.37f, 0.62f, 0.9f})
+      for (float u2 : {0.05f, 0.5f, 0.81f}) {
+        auto s = b.sample(wo, {0.5f, u1, u2});
+        if (!s) continue;
+        ++n;
+        BsdfEval e = b.eval(wo, s->wi);
+        ASSERT_GT(e.pdf, 0.0f);
+        EXPECT_NEAR(s->pdf, e.pdf, 1e-5f * e.pdf);
+        for (int c = 0; c < 3; ++c)
+          EXPECT_NEAR(s->weight[c], e.value[c] / e.pdf, 1e-4f * (1 + e.value[c] / e.pdf));
+      }
+    EXPECT_GE(n, 6);
+  }
+}
+
 TEST(Bsdf, DropsZeroNanAndDegenerate) {
   Tree t;
   Params d("diffuse"), bad("diffuse");
