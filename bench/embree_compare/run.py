@@ -12,9 +12,13 @@ Lobe: a constant environment), max path length 8.
    (rep, renderer), --reps times; medians and the Embree/Lobe ratio (above 1: Lobe faster).
    Lobe's own split is printed from `lobe render --stats`.
 2. Error against time: each renderer at the --curve sample counts, relMSE (mean over pixels and
-   RGB of (x-r)^2/(r^2+0.01)) against its own converged image (--ref-spp, cached in DIR),
-   whole-process time; both curves are interpolated log-log at common times for the
-   equal-time ratio. Writes DIR/embree_compare.csv and DIR/embree_compare.png (log-log).
+   RGB of (x-r)^2/(r^2+0.01)) against its own converged image (--ref-spp, cached in DIR)
+   that shares no samples with the curve: Lobe's with another seed; pathtracer and testrender
+   take no seed and seed each sample by pixel and sample index (so a plain reference would
+   start with the curve image's own samples, and the fireflies they share would cancel in
+   the relative error), so theirs is rendered REF_PAD pixels wider on every side, the field
+   of view widened to keep the pixel size, and cropped. Whole-process time; both curves are
+   interpolated log-log at common times for the equal-time ratio. Writes DIR/embree_compare.csv and DIR/embree_compare.png (log-log).
 3. With OSL_BIN exported (`export $(bash ../shared/osl-reference/setup.sh)`): testrender and Lobe on
    the same scene with analytic spheres (testrender reads no meshes), spheres.xml, added to
    the CSV and the plot.
@@ -45,6 +49,9 @@ except ImportError:
     raise
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+# Renderers without a seed render their reference REF_PAD pixels wider on every side (pixel
+# size kept) and cropped: the same pixels, other random numbers.
+REF_PAD = 8
 
 
 def read_image(path):
@@ -85,10 +92,15 @@ class Embree:
         with open(os.path.join(d, "camera.txt")) as fh:
             self.cam = fh.read().split()
 
-    def cmd(self, spp, out, seed=0):
-        # pathtracer has no seed option: its sampler is seeded per pixel and frame.
-        return (["pathtracer", "-i", "spheres.obj"] + self.cam +
-                ["--size", str(self.a.res), str(self.a.res), "--spp", str(spp),
+    def cmd(self, spp, out, seed=0, pad=0):
+        # pathtracer has no seed option: its sampler is seeded per pixel and sample, so a
+        # reference shares no samples with the curve only when its pixels are shifted (pad).
+        cam = list(self.cam)
+        cam[cam.index("--fov") + 1] = "%.7f" % widened_fov(float(cam[cam.index("--fov") + 1]),
+                                                           self.a.res, pad)
+        n = str(self.a.res + 2 * pad)
+        return (["pathtracer", "-i", "spheres.obj"] + cam +
+                ["--size", n, n, "--spp", str(spp),
                  "--max-path-length", "8", "--ambientlight", "1", "1", "1",
                  "--threads", str(self.a.threads), "-o", out + ".pfm"]), out + ".pfm"
 
@@ -112,16 +124,23 @@ class TestRender:
         self.a, self.d = a, d
         self.bin = os.path.join(os.environ["OSL_BIN"], "testrender")
 
-    def cmd(self, spp, out, seed=0):
+    def cmd(self, spp, out, seed=0, pad=0):
         aa = max(1, int(round(math.sqrt(spp))))  # -aa N is N x N samples
-        return ([self.bin, "-t", str(self.a.threads), "--res", str(self.a.res), str(self.a.res),
-                 "-aa", str(aa), "spheres.xml", out + ".exr"]), out + ".exr"
+        n = str(self.a.res + 2 * pad)
+        return ([self.bin, "-t", str(self.a.threads), "--res", n, n, "-aa", str(aa),
+                 "spheres_pad%d.xml" % pad if pad else "spheres.xml", out + ".exr"]), out + ".exr"
 
 
-def write_xml(d):
+def widened_fov(fov, res, pad):
+    """The vertical field of view (degrees) that keeps the pixel size at res + 2 pad pixels."""
+    return math.degrees(2 * math.atan(math.tan(math.radians(fov) / 2) * (res + 2 * pad) / res))
+
+
+def write_xml(d, name="spheres.xml", pad=0, res=512):
     """The same scene with analytic spheres, in testrender's XML (Lobe reads it too)."""
     lines = ["<World>",
-             '  <Camera eye="0, 4.2, 8.6" look_at="0, 0.2, 0" fov="%.4f" />' % tr_fov(40.0),
+             '  <Camera eye="0, 4.2, 8.6" look_at="0, 0.2, 0" fov="%.7f" />'
+             % widened_fov(tr_fov(40.0), res, pad),
              '  <Option max_bounces="int 8" />',
              "  <ShaderGroup>color Cs 0.5 0.5 0.5; shader bench_matte grey;</ShaderGroup>",
              '  <Quad corner="-30, 0, 30" edge_x="60, 0, 0" edge_y="0, 0, -60" />']
@@ -130,7 +149,7 @@ def write_xml(d):
             lines.append('  <Sphere center="%g, 0.4, %g" radius="0.4" />' % (-3.5 + i, -3.5 + j))
     lines += ["  <ShaderGroup>color Cs 1 1 1; shader bench_bg bg;</ShaderGroup>",
               '  <Background resolution="1" />', "</World>"]
-    with open(os.path.join(d, "spheres.xml"), "w") as fh:
+    with open(os.path.join(d, name), "w") as fh:
         fh.write("\n".join(lines) + "\n")
     for s in ("bench_matte.osl", "bench_bg.osl"):
         shutil.copy(os.path.join(HERE, s), d)
@@ -192,6 +211,7 @@ def main():
     renderers = [embree, lobe]
     if os.environ.get("OSL_BIN"):
         write_xml(d)
+        write_xml(d, "spheres_pad%d.xml" % REF_PAD, REF_PAD, a.res)
         for s in ("bench_matte", "bench_bg"):
             subprocess.run([os.path.join(os.environ["OSL_BIN"], "oslc"), "-q", s + ".osl"],
                            cwd=d, check=True, stdout=subprocess.DEVNULL)
@@ -220,12 +240,14 @@ def main():
     curve = [int(x) for x in a.curve.split(",")]
     refs = {}
     for r in renderers:
-        ref = os.path.join(d, "ref_%s_%d" % (r.name, a.ref_spp))
-        cmd, path = r.cmd(a.ref_spp, ref, seed=7777)
+        # Lobe's references take another seed; the others' shift their pixels (see cmd()).
+        pad = 0 if r.name.startswith("lobe") else REF_PAD
+        ref = os.path.join(d, "ref_%s_%d%s" % (r.name, a.ref_spp, "_pad%d" % pad if pad else ""))
+        cmd, path = r.cmd(a.ref_spp, ref, seed=7777, **({"pad": pad} if pad else {}))
         if not os.path.exists(path):
             print("reference %s: %d spp ..." % (r.name, a.ref_spp), flush=True)
             timed(cmd, d)
-        refs[r.name] = read_image(path)
+        refs[r.name] = read_image(path)[pad:pad + a.res, pad:pad + a.res]
     for spp in curve:
         for r in renderers:
             cmd, path = r.cmd(spp, os.path.join(d, "c_%s_%d" % (r.name, spp)))
