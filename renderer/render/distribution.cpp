@@ -43,6 +43,7 @@ static int find_interval(const std::vector<float>& cdf, float u) {
 // guides around u: cdf_[guide_[k]] <= k/n <= u < (k+1)/n < cdf_[guide_[k+1] + 1].
 int Distribution1D::find(float u) const {
   const int n = size();
+  if (n == 1) return 0; // one light, one row: nothing to search
   if (guide_.empty() || !(u >= 0) || !(u < 1)) return find_interval(cdf_, u);
   int k = std::min(int(u * float(n)), n - 1);
   int lo = guide_[size_t(k)], hi = k + 1 < n ? guide_[size_t(k) + 1] : n - 1;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "lobe/vec.h"
+#include "lobe/warp.h"
 
 #include <algorithm>
 #include <cmath>
@@ -215,20 +216,9 @@ inline Vec3 square_to_uniform_cone(float u1, float u2, float cos_max) {
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
-// Concentric map of the unit square to the unit disk (Shirley and Chiu).
+// Concentric map of the unit square to the unit disk (Shirley and Chiu; lobe/warp.h).
 inline void square_to_disk(float u1, float u2, float& x, float& y) {
-  float a = 2 * u1 - 1, b = 2 * u2 - 1;
-  if (a == 0 && b == 0) {
-    x = y = 0;
-    return;
-  }
-  float r, phi;
-  if (std::abs(a) > std::abs(b))
-    r = a, phi = (kPi / 4) * (b / a);
-  else
-    r = b, phi = kPi / 2 - (kPi / 4) * (a / b);
-  x = r * std::cos(phi);
-  y = r * std::sin(phi);
+  concentric_disk(u1, u2, x, y);
 }
 
 // Cosine-weighted direction on the hemisphere around +Z (Malley's method); pdf z / pi.

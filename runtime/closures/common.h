@@ -8,6 +8,7 @@
 
 #include "lobe/bsdf.h"
 #include "lobe/vec.h"
+#include "lobe/warp.h"
 
 #include <cmath>
 #include <cstdint>
@@ -71,17 +72,8 @@ inline bool make_frame(const Vec3& N, const Vec3& U, Frame& f) {
 
 // Cosine-weighted hemisphere (concentric disk, Shirley-Chiu); pdf = cos theta / pi.
 inline Vec3 sample_cosine_hemisphere(float u1, float u2) {
-  float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
-  float r, phi;
-  if (a == 0.0f && b == 0.0f) return {0.0f, 0.0f, 1.0f};
-  if (a * a > b * b) {
-    r = a;
-    phi = (kPi / 4.0f) * (b / a);
-  } else {
-    r = b;
-    phi = (kPi / 2.0f) - (kPi / 4.0f) * (a / b);
-  }
-  float x = r * std::cos(phi), y = r * std::sin(phi);
+  float x, y;
+  concentric_disk(u1, u2, x, y);
   return {x, y, safe_sqrt(1.0f - x * x - y * y)};
 }
 
