@@ -336,13 +336,14 @@ int run_render(int argc, char** argv) {
     else if (rs < 0)
       std::snprintf(ready, sizeof ready, ", the render ended before all were compiled");
     std::fprintf(stderr,
-                 "%s%s: %dx%d, %s, %s materials (%d compiled in %.2fs, %d with closure "
-                 "kernels%s, %d from the cache, setup %.2fs), render %.2fs, %.2f Mrays/s\n",
+                 "%s%s: %dx%d, %s, %s materials (%d compiled in %.2fs, %d from the cache, %d "
+                 "with closure kernels%s, %d from the cache, setup %.2fs), render %.2fs, %.2f "
+                 "Mrays/s\n",
                  stats.cancelled ? "interrupted: wrote the finished samples to " : "wrote ",
                  out.c_str(), st.width, st.height, spp, backend.name().c_str(),
                  scene.stats().materials_compiled, scene.stats().compile_seconds,
-                 scene.stats().closure_kernels, ready, scene.stats().closure_kernels_cached,
-                 setup_s, stats.seconds,
+                 scene.stats().materials_cached, scene.stats().closure_kernels, ready,
+                 scene.stats().closure_kernels_cached, setup_s, stats.seconds,
                  stats.seconds > 0 ? double(rays) / stats.seconds / 1e6 : 0.0);
   }
   if (a.stats) print_stats(scene, desc, load_s, setup_s, stats, st, a.threads);

@@ -602,7 +602,10 @@ void Shade::print_stats(double setup, double run, double write) const {
   std::printf("  compile: preprocess %.3f ms, parse %.3f ms, sema %.3f ms, ir %.3f ms, specialize "
               "%.3f ms, llvm-ir %.3f ms, optimize %.3f ms, codegen %.3f ms%s\n",
               s.preprocess_ms, s.parse_ms, s.sema_ms, s.ir_ms, s.specialize_ms, s.llvm_ir_ms,
-              s.optimize_ms, s.codegen_ms, s.cache_hit ? " (cache hit)" : "");
+              s.optimize_ms, s.codegen_ms,
+              s.cache_hit          ? " (cache hit)"
+              : s.object_from_disk ? " (machine code from the disk cache)"
+                                   : "");
   size_t points = size_t(job_.xres) * size_t(job_.yres) * size_t(std::max(1, job_.iters));
   std::printf("  shade: %zu points, %.3f us per point, %d threads\n", points,
               points ? 1e6 * run / double(points) : 0.0,

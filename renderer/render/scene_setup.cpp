@@ -192,6 +192,7 @@ std::string RenderScene::compile_materials(const MaterialCompiler& compile) {
   stats_.materials_compiled = static_cast<int>(todo.size());
   for (const std::string& e : errors)
     if (!e.empty()) return e;
+  for (int i : todo) stats_.materials_cached += materials_[size_t(i)]->stats().object_from_disk;
   // Shapes without a material are grey: the stdlib matte with Cs 0.5, compiled like any other
   // material (only when some shape needs it).
   bool need_default = false;

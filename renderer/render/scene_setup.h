@@ -60,6 +60,7 @@ struct SetupStats {
   double environment_seconds = 0; // environment table (image, sky or background shader)
   double lights_seconds = 0;      // emitter probes and the light set
   int materials_compiled = 0;
+  int materials_cached = 0; // of those, machine code read from the disk cache
   int emitters = 0;
   int closure_kernels = 0;        // materials whose closures run as JIT-compiled kernels
   int closure_kernels_cached = 0; // of those, kernels read from the disk cache

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace llvm {
@@ -106,7 +107,15 @@ size_t storage_bytes(const ir::Symbol& s);
 // Byte offset of plane `plane`, element `elem`, component `comp` within a symbol's storage.
 size_t storage_offset(const ir::Symbol& s, int plane, int elem, int comp);
 
-// Emits the group into `module`. Returns "" on success, else the reason it failed.
-std::string emit_group(const GroupPlan& plan, llvm::Module& module);
+// The host objects the group's code refers to (the environment, the colour system, interned
+// strings, declared closures): each is an external global `lobe.host.N` of opaque type in the
+// module, so the machine code holds no address of this process and can be cached on disk; the
+// JIT binds each name to its address when it loads the code (Jit::add, Jit::add_object).
+// Distinct objects get distinct names, since LLVM takes distinct globals to differ in address.
+using HostSymbols = std::vector<std::pair<std::string, const void*>>;
+
+// Emits the group into `module`, and into `host` the addresses its names stand for. Returns ""
+// on success, else the reason it failed.
+std::string emit_group(const GroupPlan& plan, llvm::Module& module, HostSymbols& host);
 
 } // namespace lobe::codegen

@@ -71,10 +71,12 @@ std::unique_ptr<Compiled> compile(const std::string& text, int opt, shadeops::Ru
   out->jit = jit::Jit::create(error);
   if (!out->jit) return nullptr;
   out->jit->configure(*mod);
-  error = codegen::emit_group(plan, *mod);
+  codegen::HostSymbols host;
+  error = codegen::emit_group(plan, *mod, host);
   if (!error.empty()) return nullptr;
   jit::JitTimes times;
-  if (!out->jit->add(std::move(ctx), std::move(mod), opt, "group_entry", out->code, times, error))
+  if (!out->jit->add(std::move(ctx), std::move(mod), opt, "group_entry", out->code, times, error,
+                     host))
     return nullptr;
   return out;
 }

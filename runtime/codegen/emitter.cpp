@@ -43,8 +43,8 @@ size_t storage_offset(const ir::Symbol& s, int plane, int elem, int comp) {
 }
 
 LayerEmitter::LayerEmitter(const GroupPlan& group, int layer, llvm::Module& module,
-                           std::vector<llvm::Function*>& layer_fns)
-    : group_(group), layer_(layer), module_(module), layer_fns_(layer_fns),
+                           std::vector<llvm::Function*>& layer_fns, HostSymbols& host)
+    : group_(group), layer_(layer), module_(module), layer_fns_(layer_fns), host_(host),
       b_(module.getContext()) {}
 
 void LayerEmitter::fail(const ir::Op& op, const std::string& msg) {
@@ -57,19 +57,25 @@ void LayerEmitter::fail(const ir::Op& op, const std::string& msg) {
   error_ = where + ": error: " + ir::to_string(op.opcode) + ": " + msg;
 }
 
-llvm::Value* LayerEmitter::env_ptr() {
-  auto addr = reinterpret_cast<uintptr_t>(group_.env);
-  return llvm::ConstantExpr::getIntToPtr(b_.getInt64(addr), ptr());
+llvm::Constant* LayerEmitter::host_address(const void* p) {
+  if (!p) return llvm::ConstantPointerNull::get(b_.getPtrTy());
+  for (const auto& [name, address] : host_)
+    if (address == p) return module_.getNamedGlobal(name);
+  // Opaque: nothing is assumed of the object's size or contents.
+  llvm::StructType* opaque = llvm::StructType::getTypeByName(ctx(), "lobe.host");
+  if (!opaque) opaque = llvm::StructType::create(ctx(), "lobe.host");
+  std::string name = "lobe.host." + std::to_string(host_.size());
+  host_.emplace_back(name, p);
+  return new llvm::GlobalVariable(module_, opaque, /*isConstant=*/false,
+                                  llvm::GlobalValue::ExternalLinkage, nullptr, name);
 }
 
-llvm::Value* LayerEmitter::colors_ptr() {
-  auto addr = reinterpret_cast<uintptr_t>(group_.colors);
-  return llvm::ConstantExpr::getIntToPtr(b_.getInt64(addr), ptr());
-}
+llvm::Value* LayerEmitter::env_ptr() { return host_address(group_.env); }
+
+llvm::Value* LayerEmitter::colors_ptr() { return host_address(group_.colors); }
 
 llvm::Value* LayerEmitter::string_const(const std::string& s) {
-  const char* p = group_.env->strings.intern(s);
-  return llvm::ConstantExpr::getIntToPtr(b_.getInt64(reinterpret_cast<uintptr_t>(p)), ptr());
+  return host_address(group_.env->strings.intern(s));
 }
 
 llvm::FunctionCallee LayerEmitter::shadeop(const char* name) {

@@ -32,7 +32,7 @@ using OpEmitFn = void (*)(LayerEmitter&, const ir::Op&);
 class LayerEmitter {
 public:
   LayerEmitter(const GroupPlan& group, int layer, llvm::Module& module,
-               std::vector<llvm::Function*>& layer_fns);
+               std::vector<llvm::Function*>& layer_fns, HostSymbols& host);
   // Emits the layer function's body; false with error() set on failure.
   bool emit();
   const std::string& error() const { return error_; }
@@ -57,7 +57,9 @@ public:
   llvm::Value* env_ptr();
   llvm::Value* colors_ptr();                       // the GroupPlan's colour system (null: Rec709)
   llvm::Value* string_const(const std::string& s); // interned, as a pointer constant
-  llvm::FunctionCallee shadeop(const char* name);  // declared from the shadeop table
+  // A host object's address as its external global (HostSymbols); null stays a null constant.
+  llvm::Constant* host_address(const void* p);
+  llvm::FunctionCallee shadeop(const char* name); // declared from the shadeop table
   llvm::Value* call(const char* name, std::vector<llvm::Value*> args);
 
   // Whole-element access. `elem` null means element 0 (scalars). Loading a symbol without
@@ -119,6 +121,7 @@ private:
   int layer_;
   llvm::Module& module_;
   std::vector<llvm::Function*>& layer_fns_;
+  HostSymbols& host_;
   llvm::IRBuilder<> b_;
   llvm::Function* fn_ = nullptr;
   llvm::Value* sg_ = nullptr;

@@ -369,7 +369,8 @@ bool LayerEmitter::emit() {
   return !failed();
 }
 
-std::string emit_group(const GroupPlan& plan, llvm::Module& module) {
+std::string emit_group(const GroupPlan& plan, llvm::Module& module, HostSymbols& host) {
+  host.clear();
   llvm::LLVMContext& ctx = module.getContext();
   auto* ptr = llvm::PointerType::get(ctx, 0);
   auto* fty = llvm::FunctionType::get(llvm::Type::getVoidTy(ctx), {ptr, ptr}, false);
@@ -381,7 +382,7 @@ std::string emit_group(const GroupPlan& plan, llvm::Module& module) {
     fns.push_back(f);
   }
   for (size_t i = 0; i < plan.layers.size(); ++i) {
-    LayerEmitter e(plan, int(i), module, fns);
+    LayerEmitter e(plan, int(i), module, fns, host);
     if (!e.emit()) return e.error();
   }
   auto* entry =

@@ -377,8 +377,7 @@ void op_declared_closure(LayerEmitter& e, const ir::Op& op) {
   }
   const DeclaredClosureInfo* info =
       e.group().env->declared_closures.get(e.group().env->strings.intern(name), args, size);
-  llvm::Value* info_ptr =
-      llvm::ConstantExpr::getIntToPtr(B.getInt64(reinterpret_cast<uintptr_t>(info)), e.ptr());
+  llvm::Value* info_ptr = e.host_address(info);
   e.store(op.args[0], Val{Dual{e.call("lobe_closure_declared", {e.sg(), info_ptr, block})}});
 }
 

@@ -44,7 +44,8 @@ bool emit_shader_text(const std::string& path, const CompileOptions& options, Em
   llvm::LLVMContext ctx;
   llvm::Module mod(b.layer_names.empty() ? "group" : b.layer_names.back(), ctx);
   jit->configure(mod);
-  err = codegen::emit_group(b.plan, mod);
+  codegen::HostSymbols host; // named in the text; not loaded
+  err = codegen::emit_group(b.plan, mod, host);
   if (!err.empty()) {
     diags.push_back(
         located_error(err, diag::DiagId::codegen)); // `file:line:col: error: ...` when located

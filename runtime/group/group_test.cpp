@@ -844,3 +844,81 @@ TEST(ClosureBuilders, FreshComponentsAreWeightedInPlaceSharedOnesAreNot) {
       }
     }
 }
+
+// Machine code from the disk cache (runtime/jit/disk_cache.h): a material compiled by another
+// ShadingSystem (whose interned strings, environment and declared closures live elsewhere, as in
+// another run) loads the cached object, binds its names to this one's objects and computes
+// exactly what the compiled one does; a corrupt entry is rebuilt; LOBE_CACHE_DIR=off compiles.
+namespace {
+
+// String constants (compared, formatted and printed), a colour-space conversion and a closure:
+// every kind of host reference the code makes.
+const char* kCachedShader = R"(
+shader cached(float k = 2, output color Cout = 0) {
+  string mode = k > 1 ? "big" : "small";
+  if (mode == "big") Cout = transformc("hsv", "rgb", color(0.25, 0.5, k / 4));
+  printf("%s %s %g\n", mode, format("%d-%s", 7, "x"), Cout);
+  Ci = Cout * diffuse(N) + 0.5 * oren_nayar(N, 0.3);
+}
+)";
+
+struct CachedRun {
+  std::string output, closure;
+  bool from_disk = false;
+};
+
+CachedRun run_cached(int opt) {
+  ShadingSystem ss; // fresh each time: nothing shared in memory with an earlier compile
+  DiagnosticList d;
+  EXPECT_TRUE(ss.add_shader_source("cached", kCachedShader, "cached.osl", d))
+      << (d.empty() ? "" : d[0].text);
+  GroupRun r = run_group(ss, "param float k 3 ; shader cached c ;", true, opt);
+  if (!r.mat) return {};
+  ShadingContext ctx;
+  ShaderGlobals sg{};
+  sg.N = {0, 0, 1};
+  sg.context = &ctx;
+  r.mat->shade(sg);
+  return {r.output, closure_to_string(sg.Ci), r.mat->stats().object_from_disk};
+}
+
+} // namespace
+
+TEST(MaterialDiskCache, HitRebindsHostObjectsCorruptEntryRebuiltOffSwitch) {
+  char dir[] = "/tmp/lobe_material_cache_XXXXXX";
+  ASSERT_NE(mkdtemp(dir), nullptr);
+  setenv("LOBE_CACHE_DIR", dir, 1);
+  for (int opt : {0, 2}) {
+    CachedRun first = run_cached(opt);
+    EXPECT_FALSE(first.from_disk);
+    // OSL's hsv (0.25, 0.5, 0.75) is rgb (0.5625, 0.75, 0.375).
+    EXPECT_EQ(first.output, "big 7-x 0.5625 0.75 0.375\n") << opt;
+    EXPECT_NE(first.closure.find("diffuse"), std::string::npos) << first.closure;
+    EXPECT_NE(first.closure.find("oren_nayar"), std::string::npos) << first.closure;
+    CachedRun second = run_cached(opt);
+    EXPECT_TRUE(second.from_disk) << opt;
+    EXPECT_EQ(second.output, first.output);
+    EXPECT_EQ(second.closure, first.closure);
+  }
+  int entries = 0;
+  for (const auto& f : std::filesystem::directory_iterator(dir)) {
+    ++entries;
+    std::fstream io(f.path(), std::ios::in | std::ios::out | std::ios::binary);
+    const auto near_end = std::streamoff(std::filesystem::file_size(f.path()) - 40);
+    char c = 0;
+    io.seekg(near_end);
+    io.get(c);
+    io.seekp(near_end);
+    io.put(char(c ^ 0x5a)); // a changed byte in the object
+  }
+  EXPECT_EQ(entries, 2); // one per optimisation level
+  CachedRun rebuilt = run_cached(2);
+  EXPECT_FALSE(rebuilt.from_disk);
+  EXPECT_EQ(rebuilt.output, "big 7-x 0.5625 0.75 0.375\n");
+  EXPECT_TRUE(run_cached(2).from_disk); // replaced by the rebuild
+
+  setenv("LOBE_CACHE_DIR", "off", 1);
+  EXPECT_FALSE(run_cached(2).from_disk);
+  unsetenv("LOBE_CACHE_DIR");
+  std::filesystem::remove_all(dir);
+}

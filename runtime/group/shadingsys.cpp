@@ -5,16 +5,20 @@
 #include "closure_registry.h"
 #include "codegen.h"
 #include "color_system.h"
+#include "disk_cache.h"
 #include "group_build.h"
 #include "group_text.h"
 #include "ir/printer.h"
 #include "jit.h"
 #include "lobe/bsdf.h"
 #include "material.h"
+#include "shadeop_bitcode.h"
 #include "shader_source.h"
 
+#include <llvm/Bitcode/BitcodeWriter.h>
 #include <llvm/IR/LLVMContext.h>
 #include <llvm/IR/Module.h>
+#include <llvm/Support/raw_ostream.h>
 
 #include <algorithm>
 #include <chrono>
@@ -50,6 +54,9 @@ struct ShadingSystem::Impl {
   std::shared_ptr<const Material> build(const ShaderGroup& g,
                                         const std::vector<const ir::Shader*>& layers,
                                         CompileStats stats, DiagnosticList& diags);
+  bool compile_to_code(llvm::Module& mod, const std::string& entry,
+                       const codegen::HostSymbols& host, jit::CompiledGroup& code,
+                       jit::JitTimes& times, std::string& err);
 };
 
 const std::vector<std::string>& colorspace_names() { return shadeops::ColorSystem::names(); }
@@ -150,6 +157,39 @@ std::string ShadingSystem::Impl::cache_key(const ShaderGroup& g,
   return key;
 }
 
+// Machine code for an emitted group: from the disk cache (disk_cache.h) when an earlier run
+// compiled the same module, else optimised and compiled, then cached. The module names host
+// objects instead of holding their addresses (codegen::HostSymbols), so the object is a function
+// of the module's bits, the optimisation level, the target and LLVM (Jit::target_identity) and,
+// at -O2, the shadeop bitcode it links: the key holds all of them, the module's bitcode whole.
+bool ShadingSystem::Impl::compile_to_code(llvm::Module& mod, const std::string& entry,
+                                          const codegen::HostSymbols& host,
+                                          jit::CompiledGroup& code, jit::JitTimes& times,
+                                          std::string& err) {
+  std::string key;
+  if (!jit::cache_folder().empty()) {
+    key = "material 1; O" + std::to_string(options.opt_level) + "; " + jit->target_identity() +
+          (options.opt_level >= 2 ? "; " + jit::shadeop_bitcode_identity() : "") + "; module ";
+    llvm::raw_string_ostream os(key);
+    llvm::WriteBitcodeToFile(mod, os);
+  }
+  std::vector<void*> addresses;
+  if (std::string object; !key.empty() && jit::cache_read("material", key, object)) {
+    if (jit->add_object(object, {entry}, addresses, code, err, host)) {
+      times.from_cache = true;
+      return true;
+    }
+    err.clear(); // an entry that does not load is rebuilt
+  }
+  std::string object;
+  if (!jit->compile_object(mod, options.opt_level, object, times, err)) return false;
+  if (!key.empty()) jit::cache_write("material", key, object);
+  auto t0 = Clock::now();
+  bool ok = jit->add_object(object, {entry}, addresses, code, err, host);
+  times.codegen_ms += ms_since(t0);
+  return ok;
+}
+
 std::shared_ptr<const Material>
 ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Shader*>& layers,
                            CompileStats stats, DiagnosticList& diags) {
@@ -173,7 +213,8 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   auto ctx = std::make_unique<llvm::LLVMContext>();
   auto mod = std::make_unique<llvm::Module>(g.name.empty() ? "group" : g.name, *ctx);
   jit->configure(*mod);
-  std::string err = codegen::emit_group(b.plan, *mod);
+  codegen::HostSymbols host;
+  std::string err = codegen::emit_group(b.plan, *mod, host);
   if (!err.empty()) {
     // Codegen errors name their place already (`file:line:col: error: ...`).
     diags.push_back(group::located_error(err, diag::DiagId::codegen));
@@ -183,13 +224,13 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
 
   jit::CompiledGroup code;
   jit::JitTimes times;
-  if (!jit->add(std::move(ctx), std::move(mod), options.opt_level, b.plan.entry_name, code, times,
-                err)) {
+  if (!compile_to_code(*mod, b.plan.entry_name, host, code, times, err)) {
     diags.push_back(group::runtime_diag(diag::DiagId::jit, "JIT: " + err));
     return nullptr;
   }
   stats.optimize_ms = times.optimize_ms;
   stats.codegen_ms = times.codegen_ms;
+  stats.object_from_disk = times.from_cache;
 
   std::map<std::string, group::OutputSlot> slots;
   for (size_t li = 0; li < b.shaders.size(); ++li) {

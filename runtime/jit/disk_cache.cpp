@@ -3,12 +3,15 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 namespace lobe::jit {
 
@@ -35,7 +38,46 @@ bool get_u64(const std::string& in, size_t& at, uint64_t& v) {
   return true;
 }
 
+// The folder's bound: LOBE_CACHE_MAX_MB megabytes (default 256).
+uint64_t max_bytes() {
+  if (const char* e = std::getenv("LOBE_CACHE_MAX_MB")) {
+    char* end = nullptr;
+    double mb = std::strtod(e, &end);
+    if (end != e && mb >= 0 && mb < 1e9) return uint64_t(mb * 1024 * 1024);
+  }
+  return uint64_t(256) << 20;
+}
+
 } // namespace
+
+void cache_trim(const std::string& folder, uint64_t limit) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  struct Entry {
+    fs::file_time_type used;
+    uint64_t size;
+    fs::path path;
+  };
+  std::vector<Entry> entries;
+  uint64_t total = 0;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const fs::path& p = it->path();
+    if (p.extension() != ".bin") continue;
+    std::error_code e1, e2;
+    uint64_t size = it->file_size(e1);
+    fs::file_time_type used = it->last_write_time(e2);
+    if (e1 || e2) continue;
+    entries.push_back({used, size, p});
+    total += size;
+  }
+  if (total <= limit) return;
+  std::sort(entries.begin(), entries.end(),
+            [](const Entry& a, const Entry& b) { return a.used < b.used; });
+  for (const Entry& e : entries) { // least recently used first, down to 3/4 of the limit
+    if (total <= limit / 4 * 3) break;
+    if (fs::remove(e.path, ec)) total -= e.size;
+  }
+}
 
 uint64_t fnv1a(std::string_view bytes) {
   uint64_t h = 1469598103934665603ull;
@@ -76,6 +118,9 @@ bool cache_read(const std::string& prefix, const std::string& key, std::string& 
   std::string_view body(file.data() + at, data_size);
   if (fnv1a(body) != sum) return false;
   data.assign(body);
+  std::error_code ec; // used now: the last to go when the folder is trimmed
+  std::filesystem::last_write_time(entry_path(folder, prefix, key),
+                                   std::filesystem::file_time_type::clock::now(), ec);
   return true;
 }
 
@@ -85,7 +130,9 @@ void cache_write(const std::string& prefix, const std::string& key, const std::s
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
   std::string path = entry_path(folder, prefix, key);
-  std::string tmp = path + ".tmp" + std::to_string(::getpid());
+  static std::atomic<uint64_t> serial{0}; // threads of one process write apart
+  std::string tmp =
+      path + ".tmp" + std::to_string(::getpid()) + "." + std::to_string(serial.fetch_add(1));
   std::string file(kMagic);
   put_u64(file, key.size());
   file += key;
@@ -104,6 +151,7 @@ void cache_write(const std::string& prefix, const std::string& key, const std::s
   }
   std::filesystem::rename(tmp, path, ec);
   if (ec) std::filesystem::remove(tmp, ec);
+  cache_trim(folder, max_bytes());
 }
 
 } // namespace lobe::jit

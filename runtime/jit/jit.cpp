@@ -189,15 +189,15 @@ void Jit::optimize(llvm::Module& module, int opt_level) const {
 
 bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::Module> module,
               int opt_level, const std::string& entry, CompiledGroup& out, JitTimes& times,
-              std::string& error) {
+              std::string& error, const HostSymbols& host) {
   std::vector<void*> addresses;
   return add(std::move(context), std::move(module), opt_level, {entry}, addresses, out, times,
-             error);
+             error, host);
 }
 
 bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::Module> module,
               int opt_level, const std::vector<std::string>& entries, std::vector<void*>& addresses,
-              CompiledGroup& out, JitTimes& times, std::string& error) {
+              CompiledGroup& out, JitTimes& times, std::string& error, const HostSymbols& host) {
   auto t0 = std::chrono::steady_clock::now();
   optimize(*module, opt_level);
   times.optimize_ms = ms_since(t0);
@@ -205,7 +205,7 @@ bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::
   llvm::orc::ThreadSafeModule tsm(std::move(module), std::move(context));
   bool ok =
       load([&](llvm::orc::JITDylib& jd) { return s_->lljit->addIRModule(jd, std::move(tsm)); },
-           entries, addresses, out, error);
+           entries, addresses, out, error, host);
   times.codegen_ms = ms_since(t1);
   return ok;
 }
@@ -214,7 +214,7 @@ bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::
 // compiles or links them); on failure the dylib is removed again.
 bool Jit::load(const std::function<llvm::Error(llvm::orc::JITDylib&)>& fill,
                const std::vector<std::string>& entries, std::vector<void*>& addresses,
-               CompiledGroup& out, std::string& error) {
+               CompiledGroup& out, std::string& error, const HostSymbols& host) {
   auto& lljit = *s_->lljit;
   std::string name = "lobe_group_" + std::to_string(s_->counter++);
   std::unique_lock<std::mutex> dylib_lock(s_->dylib_mutex);
@@ -230,6 +230,14 @@ bool Jit::load(const std::function<llvm::Error(llvm::orc::JITDylib&)>& fill,
     llvm::consumeError(lljit.getExecutionSession().removeJITDylib(*jd));
     return false;
   };
+  if (!host.empty()) {
+    llvm::orc::SymbolMap symbols;
+    for (const auto& [name, address] : host)
+      symbols[lljit.mangleAndIntern(name)] = llvm::orc::ExecutorSymbolDef(
+          llvm::orc::ExecutorAddr::fromPtr(address), llvm::JITSymbolFlags::Exported);
+    if (auto err = jd->define(llvm::orc::absoluteSymbols(std::move(symbols))))
+      return fail(std::move(err));
+  }
   if (auto err = fill(*jd)) return fail(std::move(err));
   addresses.clear();
   for (const std::string& entry : entries) {
@@ -267,19 +275,21 @@ bool Jit::compile_object(llvm::Module& module, int opt_level, std::string& objec
 }
 
 bool Jit::add_object(const std::string& object, const std::vector<std::string>& entries,
-                     std::vector<void*>& addresses, CompiledGroup& out, std::string& error) {
+                     std::vector<void*>& addresses, CompiledGroup& out, std::string& error,
+                     const HostSymbols& host) {
   return load(
       [&](llvm::orc::JITDylib& jd) {
-        return s_->lljit->addObjectFile(jd,
-                                        llvm::MemoryBuffer::getMemBufferCopy(object, "kernels"));
+        return s_->lljit->addObjectFile(jd, llvm::MemoryBuffer::getMemBufferCopy(object, "object"));
       },
-      entries, addresses, out, error);
+      entries, addresses, out, error, host);
 }
 
 std::string Jit::target_identity() const {
   std::string id = "llvm " LLVM_VERSION_STRING "; ";
   id += s_->jtmb->getTargetTriple().str() + "; cpu " + s_->jtmb->getCPU() + "; features " +
         s_->jtmb->getFeatures().getString() + "; codegen O1"; // Jit::create's CodeGenOptLevel::Less
+  // optimize()'s pipelines are this file's code: a rebuilt jit.cpp invalidates what it cached.
+  id += "; jit.cpp of " __DATE__ " " __TIME__;
   return id;
 }
 

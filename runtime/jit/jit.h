@@ -10,6 +10,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace llvm {
@@ -30,6 +31,10 @@ struct CompiledGroup {
   llvm::orc::JITDylib* dylib = nullptr;
 };
 
+// Names the code refers to and the host addresses they stand for (codegen::HostSymbols):
+// defined in the group's JITDylib when it is loaded.
+using HostSymbols = std::vector<std::pair<std::string, const void*>>;
+
 struct JitTimes {
   double optimize_ms = 0, codegen_ms = 0;
   bool from_cache = false; // the machine code came from the disk cache (closure kernels)
@@ -46,12 +51,12 @@ public:
   // a fresh JITDylib and returns the address of `entry`.
   bool add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::Module> module,
            int opt_level, const std::string& entry, CompiledGroup& out, JitTimes& times,
-           std::string& error);
+           std::string& error, const HostSymbols& host = {});
   // As add(), for a module with several entry points: `addresses[i]` is that of `entries[i]`;
   // out.entry is the first.
   bool add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::Module> module,
            int opt_level, const std::vector<std::string>& entries, std::vector<void*>& addresses,
-           CompiledGroup& out, JitTimes& times, std::string& error);
+           CompiledGroup& out, JitTimes& times, std::string& error, const HostSymbols& host = {});
   void remove(CompiledGroup& group);
 
   // Optimises `module` and compiles it to a relocatable object for this JIT's target (the
@@ -60,9 +65,11 @@ public:
                       std::string& error) const;
   // As add(), for an object compile_object produced (now or in an earlier run).
   bool add_object(const std::string& object, const std::vector<std::string>& entries,
-                  std::vector<void*>& addresses, CompiledGroup& out, std::string& error);
+                  std::vector<void*>& addresses, CompiledGroup& out, std::string& error,
+                  const HostSymbols& host = {});
   // What machine code depends on besides the IR: LLVM's version, the target triple, CPU and
-  // features, the code generator's optimisation level (part of every disk-cache key).
+  // features, the code generator's optimisation level and the build of the optimisation
+  // pipelines (part of every disk-cache key).
   std::string target_identity() const;
 
   // Runs the optimisation pipeline only (used by add(), and by tests/benchmarks).
@@ -75,7 +82,7 @@ private:
   Jit() = default;
   bool load(const std::function<llvm::Error(llvm::orc::JITDylib&)>& fill,
             const std::vector<std::string>& entries, std::vector<void*>& addresses,
-            CompiledGroup& out, std::string& error);
+            CompiledGroup& out, std::string& error, const HostSymbols& host);
   struct State;
   std::unique_ptr<State> s_;
 };

@@ -2,6 +2,7 @@
 // lobe_shadeops.bc so that they inline.
 #include "shadeop_bitcode.h"
 
+#include "disk_cache.h"
 #include "install_paths.h"
 #include "shadeops.h"
 
@@ -79,6 +80,18 @@ bool dispatcher(llvm::StringRef name) { return name == "lobe_noise_d" || name ==
 } // namespace
 
 std::string shadeop_bitcode_path() { return install::shadeops_bitcode(); }
+
+std::string shadeop_bitcode_identity() {
+  static const std::string id = [] {
+    const std::string& bytes = bitcode_bytes();
+    const char* e = std::getenv("LOBE_SHADEOPS_INLINE");
+    std::string inline_all = e && std::string(e) == "all" ? " inline all" : "";
+    if (bytes.empty()) return std::string("shadeops none");
+    return "shadeops " + std::to_string(bytes.size()) + " " + std::to_string(fnv1a(bytes)) +
+           inline_all;
+  }();
+  return id;
+}
 
 int link_shadeop_bitcode(llvm::Module& module) {
   std::vector<std::pair<std::string, llvm::FunctionType*>> wanted;

@@ -24,6 +24,10 @@ namespace lobe::jit {
 // (or to a file that does not exist) to keep every shadeop out of line.
 std::string shadeop_bitcode_path();
 
+// What the bitcode is (its size and hash; "none" without one), for disk-cache keys of code
+// optimised at -O2, which links it.
+std::string shadeop_bitcode_identity();
+
 // Links the shadeops `module` calls from the bitcode into it; returns how many functions were
 // linked (0 when the bitcode is missing or nothing applies). Thread-safe.
 int link_shadeop_bitcode(llvm::Module& module);

@@ -146,7 +146,8 @@ std::string colorspace_error(const std::string& name);
 struct CompileStats {
   double preprocess_ms = 0, parse_ms = 0, sema_ms = 0, ir_ms = 0;
   double specialize_ms = 0, llvm_ir_ms = 0, optimize_ms = 0, codegen_ms = 0;
-  bool cache_hit = false;
+  bool cache_hit = false;        // the same group was compiled before in this process
+  bool object_from_disk = false; // the machine code came from the disk cache (an earlier run)
 };
 
 // A compiled material: a specialised shader group turned into machine code. Immutable and
