@@ -38,10 +38,13 @@ TEST(DiskCache, TrimRemovesLeastRecentlyUsedFirst) {
     fs::last_write_time(path, now - std::chrono::hours(10 - i));
     by_key.emplace_back(i, path);
   }
-  // ...then entry 1 is read again: the most recently used now.
+  // ...then entry 1 is read again: the most recently used now (its time moves on; set to an
+  // hour ago, so that the entry written below is newer whatever the clocks' granularity).
   std::string got;
   ASSERT_TRUE(cache_read("t", "key 1", got));
   EXPECT_EQ(got, data);
+  EXPECT_GT(fs::last_write_time(by_key[1].second), now - std::chrono::minutes(10));
+  fs::last_write_time(by_key[1].second, now - std::chrono::hours(1));
   // A limit of 5 entries' worth trims to at most 3.75: entries 0, 2, 3, 4 and 5 go (oldest
   // first), 6, 7 and the re-read 1 stay.
   cache_trim(dir, 5 * 100200);
