@@ -68,9 +68,15 @@ Color3 lobe_albedo_of(const ClosureKernels* k, int id, const void* state, const 
 struct BsdfBuilder {
   Bsdf& bsdf;
   const Vec3& wo;
-  // Each lobe's albedo at wo, estimated once as it is added: layer() weighs its top lobes with
-  // it and build() their selection weights.
+  // Each lobe's albedo at wo, estimated once when first wanted (known[i]): layer() weighs its
+  // top lobes with it and build() the selection weights of two or more lobes.
   Color3 albedo[Bsdf::kMaxLobes];
+  bool known[Bsdf::kMaxLobes] = {};
+
+  const Color3& albedo_of(int i) {
+    if (!known[i]) albedo[i] = bsdf.lobe_albedo(i, wo), known[i] = true;
+    return albedo[i];
+  }
 
   void visit(const ClosureNode* node, const Color3& w, int depth) {
     if (!node || depth > 64 || !is_finite(w)) return;
@@ -130,7 +136,7 @@ struct BsdfBuilder {
     uint32_t lobe_flags = lobe_setup(bsdf.kernels_, id, setup_params, bsdf.states_[n]);
     if (lobe_flags == 0) return;
     bsdf.lobes_[n] = Lobe{id, w, p, 0.0f, lobe_flags};
-    albedo[n] = bsdf.lobe_albedo(n, wo);
+    known[n] = false;
     ++n;
   }
 
@@ -139,7 +145,7 @@ struct BsdfBuilder {
     int first = bsdf.n_lobes_;
     visit(q.top, w, depth + 1);
     Color3 a; // top albedo per unit weight
-    for (int i = first; i < bsdf.n_lobes_; ++i) a += bsdf.lobes_[i].weight * albedo[i];
+    for (int i = first; i < bsdf.n_lobes_; ++i) a += bsdf.lobes_[i].weight * albedo_of(i);
     auto frac = [](float x, float wc) {
       return wc > 0.0f ? closures::clampf(x / wc, 0.0f, 1.0f) : 1.0f;
     };
@@ -170,13 +176,16 @@ void Bsdf::build(const ClosureNode* closure, const Vec3& wo, const Vec3& Ng,
   kernels_ = kernels;
   BsdfBuilder b{*this, wo};
   b.visit(closure, Color3{1, 1, 1}, 0);
-  // A lone lobe's selection weight matters only through sample()'s rescaling of u.x (u.x s / s,
-  // which can round one ulp off u.x): computing it keeps renders bit-identical to
-  // setting lobes up per call, and costs one albedo estimate per shading point.
+  // A lone lobe is always the one sampled: its selection weight is 1 (sample() then uses u.x
+  // as it is), and its albedo is not estimated.
+  if (n_lobes_ == 1) {
+    lobes_[0].select_weight = total_select_ = 1.0f;
+    return;
+  }
   total_select_ = 0.0f;
   for (int i = 0; i < n_lobes_; ++i) {
     Lobe& l = lobes_[i];
-    float s = luminance(l.weight * b.albedo[i]);
+    float s = luminance(l.weight * b.albedo_of(i));
     // A lobe with no albedo estimate at wo still gets a small share, so that it is sampled.
     l.select_weight = closures::maxf(s, 1e-3f * luminance(l.weight));
     total_select_ += l.select_weight;
