@@ -37,7 +37,7 @@ using HostSymbols = std::vector<std::pair<std::string, const void*>>;
 
 struct JitTimes {
   double optimize_ms = 0, codegen_ms = 0;
-  bool from_cache = false; // the machine code came from the disk cache (closure kernels)
+  bool from_cache = false; // the machine code came from the disk cache (kernels, materials)
 };
 
 class Jit {
