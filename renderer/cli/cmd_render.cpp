@@ -184,6 +184,11 @@ int run_render(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
 
+  // OpenImageIO, needed to write the image (and by textures), loads on a thread of its own
+  // meanwhile, from here on: reading a scene (a large mesh is parsed on one core) leaves the
+  // other core free for it. Joined on every return.
+  std::jthread image_io = lobe::image::prefetch_image_io();
+
   std::string err;
   lobe::scene::SceneDesc desc;
   auto t_load = std::chrono::steady_clock::now();
@@ -207,10 +212,9 @@ int run_render(int argc, char** argv) {
   if (app.count("--exposure")) st.exposure = a.exposure;
   if (app.count("--clamp")) st.clamp = a.clamp;
   std::string out = !a.output.empty() ? a.output : (!st.output.empty() ? st.output : "lobe.png");
-  // A bad output path is found now, not after a long render. OpenImageIO, needed to write the
-  // image (and by textures), loads meanwhile on a thread of its own; the format of a common
-  // extension is confirmed once the scene is set up, before anything is rendered, any other
-  // (.pfm, .xyz) at once.
+  // A bad output path is found now, not after a long render. The format of a common extension
+  // is confirmed once the scene is set up (OpenImageIO is loading meanwhile), before anything is
+  // rendered, any other (.pfm, .xyz) at once.
   std::string e_out = lobe::image::check_output_path(out);
   if (e_out.empty() && !lobe::image::is_common_output(out))
     e_out = lobe::image::check_output_format(out);
@@ -218,7 +222,6 @@ int run_render(int argc, char** argv) {
     std::fprintf(stderr, "lobe render: %s\n", e_out.c_str());
     return 1;
   }
-  std::jthread image_io = lobe::image::prefetch_image_io(); // joined on every return
 
   // The image's cost, checked before anything is allocated: per pixel the accumulator (44
   // bytes), the resolved image and the writer's copy (4 bytes a channel each).
