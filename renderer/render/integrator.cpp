@@ -175,7 +175,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
 
     // Next-event estimation.
     if (strategy_ != Strategy::BsdfOnly && v.bsdf.has_non_delta()) {
-      float us = sampler.next(), u1, u2;
+      // The light is chosen with a number of its own, drawn only when there is a choice.
+      float us = lights.count() > 1 ? sampler.next() : 0.5f, u1, u2;
       sampler.next2(u1, u2);
       LightSample ls;
       lap(&P::other);

@@ -38,6 +38,7 @@ public:
   void build(const Geometry& geo, const std::vector<scene::Light>& lights,
              const std::vector<Emitter>& emitters, const EnvironmentLight* env);
   bool empty() const { return count_ == 0; }
+  int count() const { return count_; }
 
   // Samples one light as seen from `p` on a surface of unit normal `n` (turned towards the
   // side being lit; the environment may sample its hemisphere); false if nothing can be sampled.

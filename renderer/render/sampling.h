@@ -177,13 +177,15 @@ public:
   }
 
 private:
-  // Worked in the bit-reversed domain (sobol::point_reversed): the same numbers as
-  // owen_scramble(point(owen_scramble(index, h), d), seed_d), one reversal each.
+  // Number d of the group is owen_scramble(point(owen_scramble(index, lo32(h)), d), seed_d)
+  // with h the group's hash, seed_0 = hi32(h) and seed_d = hi32(mix64(h + d)) after it: one
+  // hash for a 1-D group. Worked in the bit-reversed domain (sobol::point_reversed), one
+  // reversal a number.
   void group(float* out, int n) {
     uint64_t h = mix64(key_ + (++counter_) * 0xd1b54a32d192ed03ull);
     uint32_t shuffled = sobol::scramble_reversed(index_reversed_, static_cast<uint32_t>(h));
     for (int d = 0; d < n; ++d) {
-      uint32_t seed = static_cast<uint32_t>(mix64(h + uint64_t(d + 1)) >> 32);
+      uint32_t seed = static_cast<uint32_t>((d == 0 ? h : mix64(h + uint64_t(d))) >> 32);
       uint32_t x = sobol::scramble_reversed(sobol::point_reversed(shuffled, d), seed);
       out[d] = float(sobol::reverse_bits(x) >> 8) * 0x1p-24f;
     }

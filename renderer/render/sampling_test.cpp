@@ -78,7 +78,7 @@ TEST(Sampler, NumbersAreTheScrambledSobolPointsOfItsDefinition) {
         uint64_t h = mix64(key + g * 0xd1b54a32d192ed03ull);
         uint32_t shuffled = sobol::owen_scramble(uint32_t(s), uint32_t(h));
         for (int d = 0; d < 3; ++d) {
-          uint32_t seed = uint32_t(mix64(h + uint64_t(d + 1)) >> 32);
+          uint32_t seed = uint32_t((d == 0 ? h : mix64(h + uint64_t(d))) >> 32);
           uint32_t x = sobol::owen_scramble(sobol::point(shuffled, d), seed);
           EXPECT_EQ(got[d], float(x >> 8) * 0x1p-24f) << pixel << " " << s << " " << g << " " << d;
         }
