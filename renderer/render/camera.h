@@ -32,7 +32,7 @@ public:
     if (lens_ <= 0) return {eye_, d};
     // Thin lens: all rays through the lens disk meet at the focus plane.
     float lx, ly;
-    square_to_disk(u1, u2, lx, ly);
+    concentric_disk(u1, u2, lx, ly);
     Vec3 focus_point = eye_ + d * (focus_ / dot(d, fwd_));
     Vec3 o = eye_ + right_ * (lx * lens_) + up_ * (ly * lens_);
     return {o, normalize(focus_point - o)};

@@ -127,7 +127,7 @@ Vec3 EnvironmentLight::sample(float u1, float u2, float& pdf) const {
 
 Vec3 EnvironmentLight::sample(const Vec3& n, float u1, float u2, float& pdf, Color3& L) const {
   if (constant_) {
-    Vec3 l = square_to_cosine_hemisphere(u1, u2);
+    Vec3 l = sample_cosine_hemisphere(u1, u2);
     pdf = l.z * kInvPi;
     L = color_;
     return Frame(n).to_world(l);

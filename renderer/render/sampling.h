@@ -218,18 +218,6 @@ inline Vec3 square_to_uniform_cone(float u1, float u2, float cos_max) {
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
-// Concentric map of the unit square to the unit disk (Shirley and Chiu; lobe/warp.h).
-inline void square_to_disk(float u1, float u2, float& x, float& y) {
-  concentric_disk(u1, u2, x, y);
-}
-
-// Cosine-weighted direction on the hemisphere around +Z (Malley's method); pdf z / pi.
-inline Vec3 square_to_cosine_hemisphere(float u1, float u2) {
-  float x, y;
-  square_to_disk(u1, u2, x, y);
-  return {x, y, std::sqrt(std::max(0.0f, 1 - x * x - y * y))};
-}
-
 // Power heuristic (beta = 2) for the strategy with pdf `a` against one with pdf `b`.
 inline float power_heuristic(float a, float b) {
   if (!(a > 0)) return 0;

@@ -136,7 +136,6 @@ struct BsdfBuilder {
     uint32_t lobe_flags = lobe_setup(bsdf.kernels_, id, setup_params, bsdf.states_[n]);
     if (lobe_flags == 0) return;
     bsdf.lobes_[n] = Lobe{id, w, p, 0.0f, lobe_flags};
-    known[n] = false;
     ++n;
   }
 

@@ -70,13 +70,6 @@ inline bool make_frame(const Vec3& N, const Vec3& U, Frame& f) {
   return true;
 }
 
-// Cosine-weighted hemisphere (concentric disk, Shirley-Chiu); pdf = cos theta / pi.
-inline Vec3 sample_cosine_hemisphere(float u1, float u2) {
-  float x, y;
-  concentric_disk(u1, u2, x, y);
-  return {x, y, safe_sqrt(1.0f - x * x - y * y)};
-}
-
 // Half vector m = normalize(wo + wi) of unit wo, wi, returning wo.m = wi.m = |wo + wi| / 2:
 // free of the cancellation in dot(wo, m) = (1 + wo.wi) / |wo + wi| when wi is near -wo (grazing
 // reflection), where a one-ulp change of |wi| moves dot(wo, m) by ~1e-7 / |wo + wi|^2

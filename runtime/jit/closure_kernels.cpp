@@ -51,9 +51,7 @@ const std::string* bitcode_bytes(std::string& error) {
 std::string bitcode_identity(const std::string& bytes) {
   static std::once_flag once;
   static std::string id;
-  std::call_once(once, [&] {
-    id = "bitcode " + std::to_string(bytes.size()) + " " + std::to_string(fnv1a(bytes));
-  });
+  std::call_once(once, [&] { id = "bitcode " + bytes_identity(bytes); });
   return id;
 }
 

@@ -90,6 +90,10 @@ uint64_t fnv1a(std::string_view bytes) {
   return h;
 }
 
+std::string bytes_identity(std::string_view bytes) {
+  return std::to_string(bytes.size()) + " " + std::to_string(fnv1a(bytes));
+}
+
 std::string cache_folder() {
   if (const char* d = std::getenv("LOBE_CACHE_DIR")) {
     if (!*d || std::strcmp(d, "off") == 0) return "";

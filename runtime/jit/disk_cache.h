@@ -24,6 +24,8 @@ std::string cache_folder(); // "" when caching is off
 
 // FNV-1a, 64 bits.
 uint64_t fnv1a(std::string_view bytes);
+// "<size> <FNV-1a>" of some bytes (a bitcode file) for a cache key.
+std::string bytes_identity(std::string_view bytes);
 
 // True with `data` when a valid entry for `key` exists.
 bool cache_read(const std::string& prefix, const std::string& key, std::string& data);

@@ -60,17 +60,23 @@ bool resolvable(const llvm::Function& f) {
   return f.isIntrinsic() || shadeops::find_shadeop(f.getName().str()) != nullptr;
 }
 
+// LOBE_SHADEOPS_INLINE=all: the noise variants lose the bitcode build's noinline too.
+bool inline_all_variants() {
+  static const bool all = [] {
+    const char* e = std::getenv("LOBE_SHADEOPS_INLINE");
+    return e && std::string(e) == "all";
+  }();
+  return all;
+}
+
 // The library's CPU attributes go (the JIT's target applies), and so does the bitcode build's
-// noinline on the noise variants (noise.cpp, LOBE_VARIANT): here the inliner decides.
+// noinline on the noise variants (noise.cpp, LOBE_VARIANT) when inline_all_variants(): then
+// the inliner decides.
 void strip_attributes(llvm::Function& f) {
   f.removeFnAttr("target-cpu");
   f.removeFnAttr("target-features");
   f.removeFnAttr("tune-cpu");
-  static const bool inline_variants = [] {
-    const char* e = std::getenv("LOBE_SHADEOPS_INLINE");
-    return e && std::string(e) == "all";
-  }();
-  if (inline_variants) f.removeFnAttr(llvm::Attribute::NoInline);
+  if (inline_all_variants()) f.removeFnAttr(llvm::Attribute::NoInline);
 }
 
 // Dispatchers over their constant arguments: always inlined, so the call's constants pick one
@@ -84,11 +90,8 @@ std::string shadeop_bitcode_path() { return install::shadeops_bitcode(); }
 std::string shadeop_bitcode_identity() {
   static const std::string id = [] {
     const std::string& bytes = bitcode_bytes();
-    const char* e = std::getenv("LOBE_SHADEOPS_INLINE");
-    std::string inline_all = e && std::string(e) == "all" ? " inline all" : "";
     if (bytes.empty()) return std::string("shadeops none");
-    return "shadeops " + std::to_string(bytes.size()) + " " + std::to_string(fnv1a(bytes)) +
-           inline_all;
+    return "shadeops " + bytes_identity(bytes) + (inline_all_variants() ? " inline all" : "");
   }();
   return id;
 }

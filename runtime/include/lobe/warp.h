@@ -1,7 +1,10 @@
-// Square-to-disk warp shared by the closure library (cosine-weighted lobe sampling, also in
-// the closures' bitcode) and the renderer (environment light, thin lens). Both run it once or
-// twice per path vertex, where a libm sincos call was about 2% of a diffuse render.
+// Square-to-disk and cosine-hemisphere warps shared by the closure library (cosine-weighted
+// lobe sampling, also in the closures' bitcode) and the renderer (environment light, thin
+// lens). Both run them once or twice per path vertex, where a libm sincos call was about 2% of
+// a diffuse render.
 #pragma once
+
+#include "lobe/vec.h"
 
 #include <cmath>
 
@@ -35,6 +38,15 @@ inline void concentric_disk(float u1, float u2, float& x, float& y) {
     sincos_quarter(0.78539816339744831f * (a / b), s, c);
     x = b * s, y = b * c;
   }
+}
+
+// Cosine-weighted direction on the hemisphere around +Z (Malley's method: the disk point lifted
+// to the hemisphere); pdf z / pi.
+inline Vec3 sample_cosine_hemisphere(float u1, float u2) {
+  float x, y;
+  concentric_disk(u1, u2, x, y);
+  float z2 = 1.0f - x * x - y * y;
+  return {x, y, std::sqrt(z2 > 0.0f ? z2 : 0.0f)};
 }
 
 } // namespace lobe
