@@ -47,7 +47,7 @@ private:
   std::vector<ShadeUserDatum> data_;
   int xres_, yres_;
   struct Space {
-    const char* name;
+    std::string_view name;
     float m[16]; // spaces_: space -> common; camera_spaces_: common -> space
     // spaces_: common -> space, as the shadeops would invert `m` at every point otherwise
     // (lobe_get_matrix: math::mat_invert, so the same bits).

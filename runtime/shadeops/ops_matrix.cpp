@@ -13,10 +13,12 @@
 #include "lobe/shading.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <string>
 #include <string_view>
 
+using lobe::RendererServices;
 using lobe::ShaderGlobals;
 
 namespace {
@@ -26,33 +28,77 @@ using lobe::math::mat_invert;
 using lobe::math::mat_is_identity;
 using lobe::math::mat_mul;
 
-// Whether `s` is `name` (strcmp stops at the first difference; a string_view would first
-// measure `s`, on every transform of every point).
-bool is(const char* s, const char* name) { return std::strcmp(s, name) == 0; }
+// Whether `s` is the literal `name`: compared inline, stopping at the first difference (so
+// never past the end of `s`). The space names of every transform of every point come here; a
+// call of strcmp each, and a strlen for a string_view, cost more than the comparisons.
+template <size_t N> inline bool is(const char* s, const char (&name)[N]) {
+  for (size_t k = 0; k < N; ++k)
+    if (s[k] != name[k]) return false;
+  return true;
+}
+
+// "common" and "world": the identity, never asked of the renderer.
+inline bool is_common(const char* s) { return is(s, "common") || is(s, "world"); }
 
 // space -> common; false for an unknown name. The renderer answers first (any name but
-// "common" and "world").
-bool space_to_common(const ShaderGlobals* sg, const char* space, float* m) {
-  mat_identity(m);
-  if (is(space, "common") || is(space, "world")) return true;
-  std::string_view s = space;
-  if (sg && sg->context && sg->context->renderer && sg->context->renderer->get_matrix(*sg, s, m))
-    return true;
-  mat_identity(m);
-  bool camera_defaults = !(sg && sg->context && sg->context->renderer) ||
-                         sg->context->renderer->camera_spaces_default_to_identity();
-  if (s == "rgb") return true;
-  if (camera_defaults && (s == "camera" || s == "screen" || s == "raster" || s == "NDC"))
-    return true;
-  if (s == "object") {
-    if (sg && sg->object2common) std::memcpy(m, sg->object2common, 16 * sizeof(float));
+// "common" and "world"). *identity: whether m is the identity because no matrix applied.
+bool space_to_common(const ShaderGlobals* sg, const char* space, float* m, bool* identity) {
+  *identity = false;
+  if (is_common(space)) {
+    mat_identity(m);
+    *identity = true;
     return true;
   }
-  if (s == "shader") {
-    if (sg && sg->shader2common) std::memcpy(m, sg->shader2common, 16 * sizeof(float));
+  const RendererServices* renderer = sg && sg->context ? sg->context->renderer : nullptr;
+  if (renderer && renderer->get_matrix(*sg, space, m)) return true;
+  mat_identity(m);
+  *identity = true;
+  bool camera_defaults = !renderer || renderer->camera_spaces_default_to_identity();
+  if (is(space, "rgb")) return true;
+  if (camera_defaults &&
+      (is(space, "camera") || is(space, "screen") || is(space, "raster") || is(space, "NDC")))
+    return true;
+  if (is(space, "object")) {
+    if (sg && sg->object2common) {
+      std::memcpy(m, sg->object2common, 16 * sizeof(float));
+      *identity = false;
+    }
+    return true;
+  }
+  if (is(space, "shader")) {
+    if (sg && sg->shader2common) {
+      std::memcpy(m, sg->shader2common, 16 * sizeof(float));
+      *identity = false;
+    }
     return true;
   }
   return false;
+}
+
+// Whether m times the identity (or the identity times m) is m bit for bit: each element is
+// its own product with 1 plus products with 0, which add nothing to a finite non-zero value
+// or to +0, but turn -0 into +0 and Inf into NaN.
+bool product_with_identity_is_itself(const float* m) {
+  uint32_t bits[16], bad = 0;
+  std::memcpy(bits, m, sizeof bits);
+  for (uint32_t u : bits) // branch-free, so that it vectorises: Inf or NaN, or -0
+    bad |= uint32_t((u & 0x7f800000u) == 0x7f800000u) | uint32_t(u == 0x80000000u);
+  return bad == 0;
+}
+
+// dst = a * b, skipping the product where a side is the identity and the product would give
+// the other side's bits anyway.
+void mat_mul_known(float* dst, const float* a, bool a_identity, const float* b, bool b_identity) {
+  if (a_identity && b_identity) return mat_identity(dst);
+  if (a_identity && product_with_identity_is_itself(b)) {
+    std::memcpy(dst, b, 16 * sizeof(float));
+    return;
+  }
+  if (b_identity && product_with_identity_is_itself(a)) {
+    std::memcpy(dst, a, 16 * sizeof(float));
+    return;
+  }
+  mat_mul(dst, a, b);
 }
 
 void unknown_space(ShaderGlobals* sg, const char* space) {
@@ -75,22 +121,26 @@ float lobe_mat_det(const float* m) { return lobe::math::mat_det(m); }
 // (reported), whose half of the product is then the identity (OSL's getmatrix).
 int lobe_get_matrix(ShaderGlobals* sg, const char* from, const char* to, float* dst) {
   float a[16], b[16], binv[16];
-  bool ok = space_to_common(sg, from, a);
+  bool a_identity = false, binv_identity = false;
+  bool ok = space_to_common(sg, from, a, &a_identity);
   if (!ok) unknown_space(sg, from);
   bool ok2 = true;
-  if (is(to, "common") || is(to, "world") || !sg || !sg->context || !sg->context->renderer ||
-      !sg->context->renderer->get_inverse_matrix(*sg, to, binv)) {
-    ok2 = space_to_common(sg, to, b);
+  const RendererServices* renderer = sg && sg->context ? sg->context->renderer : nullptr;
+  if (is_common(to) || !renderer || !renderer->get_inverse_matrix(*sg, to, binv)) {
+    bool b_identity = false;
+    ok2 = space_to_common(sg, to, b, &b_identity);
     if (!ok2) unknown_space(sg, to);
     // To "common" or "world" (or any space that is the identity): the inversion is skipped and
     // the identity used (the float inverse would give it too, but with -0 in the translation
-    // row); the product still runs.
-    if (mat_is_identity(b))
+    // row); the product still runs (or is skipped where it would change no bit).
+    if (b_identity || mat_is_identity(b)) {
       mat_identity(binv);
-    else
+      binv_identity = true;
+    } else {
       mat_invert(binv, b);
+    }
   }
-  mat_mul(dst, a, binv);
+  mat_mul_known(dst, a, a_identity, binv, binv_identity);
   return ok && ok2;
 }
 
@@ -102,7 +152,8 @@ void lobe_get_transform(ShaderGlobals* sg, const char* from, const char* to, flo
 
 // matrix("space"): space -> common.
 void lobe_space_matrix(ShaderGlobals* sg, const char* space, float* dst) {
-  if (!space_to_common(sg, space, dst)) unknown_space(sg, space);
+  bool identity;
+  if (!space_to_common(sg, space, dst, &identity)) unknown_space(sg, space);
 }
 
 // kind: 0 point (with translation and projective divide), 1 vector, 2 normal.

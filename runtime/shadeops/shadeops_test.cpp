@@ -28,6 +28,7 @@ const char* lobe_concat(RuntimeEnv*, const char*, const char*);
 int lobe_regex(const char*, const char*, int);
 int lobe_regex_results(const char*, const char*, int, int*, int);
 void lobe_mat_inverse(float*, const float*);
+int lobe_get_matrix(ShaderGlobals*, const char*, const char*, float*);
 float lobe_mat_det(const float*);
 void lobe_transform(float*, const float*, const float*, int);
 void lobe_noise(int, const float*, int, const float*, float*, int, float*);
@@ -258,6 +259,73 @@ TEST(Matrix, InverseDeterminantTransform) {
   float n[3] = {1, 0, 0};
   lobe_transform(r, m, n, 2); // normals by the inverse transpose: x scaled by 1/2
   EXPECT_FLOAT_EQ(r[0], 0.5f);
+}
+
+// A renderer that knows one space, "mine", whose matrix the test sets.
+struct OneSpaceRenderer : RendererServices {
+  float m[16] = {};
+  bool get_matrix(const ShaderGlobals&, std::string_view space, float* out) const override {
+    if (space != "mine") return false;
+    std::copy(m, m + 16, out);
+    return true;
+  }
+};
+
+// The product a * b of OSL's getmatrix, written out: sum over k of a[i][k] * b[k][j], in k
+// order, in float.
+std::array<float, 16> product(const float* a, const float* b) {
+  std::array<float, 16> r;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      float s = a[i * 4] * b[j];
+      for (int k = 1; k < 4; ++k) s = s + a[i * 4 + k] * b[k * 4 + j];
+      r[size_t(i * 4 + j)] = s;
+    }
+  return r;
+}
+
+// getmatrix(from, to) is from -> common times common -> to, and the product runs even with
+// the identity on one side, as in OSL: it turns a -0 into +0 and an Inf into NaN. Lobe skips
+// the product only where it changes no bit; these cases tell the two apart.
+TEST(Matrix, NamedSpacesThroughTheRendererKeepTheProductsBits) {
+  OneSpaceRenderer renderer;
+  ShadingContext ctx;
+  ctx.renderer = &renderer;
+  ShaderGlobals sg{};
+  sg.context = &ctx;
+  const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  const float inf = std::numeric_limits<float>::infinity();
+  const float cases[][16] = {
+      {2, 0, 0, 0, 0, 3, 0, 0, 0, 0, 4, 0, 1, 2, 3, 1},     // clean: the product is itself
+      {2, -0.0f, 0, 0, 0, 3, 0, 0, 0, 0, 4, 0, 1, 2, 3, 1}, // -0 at [0][1]: +0 after
+      {2, 0, 0, 0, 0, 3, 0, 0, 0, 0, inf, 0, 1, 2, 3, 1},   // Inf: NaN along its row
+  };
+  for (const auto& c : cases) {
+    std::copy(c, c + 16, renderer.m);
+    float got[16];
+    for (const char* other : {"world", "common"}) {
+      ASSERT_EQ(lobe_get_matrix(&sg, "mine", other, got), 1);
+      std::array<float, 16> want = product(c, id);
+      for (int k = 0; k < 16; ++k) {
+        EXPECT_EQ(std::isnan(got[k]), std::isnan(want[size_t(k)])) << k;
+        if (!std::isnan(want[size_t(k)])) {
+          EXPECT_EQ(got[k], want[size_t(k)]) << k;
+          EXPECT_EQ(std::signbit(got[k]), std::signbit(want[size_t(k)])) << k;
+        }
+      }
+    }
+  }
+  // The -0 case by hand: 2 * 0 + -0 * 1 + ... = +0 at [0][1].
+  std::copy(cases[1], cases[1] + 16, renderer.m);
+  float got[16];
+  lobe_get_matrix(&sg, "mine", "world", got);
+  EXPECT_EQ(got[1], 0.0f);
+  EXPECT_FALSE(std::signbit(got[1]));
+  // The identity both ways, and an unknown name (reported; its half is the identity).
+  lobe_get_matrix(&sg, "common", "world", got);
+  for (int k = 0; k < 16; ++k) EXPECT_EQ(got[k], id[k]);
+  EXPECT_EQ(lobe_get_matrix(&sg, "nowhere", "world", got), 0);
+  EXPECT_EQ(ctx.errors, 1);
 }
 
 TEST(Noise, LatticeRangeDerivativeCellPeriod) {
