@@ -7,7 +7,10 @@ the same arguments. Runs are interleaved (case by case, tool by tool, repetition
 so that the load of a shared machine falls on both alike, and medians are reported:
 
   (a) latency   whole process at 1x1, default threads (start-up + compile + JIT + one point)
-  (b) per point (whole process at RES x RES minus whole process at 1x1) / RES^2, one thread
+  (b) per point the shading time at RES x RES on one thread as each tool reports it (testshade
+                --runstats "Run", lobe shade --stats "us per point") / RES^2; the CSV also
+                keeps (whole process at RES x RES - whole process at 1x1) / RES^2, which holds
+                the noise of two process start-ups (OSL's alone varies by 0.2 s here)
   (c) wall      whole process at RES x RES, default threads
 
 and OSL/Lobe ratios (above 1: Lobe is faster). Without OSL_BIN only Lobe's figures are printed.
@@ -93,12 +96,24 @@ def prepare(work, osl_bin):
 
 
 def timed(cmd, work):
+    """(wall seconds, stdout) of one run."""
     t0 = time.perf_counter()
-    r = subprocess.run(cmd, cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    r = subprocess.run(cmd, cwd=work, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     dt = time.perf_counter() - t0
     if r.returncode != 0:
         sys.exit("failed (%d): %s\n%s" % (r.returncode, " ".join(cmd), r.stderr.decode()[-2000:]))
-    return dt
+    return dt, r.stdout.decode(errors="replace")
+
+
+def reported_shading_s(tool, out, points):
+    """The shading time a run reports of itself: testshade's "Run   : 0.4736s" (--runstats),
+    lobe's "shade: N points, 0.452 us per point" (--stats)."""
+    for line in out.splitlines():
+        if tool == "osl" and line.startswith("Run") and ":" in line:
+            return float(line.split(":")[1].strip().rstrip("s"))
+        if tool != "osl" and line.strip().startswith("shade:") and "us per point" in line:
+            return float(line.split(",")[1].split()[0]) * 1e-6 * points
+    sys.exit("no shading time in the output of %s (%s)" % (tool, out[-500:]))
 
 
 def main():
@@ -130,12 +145,18 @@ def main():
         "ref_1t": (["-g", "1", "1", "-t", "1"], False),
         "wall": (["-g", res, res], True),
     }
+    stats_flag = {"osl": ["--runstats"], "lobe": ["--stats"], "base": ["--stats"]}
     times = {}  # (case, tool, measure) -> [seconds]
     for rep in range(a.reps):
         for name, (_, args) in cases.items():
             for m, (grid, _) in measures.items():
                 for tool, cmd in tools:
-                    times.setdefault((name, tool, m), []).append(timed(cmd + grid + args, work))
+                    extra = stats_flag[tool] if m == "point_1t" else []
+                    dt, out = timed(cmd + grid + extra + args, work)
+                    times.setdefault((name, tool, m), []).append(dt)
+                    if m == "point_1t":
+                        times.setdefault((name, tool, "reported_1t"), []).append(
+                            reported_shading_s(tool, out, a.res * a.res))
         print("repetition %d of %d done" % (rep + 1, a.reps), file=sys.stderr)
 
     def med(name, tool, m):
@@ -146,7 +167,8 @@ def main():
         row = {"case": name}
         for tool, _ in tools:
             row[tool + "_latency_ms"] = 1e3 * med(name, tool, "latency")
-            row[tool + "_ns_per_point_1t"] = 1e9 * max(
+            row[tool + "_ns_per_point_1t"] = 1e9 * med(name, tool, "reported_1t") / (a.res * a.res)
+            row[tool + "_ns_per_point_1t_diff"] = 1e9 * max(
                 0.0, med(name, tool, "point_1t") - med(name, tool, "ref_1t")) / (a.res * a.res)
             row[tool + "_wall_s"] = med(name, tool, "wall")
         rows.append(row)
