@@ -77,6 +77,7 @@ private:
 struct Args {
   std::string scene, output, backend = "auto", strategy = "mis", closures = "jit";
   std::string colorspace = "Rec709";
+  std::string filter; // "": the scene's
   std::vector<int> res;
   int spp = 0, threads = 0, max_depth = 0;
   long long seed = -1;
@@ -152,6 +153,10 @@ int run_render(int argc, char** argv) {
                  "first bounce), against fireflies from caustics; biased; 0: none (default: the "
                  "scene's settings.clamp)")
       ->check(CLI::Range(0.0f, 3.4e38f));
+  app.add_option("--filter", a.filter,
+                 "pixel filter: box (one pixel) or tent (two pixels wide, testrender's) "
+                 "(default: the scene's settings.pixel_filter; box, or tent for .xml scenes)")
+      ->check(CLI::IsMember({"box", "tent"}));
   app.add_option("--materials", a.backend, "material backend: auto, jit or native")
       ->check(CLI::IsMember({"auto", "jit", "native"}));
   app.add_option("--closures", a.closures,
@@ -211,6 +216,9 @@ int run_render(int argc, char** argv) {
   if (a.seed >= 0) st.seed = uint64_t(a.seed);
   if (app.count("--exposure")) st.exposure = a.exposure;
   if (app.count("--clamp")) st.clamp = a.clamp;
+  if (!a.filter.empty())
+    st.pixel_filter =
+        a.filter == "tent" ? lobe::scene::PixelFilter::Tent : lobe::scene::PixelFilter::Box;
   std::string out = !a.output.empty() ? a.output : (!st.output.empty() ? st.output : "lobe.png");
   // A bad output path is found now, not after a long render. The format of a common extension
   // is confirmed once the scene is set up (OpenImageIO is loading meanwhile), before anything is
@@ -279,6 +287,7 @@ int run_render(int argc, char** argv) {
   opt.aovs = lobe::image::keeps_all_channels(out); // AOV channels only where they are kept
   opt.profile = a.stats;
   opt.clamp = st.clamp;
+  opt.pixel_filter = st.pixel_filter;
   ProgressBar::Mode mode = ProgressBar::Mode::None;
   if (!a.quiet) {
     if (a.progress == "bar" || (a.progress == "auto" && isatty(STDERR_FILENO)))

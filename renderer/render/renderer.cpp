@@ -31,6 +31,13 @@ struct ThreadState {
   TraceCounters counters;
 };
 
+// A uniform number in [0, 1) warped to the tent distribution on [-1, 1) (density 1 - |x|): the
+// inverse of its distribution function, left half and right half.
+inline float tent_warp(float u) {
+  float t = 2 * u;
+  return t < 1 ? std::sqrt(t) - 1 : 1 - std::sqrt(2 - t);
+}
+
 // Renders samples [s0, s1) of every pixel in tile `t`.
 void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int height, int t,
                  int s0, int s1, const RenderOptions& opt, const std::atomic<bool>* cancel,
@@ -49,6 +56,10 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
         float jx, jy, l1, l2;
         sampler.next2(jx, jy);
         sampler.next2(l1, l2);
+        if (opt.pixel_filter == scene::PixelFilter::Tent) {
+          jx = 0.5f + tent_warp(jx);
+          jy = 0.5f + tent_warp(jy);
+        }
         Ray ray = scene.camera().generate(x + jx, y + jy, l1, l2);
         bool timed = opt.profile && (pixel + uint64_t(s)) % kProfileEvery == 0;
         PathResult r = pt.trace(ray, sampler, ts.ctx, ts.light_ctx, ts.counters, timed);

@@ -28,6 +28,7 @@ struct RenderOptions {
   // --stats`): a few timestamp reads per vertex on those paths only.
   bool profile = false;
   float clamp = 0; // Settings::clamp: luminance cap on indirect contributions (0: none; biased)
+  scene::PixelFilter pixel_filter = scene::PixelFilter::Box; // Settings::pixel_filter
 };
 
 constexpr int kProfileEvery = 8;

@@ -89,6 +89,13 @@ struct Environment {
   std::string where;
 };
 
+// How a pixel weighs the image plane around its centre: Box, uniformly over the pixel's own
+// square; Tent, by (1 - |dx|) (1 - |dy|) over the square of side 2 pixels around its centre,
+// as OSL's testrender does (an edge on a pixel boundary shows 1/8 and 7/8 in the pixels beside
+// it, where Box shows 0 and 1). Either way the sample positions are drawn from the filter, so
+// a pixel is the plain mean of its samples.
+enum class PixelFilter { Box, Tent };
+
 struct Settings {
   int width = 640, height = 360;
   int spp = 16;
@@ -99,6 +106,7 @@ struct Settings {
   // bounce; 0: none). Biased: removes fireflies from caustic paths (e.g. a diffuse surface
   // seeing the sun in a glossy metal) at the cost of energy; direct light is never clamped.
   float clamp = 0;
+  PixelFilter pixel_filter = PixelFilter::Box; // XML scenes (testrender's): Tent
   std::string output;
 };
 

@@ -73,7 +73,9 @@ private:
   Settings settings(const json& j) {
     const std::string p = "/settings";
     r_.object(j, p);
-    r_.check_keys(j, p, {"resolution", "spp", "max_depth", "seed", "exposure", "clamp", "output"});
+    r_.check_keys(
+        j, p,
+        {"resolution", "spp", "max_depth", "seed", "exposure", "clamp", "pixel_filter", "output"});
     Settings s;
     if (j.contains("resolution")) {
       const json& res = j.at("resolution");
@@ -95,6 +97,11 @@ private:
     r_.opt(j, p, "clamp", s.clamp, &JsonReader::number);
     if (!(s.clamp >= 0) || !std::isfinite(s.clamp))
       r_.fail(p + "/clamp", "expected a finite number >= 0 (0: no clamp)");
+    std::string filter = "box";
+    r_.opt(j, p, "pixel_filter", filter, &JsonReader::string);
+    if (filter != "box" && filter != "tent")
+      r_.fail(p + "/pixel_filter", "expected \"box\" or \"tent\" (testrender's)");
+    s.pixel_filter = filter == "tent" ? PixelFilter::Tent : PixelFilter::Box;
     r_.opt(j, p, "output", s.output, &JsonReader::string);
     return s;
   }

@@ -47,6 +47,7 @@ TEST(SceneJson, FullSceneLoads) {
   EXPECT_EQ(s.settings.width, 320);
   EXPECT_EQ(s.settings.spp, 8);
   EXPECT_EQ(s.settings.seed, 7u);
+  EXPECT_EQ(s.settings.pixel_filter, PixelFilter::Box); // the default
   EXPECT_FLOAT_EQ(s.camera.aperture, 0.05f);
   ASSERT_EQ(s.materials.size(), 2u);
   const auto& layer = s.materials[0].group.layers.at(0);
@@ -102,6 +103,8 @@ TEST(SceneJson, ErrorsNamePointerAndExpectation) {
       std::string::npos);
   EXPECT_EQ(error_of(R"({"settings": {"clamp": -1}})"),
             "t.json: /settings/clamp: expected a finite number >= 0 (0: no clamp)");
+  EXPECT_EQ(error_of(R"({"settings": {"pixel_filter": "gauss"}})"),
+            "t.json: /settings/pixel_filter: expected \"box\" or \"tent\" (testrender's)");
   EXPECT_NE(error_of(R"({"camera": {"fvo": 3}})").find("/camera/fvo: unknown key"),
             std::string::npos);
   EXPECT_NE(error_of(R"({"shapes": [{"type": "cone"}]})").find("/shapes/0/type: expected"),

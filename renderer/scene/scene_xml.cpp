@@ -53,6 +53,7 @@ public:
     s.camera.fov = testrender_fov(90);
     s.settings.width = 640, s.settings.height = 480, s.settings.spp = 1;
     s.settings.max_depth = 1024;
+    s.settings.pixel_filter = PixelFilter::Tent; // testrender's, two pixels wide
     for (pugi::xml_node n : world.children()) {
       if (n.type() != pugi::node_element) continue;
       std::string name = n.name();

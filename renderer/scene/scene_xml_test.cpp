@@ -64,6 +64,7 @@ TEST(SceneXml, CameraAsTestrender) {
   EXPECT_EQ(s->settings.width, 640);
   EXPECT_EQ(s->settings.height, 480);
   EXPECT_EQ(s->settings.spp, 1);
+  EXPECT_EQ(s->settings.pixel_filter, PixelFilter::Tent); // testrender's
   EXPECT_FALSE(parse_xml_scene("<World><Camera dir=\"0 1 0\"/></World>", "t.xml", err));
   EXPECT_EQ(err, "t.xml:1: the view direction and up must not be parallel");
 }

@@ -122,6 +122,33 @@ TEST(TestrenderScenes, GlassBallWithOslsEtaConvention) {
   expect_within(m, {0.607446, 0.593773, 0.609304}, 0.03, "glass");
 }
 
+// testrender's pixel filter: a tent two pixels wide, so a sharp vertical edge on the boundary
+// between columns 7 and 8 of a 16-wide image leaves 1/8 of the bright side in column 7 and 7/8
+// in column 8 (the tent's weight beyond half a pixel: the integral of 1 - x over [1/2, 1]).
+// testrender prints exactly those (`testrender --res 16 4 -aa 32 edge.xml edge.exr`: row 1
+// 0 x7, 0.1250, 0.8750, 1 x7); `--filter box` (the JSON scenes' default) gives 0 and 1.
+TEST(TestrenderScenes, TentPixelFilterAsTestrender) {
+  fs::path d = temp_dir("edge");
+  for (const char* filter : {"", "--filter box"}) {
+    fs::path out = d / "edge.exr";
+    CmdResult r = run_cmd(std::string(LOBE_EXE) + " render -q " + (kScenes / "edge.xml").string() +
+                          " --res 16 4 --spp 256 " + filter + " -o " + out.string());
+    ASSERT_EQ(r.status, 0) << r.out;
+    lobe::image::Image img;
+    ASSERT_TRUE(lobe::image::read_image(out.string(), img).empty());
+    int R = img.channel("R");
+    for (int y = 0; y < 4; ++y) {
+      float bright = img.pixel(15, y)[R];
+      ASSERT_NEAR(bright, 1.0f, 1e-3f) << y;
+      bool tent = *filter == 0;
+      EXPECT_NEAR(img.pixel(6, y)[R], 0.0f, 1e-4f) << filter << " " << y;
+      EXPECT_NEAR(img.pixel(7, y)[R], tent ? 0.125f : 0.0f, 0.01f) << filter << " " << y;
+      EXPECT_NEAR(img.pixel(8, y)[R], tent ? 0.875f : 1.0f, 0.01f) << filter << " " << y;
+      EXPECT_NEAR(img.pixel(9, y)[R], 1.0f, 1e-3f) << filter << " " << y;
+    }
+  }
+}
+
 namespace {
 struct FurnaceCase {
   const char* family;
