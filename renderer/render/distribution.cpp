@@ -77,25 +77,59 @@ float Distribution1D::discrete_prob(int i) const { return cdf_[i + 1] - cdf_[i];
 float Distribution1D::pdf(int i) const { return integral_ > 0 ? func_[i] / integral_ : 0; }
 
 Distribution2D::Distribution2D(const std::vector<float>& f, int w, int h) : w_(w), h_(h) {
-  std::vector<float> marg(h);
-  rows_.reserve(h);
+  std::vector<float> marg(static_cast<size_t>(h));
+  std::vector<float> row_pdf(size_t(w) * h);
+  cdf_.resize(size_t(w + 1) * h);
+  guide_.resize(size_t(kRowGuide + 1) * h);
   for (int y = 0; y < h; ++y) {
-    rows_.emplace_back(
+    Distribution1D row(
         std::vector<float>(f.begin() + size_t(y) * w, f.begin() + size_t(y + 1) * w));
-    marg[y] = rows_.back().integral();
+    marg[size_t(y)] = row.integral();
+    float* cdf = &cdf_[size_t(y) * (w + 1)];
+    for (int i = 0; i <= w; ++i) cdf[i] = row.cdf(i);
+    for (int x = 0; x < w; ++x) row_pdf[size_t(y) * w + x] = row.pdf(x);
+    int* guide = &guide_[size_t(y) * (kRowGuide + 1)];
+    for (int k = 0, i = 0; k <= kRowGuide; ++k) { // last cell i with cdf[i] <= k / kRowGuide
+      float u = float(k) / float(kRowGuide);
+      while (i + 1 < w && cdf[i + 1] <= u) ++i;
+      guide[k] = i;
+    }
   }
   marginal_ = Distribution1D(marg);
   pdf_.resize(size_t(w) * h);
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) pdf_[size_t(y) * w + x] = marginal_.pdf(y) * rows_[y].pdf(x);
+    for (int x = 0; x < w; ++x)
+      pdf_[size_t(y) * w + x] = marginal_.pdf(y) * row_pdf[size_t(y) * w + x];
+}
+
+// The cell find_interval gives over the row's CDF, searched between the guides around u:
+// cdf[guide[k]] <= k/G <= u < (k+1)/G, and the cell of any such u is at most guide[k+1].
+int Distribution2D::find_in_row(int y, float u) const {
+  const float* cdf = &cdf_[size_t(y) * (w_ + 1)];
+  if (!(u >= 0) || !(u < 1)) {
+    int i = int(std::upper_bound(cdf, cdf + w_ + 1, u) - cdf) - 1;
+    return std::clamp(i, 0, w_ - 1);
+  }
+  const int* guide = &guide_[size_t(y) * (kRowGuide + 1)];
+  int k = std::min(int(u * float(kRowGuide)), kRowGuide - 1);
+  int lo = guide[k], hi = guide[k + 1];
+  return int(std::upper_bound(cdf + lo + 1, cdf + hi + 1, u) - cdf) - 1;
+}
+
+void Distribution2D::sample_cell(float u1, float u2, float& u, float& v, int& x, int& y) const {
+  float pv;
+  v = marginal_.sample_continuous(u2, pv, y);
+  x = find_in_row(y, u1);
+  const float* cdf = &cdf_[size_t(y) * (w_ + 1)];
+  float width = cdf[x + 1] - cdf[x];
+  float du = width > 0 ? (u1 - cdf[x]) / width : 0.5f;
+  u = std::min((float(x) + std::clamp(du, 0.0f, 1.0f)) / float(w_), 0x1.fffffep-1f);
 }
 
 void Distribution2D::sample(float u1, float u2, float& u, float& v, float& pdf) const {
-  float pv, pu;
-  int iv, iu;
-  v = marginal_.sample_continuous(u2, pv, iv);
-  u = rows_[iv].sample_continuous(u1, pu, iu);
-  pdf = pv * pu;
+  int x, y;
+  sample_cell(u1, u2, u, v, x, y);
+  pdf = pdf_cell(x, y);
 }
 
 float Distribution2D::pdf(float u, float v) const {

@@ -21,7 +21,8 @@ public:
   // Same, and `u_rest` receives u rescaled to [0,1) within the chosen cell (re-usable).
   int sample_discrete(float u, float& prob, float& u_rest) const;
   float discrete_prob(int i) const;
-  float pdf(int i) const; // density over [0,1] in cell i
+  float pdf(int i) const;                                 // density over [0,1] in cell i
+  float cdf(int i) const { return cdf_[std::size_t(i)]; } // i in [0, size()]
 
 private:
   int find(float u) const;
@@ -34,19 +35,33 @@ private:
 };
 
 // f(u, v) on a w x h grid, u along rows; sampled as marginal(v) * conditional(u | v).
+//
+// Laid out for a table far larger than the caches (a 1024 x 724 environment): the rows' CDFs
+// are one array, and each row has a coarse guide of kRowGuide cells (all rows' guides together
+// fit in L2), so that the search in a row reads one or two cache lines of its CDF; the caller
+// that keeps the density beside its own data per cell (the environment's texels) takes the
+// cell instead of the density and reads both with one miss. The cells and positions sampled
+// are those of the binary search over each row's CDF, bit for bit.
 class Distribution2D {
 public:
+  static constexpr int kRowGuide = 64;
+
   Distribution2D() = default;
   Distribution2D(const std::vector<float>& f, int w, int h);
   // Sample (u, v) in [0,1)^2 with density pdf over the unit square.
   void sample(float u1, float u2, float& u, float& v, float& pdf) const;
+  // The same (u, v), and the cell (x, y) it lies in, whose pdf_cell() is the density.
+  void sample_cell(float u1, float u2, float& u, float& v, int& x, int& y) const;
   float pdf(float u, float v) const;
   float pdf_cell(int x, int y) const { return pdf_[std::size_t(y) * w_ + x]; } // pdf() in that cell
-  bool empty() const { return rows_.empty(); }
+  bool empty() const { return h_ == 0; }
 
 private:
-  std::vector<Distribution1D> rows_;
+  int find_in_row(int y, float u) const; // last cell i of row y with cdf[i] <= u (clamped)
+
   Distribution1D marginal_;
+  std::vector<float> cdf_; // h rows of w + 1: each row's CDF, from 0 to 1
+  std::vector<int> guide_; // h rows of kRowGuide + 1: the cell of u = k / kRowGuide
   std::vector<float> pdf_; // w x h: marginal pdf x row pdf, one load for pdf()
   int w_ = 0, h_ = 0;
 };

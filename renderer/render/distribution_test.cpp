@@ -89,3 +89,48 @@ TEST(Distribution2D, PdfIntegratesToOneAndMatchesSamples) {
     EXPECT_NEAR(pdf, d.pdf(u, v), 1e-4 * pdf);
   }
 }
+
+// The row search through the coarse guides finds the cell a plain scan of the row's CDF finds
+// (the last i with cdf[i] <= u, skipping zero-width cells), on rows wider than the guide with
+// dark runs and a spike: the whole of a row's mass in one cell makes every other cell's guide
+// range wide or empty. The continuous position and density follow from the cell.
+TEST(Distribution2D, GuidedRowSearchFindsTheScannedCell) {
+  const int w = 300, h = 3;
+  std::vector<float> f(size_t(w) * h, 0.0f);
+  for (int x = 0; x < w; ++x) f[size_t(x)] = 1.0f + float(x % 7);     // row 0: ragged
+  f[size_t(w) + 123] = 1000.0f;                                       // row 1: one spike
+  f[size_t(w) + 200] = 1e-3f;                                         // and a faint cell
+  for (int x = 0; x < w; x += 2) f[size_t(2 * w + x)] = float(x) + 1; // row 2: every other 0
+  Distribution2D d(f, w, h);
+  std::vector<Distribution1D> rows;
+  for (int y = 0; y < h; ++y)
+    rows.emplace_back(std::vector<float>(f.begin() + y * w, f.begin() + (y + 1) * w));
+  Distribution1D marginal({rows[0].integral(), rows[1].integral(), rows[2].integral()});
+  auto scan = [&](int y, float u) {
+    int i = 0;
+    for (int k = 0; k <= w; ++k)
+      if (rows[size_t(y)].cdf(k) <= u) i = k;
+    return std::min(i, w - 1);
+  };
+  lobe::render::RandomStream s(7, 8, 9);
+  int checked = 0;
+  for (int i = 0; i < 20000; ++i) {
+    float u1 = i < 3 ? (i == 0 ? 0.0f : i == 1 ? 0x1.fffffep-1f : 0.5f) : s.next();
+    float u2 = s.next();
+    float u, v, pdf;
+    int x, y;
+    d.sample_cell(u1, u2, u, v, x, y);
+    float pv;
+    int yy;
+    marginal.sample_continuous(u2, pv, yy);
+    ASSERT_EQ(y, yy);
+    ASSERT_EQ(x, scan(y, u1)) << "u1 " << u1 << " row " << y;
+    EXPECT_GT(f[size_t(y) * w + x], 0.0f); // never a zero-width cell
+    EXPECT_GE(u, float(x) / w);
+    EXPECT_LE(u, float(x + 1) / w);
+    d.sample(u1, u2, u, v, pdf);
+    EXPECT_EQ(pdf, pv * rows[size_t(y)].pdf(x)); // marginal times conditional, as computed
+    ++checked;
+  }
+  EXPECT_EQ(checked, 20000);
+}

@@ -132,8 +132,12 @@ Vec3 EnvironmentLight::sample(const Vec3& n, float u1, float u2, float& pdf, Col
     L = color_;
     return Frame(n).to_world(l);
   }
-  float u, v, p;
-  dist_.sample(u1, u2, u, v, p);
+  float u, v;
+  int x, y;
+  dist_.sample_cell(u1, u2, u, v, x, y);
+  // The sampled cell's density, from its texel, which also holds the radiance: one cache miss.
+  // (The radiance is read at (u, v), the same texel but where u * w rounds up to the next.)
+  float p = tex_[(size_t(y) * w_ + x) * 4 + 3];
   const float* t = texel(u, v);
   L = {t[0], t[1], t[2]};
   float st = std::sin(v * kPi);
