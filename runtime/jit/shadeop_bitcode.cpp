@@ -60,18 +60,19 @@ bool resolvable(const llvm::Function& f) {
   return f.isIntrinsic() || shadeops::find_shadeop(f.getName().str()) != nullptr;
 }
 
-// LOBE_SHADEOPS_INLINE=all: the noise variants lose the bitcode build's noinline too.
+// The noise variants lose the bitcode build's noinline too (the inliner decides), unless
+// LOBE_SHADEOPS_INLINE=dispatch (a measurement switch: only the dispatchers inline).
 bool inline_all_variants() {
   static const bool all = [] {
     const char* e = std::getenv("LOBE_SHADEOPS_INLINE");
-    return e && std::string(e) == "all";
+    return !(e && std::string(e) == "dispatch");
   }();
   return all;
 }
 
 // The library's CPU attributes go (the JIT's target applies), and so does the bitcode build's
-// noinline on the noise variants (noise.cpp, LOBE_VARIANT) when inline_all_variants(): then
-// the inliner decides.
+// noinline on the noise variants (noise.cpp, LOBE_VARIANT) when inline_all_variants() (the
+// default): then the inliner decides.
 void strip_attributes(llvm::Function& f) {
   f.removeFnAttr("target-cpu");
   f.removeFnAttr("target-features");
@@ -91,7 +92,8 @@ std::string shadeop_bitcode_identity() {
   static const std::string id = [] {
     const std::string& bytes = bitcode_bytes();
     if (bytes.empty()) return std::string("shadeops none");
-    return "shadeops " + bytes_identity(bytes) + (inline_all_variants() ? " inline all" : "");
+    return "shadeops " + bytes_identity(bytes) +
+           (inline_all_variants() ? " inline all" : " dispatch");
   }();
   return id;
 }
