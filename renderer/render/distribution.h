@@ -36,7 +36,7 @@ private:
 
 // f(u, v) on a w x h grid, u along rows; sampled as marginal(v) * conditional(u | v).
 //
-// Laid out for a table far larger than the caches (a 1024 x 724 environment): the rows' CDFs
+// Laid out for a table far larger than the caches (a 1448 x 724 environment): the rows' CDFs
 // are one array, and each row has a coarse guide of kRowGuide cells (all rows' guides together
 // fit in L2), so that the search in a row reads one or two cache lines of its CDF; the caller
 // that keeps the density beside its own data per cell (the environment's texels) takes the
