@@ -1,9 +1,11 @@
 // The disk cache's bound (disk_cache.h): past the limit the least recently used entries go,
 // a read counts as a use, and what stays still reads back.
 #include "disk_cache.h"
+#include "jit.h"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -62,6 +64,31 @@ TEST(DiskCache, TrimRemovesLeastRecentlyUsedFirst) {
   unsetenv("LOBE_CACHE_MAX_MB");
   unsetenv("LOBE_CACHE_DIR");
   fs::remove_all(dir);
+}
+
+// Every key names the build of Lobe that compiled the code (Jit::target_identity), so that a
+// rebuilt Lobe never loads what another build cached: its GNU build ID, read here from the
+// running file by binutils' readelf, independently of Lobe's walk of its own loaded notes.
+TEST(DiskCache, KeysNameTheBuild) {
+  std::string id = own_build_id();
+  char cmd[64];
+  std::snprintf(cmd, sizeof cmd, "readelf -n /proc/%d/exe 2>/dev/null", int(getpid()));
+  std::string out;
+  if (FILE* p = popen(cmd, "r")) {
+    std::array<char, 512> buf;
+    while (fgets(buf.data(), int(buf.size()), p)) out += buf.data();
+    pclose(p);
+  }
+  size_t at = out.find("Build ID: ");
+  if (at == std::string::npos) GTEST_SKIP() << "no readelf, or no build ID in this test binary";
+  std::string want = out.substr(at + 10, out.find('\n', at) - at - 10);
+  EXPECT_EQ(id, want);
+  EXPECT_GE(id.size(), 16u);
+  std::string error;
+  auto jit = Jit::create(error);
+  ASSERT_TRUE(jit) << error;
+  EXPECT_NE(jit->target_identity().find("; build " + want), std::string::npos)
+      << jit->target_identity();
 }
 
 } // namespace

@@ -30,8 +30,13 @@
 #include <llvm/Transforms/Scalar/SROA.h>
 #include <llvm/Transforms/Scalar/SimplifyCFG.h>
 
+#include <elf.h>
+#include <link.h>
+
 #include <atomic>
 #include <chrono>
+#include <cstdio>
+#include <cstring>
 #include <functional>
 #include <utility>
 
@@ -232,8 +237,8 @@ bool Jit::load(const std::function<llvm::Error(llvm::orc::JITDylib&)>& fill,
   };
   if (!host.empty()) {
     llvm::orc::SymbolMap symbols;
-    for (const auto& [name, address] : host)
-      symbols[lljit.mangleAndIntern(name)] = llvm::orc::ExecutorSymbolDef(
+    for (const auto& [symbol, address] : host)
+      symbols[lljit.mangleAndIntern(symbol)] = llvm::orc::ExecutorSymbolDef(
           llvm::orc::ExecutorAddr::fromPtr(address), llvm::JITSymbolFlags::Exported);
     if (auto err = jd->define(llvm::orc::absoluteSymbols(std::move(symbols))))
       return fail(std::move(err));
@@ -284,12 +289,61 @@ bool Jit::add_object(const std::string& object, const std::vector<std::string>& 
       entries, addresses, out, error, host);
 }
 
+// The GNU build ID (a hash the linker takes of the whole linked file) of the executable or
+// shared object that holds this code, in hex; "" when it has none.
+std::string own_build_id() {
+  struct Search {
+    uintptr_t address;
+    std::string id;
+  } search{reinterpret_cast<uintptr_t>(&own_build_id), {}};
+  auto visit = [](dl_phdr_info* info, size_t, void* data) -> int {
+    auto* s = static_cast<Search*>(data);
+    bool holds = false;
+    for (int i = 0; i < info->dlpi_phnum; ++i) {
+      const ElfW(Phdr)& ph = info->dlpi_phdr[i];
+      uintptr_t start = info->dlpi_addr + ph.p_vaddr;
+      holds |= ph.p_type == PT_LOAD && s->address >= start && s->address < start + ph.p_memsz;
+    }
+    if (!holds) return 0;
+    for (int i = 0; i < info->dlpi_phnum; ++i) {
+      const ElfW(Phdr)& ph = info->dlpi_phdr[i];
+      if (ph.p_type != PT_NOTE) continue;
+      const char* p = reinterpret_cast<const char*>(info->dlpi_addr + ph.p_vaddr);
+      const char* end = p + ph.p_memsz;
+      while (size_t(end - p) >= sizeof(ElfW(Nhdr))) {
+        ElfW(Nhdr) n;
+        std::memcpy(&n, p, sizeof n);
+        const char* name = p + sizeof n;
+        const char* desc = name + ((n.n_namesz + 3) & ~3u);
+        const char* next = desc + ((n.n_descsz + 3) & ~3u);
+        if (next > end) break;
+        if (n.n_type == NT_GNU_BUILD_ID && n.n_namesz == 4 && std::memcmp(name, "GNU", 4) == 0) {
+          for (uint32_t k = 0; k < n.n_descsz; ++k) {
+            char hex[3];
+            std::snprintf(hex, sizeof hex, "%02x", static_cast<unsigned char>(desc[k]));
+            s->id += hex;
+          }
+          return 1;
+        }
+        p = next;
+      }
+    }
+    return 1;
+  };
+  dl_iterate_phdr(visit, &search);
+  return search.id;
+}
+
 std::string Jit::target_identity() const {
   std::string id = "llvm " LLVM_VERSION_STRING "; ";
   id += s_->jtmb->getTargetTriple().str() + "; cpu " + s_->jtmb->getCPU() + "; features " +
         s_->jtmb->getFeatures().getString() + "; codegen O1"; // Jit::create's CodeGenOptLevel::Less
-  // optimize()'s pipelines are this file's code: a rebuilt jit.cpp invalidates what it cached.
-  id += "; jit.cpp of " __DATE__ " " __TIME__;
+  // What the code cached depends on: optimize()'s pipelines (this file), the linking of the
+  // shadeop bitcode and the closure kernels' dispatchers (other files of this library). The
+  // build ID of the file holding them changes with any of it; the stamp of this file stands in
+  // where the linker wrote none.
+  static const std::string build = own_build_id();
+  id += build.empty() ? "; jit.cpp of " __DATE__ " " __TIME__ : "; build " + build;
   return id;
 }
 

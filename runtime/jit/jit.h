@@ -40,6 +40,10 @@ struct JitTimes {
   bool from_cache = false; // the machine code came from the disk cache (kernels, materials)
 };
 
+// The GNU build ID (the linker's hash of the whole linked file) of the executable or shared
+// object holding Lobe's JIT, in hex; "" when the linker wrote none.
+std::string own_build_id();
+
 class Jit {
 public:
   ~Jit();
@@ -68,8 +72,9 @@ public:
                   std::vector<void*>& addresses, CompiledGroup& out, std::string& error,
                   const HostSymbols& host = {});
   // What machine code depends on besides the IR: LLVM's version, the target triple, CPU and
-  // features, the code generator's optimisation level and the build of the optimisation
-  // pipelines (part of every disk-cache key).
+  // features, the code generator's optimisation level and the build of Lobe that compiles
+  // (own_build_id(): its pipelines, shadeop linking and kernel dispatchers); part of every
+  // disk-cache key.
   std::string target_identity() const;
 
   // Runs the optimisation pipeline only (used by add(), and by tests/benchmarks).
