@@ -141,7 +141,7 @@ def main():
         cases.pop("texture", None)
         print("(no oiiotool/maketx: the texture case is skipped)")
     res = str(a.res)
-    measures = {
+    measures = {  # name: (grid and threads, whether at default threads)
         "latency": (["-g", "1", "1"], True),
         "point_1t": (["-g", res, res, "-t", "1"], False),
         "ref_1t": (["-g", "1", "1", "-t", "1"], False),
@@ -151,13 +151,12 @@ def main():
     times = {}  # (case, tool, measure) -> [seconds]
     for rep in range(a.reps):
         for name, (_, args) in cases.items():
-            for m, (grid, _) in measures.items():
+            for m, (grid, default_threads) in measures.items():
                 for tool, cmd in tools:
-                    one_thread = m in ("point_1t", "ref_1t")
-                    extra = stats_flag[tool] if one_thread else []
+                    extra = [] if default_threads else stats_flag[tool]
                     dt, out = timed(cmd + grid + extra + args, work)
                     times.setdefault((name, tool, m), []).append(dt)
-                    if one_thread:
+                    if not default_threads:
                         points = a.res * a.res if m == "point_1t" else 1
                         times.setdefault((name, tool, "reported_" + m), []).append(
                             reported_shading_s(tool, out, points))

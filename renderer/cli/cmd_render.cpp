@@ -216,9 +216,7 @@ int run_render(int argc, char** argv) {
   if (a.seed >= 0) st.seed = uint64_t(a.seed);
   if (app.count("--exposure")) st.exposure = a.exposure;
   if (app.count("--clamp")) st.clamp = a.clamp;
-  if (!a.filter.empty())
-    st.pixel_filter =
-        a.filter == "tent" ? lobe::scene::PixelFilter::Tent : lobe::scene::PixelFilter::Box;
+  if (!a.filter.empty()) lobe::scene::pixel_filter_named(a.filter, st.pixel_filter); // CLI-checked
   std::string out = !a.output.empty() ? a.output : (!st.output.empty() ? st.output : "lobe.png");
   // A bad output path is found now, not after a long render. The format of a common extension
   // is confirmed once the scene is set up (OpenImageIO is loading meanwhile), before anything is

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace lobe::scene {
@@ -95,6 +96,14 @@ struct Environment {
 // it, where Box shows 0 and 1). Either way the sample positions are drawn from the filter, so
 // a pixel is the plain mean of its samples.
 enum class PixelFilter { Box, Tent };
+
+// The filter of a name ("box", "tent"), as scene files and `lobe render --filter` give it;
+// false for any other name.
+inline bool pixel_filter_named(std::string_view name, PixelFilter& out) {
+  if (name != "box" && name != "tent") return false;
+  out = name == "tent" ? PixelFilter::Tent : PixelFilter::Box;
+  return true;
+}
 
 struct Settings {
   int width = 640, height = 360;

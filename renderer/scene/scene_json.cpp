@@ -99,9 +99,8 @@ private:
       r_.fail(p + "/clamp", "expected a finite number >= 0 (0: no clamp)");
     std::string filter = "box";
     r_.opt(j, p, "pixel_filter", filter, &JsonReader::string);
-    if (filter != "box" && filter != "tent")
+    if (!pixel_filter_named(filter, s.pixel_filter))
       r_.fail(p + "/pixel_filter", "expected \"box\" or \"tent\" (testrender's)");
-    s.pixel_filter = filter == "tent" ? PixelFilter::Tent : PixelFilter::Box;
     r_.opt(j, p, "output", s.output, &JsonReader::string);
     return s;
   }
