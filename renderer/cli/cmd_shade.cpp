@@ -606,6 +606,8 @@ void Shade::print_stats(double setup, double run, double write) const {
               s.cache_hit          ? " (cache hit)"
               : s.object_from_disk ? " (machine code from the disk cache)"
                                    : "");
+  if (s.noise_batched > 0)
+    std::printf("  %d noise calls evaluated side by side in vector lanes\n", s.noise_batched);
   size_t points = size_t(job_.xres) * size_t(job_.yres) * size_t(std::max(1, job_.iters));
   std::printf("  shade: %zu points, %.3f us per point, %d threads\n", points,
               points ? 1e6 * run / double(points) : 0.0,

@@ -231,6 +231,7 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   stats.optimize_ms = times.optimize_ms;
   stats.codegen_ms = times.codegen_ms;
   stats.object_from_disk = times.from_cache;
+  stats.noise_batched = times.noise_batched;
 
   std::map<std::string, group::OutputSlot> slots;
   for (size_t li = 0; li < b.shaders.size(); ++li) {

@@ -2,6 +2,7 @@
 #include "jit.h"
 
 #include "energy_dielectric.h"
+#include "noise_batch.h"
 #include "shadeop_bitcode.h"
 #include "shadeops.h"
 
@@ -20,15 +21,20 @@
 #include <llvm/Support/raw_ostream.h>
 #include <llvm/Target/TargetMachine.h>
 #include <llvm/TargetParser/Host.h>
+#include <llvm/Transforms/IPO/AlwaysInliner.h>
+#include <llvm/Transforms/IPO/GlobalDCE.h>
 #include <llvm/Transforms/InstCombine/InstCombine.h>
 #include <llvm/Transforms/Scalar/ADCE.h>
 #include <llvm/Transforms/Scalar/DeadStoreElimination.h>
 #include <llvm/Transforms/Scalar/EarlyCSE.h>
 #include <llvm/Transforms/Scalar/GVN.h>
+#include <llvm/Transforms/Scalar/LoopPassManager.h>
+#include <llvm/Transforms/Scalar/LoopUnrollPass.h>
 #include <llvm/Transforms/Scalar/Reassociate.h>
 #include <llvm/Transforms/Scalar/SCCP.h>
 #include <llvm/Transforms/Scalar/SROA.h>
 #include <llvm/Transforms/Scalar/SimplifyCFG.h>
+#include <llvm/Transforms/Vectorize/SLPVectorizer.h>
 
 #include <elf.h>
 #include <link.h>
@@ -139,12 +145,70 @@ void Jit::configure(llvm::Module& module) const {
   module.setDataLayout(s_->tm->createDataLayout());
 }
 
+// After -O2 with noise batching (noise_batch.h): independent calls gathered into W-point ones,
+// those linked, the family inlined and the functions cleaned up: SSA for the lanes' buffers,
+// the inlined bodies folded on their constant arguments (the seeds), vectorised where the host
+// allows, and what is dead removed. Fresh analyses: the module changed outside any pass.
+namespace {
+// A pass builder for `tm` with its analysis managers registered and cross-linked.
+struct Analyses {
+  llvm::LoopAnalysisManager lam;
+  llvm::FunctionAnalysisManager fam;
+  llvm::CGSCCAnalysisManager cgam;
+  llvm::ModuleAnalysisManager mam;
+  llvm::PassBuilder pb;
+  explicit Analyses(llvm::TargetMachine* tm) : pb(tm) {
+    pb.registerModuleAnalyses(mam);
+    pb.registerCGSCCAnalyses(cgam);
+    pb.registerFunctionAnalyses(fam);
+    pb.registerLoopAnalyses(lam);
+    pb.crossRegisterProxies(lam, fam, cgam, mam);
+  }
+};
+
+int finish_noise_batching(llvm::Module& module, llvm::TargetMachine* tm) {
+  if (!calls_noise_family(module)) return 0;
+  {
+    // The loops that call the family a few times unrolled and folded (their iteration budget
+    // checks are constants then), so that their calls share a block.
+    Analyses a(tm);
+    llvm::FunctionPassManager fpm;
+    fpm.addPass(MarkNoiseLoopsPass());
+    fpm.addPass(llvm::createFunctionToLoopPassAdaptor(llvm::LoopFullUnrollPass(2)));
+    fpm.addPass(llvm::InstCombinePass());
+    fpm.addPass(llvm::SimplifyCFGPass());
+    fpm.addPass(llvm::EarlyCSEPass(true));
+    llvm::ModulePassManager mpm;
+    mpm.addPass(llvm::createModuleToFunctionPassAdaptor(std::move(fpm)));
+    mpm.run(module, a.mam);
+  }
+  int gathered = batch_noise_calls(module);
+  if (gathered > 0) link_shadeop_bitcode(module); // the W-point functions
+  inline_noise_family(module);
+  Analyses a(tm);
+  llvm::ModulePassManager mpm;
+  mpm.addPass(llvm::AlwaysInlinerPass(false));
+  mpm.addPass(llvm::GlobalDCEPass());
+  llvm::FunctionPassManager fpm;
+  fpm.addPass(llvm::SROAPass(llvm::SROAOptions::ModifyCFG));
+  fpm.addPass(llvm::EarlyCSEPass(true));
+  fpm.addPass(llvm::InstCombinePass());
+  fpm.addPass(llvm::SimplifyCFGPass());
+  fpm.addPass(llvm::SLPVectorizerPass());
+  fpm.addPass(llvm::InstCombinePass());
+  fpm.addPass(llvm::ADCEPass());
+  mpm.addPass(llvm::createModuleToFunctionPassAdaptor(std::move(fpm)));
+  mpm.run(module, a.mam);
+  return gathered;
+}
+} // namespace
+
 // -O0: SROA only (turns the symbol allocas into SSA values; no other transformation).
 // -O1: a short function pipeline suited to shader code (straight-line, alloca-heavy, calls
 // into shadeops): SROA makes SSA, then CSE, combining, CFG clean-up, GVN and dead code.
 // -O2: LLVM's full per-module O2 pipeline (adds inlining, loop passes, vectorisation), after
 // linking in the bitcode of the pure shadeops the module calls.
-void Jit::optimize(llvm::Module& module, int opt_level) const {
+int Jit::optimize(llvm::Module& module, int opt_level) const {
   // A TargetMachine of its own (the cost model is not thread-safe), so runs go in parallel.
   auto own = s_->jtmb->createTargetMachine();
   std::unique_lock<std::mutex> lock(s_->opt_mutex, std::defer_lock);
@@ -154,30 +218,22 @@ void Jit::optimize(llvm::Module& module, int opt_level) const {
     lock.lock();
     tm = s_->tm.get();
   }
-  llvm::LoopAnalysisManager lam;
-  llvm::FunctionAnalysisManager fam;
-  llvm::CGSCCAnalysisManager cgam;
-  llvm::ModuleAnalysisManager mam;
-  llvm::PassBuilder pb(tm);
-  pb.registerModuleAnalyses(mam);
-  pb.registerCGSCCAnalyses(cgam);
-  pb.registerFunctionAnalyses(fam);
-  pb.registerLoopAnalyses(lam);
-  pb.crossRegisterProxies(lam, fam, cgam, mam);
+  Analyses a(tm);
+  llvm::FunctionAnalysisManager& fam = a.fam;
   if (opt_level >= 2) {
     // The pure shadeops the module calls, from bitcode, so that the inliner below specialises
     // them on their arguments (shadeop_bitcode.h); the same bits as the out-of-line calls.
     link_shadeop_bitcode(module);
-    llvm::ModulePassManager mpm = pb.buildPerModuleDefaultPipeline(llvm::OptimizationLevel::O2);
-    mpm.run(module, mam);
-    return;
+    llvm::ModulePassManager mpm = a.pb.buildPerModuleDefaultPipeline(llvm::OptimizationLevel::O2);
+    mpm.run(module, a.mam);
+    return noise_batching() ? finish_noise_batching(module, tm) : 0;
   }
   llvm::FunctionPassManager fpm;
   fpm.addPass(llvm::SROAPass(llvm::SROAOptions::ModifyCFG));
   if (opt_level <= 0) { // only SSA construction: instruction selection on allocas is slow
     for (llvm::Function& f : module)
       if (!f.isDeclaration()) fpm.run(f, fam);
-    return;
+    return 0;
   }
   fpm.addPass(llvm::EarlyCSEPass(true));
   fpm.addPass(llvm::InstCombinePass());
@@ -190,6 +246,7 @@ void Jit::optimize(llvm::Module& module, int opt_level) const {
   fpm.addPass(llvm::ADCEPass());
   for (llvm::Function& f : module)
     if (!f.isDeclaration()) fpm.run(f, fam);
+  return 0;
 }
 
 bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::Module> module,
@@ -204,7 +261,7 @@ bool Jit::add(std::unique_ptr<llvm::LLVMContext> context, std::unique_ptr<llvm::
               int opt_level, const std::vector<std::string>& entries, std::vector<void*>& addresses,
               CompiledGroup& out, JitTimes& times, std::string& error, const HostSymbols& host) {
   auto t0 = std::chrono::steady_clock::now();
-  optimize(*module, opt_level);
+  times.noise_batched = optimize(*module, opt_level);
   times.optimize_ms = ms_since(t0);
   auto t1 = std::chrono::steady_clock::now();
   llvm::orc::ThreadSafeModule tsm(std::move(module), std::move(context));
@@ -258,7 +315,7 @@ bool Jit::load(const std::function<llvm::Error(llvm::orc::JITDylib&)>& fill,
 bool Jit::compile_object(llvm::Module& module, int opt_level, std::string& object, JitTimes& times,
                          std::string& error) const {
   auto t0 = std::chrono::steady_clock::now();
-  optimize(module, opt_level);
+  times.noise_batched = optimize(module, opt_level);
   times.optimize_ms = ms_since(t0);
   auto t1 = std::chrono::steady_clock::now();
   auto tm = s_->jtmb->createTargetMachine(); // one of its own: runs go in parallel

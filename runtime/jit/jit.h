@@ -38,6 +38,7 @@ using HostSymbols = std::vector<std::pair<std::string, const void*>>;
 struct JitTimes {
   double optimize_ms = 0, codegen_ms = 0;
   bool from_cache = false; // the machine code came from the disk cache (kernels, materials)
+  int noise_batched = 0;   // noise calls gathered into W-point calls (noise_batch.h)
 };
 
 // The GNU build ID (the linker's hash of the whole linked file) of the executable or shared
@@ -77,8 +78,9 @@ public:
   // disk-cache key.
   std::string target_identity() const;
 
-  // Runs the optimisation pipeline only (used by add(), and by tests/benchmarks).
-  void optimize(llvm::Module& module, int opt_level) const;
+  // Runs the optimisation pipeline only (used by add(), and by tests/benchmarks); returns how
+  // many noise calls it gathered into W-point calls (noise_batch.h; -O2 only).
+  int optimize(llvm::Module& module, int opt_level) const;
   // The host assembly of `module` (configured for this JIT) from the JIT's TargetMachine, as
   // the JIT would compile it (`lobe compile --emit=asm`). The module is consumed by codegen.
   bool emit_assembly(llvm::Module& module, std::string& out, std::string& error) const;

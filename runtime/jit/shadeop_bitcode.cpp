@@ -4,6 +4,7 @@
 
 #include "disk_cache.h"
 #include "install_paths.h"
+#include "noise_batch.h"
 #include "shadeops.h"
 
 #include <llvm/Bitcode/BitcodeReader.h>
@@ -52,7 +53,8 @@ bool linkable(llvm::StringRef name) {
   return name.starts_with("lobe_math_") || name == "lobe_mat_mul" || name == "lobe_transform" ||
          name == "lobe_mat_transpose" || name == "lobe_noise_d" || name == "lobe_noise" ||
          name == "lobe_hash" || name == "lobe_closure_component" || name == "lobe_closure_add" ||
-         name == "lobe_closure_mul" || name == "lobe_closure_weight";
+         name == "lobe_closure_mul" || name == "lobe_closure_weight" ||
+         name.starts_with("lobe_simplex_v"); // noise_batch.h: the W-point forms
 }
 
 // What linked code may still call: intrinsics and the JIT's runtime symbols (shadeops.h).
@@ -77,12 +79,18 @@ void strip_attributes(llvm::Function& f) {
   f.removeFnAttr("target-cpu");
   f.removeFnAttr("target-features");
   f.removeFnAttr("tune-cpu");
-  if (inline_all_variants()) f.removeFnAttr(llvm::Attribute::NoInline);
+  // The functions noise batching gathers stay calls through -O2 (noise_batch.h).
+  if (inline_all_variants() && !(noise_batching() && batchable_function(f.getName())))
+    f.removeFnAttr(llvm::Attribute::NoInline);
 }
 
 // Dispatchers over their constant arguments: always inlined, so the call's constants pick one
 // variant (kind, dimension, channels, derivatives or not) and the rest folds away.
-bool dispatcher(llvm::StringRef name) { return name == "lobe_noise_d" || name == "lobe_noise"; }
+// The W-point noise functions (noise_batch.h) inline where batching put them.
+bool dispatcher(llvm::StringRef name) {
+  return name == "lobe_noise_d" || name == "lobe_noise" ||
+         (name.starts_with("lobe_simplex_v") && name.contains("_x"));
+}
 
 } // namespace
 
@@ -93,7 +101,8 @@ std::string shadeop_bitcode_identity() {
     const std::string& bytes = bitcode_bytes();
     if (bytes.empty()) return std::string("shadeops none");
     return "shadeops " + bytes_identity(bytes) +
-           (inline_all_variants() ? " inline all" : " dispatch");
+           (inline_all_variants() ? " inline all" : " dispatch") +
+           (noise_batching() ? " batch" : "");
   }();
   return id;
 }
@@ -167,6 +176,13 @@ int link_shadeop_bitcode(llvm::Module& module) {
   mpm.addPass(llvm::AlwaysInlinerPass(false));
   mpm.addPass(llvm::GlobalDCEPass());
   mpm.run(module, mam);
+  // The one-point functions batching gathers, where still called, go through -O2 with external
+  // linkage: internal, their signatures could change (a constant argument propagated into the
+  // body and dropped), and batching would no longer recognise them. Made internal again after.
+  if (noise_batching())
+    for (llvm::Function& f : module)
+      if (!f.isDeclaration() && batchable_function(f.getName()))
+        f.setLinkage(llvm::GlobalValue::ExternalLinkage);
   return int(linked.size());
 }
 

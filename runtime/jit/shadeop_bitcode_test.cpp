@@ -5,6 +5,7 @@
 // only: the native functions' own values are checked against OSL and closed forms in
 // shadeops_test.)
 #include "jit.h"
+#include "noise_batch.h"
 #include "shadeop_bitcode.h"
 #include "shadeops.h"
 
@@ -176,6 +177,108 @@ TEST(ShadeopBitcode, NoiseInlinesAndMatchesTheNativeLibrary) {
   }
   EXPECT_EQ(mismatches, 0);
   jit->remove(code);
+}
+
+// Noise batching (noise_batch.h): `calls` value-only noise calls of one kind, each of `nin`
+// coordinates, as codegen emits them (inputs stored to a stack array, lobe_noise_d with
+// constants, the result read back) in one block after all inputs are loaded:
+// void name(const float* in /* [calls][4] */, float* out /* [calls] */). With `chained`, each
+// call's first coordinate adds the previous call's result, so no two calls are independent.
+struct BatchCase {
+  int kind, nin, calls;
+  bool chained;
+  int gathered; // calls batching should gather
+  std::string name() const {
+    return "batch_" + std::to_string(kind) + "_" + std::to_string(nin) + "_" +
+           std::to_string(calls) + (chained ? "c" : "");
+  }
+};
+
+void emit_batch(llvm::Module& m, const BatchCase& c) {
+  llvm::LLVMContext& ctx = m.getContext();
+  llvm::IRBuilder<> b(ctx);
+  auto* ptr = b.getPtrTy();
+  auto* i32 = b.getInt32Ty();
+  auto* f32 = b.getFloatTy();
+  auto callee = m.getOrInsertFunction(
+      "lobe_noise_d",
+      llvm::FunctionType::get(b.getVoidTy(), {i32, ptr, ptr, ptr, i32, ptr, ptr, ptr, ptr, i32},
+                              false));
+  auto* t = llvm::FunctionType::get(b.getVoidTy(), {ptr, ptr}, false);
+  auto* f = llvm::Function::Create(t, llvm::Function::ExternalLinkage, c.name(), m);
+  b.SetInsertPoint(llvm::BasicBlock::Create(ctx, "entry", f));
+  std::vector<llvm::Value*> in;
+  for (int k = 0; k < 4 * c.calls; ++k)
+    in.push_back(b.CreateLoad(f32, b.CreateConstInBoundsGEP1_32(f32, f->getArg(0), unsigned(k))));
+  llvm::Value* null = llvm::ConstantPointerNull::get(ptr);
+  llvm::Value* previous = nullptr;
+  for (int i = 0; i < c.calls; ++i) {
+    llvm::Value* x = b.CreateAlloca(llvm::ArrayType::get(f32, 4));
+    llvm::Value* r = b.CreateAlloca(f32);
+    for (int a = 0; a < c.nin; ++a) {
+      llvm::Value* v = in[size_t(4 * i + a)];
+      if (a == 0 && c.chained && previous) v = b.CreateFAdd(v, previous);
+      b.CreateStore(v, b.CreateConstInBoundsGEP1_32(f32, x, unsigned(a)));
+    }
+    b.CreateCall(callee, {b.getInt32(uint32_t(c.kind)), x, null, null, b.getInt32(uint32_t(c.nin)),
+                          null, r, null, null, b.getInt32(1)});
+    previous = b.CreateLoad(f32, r);
+    b.CreateStore(previous, b.CreateConstInBoundsGEP1_32(f32, f->getArg(1), unsigned(i)));
+  }
+  b.CreateRetVoid();
+}
+
+// Independent calls are gathered (8 at most a group, then 4) and give the native library's
+// bits; dependent ones are left alone. Every call is inlined either way.
+TEST(ShadeopBitcode, IndependentSimplexCallsAreBatchedToTheBit) {
+  if (!jit::noise_batching()) GTEST_SKIP() << "LOBE_NOISE_BATCH=0";
+  std::string err;
+  auto jit = jit::Jit::create(err);
+  ASSERT_TRUE(jit) << err;
+  const BatchCase cases[] = {
+      {shadeops::kSimplex, 3, 12, false, 12}, {shadeops::kUSimplex, 2, 5, false, 5},
+      {shadeops::kSimplex, 1, 2, false, 2},   {shadeops::kSimplex, 4, 8, false, 8},
+      {shadeops::kUSimplex, 4, 3, false, 3},  {shadeops::kSimplex, 3, 4, true, 0},
+      {shadeops::kPerlin, 3, 4, false, 0}};
+  std::vector<float> samples = sample_inputs();
+  std::mt19937 rng(13);
+  std::uniform_int_distribution<size_t> pick(0, samples.size() - 1);
+  int mismatches = 0;
+  for (const BatchCase& c : cases) {
+    auto ctx = std::make_unique<llvm::LLVMContext>();
+    auto mod = std::make_unique<llvm::Module>("batch", *ctx);
+    jit->configure(*mod);
+    emit_batch(*mod, c);
+    EXPECT_EQ(jit->optimize(*mod, 2), c.gathered) << c.name();
+    EXPECT_FALSE(calls(*mod, "lobe_noise_d")) << c.name();
+    for (const char* f : {"lobe_simplex_v1", "lobe_simplex_v2", "lobe_simplex_v3",
+                          "lobe_simplex_v4", "lobe_simplex_v3_x8", "lobe_simplex_v3_x4"})
+      EXPECT_FALSE(calls(*mod, f)) << c.name() << " still calls " << f;
+    jit::CompiledGroup code;
+    jit::JitTimes times;
+    std::vector<void*> addr;
+    ASSERT_TRUE(jit->add(std::move(ctx), std::move(mod), 0, {c.name()}, addr, code, times, err))
+        << err;
+    auto fn = reinterpret_cast<void (*)(const float*, float*)>(addr[0]);
+    for (int trial = 0; trial < 200; ++trial) {
+      std::vector<float> in(size_t(4 * c.calls)), out(size_t(c.calls));
+      for (float& v : in) v = samples[pick(rng)];
+      fn(in.data(), out.data());
+      float previous = 0;
+      for (int i = 0; i < c.calls; ++i) {
+        float x[4], e;
+        for (int a = 0; a < 4; ++a) x[a] = in[size_t(4 * i + a)];
+        if (c.chained && i > 0) x[0] = x[0] + previous;
+        lobe_noise_d(c.kind, x, nullptr, nullptr, c.nin, nullptr, &e, nullptr, nullptr, 1);
+        previous = e;
+        if (!same_bits(out[size_t(i)], e) && ++mismatches <= 10)
+          ADD_FAILURE() << c.name() << " call " << i << " at (" << x[0] << ", " << x[1] << ", "
+                        << x[2] << ", " << x[3] << "): " << out[size_t(i)] << " vs " << e;
+      }
+    }
+    jit->remove(code);
+  }
+  EXPECT_EQ(mismatches, 0);
 }
 
 TEST(ShadeopBitcode, OnlyTheLinkableShadeopsAreLinked) {

@@ -34,8 +34,10 @@
 // too). Native builds leave the choice to the compiler.
 #ifdef LOBE_BITCODE
 #define LOBE_VARIANT __attribute__((noinline))
+#define LOBE_BATCHABLE __attribute__((noinline))
 #else
 #define LOBE_VARIANT
+#define LOBE_BATCHABLE
 #endif
 
 namespace {
@@ -539,19 +541,211 @@ template <int N, bool kPartials> LOBE_VARIANT D simplex_n(Inputs in, uint32_t se
   return r;
 }
 
-template <bool kPartials> D simplex(const float* x, int n, uint32_t seed) {
+// With partials (the value-only forms are lobe_simplex_v1..v4, below).
+D simplex_partials(const float* x, int n, uint32_t seed) {
   switch (n) {
   case 1:
-    return simplex1<kPartials>(x[0], seed);
+    return simplex1<true>(x[0], seed);
   case 2:
-    return simplex_n<2, kPartials>(inputs(x, 2), seed);
+    return simplex_n<2, true>(inputs(x, 2), seed);
   case 3:
-    return simplex_n<3, kPartials>(inputs(x, 3), seed);
+    return simplex_n<3, true>(inputs(x, 3), seed);
   default:
-    return simplex_n<4, kPartials>(inputs(x, 4), seed);
+    return simplex_n<4, true>(inputs(x, 4), seed);
   }
 }
 
+// ---- Simplex noise for W points at once (W = 4 or 8), value only ----
+//
+// simplex1<false> and simplex_n<N, false> lane by lane: the same operations in the same order on
+// each lane (vector arithmetic rounds as scalar arithmetic does, and nothing is contracted), so
+// each lane's bits are the scalar function's. Comparisons give lane masks (all ones or zero);
+// the scalar code's selects are masks applied to the bits. The gradients are read per lane from
+// the same tables.
+
+// The helpers below pass vectors by value; they are inline and internal, never called across an
+// ABI boundary, so the compilers' warning that AVX-sized vector arguments change the ABI when
+// compiled without AVX does not apply.
+#if defined(__clang__)
+#pragma clang diagnostic ignored "-Wpsabi"
+#elif defined(__GNUC__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
+// lookup3's final mix of lanes of words (a vector of uint32_t), lane by lane; returns c.
+template <class U> inline U lookup3_final_lanes(U a, U b, U c) {
+  lobe::math::lookup3_final_in_place(a, b, c);
+  return c;
+}
+
+template <int W> struct Wide {
+  typedef float F __attribute__((vector_size(4 * W)));
+  typedef int32_t I __attribute__((vector_size(4 * W)));
+  typedef uint32_t U __attribute__((vector_size(4 * W)));
+};
+
+// to_int lane by lane: a NaN or a value outside the int range gives INT_MIN, as on x86 (the
+// lane is zeroed before the conversion, which is then defined, and replaced after).
+template <class F, class I> inline I to_int_lanes(F f) {
+  I in = (f >= (F{} - 2147483648.0f)) & (f < (F{} + 2147483648.0f));
+  I v = __builtin_convertvector((F)((I)f & in), I);
+  return (v & in) | ((I{} + std::numeric_limits<int>::min()) & ~in);
+}
+template <class F, class I> inline I ifloor_lanes(F f) {
+  for (int l = 0; l < int(sizeof(F) / 4); ++l) f[l] = std::floor(f[l]); // one rounding each
+  return to_int_lanes<F, I>(f);
+}
+
+template <int W> inline void simplex1_lanes(const float* px, const uint32_t* pseed, float* out) {
+  using F = typename Wide<W>::F;
+  using I = typename Wide<W>::I;
+  using U = typename Wide<W>::U;
+  F x;
+  U seed;
+  std::memcpy(&x, px, sizeof x);
+  std::memcpy(&seed, pseed, sizeof seed);
+  I i0 = ifloor_lanes<F, I>(x);
+  F x0 = x - __builtin_convertvector(i0, F), x1 = x0 - 1.0f;
+  F n[2];
+  for (int c = 0; c < 2; ++c) {
+    F xc = c ? x1 : x0;
+    U h = lookup3_final_lanes((U)i0 + uint32_t(c), seed, U{} + 0xdeadbeefu) & 15u;
+    F g = (F)((U) __builtin_convertvector(1u + (h & 7u), F) | (h & 8u) << 28);
+    F xx = xc * xc;
+    F t = 1.0f - xx;
+    F t2 = t * t;
+    F t4 = t2 * t2;
+    n[c] = t4 * g * xc;
+  }
+  F r = 0.36f * (n[0] + n[1]);
+  std::memcpy(out, &r, sizeof r);
+}
+
+template <int N, int W>
+inline void simplex_lanes(const float* px, const uint32_t* pseed, float* out) {
+  using F = typename Wide<W>::F;
+  using I = typename Wide<W>::I;
+  using U = typename Wide<W>::U;
+  constexpr int n = N;
+  const SimplexDim& k = kSimplexDim[n - 2];
+  F x[4];
+  U seed;
+  for (int a = 0; a < n; ++a) std::memcpy(&x[a], px + a * W, sizeof(F));
+  std::memcpy(&seed, pseed, sizeof seed);
+  F s = x[0];
+  for (int a = 1; a < n; ++a) s += x[a];
+  s *= k.F;
+  I cell[4], sum = I{};
+  for (int a = 0; a < n; ++a) {
+    cell[a] = ifloor_lanes<F, I>(x[a] + s);
+    sum += cell[a];
+  }
+  F t = __builtin_convertvector(sum, F) * k.G, d0[4];
+  for (int a = 0; a < n; ++a) d0[a] = x[a] - (__builtin_convertvector(cell[a], F) - t);
+  I rank[4] = {I{}, I{}, I{}, I{}};
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b) {
+      I first = (n == 3 ? d0[a] >= d0[b] : d0[a] > d0[b]) & 1;
+      rank[a] += first;
+      rank[b] += 1 - first;
+    }
+  F total = F{};
+  for (int c = 0; c <= n; ++c) {
+    U corner[4];
+    F d[4], tc = F{} + 0.5f;
+    for (int a = 0; a < n; ++a) {
+      I step = (rank[a] >= n - c) & 1;
+      corner[a] = (U)(cell[a] + step);
+      d[a] = c == 0 ? d0[a] : d0[a] - __builtin_convertvector(step, F) + float(c) * k.G;
+      tc -= d[a] * d[a];
+    }
+    I inside = tc >= 0.0f;
+    U row;
+    if constexpr (n == 2) {
+      row = lookup3_final_lanes(corner[0], corner[1], seed ^ 0xdeadbeefu) & 7u;
+    } else if constexpr (n == 3) {
+      U inner = lookup3_final_lanes(corner[2], seed, U{} + 0xdeadbeefu);
+      row = lookup3_final_lanes(corner[0], corner[1], inner ^ 0xdeadbeefu) & 15u;
+    } else {
+      U inner = lookup3_final_lanes(corner[2], corner[3], seed ^ 0xdeadbeefu);
+      row = lookup3_final_lanes(corner[0], corner[1], inner ^ 0xdeadbeefu) & 31u;
+    }
+    float gl[4][W];
+    for (int l = 0; l < W; ++l)
+      for (int a = 0; a < n; ++a)
+        gl[a][l] = n == 2 ? kGrad2[row[l]][a] : n == 3 ? kGrad3[row[l]][a] : kGrad4[row[l]][a];
+    F g[4];
+    for (int a = 0; a < n; ++a) std::memcpy(&g[a], gl[a], sizeof(F));
+    F dot = g[0] * d[0];
+    for (int a = 1; a < n; ++a) dot += g[a] * d[a];
+    F t2 = tc * tc, t4 = t2 * t2;
+    F nc = (F)((I)(t4 * dot) & inside); // +0 outside the corner's support, as the scalar code
+    total = c == 0 ? nc : total + nc;
+  }
+  F r = k.scale * total;
+  std::memcpy(out, &r, sizeof r);
+}
+
+} // namespace
+
+extern "C" {
+
+// Simplex noise, value only, at one point (1 to 4 coordinates) and for W = 4 or 8 points at
+// once (x[a * W + l]: coordinate a of point l; seed[l]: point l's channel; out[l]), each lane
+// the one-point function's bits. In bitcode builds the one-point functions stay calls through
+// the JIT's -O2 pipeline, which then gathers independent calls into the W-point ones
+// (runtime/jit/noise_batch.h) and inlines what is left.
+LOBE_BATCHABLE float lobe_simplex_v1(float x, uint32_t seed) { return simplex1<false>(x, seed).v; }
+LOBE_BATCHABLE float lobe_simplex_v2(float x, float y, uint32_t seed) {
+  return simplex_n<2, false>(Inputs{{x, y, 0, 0}}, seed).v;
+}
+LOBE_BATCHABLE float lobe_simplex_v3(float x, float y, float z, uint32_t seed) {
+  return simplex_n<3, false>(Inputs{{x, y, z, 0}}, seed).v;
+}
+LOBE_BATCHABLE float lobe_simplex_v4(float x, float y, float z, float w, uint32_t seed) {
+  return simplex_n<4, false>(Inputs{{x, y, z, w}}, seed).v;
+}
+void lobe_simplex_v1_x4(const float* x, const uint32_t* seed, float* out) {
+  simplex1_lanes<4>(x, seed, out);
+}
+void lobe_simplex_v1_x8(const float* x, const uint32_t* seed, float* out) {
+  simplex1_lanes<8>(x, seed, out);
+}
+void lobe_simplex_v2_x4(const float* x, const uint32_t* seed, float* out) {
+  simplex_lanes<2, 4>(x, seed, out);
+}
+void lobe_simplex_v2_x8(const float* x, const uint32_t* seed, float* out) {
+  simplex_lanes<2, 8>(x, seed, out);
+}
+void lobe_simplex_v3_x4(const float* x, const uint32_t* seed, float* out) {
+  simplex_lanes<3, 4>(x, seed, out);
+}
+void lobe_simplex_v3_x8(const float* x, const uint32_t* seed, float* out) {
+  simplex_lanes<3, 8>(x, seed, out);
+}
+void lobe_simplex_v4_x4(const float* x, const uint32_t* seed, float* out) {
+  simplex_lanes<4, 4>(x, seed, out);
+}
+void lobe_simplex_v4_x8(const float* x, const uint32_t* seed, float* out) {
+  simplex_lanes<4, 8>(x, seed, out);
+}
+
+} // extern "C"
+
+namespace {
+// Value-only simplex noise of n = 1..4 coordinates.
+float simplex_value(const float* x, int n, uint32_t seed) {
+  switch (n) {
+  case 1:
+    return lobe_simplex_v1(x[0], seed);
+  case 2:
+    return lobe_simplex_v2(x[0], x[1], seed);
+  case 3:
+    return lobe_simplex_v3(x[0], x[1], x[2], seed);
+  default:
+    return lobe_simplex_v4(x[0], x[1], x[2], x[3], seed);
+  }
+}
 } // namespace
 
 extern "C" {
@@ -573,21 +767,22 @@ void lobe_noise_d(int kind, const float* x, const float* dx, const float* dy, in
   // The inputs are taken as values (Inputs): choosing between the caller's array and a safe
   // copy by pointer kept them in memory, stored one by one and reloaded two at a time (a failed
   // store-to-load forward on every call).
+  // Selects, not branches: a shader's noise calls then stay in one basic block, where the JIT
+  // can gather independent ones (runtime/jit/noise_batch.h).
   Inputs xin = inputs(x, nin);
   x = xin.v;
   float sdx[4], sdy[4];
-  if (kind != kCell && kind != kHash)
-    for (int k = 0; k < nin; ++k)
-      if (!(std::fabs(xin.v[k]) < 2147483648.0f)) {
-        for (int m = 0; m < nin; ++m) {
-          sdx[m] = dx ? dx[m] : 0.0f;
-          sdy[m] = dy ? dy[m] : 0.0f;
-        }
-        for (int m = 0; m < nin; ++m)
-          if (!(std::fabs(xin.v[m]) < 2147483648.0f)) xin.v[m] = sdx[m] = sdy[m] = 0.0f;
-        if (dx) dx = sdx, dy = sdy;
-        break;
+  if (kind != kCell && kind != kHash) {
+    for (int k = 0; k < nin; ++k) {
+      bool ok = std::fabs(xin.v[k]) < 2147483648.0f;
+      xin.v[k] = ok ? xin.v[k] : 0.0f;
+      if (dx) {
+        sdx[k] = ok ? dx[k] : 0.0f;
+        sdy[k] = ok && dy ? dy[k] : 0.0f;
       }
+    }
+    if (dx) dx = sdx, dy = sdy;
+  }
   if (kind == kPerlin || kind == kUPerlin) {
     // Simplex noise has no periodic form (OSL has none; the name dispatch rejects
     // pnoise("simplex")), so `period` only applies to gradient and cell/hash noise.
@@ -613,7 +808,12 @@ void lobe_noise_d(int kind, const float* x, const float* dx, const float* dy, in
   }
   if (simplex_kind) {
     for (int j = 0; j < nout; ++j) {
-      D r = dx ? simplex<true>(x, nin, uint32_t(j)) : simplex<false>(x, nin, uint32_t(j));
+      if (!dx) {
+        float v = simplex_value(x, nin, uint32_t(j));
+        out[j] = unsigned_kind ? 0.5f * (v + 1.0f) : v; // OSL's usimplex: 0.5 * (n + 1)
+        continue;
+      }
+      D r = simplex_partials(x, nin, uint32_t(j));
       if (unsigned_kind) { // OSL's usimplex: 0.5 * (n + 1), partials times 0.5
         r.v = 0.5f * (r.v + 1.0f);
         for (int k = 0; k < nin; ++k) r.d[k] *= 0.5f;

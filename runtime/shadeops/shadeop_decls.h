@@ -95,6 +95,21 @@ void lobe_noise_named(lobe::ShaderGlobals* sg, const char* name, const float* x,
                       int line);
 void lobe_noise_d(int kind, const float* x, const float* dx, const float* dy, int nin,
                   const float* period, float* out, float* odx, float* ody, int nout);
+// Simplex noise, value only: one point, and W = 4 or 8 points at once (x[a * W + l] is
+// coordinate a of point l, seed[l] its channel; each lane the one-point function's bits). Only
+// the bitcode's copies are called from shaders (runtime/jit/noise_batch.h).
+float lobe_simplex_v1(float x, uint32_t seed);
+float lobe_simplex_v2(float x, float y, uint32_t seed);
+float lobe_simplex_v3(float x, float y, float z, uint32_t seed);
+float lobe_simplex_v4(float x, float y, float z, float w, uint32_t seed);
+void lobe_simplex_v1_x4(const float* x, const uint32_t* seed, float* out);
+void lobe_simplex_v1_x8(const float* x, const uint32_t* seed, float* out);
+void lobe_simplex_v2_x4(const float* x, const uint32_t* seed, float* out);
+void lobe_simplex_v2_x8(const float* x, const uint32_t* seed, float* out);
+void lobe_simplex_v3_x4(const float* x, const uint32_t* seed, float* out);
+void lobe_simplex_v3_x8(const float* x, const uint32_t* seed, float* out);
+void lobe_simplex_v4_x4(const float* x, const uint32_t* seed, float* out);
+void lobe_simplex_v4_x8(const float* x, const uint32_t* seed, float* out);
 void lobe_noise_named_d(lobe::ShaderGlobals* sg, const char* name, const float* x, const float* dx,
                         const float* dy, int nin, const float* period, const void* gabor_opts,
                         float* out, float* odx, float* ody, int nout, const char* file, int line);

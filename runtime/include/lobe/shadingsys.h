@@ -148,6 +148,7 @@ struct CompileStats {
   double specialize_ms = 0, llvm_ir_ms = 0, optimize_ms = 0, codegen_ms = 0;
   bool cache_hit = false;        // the same group was compiled before in this process
   bool object_from_disk = false; // the machine code came from the disk cache (an earlier run)
+  int noise_batched = 0; // noise calls evaluated side by side in vector lanes (0 from the cache)
 };
 
 // A compiled material: a specialised shader group turned into machine code. Immutable and

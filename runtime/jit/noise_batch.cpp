@@ -1,0 +1,212 @@
+// Noise call batching (noise_batch.h).
+#include "noise_batch.h"
+
+#include <llvm/ADT/SetVector.h>
+#include <llvm/ADT/SmallVector.h>
+#include <llvm/ADT/Twine.h>
+#include <llvm/Analysis/LoopInfo.h>
+#include <llvm/Analysis/ScalarEvolution.h>
+#include <llvm/Analysis/ValueTracking.h>
+#include <llvm/IR/BasicBlock.h>
+#include <llvm/IR/Function.h>
+#include <llvm/IR/IRBuilder.h>
+#include <llvm/IR/Instructions.h>
+#include <llvm/IR/Module.h>
+#include <llvm/Transforms/Utils/LoopUtils.h>
+
+#include <cstdlib>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace lobe::jit {
+namespace {
+
+// A one-point function of the family: how many coordinates it takes (then a 32-bit seed; it
+// returns a float).
+struct Family {
+  const char* name;
+  unsigned coords;
+};
+constexpr Family kFamily[] = {
+    {"lobe_simplex_v1", 1}, {"lobe_simplex_v2", 2}, {"lobe_simplex_v3", 3}, {"lobe_simplex_v4", 4}};
+
+const Family* family_of(llvm::StringRef name) {
+  for (const Family& f : kFamily)
+    if (name == f.name) return &f;
+  return nullptr;
+}
+
+// The one-point function's expected type: (float x coords, i32) -> float.
+bool has_expected_type(const llvm::Function& f, unsigned coords) {
+  llvm::FunctionType* t = f.getFunctionType();
+  if (t->isVarArg() || !t->getReturnType()->isFloatTy() || t->getNumParams() != coords + 1)
+    return false;
+  for (unsigned a = 0; a < coords; ++a)
+    if (!t->getParamType(a)->isFloatTy()) return false;
+  return t->getParamType(coords)->isIntegerTy(32);
+}
+
+// Instructions that may move ahead within their block: no memory access, no side effect, safe
+// to compute whether or not the block would have reached them, not a phi.
+bool movable(const llvm::Instruction& i) {
+  return !llvm::isa<llvm::PHINode>(i) && !i.mayReadOrWriteMemory() && !i.mayHaveSideEffects() &&
+         !i.isTerminator() && llvm::isSafeToSpeculativelyExecute(&i);
+}
+
+// Whether `call` can join the group that starts at `first` (members in `group`): collects into
+// `need` the instructions of the block after `first` that its arguments depend on; false if one
+// of them is a member or cannot move ahead of `first`.
+bool can_join(llvm::CallInst* call, llvm::CallInst* first,
+              const llvm::SmallPtrSetImpl<llvm::Instruction*>& group,
+              llvm::SmallSetVector<llvm::Instruction*, 16>& need) {
+  llvm::SmallVector<llvm::Value*, 16> work(call->arg_begin(), call->arg_end());
+  while (!work.empty()) {
+    auto* i = llvm::dyn_cast<llvm::Instruction>(work.pop_back_val());
+    if (!i || i->getParent() != first->getParent() || i->comesBefore(first)) continue;
+    if (group.contains(i) || !movable(*i)) return false;
+    if (!need.insert(i)) continue;
+    for (llvm::Value* op : i->operands()) work.push_back(op);
+  }
+  return true;
+}
+
+// The W-point function for `f` (declared; linked from the bitcode afterwards).
+llvm::FunctionCallee wide_function(llvm::Module& m, const Family& f, unsigned width) {
+  llvm::LLVMContext& ctx = m.getContext();
+  llvm::Type* ptr = llvm::PointerType::getUnqual(ctx);
+  auto* type = llvm::FunctionType::get(llvm::Type::getVoidTy(ctx), {ptr, ptr, ptr}, false);
+  return m.getOrInsertFunction((llvm::Twine(f.name) + "_x" + llvm::Twine(width)).str(), type);
+}
+
+// Replaces the calls of `group` (in block order, all calling the function of `f`) by one W-point
+// call where the first one was, after moving `need` (in block order) ahead of it.
+void rewrite(const Family& f, const std::vector<llvm::CallInst*>& group,
+             const std::vector<llvm::Instruction*>& need) {
+  llvm::CallInst* first = group.front();
+  for (llvm::Instruction* i : need) i->moveBefore(first);
+  llvm::Function& fn = *first->getFunction();
+  llvm::Module& m = *fn.getParent();
+  llvm::LLVMContext& ctx = m.getContext();
+  const unsigned width = group.size() <= 4 ? 4 : 8;
+  llvm::Type* f32 = llvm::Type::getFloatTy(ctx);
+  llvm::Type* i32 = llvm::Type::getInt32Ty(ctx);
+  llvm::IRBuilder<> entry(&fn.getEntryBlock(), fn.getEntryBlock().getFirstInsertionPt());
+  llvm::AllocaInst* xs = entry.CreateAlloca(llvm::ArrayType::get(f32, f.coords * width));
+  llvm::AllocaInst* seeds = entry.CreateAlloca(llvm::ArrayType::get(i32, width));
+  llvm::AllocaInst* outs = entry.CreateAlloca(llvm::ArrayType::get(f32, width));
+  llvm::IRBuilder<> b(first);
+  for (unsigned l = 0; l < width; ++l) {
+    // Lanes past the group's compute its first point again (their results are not read).
+    llvm::CallInst* c = group[l < group.size() ? l : 0];
+    for (unsigned a = 0; a < f.coords; ++a)
+      b.CreateStore(c->getArgOperand(a), b.CreateConstInBoundsGEP1_32(f32, xs, a * width + l));
+    b.CreateStore(c->getArgOperand(f.coords), b.CreateConstInBoundsGEP1_32(i32, seeds, l));
+  }
+  b.CreateCall(wide_function(m, f, width), {xs, seeds, outs});
+  for (unsigned l = 0; l < group.size(); ++l) {
+    llvm::Value* v = b.CreateLoad(f32, b.CreateConstInBoundsGEP1_32(f32, outs, l));
+    group[l]->replaceAllUsesWith(v);
+  }
+  for (llvm::CallInst* c : group) c->eraseFromParent();
+}
+
+int batch_block(llvm::BasicBlock& bb) {
+  std::map<const Family*, std::vector<llvm::CallInst*>> calls;
+  for (llvm::Instruction& i : bb)
+    if (auto* call = llvm::dyn_cast<llvm::CallInst>(&i))
+      if (llvm::Function* callee = call->getCalledFunction())
+        if (const Family* f = family_of(callee->getName());
+            f && has_expected_type(*callee, f->coords))
+          calls[f].push_back(call);
+  int gathered = 0;
+  for (auto& [f, list] : calls) {
+    while (list.size() >= 2) {
+      llvm::CallInst* first = list.front();
+      llvm::SmallPtrSet<llvm::Instruction*, 8> members{first};
+      std::vector<llvm::CallInst*> group{first}, rest;
+      llvm::SmallSetVector<llvm::Instruction*, 16> need;
+      for (size_t k = 1; k < list.size(); ++k) {
+        llvm::SmallSetVector<llvm::Instruction*, 16> more = need;
+        if (group.size() < 8 && can_join(list[k], first, members, more)) {
+          group.push_back(list[k]);
+          members.insert(list[k]);
+          need = std::move(more);
+        } else {
+          rest.push_back(list[k]);
+        }
+      }
+      if (group.size() >= 2) {
+        std::vector<llvm::Instruction*> ordered;
+        for (llvm::Instruction& i : bb)
+          if (need.contains(&i)) ordered.push_back(&i);
+        rewrite(*f, group, ordered);
+        gathered += int(group.size());
+      }
+      list = std::move(rest);
+    }
+  }
+  return gathered;
+}
+
+} // namespace
+
+bool noise_batching() {
+  static const bool on = [] {
+    const char* e = std::getenv("LOBE_NOISE_BATCH");
+    return !(e && std::string(e) == "0");
+  }();
+  return on;
+}
+
+bool batchable_function(llvm::StringRef name) { return family_of(name) != nullptr; }
+
+bool calls_noise_family(const llvm::Module& module) {
+  for (const llvm::Function& fn : module)
+    if (!fn.isDeclaration() && batchable_function(fn.getName())) return true;
+  return false;
+}
+
+llvm::PreservedAnalyses MarkNoiseLoopsPass::run(llvm::Function& f,
+                                                llvm::FunctionAnalysisManager& fam) {
+  auto& loops = fam.getResult<llvm::LoopAnalysis>(f);
+  auto& se = fam.getResult<llvm::ScalarEvolutionAnalysis>(f);
+  for (llvm::Loop* l : loops.getLoopsInPreorder()) {
+    if (!l->isInnermost()) continue;
+    unsigned calls = 0;
+    for (llvm::BasicBlock* bb : l->blocks())
+      for (llvm::Instruction& i : *bb)
+        if (auto* call = llvm::dyn_cast<llvm::CallInst>(&i))
+          if (llvm::Function* callee = call->getCalledFunction())
+            calls += batchable_function(callee->getName());
+    llvm::BasicBlock* latch = l->getLoopLatch();
+    if (calls == 0 || !latch || !l->isLoopExiting(latch)) continue;
+    unsigned trips = se.getSmallConstantTripCount(l, latch);
+    if (trips >= 2 && trips <= 16 && trips * calls <= 64)
+      llvm::addStringMetadataToLoop(l, "llvm.loop.unroll.full");
+  }
+  return llvm::PreservedAnalyses::all(); // metadata only
+}
+
+int batch_noise_calls(llvm::Module& module) {
+  int gathered = 0;
+  for (llvm::Function& fn : module) {
+    if (fn.isDeclaration() || fn.getName().starts_with("lobe_simplex_")) continue;
+    for (llvm::BasicBlock& bb : fn) gathered += batch_block(bb);
+  }
+  return gathered;
+}
+
+bool inline_noise_family(llvm::Module& module) {
+  bool any = false;
+  for (llvm::Function& fn : module) {
+    if (fn.isDeclaration() || !fn.getName().starts_with("lobe_simplex_v")) continue;
+    fn.removeFnAttr(llvm::Attribute::NoInline);
+    fn.addFnAttr(llvm::Attribute::AlwaysInline);
+    fn.setLinkage(llvm::GlobalValue::InternalLinkage);
+    any = true;
+  }
+  return any;
+}
+
+} // namespace lobe::jit
