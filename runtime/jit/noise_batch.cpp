@@ -22,14 +22,18 @@
 namespace lobe::jit {
 namespace {
 
-// A one-point function of the family: how many coordinates it takes (then a 32-bit seed; it
-// returns a float).
+// A one-point function of the family: how many coordinates it takes, then whether a 32-bit
+// seed (the channel); it returns a float. Its W-point forms are name_x4 and name_x8.
 struct Family {
   const char* name;
   unsigned coords;
+  bool seeded;
 };
-constexpr Family kFamily[] = {
-    {"lobe_simplex_v1", 1}, {"lobe_simplex_v2", 2}, {"lobe_simplex_v3", 3}, {"lobe_simplex_v4", 4}};
+constexpr Family kFamily[] = {{"lobe_perlin_v3", 3, false},
+                              {"lobe_simplex_v1", 1, true},
+                              {"lobe_simplex_v2", 2, true},
+                              {"lobe_simplex_v3", 3, true},
+                              {"lobe_simplex_v4", 4, true}};
 
 const Family* family_of(llvm::StringRef name) {
   for (const Family& f : kFamily)
@@ -37,14 +41,15 @@ const Family* family_of(llvm::StringRef name) {
   return nullptr;
 }
 
-// The one-point function's expected type: (float x coords, i32) -> float.
-bool has_expected_type(const llvm::Function& f, unsigned coords) {
-  llvm::FunctionType* t = f.getFunctionType();
-  if (t->isVarArg() || !t->getReturnType()->isFloatTy() || t->getNumParams() != coords + 1)
+// The one-point function's expected type: (float x coords[, i32]) -> float.
+bool has_expected_type(const llvm::Function& fn, const Family& f) {
+  llvm::FunctionType* t = fn.getFunctionType();
+  if (t->isVarArg() || !t->getReturnType()->isFloatTy() ||
+      t->getNumParams() != f.coords + (f.seeded ? 1 : 0))
     return false;
-  for (unsigned a = 0; a < coords; ++a)
+  for (unsigned a = 0; a < f.coords; ++a)
     if (!t->getParamType(a)->isFloatTy()) return false;
-  return t->getParamType(coords)->isIntegerTy(32);
+  return !f.seeded || t->getParamType(f.coords)->isIntegerTy(32);
 }
 
 // Instructions that may move ahead within their block: no memory access, no side effect, safe
@@ -101,7 +106,8 @@ void rewrite(const Family& f, const std::vector<llvm::CallInst*>& group,
     llvm::CallInst* c = group[l < group.size() ? l : 0];
     for (unsigned a = 0; a < f.coords; ++a)
       b.CreateStore(c->getArgOperand(a), b.CreateConstInBoundsGEP1_32(f32, xs, a * width + l));
-    b.CreateStore(c->getArgOperand(f.coords), b.CreateConstInBoundsGEP1_32(i32, seeds, l));
+    llvm::Value* seed = f.seeded ? c->getArgOperand(f.coords) : b.getInt32(0);
+    b.CreateStore(seed, b.CreateConstInBoundsGEP1_32(i32, seeds, l));
   }
   b.CreateCall(wide_function(m, f, width), {xs, seeds, outs});
   for (unsigned l = 0; l < group.size(); ++l) {
@@ -116,8 +122,7 @@ int batch_block(llvm::BasicBlock& bb) {
   for (llvm::Instruction& i : bb)
     if (auto* call = llvm::dyn_cast<llvm::CallInst>(&i))
       if (llvm::Function* callee = call->getCalledFunction())
-        if (const Family* f = family_of(callee->getName());
-            f && has_expected_type(*callee, f->coords))
+        if (const Family* f = family_of(callee->getName()); f && has_expected_type(*callee, *f))
           calls[f].push_back(call);
   int gathered = 0;
   for (auto& [f, list] : calls) {
@@ -161,6 +166,10 @@ bool noise_batching() {
 
 bool batchable_function(llvm::StringRef name) { return family_of(name) != nullptr; }
 
+bool wide_noise_function(llvm::StringRef name) {
+  return (name.consume_back("_x4") || name.consume_back("_x8")) && batchable_function(name);
+}
+
 bool calls_noise_family(const llvm::Module& module) {
   for (const llvm::Function& fn : module)
     if (!fn.isDeclaration() && batchable_function(fn.getName())) return true;
@@ -191,7 +200,7 @@ llvm::PreservedAnalyses MarkNoiseLoopsPass::run(llvm::Function& f,
 int batch_noise_calls(llvm::Module& module) {
   int gathered = 0;
   for (llvm::Function& fn : module) {
-    if (fn.isDeclaration() || fn.getName().starts_with("lobe_simplex_")) continue;
+    if (fn.isDeclaration() || batchable_function(fn.getName())) continue;
     for (llvm::BasicBlock& bb : fn) gathered += batch_block(bb);
   }
   return gathered;
@@ -200,7 +209,9 @@ int batch_noise_calls(llvm::Module& module) {
 bool inline_noise_family(llvm::Module& module) {
   bool any = false;
   for (llvm::Function& fn : module) {
-    if (fn.isDeclaration() || !fn.getName().starts_with("lobe_simplex_v")) continue;
+    if (fn.isDeclaration() ||
+        !(batchable_function(fn.getName()) || wide_noise_function(fn.getName())))
+      continue;
     fn.removeFnAttr(llvm::Attribute::NoInline);
     fn.addFnAttr(llvm::Attribute::AlwaysInline);
     fn.setLinkage(llvm::GlobalValue::InternalLinkage);

@@ -5,9 +5,9 @@
 // other: the octaves of an fbm loop once unrolled, the channels of a vector noise, the layers of
 // a pattern. One call computes one point with scalar arithmetic (vectorised at best over a
 // cell's corners, with shuffles and horizontal sums); W calls side by side keep every lane busy
-// on the same operations. The W-point functions (lobe_simplex_v3_x8 and its kin,
-// runtime/shadeops/noise.cpp) compute each lane's bits exactly as the one-point function does,
-// so batching never changes a result.
+// on the same operations. The W-point functions (lobe_simplex_v3_x8, lobe_perlin_v3_x4 and
+// their kin, runtime/shadeops/noise.cpp) compute each lane's bits exactly as the one-point function
+// does, so batching never changes a result.
 //
 // How it runs, at -O2 only and with the shadeop bitcode linked (shadeop_bitcode.h): the
 // one-point functions (batchable_function()) stay calls with external linkage through LLVM's O2
@@ -31,6 +31,9 @@ bool noise_batching();
 
 // The one-point functions batching gathers (kept as calls through O2 while batching is on).
 bool batchable_function(llvm::StringRef name);
+
+// Their W-point forms (name_x4, name_x8), which batching calls.
+bool wide_noise_function(llvm::StringRef name);
 
 // Marks the innermost loops that call the one-point functions, with a small constant trip count
 // (at most 16 iterations and 64 calls once unrolled), llvm.loop.unroll.full: an octave loop

@@ -54,7 +54,7 @@ bool linkable(llvm::StringRef name) {
          name == "lobe_mat_transpose" || name == "lobe_noise_d" || name == "lobe_noise" ||
          name == "lobe_hash" || name == "lobe_closure_component" || name == "lobe_closure_add" ||
          name == "lobe_closure_mul" || name == "lobe_closure_weight" ||
-         name.starts_with("lobe_simplex_v"); // noise_batch.h: the W-point forms
+         wide_noise_function(name); // noise_batch.h
 }
 
 // What linked code may still call: intrinsics and the JIT's runtime symbols (shadeops.h).
@@ -88,8 +88,7 @@ void strip_attributes(llvm::Function& f) {
 // variant (kind, dimension, channels, derivatives or not) and the rest folds away.
 // The W-point noise functions (noise_batch.h) inline where batching put them.
 bool dispatcher(llvm::StringRef name) {
-  return name == "lobe_noise_d" || name == "lobe_noise" ||
-         (name.starts_with("lobe_simplex_v") && name.contains("_x"));
+  return name == "lobe_noise_d" || name == "lobe_noise" || wide_noise_function(name);
 }
 
 } // namespace

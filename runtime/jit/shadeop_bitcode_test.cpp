@@ -230,16 +230,22 @@ void emit_batch(llvm::Module& m, const BatchCase& c) {
 
 // Independent calls are gathered (8 at most a group, then 4) and give the native library's
 // bits; dependent ones are left alone. Every call is inlined either way.
-TEST(ShadeopBitcode, IndependentSimplexCallsAreBatchedToTheBit) {
+TEST(ShadeopBitcode, IndependentNoiseCallsAreBatchedToTheBit) {
   if (!jit::noise_batching()) GTEST_SKIP() << "LOBE_NOISE_BATCH=0";
   std::string err;
   auto jit = jit::Jit::create(err);
   ASSERT_TRUE(jit) << err;
-  const BatchCase cases[] = {
-      {shadeops::kSimplex, 3, 12, false, 12}, {shadeops::kUSimplex, 2, 5, false, 5},
-      {shadeops::kSimplex, 1, 2, false, 2},   {shadeops::kSimplex, 4, 8, false, 8},
-      {shadeops::kUSimplex, 4, 3, false, 3},  {shadeops::kSimplex, 3, 4, true, 0},
-      {shadeops::kPerlin, 3, 4, false, 0}};
+  const BatchCase cases[] = {{shadeops::kSimplex, 3, 12, false, 12},
+                             {shadeops::kUSimplex, 2, 5, false, 5},
+                             {shadeops::kSimplex, 1, 2, false, 2},
+                             {shadeops::kSimplex, 4, 8, false, 8},
+                             {shadeops::kUSimplex, 4, 3, false, 3},
+                             {shadeops::kSimplex, 3, 4, true, 0},
+                             {shadeops::kPerlin, 3, 6, false, 6},
+                             {shadeops::kUPerlin, 3, 9, false, 8}, // 8, and one alone
+                             {shadeops::kPerlin, 3, 3, true, 0},
+                             {shadeops::kPerlin, 2, 4, false, 0}, // only 3-D gradient noise
+                             {shadeops::kCell, 3, 4, false, 0}};
   std::vector<float> samples = sample_inputs();
   std::mt19937 rng(13);
   std::uniform_int_distribution<size_t> pick(0, samples.size() - 1);
@@ -252,7 +258,8 @@ TEST(ShadeopBitcode, IndependentSimplexCallsAreBatchedToTheBit) {
     EXPECT_EQ(jit->optimize(*mod, 2), c.gathered) << c.name();
     EXPECT_FALSE(calls(*mod, "lobe_noise_d")) << c.name();
     for (const char* f : {"lobe_simplex_v1", "lobe_simplex_v2", "lobe_simplex_v3",
-                          "lobe_simplex_v4", "lobe_simplex_v3_x8", "lobe_simplex_v3_x4"})
+                          "lobe_simplex_v4", "lobe_simplex_v3_x8", "lobe_simplex_v3_x4",
+                          "lobe_perlin_v3", "lobe_perlin_v3_x8", "lobe_perlin_v3_x4"})
       EXPECT_FALSE(calls(*mod, f)) << c.name() << " still calls " << f;
     jit::CompiledGroup code;
     jit::JitTimes times;
@@ -262,7 +269,10 @@ TEST(ShadeopBitcode, IndependentSimplexCallsAreBatchedToTheBit) {
     auto fn = reinterpret_cast<void (*)(const float*, float*)>(addr[0]);
     for (int trial = 0; trial < 200; ++trial) {
       std::vector<float> in(size_t(4 * c.calls)), out(size_t(c.calls));
-      for (float& v : in) v = samples[pick(rng)];
+      // One trial in four on lattice points, signed zeros among them (the value is then a
+      // signed zero, whose sign the lanes must keep).
+      const float lattice[] = {0.0f, -0.0f, 1.0f, -1.0f, 2.0f};
+      for (float& v : in) v = trial % 4 ? samples[pick(rng)] : lattice[pick(rng) % 5];
       fn(in.data(), out.data());
       float previous = 0;
       for (int i = 0; i < c.calls; ++i) {

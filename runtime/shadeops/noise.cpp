@@ -686,6 +686,52 @@ inline void simplex_lanes(const float* px, const uint32_t* pseed, float* out) {
   std::memcpy(out, &r, sizeof r);
 }
 
+// perlin_cell<float, 3> with one channel (perlin3_lanes' operations), for W points at once:
+// x[k * W + l] is coordinate k of point l. The eight corners are taken one after another, each
+// across the W points.
+template <int W> inline void perlin3_points(const float* px, float* out) {
+  using F = typename Wide<W>::F;
+  using I = typename Wide<W>::I;
+  using U = typename Wide<W>::U;
+  F f[3], u[3], f1[3];
+  U k0[3];
+  for (int k = 0; k < 3; ++k) {
+    F x;
+    std::memcpy(&x, px + k * W, sizeof x);
+    I cell = ifloor_lanes<F, I>(x);
+    f[k] = x - __builtin_convertvector(cell, F);
+    f1[k] = f[k] - 1.0f;
+    u[k] = f[k] * f[k] * f[k] * (f[k] * (f[k] * 6.0f - 15.0f) + 10.0f); // fade
+    k0[k] = (U)cell;
+  }
+  // perlin3_lanes broadcasts f and u as 0 + value, which reads -0 as +0: the same here
+  // (except u[1], which its last lerp takes as it is).
+  F f0[3] = {F{} + f[0], F{} + f[1], F{} + f[2]};
+  F us[3] = {F{} + u[0], F{}, F{} + u[2]};
+  constexpr uint32_t start = 0xdeadbeefu + (3u << 2) + 13u; // inthash of three words
+  F g[8];
+  for (int c = 0; c < 8; ++c) {
+    U key[3];
+    F r[3];
+    for (int k = 0; k < 3; ++k) {
+      bool upper = (c >> k) & 1;
+      key[k] = upper ? k0[k] + 1u : k0[k];
+      r[k] = upper ? f1[k] : f0[k];
+    }
+    U a = start + key[0], b = start + key[1];
+    U h = lookup3_final_lanes(a, b, start + key[2]) & 15u;
+    F gu = h < 8u ? r[0] : r[1];
+    F gv = h < 4u ? r[1] : ((h == 12u) | (h == 14u)) ? r[0] : r[2];
+    g[c] = ((h & 1u) != 0u ? -gu : gu) + ((h & 2u) != 0u ? -gv : gv);
+  }
+  // lerp_zxy: along z, then x (both y rows), then y.
+  F m[4];
+  for (int i = 0; i < 4; ++i) m[i] = g[i] * (1.0f - u[2]) + g[i + 4] * us[2];
+  F y0 = m[0] * (1.0f - u[0]) + m[1] * us[0], y1 = m[2] * (1.0f - u[0]) + m[3] * us[0];
+  F r = 0.9820f * (y0 * (1.0f - u[1]) + y1 * u[1]);
+  std::memcpy(out, &r, sizeof r);
+}
+
 } // namespace
 
 extern "C" {
@@ -705,6 +751,15 @@ LOBE_BATCHABLE float lobe_simplex_v3(float x, float y, float z, uint32_t seed) {
 LOBE_BATCHABLE float lobe_simplex_v4(float x, float y, float z, float w, uint32_t seed) {
   return simplex_n<4, false>(Inputs{{x, y, z, w}}, seed).v;
 }
+// Signed gradient noise of three coordinates, one channel, value only, not periodic: one point
+// (perlin_cell<float, 3>) and W points (`seed` is unused: the wide functions share one form).
+LOBE_BATCHABLE float lobe_perlin_v3(float x, float y, float z) {
+  float r;
+  perlin_value<3>(Inputs{{x, y, z, 0}}, nullptr, 1, &r);
+  return r;
+}
+void lobe_perlin_v3_x4(const float* x, const uint32_t*, float* out) { perlin3_points<4>(x, out); }
+void lobe_perlin_v3_x8(const float* x, const uint32_t*, float* out) { perlin3_points<8>(x, out); }
 void lobe_simplex_v1_x4(const float* x, const uint32_t* seed, float* out) {
   simplex1_lanes<4>(x, seed, out);
 }
@@ -801,7 +856,10 @@ void lobe_noise_d(int kind, const float* x, const float* dx, const float* dy, in
       }
     } else {
       float r[3];
-      perlin(x, nin, period ? per : nullptr, nout, r);
+      if (nin == 3 && nout == 1 && !period)
+        r[0] = lobe_perlin_v3(x[0], x[1], x[2]);
+      else
+        perlin(x, nin, period ? per : nullptr, nout, r);
       for (int j = 0; j < nout; ++j) out[j] = unsigned_kind ? 0.5f * (r[j] + 1.0f) : r[j];
     }
     return;

@@ -95,9 +95,13 @@ void lobe_noise_named(lobe::ShaderGlobals* sg, const char* name, const float* x,
                       int line);
 void lobe_noise_d(int kind, const float* x, const float* dx, const float* dy, int nin,
                   const float* period, float* out, float* odx, float* ody, int nout);
-// Simplex noise, value only: one point, and W = 4 or 8 points at once (x[a * W + l] is
-// coordinate a of point l, seed[l] its channel; each lane the one-point function's bits). Only
-// the bitcode's copies are called from shaders (runtime/jit/noise_batch.h).
+// Value-only noise for batching (runtime/jit/noise_batch.h): 3-D signed gradient noise of one
+// channel, and simplex noise; one point, and W = 4 or 8 points at once (x[a * W + l] is
+// coordinate a of point l, seed[l] its channel, unused by gradient noise; each lane the
+// one-point function's bits). Only the bitcode's copies are called from shaders.
+float lobe_perlin_v3(float x, float y, float z);
+void lobe_perlin_v3_x4(const float* x, const uint32_t* seed, float* out);
+void lobe_perlin_v3_x8(const float* x, const uint32_t* seed, float* out);
 float lobe_simplex_v1(float x, uint32_t seed);
 float lobe_simplex_v2(float x, float y, uint32_t seed);
 float lobe_simplex_v3(float x, float y, float z, uint32_t seed);

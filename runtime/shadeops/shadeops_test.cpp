@@ -725,6 +725,39 @@ TEST(Noise, SimplexLanesMatchOnePointToTheBit) {
   EXPECT_EQ(mismatched, 0) << "of " << compared;
 }
 
+// The same for 3-D gradient noise of one channel (lobe_perlin_v3, lobe_noise_d's value path
+// for it): lattice points and their neighbours, negative zero, values near the int range.
+TEST(Noise, PerlinLanesMatchOnePointToTheBit) {
+  const float special[] = {0.0f,   -0.0f,   1.0f,       -1.0f,       0.5f,
+                           -2.5f,  7.0f,    1e-30f,     16.999f,     std::nextafter(3.0f, 0.0f),
+                           2.1e9f, -2.1e9f, 8388607.5f, -16777216.0f};
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<float> u(-50.0f, 50.0f);
+  std::uniform_int_distribution<int> pick(0, int(std::size(special)) - 1), coin(0, 2);
+  auto same = [](float a, float b) { return std::memcmp(&a, &b, 4) == 0; };
+  int compared = 0, mismatched = 0;
+  for (int w : {4, 8})
+    for (int trial = 0; trial < 4000; ++trial) {
+      float x[3 * 8], out[8];
+      for (int l = 0; l < w; ++l)
+        for (int a = 0; a < 3; ++a) {
+          int c = coin(rng);
+          x[a * w + l] = c == 0 ? special[pick(rng)] : c == 1 ? std::round(u(rng)) : u(rng);
+        }
+      (w == 4 ? lobe_perlin_v3_x4 : lobe_perlin_v3_x8)(x, nullptr, out);
+      for (int l = 0; l < w; ++l) {
+        float p[3] = {x[l], x[w + l], x[2 * w + l]}, v;
+        float expect = lobe_perlin_v3(p[0], p[1], p[2]);
+        lobe_noise_d(kPerlin, p, nullptr, nullptr, 3, nullptr, &v, nullptr, nullptr, 1);
+        ++compared;
+        if ((!same(out[l], expect) || !same(v, expect)) && ++mismatched <= 5)
+          ADD_FAILURE() << "W " << w << " lane " << l << " at (" << p[0] << ", " << p[1] << ", "
+                        << p[2] << "): " << out[l] << ", one point " << expect << ", noise " << v;
+      }
+    }
+  EXPECT_EQ(mismatched, 0) << "of " << compared;
+}
+
 // noise(name, ...) with a run-time name dispatches to the same kind as the constant case; an
 // unknown name gives 0 (and a zero gradient) and reports a run-time error with the location.
 // Simplex noise has no periodic form (as in OSL), so pnoise("simplex") is an unknown name.
