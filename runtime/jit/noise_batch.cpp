@@ -94,26 +94,33 @@ void rewrite(const Family& f, const std::vector<llvm::CallInst*>& group,
   llvm::Module& m = *fn.getParent();
   llvm::LLVMContext& ctx = m.getContext();
   const unsigned width = group.size() <= 4 ? 4 : 8;
-  llvm::Type* f32 = llvm::Type::getFloatTy(ctx);
-  llvm::Type* i32 = llvm::Type::getInt32Ty(ctx);
+  // The lanes' buffers are vectors, stored and loaded whole, as the W-point function reads and
+  // writes them: SROA then keeps them in registers (buffers of scalars stayed in memory, each
+  // vector read a store-forwarding stall).
+  auto* fv = llvm::FixedVectorType::get(llvm::Type::getFloatTy(ctx), width);
+  auto* iv = llvm::FixedVectorType::get(llvm::Type::getInt32Ty(ctx), width);
   llvm::IRBuilder<> entry(&fn.getEntryBlock(), fn.getEntryBlock().getFirstInsertionPt());
-  llvm::AllocaInst* xs = entry.CreateAlloca(llvm::ArrayType::get(f32, f.coords * width));
-  llvm::AllocaInst* seeds = entry.CreateAlloca(llvm::ArrayType::get(i32, width));
-  llvm::AllocaInst* outs = entry.CreateAlloca(llvm::ArrayType::get(f32, width));
+  llvm::AllocaInst* xs = entry.CreateAlloca(llvm::ArrayType::get(fv, f.coords));
+  llvm::AllocaInst* seeds = entry.CreateAlloca(iv);
+  llvm::AllocaInst* outs = entry.CreateAlloca(fv);
   llvm::IRBuilder<> b(first);
-  for (unsigned l = 0; l < width; ++l) {
-    // Lanes past the group's compute its first point again (their results are not read).
-    llvm::CallInst* c = group[l < group.size() ? l : 0];
-    for (unsigned a = 0; a < f.coords; ++a)
-      b.CreateStore(c->getArgOperand(a), b.CreateConstInBoundsGEP1_32(f32, xs, a * width + l));
-    llvm::Value* seed = f.seeded ? c->getArgOperand(f.coords) : b.getInt32(0);
-    b.CreateStore(seed, b.CreateConstInBoundsGEP1_32(i32, seeds, l));
+  // Lanes past the group's compute its first point again (their results are not read).
+  auto lane = [&](unsigned l) { return group[l < group.size() ? l : 0]; };
+  for (unsigned a = 0; a < f.coords; ++a) {
+    llvm::Value* v = llvm::PoisonValue::get(fv);
+    for (unsigned l = 0; l < width; ++l)
+      v = b.CreateInsertElement(v, lane(l)->getArgOperand(a), uint64_t(l));
+    b.CreateStore(v, b.CreateConstInBoundsGEP2_32(xs->getAllocatedType(), xs, 0, a));
   }
+  llvm::Value* sv = llvm::PoisonValue::get(iv);
+  for (unsigned l = 0; l < width; ++l)
+    sv = b.CreateInsertElement(sv, f.seeded ? lane(l)->getArgOperand(f.coords) : b.getInt32(0),
+                               uint64_t(l));
+  b.CreateStore(sv, seeds);
   b.CreateCall(wide_function(m, f, width), {xs, seeds, outs});
-  for (unsigned l = 0; l < group.size(); ++l) {
-    llvm::Value* v = b.CreateLoad(f32, b.CreateConstInBoundsGEP1_32(f32, outs, l));
-    group[l]->replaceAllUsesWith(v);
-  }
+  llvm::Value* results = b.CreateLoad(fv, outs);
+  for (unsigned l = 0; l < group.size(); ++l)
+    group[l]->replaceAllUsesWith(b.CreateExtractElement(results, uint64_t(l)));
   for (llvm::CallInst* c : group) c->eraseFromParent();
 }
 

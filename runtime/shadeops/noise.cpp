@@ -578,6 +578,11 @@ template <class U> inline U lookup3_final_lanes(U a, U b, U c) {
   return c;
 }
 
+// The lane functions' loops (over corners and coordinates) unroll in full: rolled, their selects
+// on the corner index became branches and their arrays stayed in memory (seen in the JIT's
+// code for lobe_perlin_v3_x8).
+#define LOBE_UNROLL _Pragma("GCC unroll 16")
+
 template <int W> struct Wide {
   typedef float F __attribute__((vector_size(4 * W)));
   typedef int32_t I __attribute__((vector_size(4 * W)));
@@ -607,6 +612,7 @@ template <int W> inline void simplex1_lanes(const float* px, const uint32_t* pse
   I i0 = ifloor_lanes<F, I>(x);
   F x0 = x - __builtin_convertvector(i0, F), x1 = x0 - 1.0f;
   F n[2];
+  LOBE_UNROLL
   for (int c = 0; c < 2; ++c) {
     F xc = c ? x1 : x0;
     U h = lookup3_final_lanes((U)i0 + uint32_t(c), seed, U{} + 0xdeadbeefu) & 15u;
@@ -630,29 +636,36 @@ inline void simplex_lanes(const float* px, const uint32_t* pseed, float* out) {
   const SimplexDim& k = kSimplexDim[n - 2];
   F x[4];
   U seed;
+  LOBE_UNROLL
   for (int a = 0; a < n; ++a) std::memcpy(&x[a], px + a * W, sizeof(F));
   std::memcpy(&seed, pseed, sizeof seed);
   F s = x[0];
+  LOBE_UNROLL
   for (int a = 1; a < n; ++a) s += x[a];
   s *= k.F;
   I cell[4], sum = I{};
+  LOBE_UNROLL
   for (int a = 0; a < n; ++a) {
     cell[a] = ifloor_lanes<F, I>(x[a] + s);
     sum += cell[a];
   }
   F t = __builtin_convertvector(sum, F) * k.G, d0[4];
+  LOBE_UNROLL
   for (int a = 0; a < n; ++a) d0[a] = x[a] - (__builtin_convertvector(cell[a], F) - t);
   I rank[4] = {I{}, I{}, I{}, I{}};
-  for (int a = 0; a < n; ++a)
-    for (int b = a + 1; b < n; ++b) {
-      I first = (n == 3 ? d0[a] >= d0[b] : d0[a] > d0[b]) & 1;
-      rank[a] += first;
-      rank[b] += 1 - first;
-    }
+  LOBE_UNROLL
+  for (int a = 0; a < n; ++a) LOBE_UNROLL
+  for (int b = a + 1; b < n; ++b) {
+    I first = (n == 3 ? d0[a] >= d0[b] : d0[a] > d0[b]) & 1;
+    rank[a] += first;
+    rank[b] += 1 - first;
+  }
   F total = F{};
+  LOBE_UNROLL
   for (int c = 0; c <= n; ++c) {
     U corner[4];
     F d[4], tc = F{} + 0.5f;
+    LOBE_UNROLL
     for (int a = 0; a < n; ++a) {
       I step = (rank[a] >= n - c) & 1;
       corner[a] = (U)(cell[a] + step);
@@ -671,12 +684,15 @@ inline void simplex_lanes(const float* px, const uint32_t* pseed, float* out) {
       row = lookup3_final_lanes(corner[0], corner[1], inner ^ 0xdeadbeefu) & 31u;
     }
     float gl[4][W];
-    for (int l = 0; l < W; ++l)
-      for (int a = 0; a < n; ++a)
-        gl[a][l] = n == 2 ? kGrad2[row[l]][a] : n == 3 ? kGrad3[row[l]][a] : kGrad4[row[l]][a];
+    LOBE_UNROLL
+    for (int l = 0; l < W; ++l) LOBE_UNROLL
+    for (int a = 0; a < n; ++a)
+      gl[a][l] = n == 2 ? kGrad2[row[l]][a] : n == 3 ? kGrad3[row[l]][a] : kGrad4[row[l]][a];
     F g[4];
+    LOBE_UNROLL
     for (int a = 0; a < n; ++a) std::memcpy(&g[a], gl[a], sizeof(F));
     F dot = g[0] * d[0];
+    LOBE_UNROLL
     for (int a = 1; a < n; ++a) dot += g[a] * d[a];
     F t2 = tc * tc, t4 = t2 * t2;
     F nc = (F)((I)(t4 * dot) & inside); // +0 outside the corner's support, as the scalar code
@@ -695,6 +711,7 @@ template <int W> inline void perlin3_points(const float* px, float* out) {
   using U = typename Wide<W>::U;
   F f[3], u[3], f1[3];
   U k0[3];
+  LOBE_UNROLL
   for (int k = 0; k < 3; ++k) {
     F x;
     std::memcpy(&x, px + k * W, sizeof x);
@@ -710,9 +727,11 @@ template <int W> inline void perlin3_points(const float* px, float* out) {
   F us[3] = {F{} + u[0], F{}, F{} + u[2]};
   constexpr uint32_t start = 0xdeadbeefu + (3u << 2) + 13u; // inthash of three words
   F g[8];
+  LOBE_UNROLL
   for (int c = 0; c < 8; ++c) {
     U key[3];
     F r[3];
+    LOBE_UNROLL
     for (int k = 0; k < 3; ++k) {
       bool upper = (c >> k) & 1;
       key[k] = upper ? k0[k] + 1u : k0[k];
@@ -726,6 +745,7 @@ template <int W> inline void perlin3_points(const float* px, float* out) {
   }
   // lerp_zxy: along z, then x (both y rows), then y.
   F m[4];
+  LOBE_UNROLL
   for (int i = 0; i < 4; ++i) m[i] = g[i] * (1.0f - u[2]) + g[i + 4] * us[2];
   F y0 = m[0] * (1.0f - u[0]) + m[1] * us[0], y1 = m[2] * (1.0f - u[0]) + m[3] * us[0];
   F r = 0.9820f * (y0 * (1.0f - u[1]) + y1 * u[1]);
