@@ -13,7 +13,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
+#include <limits>
+#include <random>
+#include <utility>
 
 namespace {
 
@@ -115,6 +119,61 @@ TEST(Matrix44, EdgeCasesAreOsls) {
   expect_transform(singular_affine, p, 2, p);
   EXPECT_EQ(mat_det(singular_affine), 0.0f);
   EXPECT_EQ(mat_det(zero), 0.0f);
+}
+
+// Gauss-Jordan element by element, with a branch for the pivot and a swap of whole rows: the
+// textbook form of the algorithm mat_invert_gauss_jordan computes with row vectors and masks.
+bool gauss_jordan_reference(float* dst, const float* src) {
+  float t[4][4], s[4][4];
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) t[i][j] = src[4 * i + j], s[i][j] = i == j ? 1.0f : 0.0f;
+  for (int i = 0; i < 3; ++i) {
+    int pivot = i;
+    float size = std::fabs(t[i][i]);
+    for (int j = i + 1; j < 4; ++j)
+      if (std::fabs(t[j][i]) > size) pivot = j, size = std::fabs(t[j][i]);
+    if (size == 0) return false;
+    if (pivot != i)
+      for (int k = 0; k < 4; ++k) std::swap(t[i][k], t[pivot][k]), std::swap(s[i][k], s[pivot][k]);
+    for (int j = i + 1; j < 4; ++j) {
+      float f = t[j][i] / t[i][i];
+      for (int k = 0; k < 4; ++k) t[j][k] -= f * t[i][k], s[j][k] -= f * s[i][k];
+    }
+  }
+  for (int i = 3; i >= 0; --i) {
+    float f = t[i][i];
+    if (f == 0) return false;
+    for (int k = 0; k < 4; ++k) t[i][k] /= f, s[i][k] /= f;
+    for (int j = 0; j < i; ++j) {
+      f = t[j][i];
+      for (int k = 0; k < 4; ++k) t[j][k] -= f * t[i][k], s[j][k] -= f * s[i][k];
+    }
+  }
+  std::memcpy(dst, s, sizeof s);
+  return true;
+}
+
+// Every pivot order (random entries), ties between candidate pivots (the first row wins),
+// zero and NaN entries: the same result and the same bits as the reference.
+TEST(Matrix44, GaussJordanIsTheTextbookAlgorithmToTheBit) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-3.0f, 3.0f);
+  std::uniform_int_distribution<int> kind(0, 9);
+  int mismatches = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    float m[16];
+    for (float& x : m) {
+      int k = kind(rng);
+      x = k == 0 ? 0.0f : k == 1 ? 1.5f : k == 2 ? -1.5f : u(rng); // ties at +-1.5
+    }
+    if (trial % 1000 == 0) m[5] = std::numeric_limits<float>::quiet_NaN();
+    float got[16], want[16];
+    mat_identity(want);
+    bool ok = mat_invert_gauss_jordan(got, m), want_ok = gauss_jordan_reference(want, m);
+    EXPECT_EQ(ok, want_ok);
+    if (std::memcmp(got, want, sizeof got) != 0 && ++mismatches <= 3) ADD_FAILURE() << trial;
+  }
+  EXPECT_EQ(mismatches, 0);
 }
 
 TEST(Matrix44, IdentityIsExact) {
