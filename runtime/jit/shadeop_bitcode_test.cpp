@@ -187,10 +187,11 @@ TEST(ShadeopBitcode, NoiseInlinesAndMatchesTheNativeLibrary) {
 struct BatchCase {
   int kind, nin, calls;
   bool chained;
-  int gathered; // calls batching should gather
+  int gathered;     // calls batching should gather
+  int channels = 1; // 1 or 3
   std::string name() const {
     return "batch_" + std::to_string(kind) + "_" + std::to_string(nin) + "_" +
-           std::to_string(calls) + (chained ? "c" : "");
+           std::to_string(calls) + "_" + std::to_string(channels) + (chained ? "c" : "");
   }
 };
 
@@ -214,22 +215,27 @@ void emit_batch(llvm::Module& m, const BatchCase& c) {
   llvm::Value* previous = nullptr;
   for (int i = 0; i < c.calls; ++i) {
     llvm::Value* x = b.CreateAlloca(llvm::ArrayType::get(f32, 4));
-    llvm::Value* r = b.CreateAlloca(f32);
+    llvm::Value* r = b.CreateAlloca(llvm::ArrayType::get(f32, unsigned(c.channels)));
     for (int a = 0; a < c.nin; ++a) {
       llvm::Value* v = in[size_t(4 * i + a)];
       if (a == 0 && c.chained && previous) v = b.CreateFAdd(v, previous);
       b.CreateStore(v, b.CreateConstInBoundsGEP1_32(f32, x, unsigned(a)));
     }
     b.CreateCall(callee, {b.getInt32(uint32_t(c.kind)), x, null, null, b.getInt32(uint32_t(c.nin)),
-                          null, r, null, null, b.getInt32(1)});
-    previous = b.CreateLoad(f32, r);
-    b.CreateStore(previous, b.CreateConstInBoundsGEP1_32(f32, f->getArg(1), unsigned(i)));
+                          null, r, null, null, b.getInt32(c.channels)});
+    for (int j = 0; j < c.channels; ++j) {
+      llvm::Value* v = b.CreateLoad(f32, b.CreateConstInBoundsGEP1_32(f32, r, unsigned(j)));
+      if (j == 0) previous = v;
+      b.CreateStore(v,
+                    b.CreateConstInBoundsGEP1_32(f32, f->getArg(1), unsigned(i * c.channels + j)));
+    }
   }
   b.CreateRetVoid();
 }
 
-// Independent calls are gathered (8 at most a group, then 4) and give the native library's
-// bits; dependent ones are left alone. Every call is inlined either way.
+// Independent calls are gathered (8 at most a group; simplex noise from 2 calls, in 4 lanes up
+// to 4; gradient noise from 5, in 8 lanes) and give the native library's bits; dependent ones
+// are left alone. Every call is inlined either way.
 TEST(ShadeopBitcode, IndependentNoiseCallsAreBatchedToTheBit) {
   if (!jit::noise_batching()) GTEST_SKIP() << "LOBE_NOISE_BATCH=0";
   std::string err;
@@ -244,7 +250,12 @@ TEST(ShadeopBitcode, IndependentNoiseCallsAreBatchedToTheBit) {
                              {shadeops::kPerlin, 3, 6, false, 6},
                              {shadeops::kUPerlin, 3, 9, false, 8}, // 8, and one alone
                              {shadeops::kPerlin, 3, 3, true, 0},
-                             {shadeops::kPerlin, 2, 4, false, 0}, // only 3-D gradient noise
+                             {shadeops::kPerlin, 4, 5, false, 5},
+                             {shadeops::kPerlin, 3, 4, false, 0}, // gradient noise: 5 at least
+                             {shadeops::kPerlin, 3, 6, false, 6, 3},
+                             {shadeops::kUPerlin, 4, 5, false, 5, 3},
+                             {shadeops::kPerlin, 4, 3, true, 0, 3},
+                             {shadeops::kPerlin, 2, 4, false, 0}, // no 1-D or 2-D form
                              {shadeops::kCell, 3, 4, false, 0}};
   std::vector<float> samples = sample_inputs();
   std::mt19937 rng(13);
@@ -257,9 +268,11 @@ TEST(ShadeopBitcode, IndependentNoiseCallsAreBatchedToTheBit) {
     emit_batch(*mod, c);
     EXPECT_EQ(jit->optimize(*mod, 2), c.gathered) << c.name();
     EXPECT_FALSE(calls(*mod, "lobe_noise_d")) << c.name();
-    for (const char* f : {"lobe_simplex_v1", "lobe_simplex_v2", "lobe_simplex_v3",
-                          "lobe_simplex_v4", "lobe_simplex_v3_x8", "lobe_simplex_v3_x4",
-                          "lobe_perlin_v3", "lobe_perlin_v3_x8", "lobe_perlin_v3_x4"})
+    for (const char* f :
+         {"lobe_simplex_v1", "lobe_simplex_v2", "lobe_simplex_v3", "lobe_simplex_v4",
+          "lobe_simplex_v3_x8", "lobe_simplex_v3_x4", "lobe_perlin_v3", "lobe_perlin_v3_x8",
+          "lobe_perlin_v3_x4", "lobe_perlin_v3c", "lobe_perlin_v4", "lobe_perlin_v4c",
+          "lobe_perlin_v4c_x4"})
       EXPECT_FALSE(calls(*mod, f)) << c.name() << " still calls " << f;
     jit::CompiledGroup code;
     jit::JitTimes times;
@@ -268,7 +281,7 @@ TEST(ShadeopBitcode, IndependentNoiseCallsAreBatchedToTheBit) {
         << err;
     auto fn = reinterpret_cast<void (*)(const float*, float*)>(addr[0]);
     for (int trial = 0; trial < 200; ++trial) {
-      std::vector<float> in(size_t(4 * c.calls)), out(size_t(c.calls));
+      std::vector<float> in(size_t(4 * c.calls)), out(size_t(c.calls * c.channels));
       // One trial in four on lattice points, signed zeros among them (the value is then a
       // signed zero, whose sign the lanes must keep).
       const float lattice[] = {0.0f, -0.0f, 1.0f, -1.0f, 2.0f};
@@ -276,14 +289,18 @@ TEST(ShadeopBitcode, IndependentNoiseCallsAreBatchedToTheBit) {
       fn(in.data(), out.data());
       float previous = 0;
       for (int i = 0; i < c.calls; ++i) {
-        float x[4], e;
+        float x[4], e[3];
         for (int a = 0; a < 4; ++a) x[a] = in[size_t(4 * i + a)];
         if (c.chained && i > 0) x[0] = x[0] + previous;
-        lobe_noise_d(c.kind, x, nullptr, nullptr, c.nin, nullptr, &e, nullptr, nullptr, 1);
-        previous = e;
-        if (!same_bits(out[size_t(i)], e) && ++mismatches <= 10)
-          ADD_FAILURE() << c.name() << " call " << i << " at (" << x[0] << ", " << x[1] << ", "
-                        << x[2] << ", " << x[3] << "): " << out[size_t(i)] << " vs " << e;
+        lobe_noise_d(c.kind, x, nullptr, nullptr, c.nin, nullptr, e, nullptr, nullptr, c.channels);
+        previous = e[0];
+        for (int j = 0; j < c.channels; ++j) {
+          float got = out[size_t(i * c.channels + j)];
+          if (!same_bits(got, e[j]) && ++mismatches <= 10)
+            ADD_FAILURE() << c.name() << " call " << i << " channel " << j << " at (" << x[0]
+                          << ", " << x[1] << ", " << x[2] << ", " << x[3] << "): " << got << " vs "
+                          << e[j];
+        }
       }
     }
     jit->remove(code);

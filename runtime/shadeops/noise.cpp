@@ -702,17 +702,19 @@ inline void simplex_lanes(const float* px, const uint32_t* pseed, float* out) {
   std::memcpy(out, &r, sizeof r);
 }
 
-// perlin_cell<float, 3> with one channel (perlin3_lanes' operations), for W points at once:
-// x[k * W + l] is coordinate k of point l. The eight corners are taken one after another, each
-// across the W points.
-template <int W> inline void perlin3_points(const float* px, float* out) {
+// perlin_cell<float, N> for N = 3 or 4 and C = 1 or 3 channels (perlin3_lanes' and
+// perlin4_lanes' operations) for W points at once: x[k * W + l] is coordinate k of point l,
+// out[j * W + l] channel j of point l. The 2^N corners are taken one after another, each
+// across the W points; a corner's hash serves every channel (channel j of a vector noise reads
+// it shifted by 8 j, as the one-point code).
+template <int N, int C, int W> inline void perlin_points(const float* px, float* out) {
   using F = typename Wide<W>::F;
   using I = typename Wide<W>::I;
   using U = typename Wide<W>::U;
-  F f[3], u[3], f1[3];
-  U k0[3];
+  F f[N], u[N], f1[N];
+  U k0[N];
   LOBE_UNROLL
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < N; ++k) {
     F x;
     std::memcpy(&x, px + k * W, sizeof x);
     I cell = ifloor_lanes<F, I>(x);
@@ -721,35 +723,70 @@ template <int W> inline void perlin3_points(const float* px, float* out) {
     u[k] = f[k] * f[k] * f[k] * (f[k] * (f[k] * 6.0f - 15.0f) + 10.0f); // fade
     k0[k] = (U)cell;
   }
-  // perlin3_lanes broadcasts f and u as 0 + value, which reads -0 as +0: the same here
-  // (except u[1], which its last lerp takes as it is).
-  F f0[3] = {F{} + f[0], F{} + f[1], F{} + f[2]};
-  F us[3] = {F{} + u[0], F{}, F{} + u[2]};
-  constexpr uint32_t start = 0xdeadbeefu + (3u << 2) + 13u; // inthash of three words
-  F g[8];
+  // The one-point code broadcasts the offsets and u[0], u[2] as 0 + value, which reads -0 as
+  // +0: the same here (u[1] and u[3] enter its last lerps as they are).
+  F f0[N], us[3] = {F{} + u[0], F{}, F{} + u[2]};
   LOBE_UNROLL
-  for (int c = 0; c < 8; ++c) {
-    U key[3];
-    F r[3];
+  for (int k = 0; k < N; ++k) f0[k] = F{} + f[k];
+  constexpr int kCorners = 1 << N;
+  constexpr uint32_t start = 0xdeadbeefu + (uint32_t(N) << 2) + 13u; // inthash of N words
+  U h[kCorners];
+  LOBE_UNROLL
+  for (int c = 0; c < kCorners; ++c) {
+    U key[N];
     LOBE_UNROLL
-    for (int k = 0; k < 3; ++k) {
-      bool upper = (c >> k) & 1;
-      key[k] = upper ? k0[k] + 1u : k0[k];
-      r[k] = upper ? f1[k] : f0[k];
+    for (int k = 0; k < N; ++k) key[k] = (c >> k) & 1 ? k0[k] + 1u : k0[k];
+    U a = start + key[0], b = start + key[1], cc = start + key[2];
+    if constexpr (N == 4) {
+      lobe::math::lookup3_mix(a, b, cc);
+      a += key[3];
     }
-    U a = start + key[0], b = start + key[1];
-    U h = lookup3_final_lanes(a, b, start + key[2]) & 15u;
-    F gu = h < 8u ? r[0] : r[1];
-    F gv = h < 4u ? r[1] : ((h == 12u) | (h == 14u)) ? r[0] : r[2];
-    g[c] = ((h & 1u) != 0u ? -gu : gu) + ((h & 2u) != 0u ? -gv : gv);
+    h[c] = lookup3_final_lanes(a, b, cc);
   }
-  // lerp_zxy: along z, then x (both y rows), then y.
-  F m[4];
+  // lerp_zxy on eight corner values: along z, then x (both y rows), then y.
+  auto lerp_zxy = [&](const F* g, F& result) { // (a vector out, not returned: see -Wpsabi)
+    F m[4];
+    LOBE_UNROLL
+    for (int i = 0; i < 4; ++i) m[i] = g[i] * (1.0f - u[2]) + g[i + 4] * us[2];
+    F y0 = m[0] * (1.0f - u[0]) + m[1] * us[0], y1 = m[2] * (1.0f - u[0]) + m[3] * us[0];
+    result = y0 * (1.0f - u[1]) + y1 * u[1];
+  };
   LOBE_UNROLL
-  for (int i = 0; i < 4; ++i) m[i] = g[i] * (1.0f - u[2]) + g[i + 4] * us[2];
-  F y0 = m[0] * (1.0f - u[0]) + m[1] * us[0], y1 = m[2] * (1.0f - u[0]) + m[3] * us[0];
-  F r = 0.9820f * (y0 * (1.0f - u[1]) + y1 * u[1]);
-  std::memcpy(out, &r, sizeof r);
+  for (int j = 0; j < C; ++j) {
+    const uint32_t shift = C == 1 ? 0u : 8u * uint32_t(j);
+    F face[2];
+    LOBE_UNROLL
+    for (int side = 0; side < (N == 4 ? 2 : 1); ++side) {
+      F g[8];
+      LOBE_UNROLL
+      for (int c = 0; c < 8; ++c) {
+        F r[3];
+        LOBE_UNROLL
+        for (int k = 0; k < 3; ++k) r[k] = (c >> k) & 1 ? f1[k] : f0[k];
+        if constexpr (N == 3) {
+          U hj = (h[c] >> shift) & 15u;
+          F gu = hj < 8u ? r[0] : r[1];
+          F gv = hj < 4u ? r[1] : ((hj == 12u) | (hj == 14u)) ? r[0] : r[2];
+          g[c] = ((hj & 1u) != 0u ? -gu : gu) + ((hj & 2u) != 0u ? -gv : gv);
+        } else {
+          U hj = (h[c + 8 * side] >> shift) & 31u;
+          F rw = side ? f1[3] : f0[3];
+          F gu = hj < 24u ? r[0] : r[1];
+          F gv = hj < 16u ? r[1] : r[2];
+          F gs = hj < 8u ? r[2] : rw;
+          g[c] = ((hj & 1u) != 0u ? -gu : gu) + ((hj & 2u) != 0u ? -gv : gv);
+          g[c] = g[c] + ((hj & 4u) != 0u ? -gs : gs);
+        }
+      }
+      lerp_zxy(g, face[side]);
+    }
+    F r;
+    if constexpr (N == 3)
+      r = 0.9820f * face[0];
+    else
+      r = 0.8344f * (face[0] * (1.0f - u[3]) + face[1] * u[3]);
+    std::memcpy(out + j * W, &r, sizeof r);
+  }
 }
 
 } // namespace
@@ -771,15 +808,53 @@ LOBE_BATCHABLE float lobe_simplex_v3(float x, float y, float z, uint32_t seed) {
 LOBE_BATCHABLE float lobe_simplex_v4(float x, float y, float z, float w, uint32_t seed) {
   return simplex_n<4, false>(Inputs{{x, y, z, w}}, seed).v;
 }
-// Signed gradient noise of three coordinates, one channel, value only, not periodic: one point
-// (perlin_cell<float, 3>) and W points (`seed` is unused: the wide functions share one form).
+// Signed gradient noise of three or four coordinates, value only, not periodic, one channel
+// (v3, v4) or three (v3c, v4c: channels in lanes 0-2, lane 3 zero): one point (perlin_cell)
+// and W points (`seed` is unused: the W-point functions share one form; out[j * W + l]).
 LOBE_BATCHABLE float lobe_perlin_v3(float x, float y, float z) {
   float r;
   perlin_value<3>(Inputs{{x, y, z, 0}}, nullptr, 1, &r);
   return r;
 }
-void lobe_perlin_v3_x4(const float* x, const uint32_t*, float* out) { perlin3_points<4>(x, out); }
-void lobe_perlin_v3_x8(const float* x, const uint32_t*, float* out) { perlin3_points<8>(x, out); }
+LOBE_BATCHABLE lobe_float4 lobe_perlin_v3c(float x, float y, float z) {
+  float r[3];
+  perlin_value<3>(Inputs{{x, y, z, 0}}, nullptr, 3, r);
+  return lobe_float4{r[0], r[1], r[2], 0.0f};
+}
+LOBE_BATCHABLE float lobe_perlin_v4(float x, float y, float z, float w) {
+  float r;
+  perlin_value<4>(Inputs{{x, y, z, w}}, nullptr, 1, &r);
+  return r;
+}
+LOBE_BATCHABLE lobe_float4 lobe_perlin_v4c(float x, float y, float z, float w) {
+  float r[3];
+  perlin_value<4>(Inputs{{x, y, z, w}}, nullptr, 3, r);
+  return lobe_float4{r[0], r[1], r[2], 0.0f};
+}
+void lobe_perlin_v3_x4(const float* x, const uint32_t*, float* out) {
+  perlin_points<3, 1, 4>(x, out);
+}
+void lobe_perlin_v3_x8(const float* x, const uint32_t*, float* out) {
+  perlin_points<3, 1, 8>(x, out);
+}
+void lobe_perlin_v3c_x4(const float* x, const uint32_t*, float* out) {
+  perlin_points<3, 3, 4>(x, out);
+}
+void lobe_perlin_v3c_x8(const float* x, const uint32_t*, float* out) {
+  perlin_points<3, 3, 8>(x, out);
+}
+void lobe_perlin_v4_x4(const float* x, const uint32_t*, float* out) {
+  perlin_points<4, 1, 4>(x, out);
+}
+void lobe_perlin_v4_x8(const float* x, const uint32_t*, float* out) {
+  perlin_points<4, 1, 8>(x, out);
+}
+void lobe_perlin_v4c_x4(const float* x, const uint32_t*, float* out) {
+  perlin_points<4, 3, 4>(x, out);
+}
+void lobe_perlin_v4c_x8(const float* x, const uint32_t*, float* out) {
+  perlin_points<4, 3, 8>(x, out);
+}
 void lobe_simplex_v1_x4(const float* x, const uint32_t* seed, float* out) {
   simplex1_lanes<4>(x, seed, out);
 }
@@ -876,10 +951,15 @@ void lobe_noise_d(int kind, const float* x, const float* dx, const float* dy, in
       }
     } else {
       float r[3];
-      if (nin == 3 && nout == 1 && !period)
-        r[0] = lobe_perlin_v3(x[0], x[1], x[2]);
-      else
+      if (period || nin < 3) {
         perlin(x, nin, period ? per : nullptr, nout, r);
+      } else if (nout == 1) {
+        r[0] = nin == 3 ? lobe_perlin_v3(x[0], x[1], x[2]) : lobe_perlin_v4(x[0], x[1], x[2], x[3]);
+      } else {
+        lobe_float4 v =
+            nin == 3 ? lobe_perlin_v3c(x[0], x[1], x[2]) : lobe_perlin_v4c(x[0], x[1], x[2], x[3]);
+        r[0] = v[0], r[1] = v[1], r[2] = v[2];
+      }
       for (int j = 0; j < nout; ++j) out[j] = unsigned_kind ? 0.5f * (r[j] + 1.0f) : r[j];
     }
     return;

@@ -725,36 +725,61 @@ TEST(Noise, SimplexLanesMatchOnePointToTheBit) {
   EXPECT_EQ(mismatched, 0) << "of " << compared;
 }
 
-// The same for 3-D gradient noise of one channel (lobe_perlin_v3, lobe_noise_d's value path
-// for it): lattice points and their neighbours, negative zero, values near the int range.
+// The same for gradient noise of 3 and 4 coordinates, one channel or three (lobe_perlin_v3,
+// v3c, v4, v4c: lobe_noise_d's value path for them, whose values the tests above hold against
+// OSL): lattice points and their neighbours, negative zero, values near the int range.
 TEST(Noise, PerlinLanesMatchOnePointToTheBit) {
   const float special[] = {0.0f,   -0.0f,   1.0f,       -1.0f,       0.5f,
                            -2.5f,  7.0f,    1e-30f,     16.999f,     std::nextafter(3.0f, 0.0f),
                            2.1e9f, -2.1e9f, 8388607.5f, -16777216.0f};
+  using Wide = void (*)(const float*, const uint32_t*, float*);
+  struct Form {
+    int n, channels;
+    Wide x4, x8;
+  };
+  const Form forms[] = {{3, 1, lobe_perlin_v3_x4, lobe_perlin_v3_x8},
+                        {3, 3, lobe_perlin_v3c_x4, lobe_perlin_v3c_x8},
+                        {4, 1, lobe_perlin_v4_x4, lobe_perlin_v4_x8},
+                        {4, 3, lobe_perlin_v4c_x4, lobe_perlin_v4c_x8}};
   std::mt19937 rng(22);
   std::uniform_real_distribution<float> u(-50.0f, 50.0f);
   std::uniform_int_distribution<int> pick(0, int(std::size(special)) - 1), coin(0, 2);
   auto same = [](float a, float b) { return std::memcmp(&a, &b, 4) == 0; };
   int compared = 0, mismatched = 0;
-  for (int w : {4, 8})
-    for (int trial = 0; trial < 4000; ++trial) {
-      float x[3 * 8], out[8];
-      for (int l = 0; l < w; ++l)
-        for (int a = 0; a < 3; ++a) {
-          int c = coin(rng);
-          x[a * w + l] = c == 0 ? special[pick(rng)] : c == 1 ? std::round(u(rng)) : u(rng);
+  for (const Form& f : forms)
+    for (int w : {4, 8})
+      for (int trial = 0; trial < 2000; ++trial) {
+        float x[4 * 8], out[3 * 8];
+        for (int l = 0; l < w; ++l)
+          for (int a = 0; a < f.n; ++a) {
+            int c = coin(rng);
+            x[a * w + l] = c == 0 ? special[pick(rng)] : c == 1 ? std::round(u(rng)) : u(rng);
+          }
+        (w == 4 ? f.x4 : f.x8)(x, nullptr, out);
+        for (int l = 0; l < w; ++l) {
+          float p[4] = {x[l], x[w + l], x[2 * w + l], f.n == 4 ? x[3 * w + l] : 0.0f};
+          float one[3], noise[3];
+          if (f.channels == 1) {
+            one[0] = f.n == 3 ? lobe_perlin_v3(p[0], p[1], p[2])
+                              : lobe_perlin_v4(p[0], p[1], p[2], p[3]);
+          } else {
+            lobe_float4 v = f.n == 3 ? lobe_perlin_v3c(p[0], p[1], p[2])
+                                     : lobe_perlin_v4c(p[0], p[1], p[2], p[3]);
+            for (int j = 0; j < 3; ++j) one[j] = v[j];
+            EXPECT_EQ(v[3], 0.0f);
+          }
+          lobe_noise_d(kPerlin, p, nullptr, nullptr, f.n, nullptr, noise, nullptr, nullptr,
+                       f.channels);
+          for (int j = 0; j < f.channels; ++j) {
+            ++compared;
+            if ((!same(out[j * w + l], one[j]) || !same(noise[j], one[j])) && ++mismatched <= 5)
+              ADD_FAILURE() << f.n << "-D, " << f.channels << " channels, W " << w << " lane " << l
+                            << " channel " << j << " at (" << p[0] << ", " << p[1] << ", " << p[2]
+                            << ", " << p[3] << "): " << out[j * w + l] << ", one point " << one[j]
+                            << ", noise " << noise[j];
+          }
         }
-      (w == 4 ? lobe_perlin_v3_x4 : lobe_perlin_v3_x8)(x, nullptr, out);
-      for (int l = 0; l < w; ++l) {
-        float p[3] = {x[l], x[w + l], x[2 * w + l]}, v;
-        float expect = lobe_perlin_v3(p[0], p[1], p[2]);
-        lobe_noise_d(kPerlin, p, nullptr, nullptr, 3, nullptr, &v, nullptr, nullptr, 1);
-        ++compared;
-        if ((!same(out[l], expect) || !same(v, expect)) && ++mismatched <= 5)
-          ADD_FAILURE() << "W " << w << " lane " << l << " at (" << p[0] << ", " << p[1] << ", "
-                        << p[2] << "): " << out[l] << ", one point " << expect << ", noise " << v;
       }
-    }
   EXPECT_EQ(mismatched, 0) << "of " << compared;
 }
 
