@@ -212,17 +212,25 @@ llvm::PreservedAnalyses MarkNoiseLoopsPass::run(llvm::Function& f,
   auto& se = fam.getResult<llvm::ScalarEvolutionAnalysis>(f);
   for (llvm::Loop* l : loops.getLoopsInPreorder()) {
     if (!l->isInnermost()) continue;
+    std::map<const Family*, unsigned> per_family;
     unsigned calls = 0;
     for (llvm::BasicBlock* bb : l->blocks())
       for (llvm::Instruction& i : *bb)
         if (auto* call = llvm::dyn_cast<llvm::CallInst>(&i))
           if (llvm::Function* callee = call->getCalledFunction())
-            calls += batchable_function(callee->getName());
+            if (const Family* fam_of = family_of(callee->getName())) {
+              ++per_family[fam_of];
+              ++calls;
+            }
     llvm::BasicBlock* latch = l->getLoopLatch();
     if (calls == 0 || !latch || !l->isLoopExiting(latch)) continue;
     unsigned trips = se.getSmallConstantTripCount(l, latch);
-    if (trips >= 2 && trips <= 16 && trips * calls <= 64)
-      llvm::addStringMetadataToLoop(l, "llvm.loop.unroll.full");
+    if (trips < 2 || trips > 16 || trips * calls > 64) continue;
+    // Unrolled only if a group could form: a loop whose calls would stay alone is code grown
+    // for nothing (4 iterations of 4-D triple noise: twice the machine-code time).
+    bool worth = false;
+    for (const auto& [fm, n] : per_family) worth |= n * trips >= std::max(2u, fm->fewest);
+    if (worth) llvm::addStringMetadataToLoop(l, "llvm.loop.unroll.full");
   }
   return llvm::PreservedAnalyses::all(); // metadata only
 }

@@ -36,9 +36,9 @@ bool batchable_function(llvm::StringRef name);
 bool wide_noise_function(llvm::StringRef name);
 
 // Marks the innermost loops that call the one-point functions, with a small constant trip count
-// (at most 16 iterations and 64 calls once unrolled), llvm.loop.unroll.full: an octave loop
-// that -O2's cost model left rolled unrolls under the mark, and its calls can only be gathered
-// once it has.
+// (at most 16 iterations and 64 calls once unrolled) and calls enough to form a group once
+// unrolled, llvm.loop.unroll.full: an octave loop that -O2's cost model left rolled unrolls
+// under the mark, and its calls can only be gathered once it has.
 class MarkNoiseLoopsPass : public llvm::PassInfoMixin<MarkNoiseLoopsPass> {
 public:
   llvm::PreservedAnalyses run(llvm::Function& f, llvm::FunctionAnalysisManager& fam);
