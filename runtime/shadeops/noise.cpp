@@ -489,12 +489,13 @@ template <int N, bool kPartials> LOBE_VARIANT D simplex_n(Inputs in, uint32_t se
   float s = x[0];
   for (int a = 1; a < n; ++a) s += x[a];
   s *= k.F;
-  int cell[4], sum = 0;
+  int cell[4];
+  uint32_t sum = 0; // wraps as x86 adds (a cell past the int range is INT_MIN)
   for (int a = 0; a < n; ++a) {
     cell[a] = ifloor(x[a] + s);
-    sum += cell[a];
+    sum += uint32_t(cell[a]);
   }
-  float t = float(sum) * k.G, d0[4];
+  float t = float(int32_t(sum)) * k.G, d0[4];
   for (int a = 0; a < n; ++a) d0[a] = x[a] - (float(cell[a]) - t);
   // rank[a]: how many offsets d0[a] exceeds. Ties go as in OSL (3-D: to the earlier coordinate,
   // 2-D and 4-D: to the later), so the same one of the simplices sharing the point is used.
@@ -643,13 +644,14 @@ inline void simplex_lanes(const float* px, const uint32_t* pseed, float* out) {
   LOBE_UNROLL
   for (int a = 1; a < n; ++a) s += x[a];
   s *= k.F;
-  I cell[4], sum = I{};
+  I cell[4];
+  U sum = U{}; // wraps, as the one-point sum
   LOBE_UNROLL
   for (int a = 0; a < n; ++a) {
     cell[a] = ifloor_lanes<F, I>(x[a] + s);
-    sum += cell[a];
+    sum += (U)cell[a];
   }
-  F t = __builtin_convertvector(sum, F) * k.G, d0[4];
+  F t = __builtin_convertvector((I)sum, F) * k.G, d0[4];
   LOBE_UNROLL
   for (int a = 0; a < n; ++a) d0[a] = x[a] - (__builtin_convertvector(cell[a], F) - t);
   I rank[4] = {I{}, I{}, I{}, I{}};

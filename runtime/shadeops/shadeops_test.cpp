@@ -655,31 +655,20 @@ TEST(Noise, SimplexChannelsAndUnsigned) {
 }
 
 // The W-point simplex functions (what the JIT's noise batching calls, runtime/jit/noise_batch.h)
-// against the one-point ones, lane by lane to the bit: random points, lattice points, coordinates
-// tied with each other (the simplex choice), negative zero, values far out where x + skew leaves
-// the int range (the lattice coordinate is then INT_MIN, as x86 converts), and NaN; every lane
-// with a seed of its own. The one-point functions are lobe_noise_d's value path (checked here
-// too), whose values the tests above hold against OSL.
+// against lobe_noise_d's value path, lane by lane to the bit: random points, lattice points,
+// coordinates tied with each other (the simplex choice), negative zero, values far out where
+// x + skew leaves the int range (the lattice coordinate is then INT_MIN, as x86 converts); every
+// lane with a seed of its own (channel `seed` of a vector noise). lobe_noise_d's values are held
+// against OSL by the tests above. (The JIT passes a W-point function only coordinates below
+// 2^31 in magnitude and no NaN: lobe_noise_d's guard comes first.)
 TEST(Noise, SimplexLanesMatchOnePointToTheBit) {
   using Wide = void (*)(const float*, const uint32_t*, float*);
   const Wide wide[4][2] = {{lobe_simplex_v1_x4, lobe_simplex_v1_x8},
                            {lobe_simplex_v2_x4, lobe_simplex_v2_x8},
                            {lobe_simplex_v3_x4, lobe_simplex_v3_x8},
                            {lobe_simplex_v4_x4, lobe_simplex_v4_x8}};
-  auto one = [](int n, const float* x, uint32_t seed) {
-    switch (n) {
-    case 1:
-      return lobe_simplex_v1(x[0], seed);
-    case 2:
-      return lobe_simplex_v2(x[0], x[1], seed);
-    case 3:
-      return lobe_simplex_v3(x[0], x[1], x[2], seed);
-    default:
-      return lobe_simplex_v4(x[0], x[1], x[2], x[3], seed);
-    }
-  };
-  const float special[] = {0.0f,   -0.0f,   1.0f, -1.0f, 0.5f,   -2.5f,   7.0f,
-                           1e-30f, 16.999f, 1e9f, -1e9f, 2.1e9f, -2.1e9f, NAN};
+  const float special[] = {0.0f,   -0.0f,   1.0f, -1.0f, 0.5f,   -2.5f,  7.0f,
+                           1e-30f, 16.999f, 1e9f, -1e9f, 2.1e9f, -2.1e9f};
   std::mt19937 rng(21);
   std::uniform_real_distribution<float> u(-50.0f, 50.0f);
   std::uniform_int_distribution<int> pick(0, int(std::size(special)) - 1), coin(0, 3);
@@ -703,22 +692,14 @@ TEST(Noise, SimplexLanesMatchOnePointToTheBit) {
         }
         wide[n - 1][wi](x, seed, out);
         for (int l = 0; l < w; ++l) {
-          float p[4];
+          float p[4], channels[3];
           for (int a = 0; a < n; ++a) p[a] = x[a * w + l];
-          float expect = one(n, p, seed[l]);
+          lobe_noise_d(kSimplex, p, nullptr, nullptr, n, nullptr, channels, nullptr, nullptr, 3);
+          float expect = channels[seed[l]];
           ++compared;
-          if (!same(out[l], expect)) {
-            if (++mismatched <= 5)
-              ADD_FAILURE() << "n " << n << " W " << w << " lane " << l << ": " << out[l] << " vs "
-                            << expect;
-          }
-          bool in_range = true; // lobe_noise_d reads a NaN coordinate as 0
-          for (int a = 0; a < n; ++a) in_range &= std::fabs(p[a]) < 2147483648.0f;
-          if (seed[l] == 0 && in_range) {
-            float v;
-            lobe_noise_d(kSimplex, p, nullptr, nullptr, n, nullptr, &v, nullptr, nullptr, 1);
-            EXPECT_TRUE(same(v, expect)) << n << " " << p[0];
-          }
+          if (!same(out[l], expect) && ++mismatched <= 5)
+            ADD_FAILURE() << "n " << n << " W " << w << " lane " << l << ": " << out[l] << " vs "
+                          << expect;
         }
       }
     }
