@@ -26,11 +26,12 @@ namespace {
 // A one-point function of the family: how many coordinates it takes, then whether a 32-bit
 // seed (the channel); it returns a float, or with three channels a <4 x float> (channels in
 // lanes 0-2, lane 3 zero). Its W-point forms are name_x4 and name_x8. `fewest`: the smallest
-// group worth gathering. One point of gradient noise already fills eight lanes with its
-// corners (runtime/shadeops/noise.cpp), so four points in four lanes hash with twice the
-// instructions; eight points in eight lanes pay for themselves from five calls (measured: fbm
-// of 6 octaves 1.57x, 5 octaves 1.4x faster; 4 calls of 4-D triple noise 9% slower in four
-// lanes). Simplex noise of one point keeps few lanes busy: two calls already pay.
+// group worth gathering. One point of 3-D or 4-D gradient noise already fills eight lanes
+// with its corners (runtime/shadeops/noise.cpp), so four points in four lanes hash with twice
+// the instructions; eight points in eight lanes pay for themselves from five calls (measured:
+// fbm of 6 octaves 1.57x, 5 octaves 1.4x faster; 4 calls of 4-D triple noise 9% slower in four
+// lanes). 2-D gradient noise (four corners) and simplex noise of one point keep few lanes busy:
+// two calls already pay (4 octaves of 2-D noise and a 2-D colour noise: 1.53x).
 struct Family {
   const char* name;
   unsigned coords;
@@ -39,6 +40,7 @@ struct Family {
   unsigned fewest;
 };
 constexpr Family kFamily[] = {
+    {"lobe_perlin_v2", 2, false, 1, 2}, {"lobe_perlin_v2c", 2, false, 3, 2},
     {"lobe_perlin_v3", 3, false, 1, 5}, {"lobe_perlin_v3c", 3, false, 3, 5},
     {"lobe_perlin_v4", 4, false, 1, 5}, {"lobe_perlin_v4c", 4, false, 3, 5},
     {"lobe_simplex_v1", 1, true, 1, 2}, {"lobe_simplex_v2", 2, true, 1, 2},

@@ -233,9 +233,9 @@ void emit_batch(llvm::Module& m, const BatchCase& c) {
   b.CreateRetVoid();
 }
 
-// Independent calls are gathered (8 at most a group; simplex noise from 2 calls, in 4 lanes up
-// to 4; gradient noise from 5, in 8 lanes) and give the native library's bits; dependent ones
-// are left alone. Every call is inlined either way.
+// Independent calls are gathered (8 at most a group; simplex and 2-D gradient noise from 2
+// calls, in 4 lanes up to 4; 3-D and 4-D gradient noise from 5, in 8 lanes) and give the native
+// library's bits; dependent ones are left alone. Every call is inlined either way.
 TEST(ShadeopBitcode, IndependentNoiseCallsAreBatchedToTheBit) {
   if (!jit::noise_batching()) GTEST_SKIP() << "LOBE_NOISE_BATCH=0";
   std::string err;
@@ -255,7 +255,9 @@ TEST(ShadeopBitcode, IndependentNoiseCallsAreBatchedToTheBit) {
                              {shadeops::kPerlin, 3, 6, false, 6, 3},
                              {shadeops::kUPerlin, 4, 5, false, 5, 3},
                              {shadeops::kPerlin, 4, 3, true, 0, 3},
-                             {shadeops::kPerlin, 2, 4, false, 0}, // no 1-D or 2-D form
+                             {shadeops::kPerlin, 2, 4, false, 4},
+                             {shadeops::kUPerlin, 2, 3, false, 3, 3},
+                             {shadeops::kPerlin, 1, 4, false, 0}, // no 1-D form
                              {shadeops::kCell, 3, 4, false, 0}};
   std::vector<float> samples = sample_inputs();
   std::mt19937 rng(13);

@@ -791,6 +791,49 @@ template <int N, int C, int W> inline void perlin_points(const float* px, float*
   }
 }
 
+// perlin_cell<float, 2> with C = 1 or 3 channels (its generic path: x then y) for W points at
+// once, in the layout of perlin_points.
+template <int C, int W> inline void perlin2_points(const float* px, float* out) {
+  using F = typename Wide<W>::F;
+  using I = typename Wide<W>::I;
+  using U = typename Wide<W>::U;
+  F f[2], f1[2], u[2];
+  U k0[2];
+  LOBE_UNROLL
+  for (int k = 0; k < 2; ++k) {
+    F x;
+    std::memcpy(&x, px + k * W, sizeof x);
+    I cell = ifloor_lanes<F, I>(x);
+    f[k] = x - __builtin_convertvector(cell, F);
+    f1[k] = f[k] - 1.0f;
+    u[k] = f[k] * f[k] * f[k] * (f[k] * (f[k] * 6.0f - 15.0f) + 10.0f); // fade
+    k0[k] = (U)cell;
+  }
+  constexpr uint32_t start = 0xdeadbeefu + (2u << 2) + 13u; // inthash of two words
+  U h[4];
+  LOBE_UNROLL
+  for (int c = 0; c < 4; ++c) {
+    U a = start + (c & 1 ? k0[0] + 1u : k0[0]), b = start + (c & 2 ? k0[1] + 1u : k0[1]);
+    h[c] = lookup3_final_lanes(a, b, U{} + start);
+  }
+  LOBE_UNROLL
+  for (int j = 0; j < C; ++j) {
+    const uint32_t shift = C == 1 ? 0u : 8u * uint32_t(j);
+    F g[4];
+    LOBE_UNROLL
+    for (int c = 0; c < 4; ++c) {
+      U hj = (h[c] >> shift) & 7u;
+      F r0 = c & 1 ? f1[0] : f[0], r1 = c & 2 ? f1[1] : f[1];
+      F gu = hj < 4u ? r0 : r1;
+      F gv = 2.0f * (hj < 4u ? r1 : r0);
+      g[c] = ((hj & 1u) != 0u ? -gu : gu) + ((hj & 2u) != 0u ? -gv : gv);
+    }
+    F y0 = g[0] * (1.0f - u[0]) + g[1] * u[0], y1 = g[2] * (1.0f - u[0]) + g[3] * u[0];
+    F r = 0.6616f * (y0 * (1.0f - u[1]) + y1 * u[1]);
+    std::memcpy(out + j * W, &r, sizeof r);
+  }
+}
+
 } // namespace
 
 extern "C" {
@@ -810,9 +853,20 @@ LOBE_BATCHABLE float lobe_simplex_v3(float x, float y, float z, uint32_t seed) {
 LOBE_BATCHABLE float lobe_simplex_v4(float x, float y, float z, float w, uint32_t seed) {
   return simplex_n<4, false>(Inputs{{x, y, z, w}}, seed).v;
 }
-// Signed gradient noise of three or four coordinates, value only, not periodic, one channel
-// (v3, v4) or three (v3c, v4c: channels in lanes 0-2, lane 3 zero): one point (perlin_cell)
-// and W points (`seed` is unused: the W-point functions share one form; out[j * W + l]).
+// Signed gradient noise of two to four coordinates, value only, not periodic, one channel
+// (v2, v3, v4) or three (v2c, v3c, v4c: channels in lanes 0-2, lane 3 zero): one point
+// (perlin_cell) and W points (`seed` is unused: the W-point functions share one form; out[j * W +
+// l]).
+LOBE_BATCHABLE float lobe_perlin_v2(float x, float y) {
+  float r;
+  perlin_value<2>(Inputs{{x, y, 0, 0}}, nullptr, 1, &r);
+  return r;
+}
+LOBE_BATCHABLE lobe_float4 lobe_perlin_v2c(float x, float y) {
+  float r[3];
+  perlin_value<2>(Inputs{{x, y, 0, 0}}, nullptr, 3, r);
+  return lobe_float4{r[0], r[1], r[2], 0.0f};
+}
 LOBE_BATCHABLE float lobe_perlin_v3(float x, float y, float z) {
   float r;
   perlin_value<3>(Inputs{{x, y, z, 0}}, nullptr, 1, &r);
@@ -832,6 +886,18 @@ LOBE_BATCHABLE lobe_float4 lobe_perlin_v4c(float x, float y, float z, float w) {
   float r[3];
   perlin_value<4>(Inputs{{x, y, z, w}}, nullptr, 3, r);
   return lobe_float4{r[0], r[1], r[2], 0.0f};
+}
+void lobe_perlin_v2_x4(const float* x, const uint32_t*, float* out) {
+  perlin2_points<1, 4>(x, out);
+}
+void lobe_perlin_v2_x8(const float* x, const uint32_t*, float* out) {
+  perlin2_points<1, 8>(x, out);
+}
+void lobe_perlin_v2c_x4(const float* x, const uint32_t*, float* out) {
+  perlin2_points<3, 4>(x, out);
+}
+void lobe_perlin_v2c_x8(const float* x, const uint32_t*, float* out) {
+  perlin2_points<3, 8>(x, out);
 }
 void lobe_perlin_v3_x4(const float* x, const uint32_t*, float* out) {
   perlin_points<3, 1, 4>(x, out);
@@ -953,13 +1019,16 @@ void lobe_noise_d(int kind, const float* x, const float* dx, const float* dy, in
       }
     } else {
       float r[3];
-      if (period || nin < 3) {
+      if (period || nin < 2) {
         perlin(x, nin, period ? per : nullptr, nout, r);
       } else if (nout == 1) {
-        r[0] = nin == 3 ? lobe_perlin_v3(x[0], x[1], x[2]) : lobe_perlin_v4(x[0], x[1], x[2], x[3]);
+        r[0] = nin == 2   ? lobe_perlin_v2(x[0], x[1])
+               : nin == 3 ? lobe_perlin_v3(x[0], x[1], x[2])
+                          : lobe_perlin_v4(x[0], x[1], x[2], x[3]);
       } else {
-        lobe_float4 v =
-            nin == 3 ? lobe_perlin_v3c(x[0], x[1], x[2]) : lobe_perlin_v4c(x[0], x[1], x[2], x[3]);
+        lobe_float4 v = nin == 2   ? lobe_perlin_v2c(x[0], x[1])
+                        : nin == 3 ? lobe_perlin_v3c(x[0], x[1], x[2])
+                                   : lobe_perlin_v4c(x[0], x[1], x[2], x[3]);
         r[0] = v[0], r[1] = v[1], r[2] = v[2];
       }
       for (int j = 0; j < nout; ++j) out[j] = unsigned_kind ? 0.5f * (r[j] + 1.0f) : r[j];

@@ -95,13 +95,19 @@ void lobe_noise_named(lobe::ShaderGlobals* sg, const char* name, const float* x,
                       int line);
 void lobe_noise_d(int kind, const float* x, const float* dx, const float* dy, int nin,
                   const float* period, float* out, float* odx, float* ody, int nout);
-// Value-only noise for batching (runtime/jit/noise_batch.h): 3-D and 4-D signed gradient noise
+// Value-only noise for batching (runtime/jit/noise_batch.h): 2-D to 4-D signed gradient noise
 // of one channel or three (c: lanes 0-2 of the result; out[j * W + l] in the W-point form), and
 // simplex noise; one point, and W = 4 or 8 points at once (x[a * W + l] is coordinate a of
 // point l, seed[l] its channel, unused by gradient noise; each lane the one-point function's
 // bits). Only the bitcode's copies are called from shaders; the one-point vector forms are not
 // in the shadeop table (no signature letter for a vector).
 typedef float lobe_float4 __attribute__((vector_size(16)));
+float lobe_perlin_v2(float x, float y);
+lobe_float4 lobe_perlin_v2c(float x, float y);
+void lobe_perlin_v2_x4(const float* x, const uint32_t* seed, float* out);
+void lobe_perlin_v2_x8(const float* x, const uint32_t* seed, float* out);
+void lobe_perlin_v2c_x4(const float* x, const uint32_t* seed, float* out);
+void lobe_perlin_v2c_x8(const float* x, const uint32_t* seed, float* out);
 float lobe_perlin_v3(float x, float y, float z);
 lobe_float4 lobe_perlin_v3c(float x, float y, float z);
 float lobe_perlin_v4(float x, float y, float z, float w);

@@ -706,9 +706,9 @@ TEST(Noise, SimplexLanesMatchOnePointToTheBit) {
   EXPECT_EQ(mismatched, 0) << "of " << compared;
 }
 
-// The same for gradient noise of 3 and 4 coordinates, one channel or three (lobe_perlin_v3,
-// v3c, v4, v4c: lobe_noise_d's value path for them, whose values the tests above hold against
-// OSL): lattice points and their neighbours, negative zero, values near the int range.
+// The same for gradient noise of 2 to 4 coordinates, one channel or three (lobe_perlin_v2,
+// v2c, v3, v3c, v4, v4c: lobe_noise_d's value path for them, whose values the tests above hold
+// against OSL): lattice points and their neighbours, negative zero, values near the int range.
 TEST(Noise, PerlinLanesMatchOnePointToTheBit) {
   const float special[] = {0.0f,   -0.0f,   1.0f,       -1.0f,       0.5f,
                            -2.5f,  7.0f,    1e-30f,     16.999f,     std::nextafter(3.0f, 0.0f),
@@ -718,10 +718,10 @@ TEST(Noise, PerlinLanesMatchOnePointToTheBit) {
     int n, channels;
     Wide x4, x8;
   };
-  const Form forms[] = {{3, 1, lobe_perlin_v3_x4, lobe_perlin_v3_x8},
-                        {3, 3, lobe_perlin_v3c_x4, lobe_perlin_v3c_x8},
-                        {4, 1, lobe_perlin_v4_x4, lobe_perlin_v4_x8},
-                        {4, 3, lobe_perlin_v4c_x4, lobe_perlin_v4c_x8}};
+  const Form forms[] = {
+      {2, 1, lobe_perlin_v2_x4, lobe_perlin_v2_x8}, {2, 3, lobe_perlin_v2c_x4, lobe_perlin_v2c_x8},
+      {3, 1, lobe_perlin_v3_x4, lobe_perlin_v3_x8}, {3, 3, lobe_perlin_v3c_x4, lobe_perlin_v3c_x8},
+      {4, 1, lobe_perlin_v4_x4, lobe_perlin_v4_x8}, {4, 3, lobe_perlin_v4c_x4, lobe_perlin_v4c_x8}};
   std::mt19937 rng(22);
   std::uniform_real_distribution<float> u(-50.0f, 50.0f);
   std::uniform_int_distribution<int> pick(0, int(std::size(special)) - 1), coin(0, 2);
@@ -738,14 +738,17 @@ TEST(Noise, PerlinLanesMatchOnePointToTheBit) {
           }
         (w == 4 ? f.x4 : f.x8)(x, nullptr, out);
         for (int l = 0; l < w; ++l) {
-          float p[4] = {x[l], x[w + l], x[2 * w + l], f.n == 4 ? x[3 * w + l] : 0.0f};
+          float p[4] = {x[l], x[w + l], f.n > 2 ? x[2 * w + l] : 0.0f,
+                        f.n == 4 ? x[3 * w + l] : 0.0f};
           float one[3], noise[3];
           if (f.channels == 1) {
-            one[0] = f.n == 3 ? lobe_perlin_v3(p[0], p[1], p[2])
-                              : lobe_perlin_v4(p[0], p[1], p[2], p[3]);
+            one[0] = f.n == 2   ? lobe_perlin_v2(p[0], p[1])
+                     : f.n == 3 ? lobe_perlin_v3(p[0], p[1], p[2])
+                                : lobe_perlin_v4(p[0], p[1], p[2], p[3]);
           } else {
-            lobe_float4 v = f.n == 3 ? lobe_perlin_v3c(p[0], p[1], p[2])
-                                     : lobe_perlin_v4c(p[0], p[1], p[2], p[3]);
+            lobe_float4 v = f.n == 2   ? lobe_perlin_v2c(p[0], p[1])
+                            : f.n == 3 ? lobe_perlin_v3c(p[0], p[1], p[2])
+                                       : lobe_perlin_v4c(p[0], p[1], p[2], p[3]);
             for (int j = 0; j < 3; ++j) one[j] = v[j];
             EXPECT_EQ(v[3], 0.0f);
           }
