@@ -145,10 +145,6 @@ void Jit::configure(llvm::Module& module) const {
   module.setDataLayout(s_->tm->createDataLayout());
 }
 
-// After -O2 with noise batching (noise_batch.h): independent calls gathered into W-point ones,
-// those linked, the family inlined and the functions cleaned up: SSA for the lanes' buffers,
-// the inlined bodies folded on their constant arguments (the seeds), vectorised where the host
-// allows, and what is dead removed. Fresh analyses: the module changed outside any pass.
 namespace {
 // A pass builder for `tm` with its analysis managers registered and cross-linked.
 struct Analyses {
@@ -166,6 +162,11 @@ struct Analyses {
   }
 };
 
+// After -O2 with noise batching (noise_batch.h): the loops that would form groups unrolled,
+// independent calls gathered into W-point ones, those linked, the family inlined and the
+// functions cleaned up: SSA for the lanes' buffers, the inlined bodies folded on their constant
+// arguments (the seeds), vectorised where the host allows, and what is dead removed. Fresh
+// analyses each time: the module changed outside any pass. Returns the calls gathered.
 int finish_noise_batching(llvm::Module& module, llvm::TargetMachine* tm) {
   if (!calls_noise_family(module)) return 0;
   {
@@ -207,7 +208,7 @@ int finish_noise_batching(llvm::Module& module, llvm::TargetMachine* tm) {
 // -O1: a short function pipeline suited to shader code (straight-line, alloca-heavy, calls
 // into shadeops): SROA makes SSA, then CSE, combining, CFG clean-up, GVN and dead code.
 // -O2: LLVM's full per-module O2 pipeline (adds inlining, loop passes, vectorisation), after
-// linking in the bitcode of the pure shadeops the module calls.
+// linking in the bitcode of the pure shadeops the module calls; then noise batching.
 int Jit::optimize(llvm::Module& module, int opt_level) const {
   // A TargetMachine of its own (the cost model is not thread-safe), so runs go in parallel.
   auto own = s_->jtmb->createTargetMachine();
