@@ -834,6 +834,33 @@ template <int C, int W> inline void perlin2_points(const float* px, float* out) 
   }
 }
 
+// One form for the W-point functions of each family: N coordinates, C channels, W lanes.
+template <int N, int C, int W>
+inline void perlin_form(const float* x, const uint32_t* /*seed*/, float* out) {
+  if constexpr (N == 2)
+    perlin2_points<C, W>(x, out);
+  else
+    perlin_points<N, C, W>(x, out);
+}
+template <int N, int W> inline void simplex_form(const float* x, const uint32_t* seed, float* out) {
+  if constexpr (N == 1)
+    simplex1_lanes<W>(x, seed, out);
+  else
+    simplex_lanes<N, W>(x, seed, out);
+}
+
+// Gradient noise at one point, one channel or three (lane 3 zero).
+template <int N> inline float perlin_one(Inputs in) {
+  float r;
+  perlin_value<N>(in, nullptr, 1, &r);
+  return r;
+}
+template <int N> inline lobe_float4 perlin_one3(Inputs in) {
+  float r[3];
+  perlin_value<N>(in, nullptr, 3, r);
+  return lobe_float4{r[0], r[1], r[2], 0.0f};
+}
+
 } // namespace
 
 extern "C" {
@@ -855,98 +882,44 @@ LOBE_BATCHABLE float lobe_simplex_v4(float x, float y, float z, float w, uint32_
 }
 // Signed gradient noise of two to four coordinates, value only, not periodic, one channel
 // (v2, v3, v4) or three (v2c, v3c, v4c: channels in lanes 0-2, lane 3 zero): one point
-// (perlin_cell) and W points (`seed` is unused: the W-point functions share one form; out[j * W +
-// l]).
-LOBE_BATCHABLE float lobe_perlin_v2(float x, float y) {
-  float r;
-  perlin_value<2>(Inputs{{x, y, 0, 0}}, nullptr, 1, &r);
-  return r;
-}
+// (perlin_cell) and W points (`seed` is unused: the W-point functions share one form;
+// out[j * W + l]).
+LOBE_BATCHABLE float lobe_perlin_v2(float x, float y) { return perlin_one<2>({{x, y, 0, 0}}); }
 LOBE_BATCHABLE lobe_float4 lobe_perlin_v2c(float x, float y) {
-  float r[3];
-  perlin_value<2>(Inputs{{x, y, 0, 0}}, nullptr, 3, r);
-  return lobe_float4{r[0], r[1], r[2], 0.0f};
+  return perlin_one3<2>({{x, y, 0, 0}});
 }
 LOBE_BATCHABLE float lobe_perlin_v3(float x, float y, float z) {
-  float r;
-  perlin_value<3>(Inputs{{x, y, z, 0}}, nullptr, 1, &r);
-  return r;
+  return perlin_one<3>({{x, y, z, 0}});
 }
 LOBE_BATCHABLE lobe_float4 lobe_perlin_v3c(float x, float y, float z) {
-  float r[3];
-  perlin_value<3>(Inputs{{x, y, z, 0}}, nullptr, 3, r);
-  return lobe_float4{r[0], r[1], r[2], 0.0f};
+  return perlin_one3<3>({{x, y, z, 0}});
 }
 LOBE_BATCHABLE float lobe_perlin_v4(float x, float y, float z, float w) {
-  float r;
-  perlin_value<4>(Inputs{{x, y, z, w}}, nullptr, 1, &r);
-  return r;
+  return perlin_one<4>({{x, y, z, w}});
 }
 LOBE_BATCHABLE lobe_float4 lobe_perlin_v4c(float x, float y, float z, float w) {
-  float r[3];
-  perlin_value<4>(Inputs{{x, y, z, w}}, nullptr, 3, r);
-  return lobe_float4{r[0], r[1], r[2], 0.0f};
+  return perlin_one3<4>({{x, y, z, w}});
 }
-void lobe_perlin_v2_x4(const float* x, const uint32_t*, float* out) {
-  perlin2_points<1, 4>(x, out);
-}
-void lobe_perlin_v2_x8(const float* x, const uint32_t*, float* out) {
-  perlin2_points<1, 8>(x, out);
-}
-void lobe_perlin_v2c_x4(const float* x, const uint32_t*, float* out) {
-  perlin2_points<3, 4>(x, out);
-}
-void lobe_perlin_v2c_x8(const float* x, const uint32_t*, float* out) {
-  perlin2_points<3, 8>(x, out);
-}
-void lobe_perlin_v3_x4(const float* x, const uint32_t*, float* out) {
-  perlin_points<3, 1, 4>(x, out);
-}
-void lobe_perlin_v3_x8(const float* x, const uint32_t*, float* out) {
-  perlin_points<3, 1, 8>(x, out);
-}
-void lobe_perlin_v3c_x4(const float* x, const uint32_t*, float* out) {
-  perlin_points<3, 3, 4>(x, out);
-}
-void lobe_perlin_v3c_x8(const float* x, const uint32_t*, float* out) {
-  perlin_points<3, 3, 8>(x, out);
-}
-void lobe_perlin_v4_x4(const float* x, const uint32_t*, float* out) {
-  perlin_points<4, 1, 4>(x, out);
-}
-void lobe_perlin_v4_x8(const float* x, const uint32_t*, float* out) {
-  perlin_points<4, 1, 8>(x, out);
-}
-void lobe_perlin_v4c_x4(const float* x, const uint32_t*, float* out) {
-  perlin_points<4, 3, 4>(x, out);
-}
-void lobe_perlin_v4c_x8(const float* x, const uint32_t*, float* out) {
-  perlin_points<4, 3, 8>(x, out);
-}
-void lobe_simplex_v1_x4(const float* x, const uint32_t* seed, float* out) {
-  simplex1_lanes<4>(x, seed, out);
-}
-void lobe_simplex_v1_x8(const float* x, const uint32_t* seed, float* out) {
-  simplex1_lanes<8>(x, seed, out);
-}
-void lobe_simplex_v2_x4(const float* x, const uint32_t* seed, float* out) {
-  simplex_lanes<2, 4>(x, seed, out);
-}
-void lobe_simplex_v2_x8(const float* x, const uint32_t* seed, float* out) {
-  simplex_lanes<2, 8>(x, seed, out);
-}
-void lobe_simplex_v3_x4(const float* x, const uint32_t* seed, float* out) {
-  simplex_lanes<3, 4>(x, seed, out);
-}
-void lobe_simplex_v3_x8(const float* x, const uint32_t* seed, float* out) {
-  simplex_lanes<3, 8>(x, seed, out);
-}
-void lobe_simplex_v4_x4(const float* x, const uint32_t* seed, float* out) {
-  simplex_lanes<4, 4>(x, seed, out);
-}
-void lobe_simplex_v4_x8(const float* x, const uint32_t* seed, float* out) {
-  simplex_lanes<4, 8>(x, seed, out);
-}
+
+// The W-point forms, name_x4 and name_x8.
+#define LOBE_WIDE_FORMS(name, form, ...)                                                           \
+  void name##_x4(const float* x, const uint32_t* seed, float* out) {                               \
+    form<__VA_ARGS__, 4>(x, seed, out);                                                            \
+  }                                                                                                \
+  void name##_x8(const float* x, const uint32_t* seed, float* out) {                               \
+    form<__VA_ARGS__, 8>(x, seed, out);                                                            \
+  }
+LOBE_WIDE_FORMS(lobe_perlin_v2, perlin_form, 2, 1)
+LOBE_WIDE_FORMS(lobe_perlin_v2c, perlin_form, 2, 3)
+LOBE_WIDE_FORMS(lobe_perlin_v3, perlin_form, 3, 1)
+LOBE_WIDE_FORMS(lobe_perlin_v3c, perlin_form, 3, 3)
+LOBE_WIDE_FORMS(lobe_perlin_v4, perlin_form, 4, 1)
+LOBE_WIDE_FORMS(lobe_perlin_v4c, perlin_form, 4, 3)
+LOBE_WIDE_FORMS(lobe_simplex_v1, simplex_form, 1)
+LOBE_WIDE_FORMS(lobe_simplex_v2, simplex_form, 2)
+LOBE_WIDE_FORMS(lobe_simplex_v3, simplex_form, 3)
+LOBE_WIDE_FORMS(lobe_simplex_v4, simplex_form, 4)
+#undef LOBE_WIDE_FORMS
 
 } // extern "C"
 
