@@ -704,17 +704,14 @@ inline void simplex_lanes(const float* px, const uint32_t* pseed, float* out) {
   std::memcpy(out, &r, sizeof r);
 }
 
-// perlin_cell<float, N> for N = 3 or 4 and C = 1 or 3 channels (perlin3_lanes' and
-// perlin4_lanes' operations) for W points at once: x[k * W + l] is coordinate k of point l,
-// out[j * W + l] channel j of point l. The 2^N corners are taken one after another, each
-// across the W points; a corner's hash serves every channel (channel j of a vector noise reads
-// it shifted by 8 j, as the one-point code).
-template <int N, int C, int W> inline void perlin_points(const float* px, float* out) {
+// Gradient noise's lattice for W points: per coordinate k, the offset f from the cell's lower
+// corner (x - floor(x)), f - 1, fade(f) and the lower corner's key, as perlin_cell computes them.
+template <int N, int W>
+inline void lattice_lanes(const float* px, typename Wide<W>::F* f, typename Wide<W>::F* f1,
+                          typename Wide<W>::F* u, typename Wide<W>::U* k0) {
   using F = typename Wide<W>::F;
   using I = typename Wide<W>::I;
   using U = typename Wide<W>::U;
-  F f[N], u[N], f1[N];
-  U k0[N];
   LOBE_UNROLL
   for (int k = 0; k < N; ++k) {
     F x;
@@ -725,6 +722,19 @@ template <int N, int C, int W> inline void perlin_points(const float* px, float*
     u[k] = f[k] * f[k] * f[k] * (f[k] * (f[k] * 6.0f - 15.0f) + 10.0f); // fade
     k0[k] = (U)cell;
   }
+}
+
+// perlin_cell<float, N> for N = 3 or 4 and C = 1 or 3 channels (perlin3_lanes' and
+// perlin4_lanes' operations) for W points at once: x[k * W + l] is coordinate k of point l,
+// out[j * W + l] channel j of point l. The 2^N corners are taken one after another, each
+// across the W points; a corner's hash serves every channel (channel j of a vector noise reads
+// it shifted by 8 j, as the one-point code).
+template <int N, int C, int W> inline void perlin_points(const float* px, float* out) {
+  using F = typename Wide<W>::F;
+  using U = typename Wide<W>::U;
+  F f[N], u[N], f1[N];
+  U k0[N];
+  lattice_lanes<N, W>(px, f, f1, u, k0);
   // The one-point code broadcasts the offsets and u[0], u[2] as 0 + value, which reads -0 as
   // +0: the same here (u[1] and u[3] enter its last lerps as they are).
   F f0[N], us[3] = {F{} + u[0], F{}, F{} + u[2]};
@@ -795,20 +805,10 @@ template <int N, int C, int W> inline void perlin_points(const float* px, float*
 // once, in the layout of perlin_points.
 template <int C, int W> inline void perlin2_points(const float* px, float* out) {
   using F = typename Wide<W>::F;
-  using I = typename Wide<W>::I;
   using U = typename Wide<W>::U;
   F f[2], f1[2], u[2];
   U k0[2];
-  LOBE_UNROLL
-  for (int k = 0; k < 2; ++k) {
-    F x;
-    std::memcpy(&x, px + k * W, sizeof x);
-    I cell = ifloor_lanes<F, I>(x);
-    f[k] = x - __builtin_convertvector(cell, F);
-    f1[k] = f[k] - 1.0f;
-    u[k] = f[k] * f[k] * f[k] * (f[k] * (f[k] * 6.0f - 15.0f) + 10.0f); // fade
-    k0[k] = (U)cell;
-  }
+  lattice_lanes<2, W>(px, f, f1, u, k0);
   constexpr uint32_t start = 0xdeadbeefu + (2u << 2) + 13u; // inthash of two words
   U h[4];
   LOBE_UNROLL
