@@ -1,9 +1,9 @@
 // What batched shading would buy the noise-bound shaders (issue 10: simplex was the case where
 // Lobe was only level with OSL per point; the JIT's noise batching, runtime/jit/noise_batch.h,
-// now takes these lanes for a point's independent calls): OSL's 3-D simplex noise, value only, evaluated for
-// one point per call (Lobe's lobe_noise_d, as a shader calls it) against eight points per call
-// with SIMD across the points (AVX2), the same operations in the same order per lane, so the
-// same bits (checked before timing). Inside one point LLVM already vectorises the four corners
+// now takes these lanes for a point's independent calls): OSL's 3-D simplex noise, value only,
+// evaluated for one point per call (Lobe's lobe_noise_d, as a shader calls it) against eight points
+// per call with SIMD across the points (AVX2), the same operations in the same order per lane, so
+// the same bits (checked before timing). Inside one point LLVM already vectorises the four corners
 // (runtime/shadeops/noise.cpp); across points every lane does useful work and there is no
 // shuffle, gather or horizontal sum.
 //

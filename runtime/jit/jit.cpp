@@ -168,7 +168,7 @@ struct Analyses {
 // arguments (the seeds), vectorised where the host allows, and what is dead removed. Fresh
 // analyses each time: the module changed outside any pass. Returns the calls gathered.
 int finish_noise_batching(llvm::Module& module, llvm::TargetMachine* tm) {
-  if (!calls_noise_family(module)) return 0;
+  if (!defines_noise_family(module)) return 0;
   {
     // The loops that call the family a few times unrolled and folded (their iteration budget
     // checks are constants then), so that their calls share a block.

@@ -202,7 +202,7 @@ bool wide_noise_function(llvm::StringRef name) {
   return (name.consume_back("_x4") || name.consume_back("_x8")) && batchable_function(name);
 }
 
-bool calls_noise_family(const llvm::Module& module) {
+bool defines_noise_family(const llvm::Module& module) {
   for (const llvm::Function& fn : module)
     if (!fn.isDeclaration() && batchable_function(fn.getName())) return true;
   return false;
@@ -246,18 +246,14 @@ int batch_noise_calls(llvm::Module& module) {
   return gathered;
 }
 
-bool inline_noise_family(llvm::Module& module) {
-  bool any = false;
+void inline_noise_family(llvm::Module& module) {
+  // (The W-point functions are gone already: link_shadeop_bitcode inlines them as it links them.)
   for (llvm::Function& fn : module) {
-    if (fn.isDeclaration() ||
-        !(batchable_function(fn.getName()) || wide_noise_function(fn.getName())))
-      continue;
+    if (fn.isDeclaration() || !batchable_function(fn.getName())) continue;
     fn.removeFnAttr(llvm::Attribute::NoInline);
     fn.addFnAttr(llvm::Attribute::AlwaysInline);
     fn.setLinkage(llvm::GlobalValue::InternalLinkage);
-    any = true;
   }
-  return any;
 }
 
 } // namespace lobe::jit

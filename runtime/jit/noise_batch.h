@@ -45,15 +45,14 @@ public:
 };
 
 // Whether `module` defines a one-point function (batching has anything to do).
-bool calls_noise_family(const llvm::Module& module);
+bool defines_noise_family(const llvm::Module& module);
 
 // Replaces groups of independent calls in `module` by W-point calls (declared, not yet linked);
 // returns how many calls were gathered into groups.
 int batch_noise_calls(llvm::Module& module);
 
-// After batch_noise_calls() and the W-point functions' linking: every function of the family in
-// `module` made internal and always-inline (the caller runs the inliner and a clean-up). False
-// when the module holds none of them.
-bool inline_noise_family(llvm::Module& module);
+// After batch_noise_calls() and the W-point functions' linking: every one-point function left in
+// `module` made internal and always-inline (the caller runs the inliner and a clean-up).
+void inline_noise_family(llvm::Module& module);
 
 } // namespace lobe::jit

@@ -7,9 +7,9 @@
 // the allowlist below admits) with the same type, the definition and what it uses are linked
 // lazily from the bitcode, made internal (dropped once inlined) and stripped of the library's
 // CPU attributes (the one-point noise functions batching gathers stay external and noinline
-// until it has run: noise_batch.h). The linked code may call nothing the JIT does not resolve (the shadeop table
-// and intrinsics); if it would, nothing is linked and the calls stay out of line. The bitcode is
-// compiled from the native library's sources with the same floating-point flags (no
+// until it has run: noise_batch.h). The linked code may call nothing the JIT does not resolve (the
+// shadeop table and intrinsics); if it would, nothing is linked and the calls stay out of line. The
+// bitcode is compiled from the native library's sources with the same floating-point flags (no
 // contraction), so a linked call computes the native call's bits.
 #pragma once
 

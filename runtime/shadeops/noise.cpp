@@ -584,10 +584,11 @@ template <class U> inline U lookup3_final_lanes(U a, U b, U c) {
 // code for lobe_perlin_v3_x8).
 #define LOBE_UNROLL _Pragma("GCC unroll 16")
 
+// W lanes of floats, ints and words (the words are corner_hashes' Lanes).
 template <int W> struct Wide {
   typedef float F __attribute__((vector_size(4 * W)));
   typedef int32_t I __attribute__((vector_size(4 * W)));
-  typedef uint32_t U __attribute__((vector_size(4 * W)));
+  typedef typename Lanes<W>::type U;
 };
 
 // to_int lane by lane: a NaN or a value outside the int range gives INT_MIN, as on x86 (the
@@ -656,11 +657,13 @@ inline void simplex_lanes(const float* px, const uint32_t* pseed, float* out) {
   for (int a = 0; a < n; ++a) d0[a] = x[a] - (__builtin_convertvector(cell[a], F) - t);
   I rank[4] = {I{}, I{}, I{}, I{}};
   LOBE_UNROLL
-  for (int a = 0; a < n; ++a) LOBE_UNROLL
-  for (int b = a + 1; b < n; ++b) {
-    I first = (n == 3 ? d0[a] >= d0[b] : d0[a] > d0[b]) & 1;
-    rank[a] += first;
-    rank[b] += 1 - first;
+  for (int a = 0; a < n; ++a) {
+    LOBE_UNROLL
+    for (int b = a + 1; b < n; ++b) {
+      I first = (n == 3 ? d0[a] >= d0[b] : d0[a] > d0[b]) & 1;
+      rank[a] += first;
+      rank[b] += 1 - first;
+    }
   }
   F total = F{};
   LOBE_UNROLL
@@ -687,9 +690,11 @@ inline void simplex_lanes(const float* px, const uint32_t* pseed, float* out) {
     }
     float gl[4][W];
     LOBE_UNROLL
-    for (int l = 0; l < W; ++l) LOBE_UNROLL
-    for (int a = 0; a < n; ++a)
-      gl[a][l] = n == 2 ? kGrad2[row[l]][a] : n == 3 ? kGrad3[row[l]][a] : kGrad4[row[l]][a];
+    for (int l = 0; l < W; ++l) {
+      LOBE_UNROLL
+      for (int a = 0; a < n; ++a)
+        gl[a][l] = n == 2 ? kGrad2[row[l]][a] : n == 3 ? kGrad3[row[l]][a] : kGrad4[row[l]][a];
+    }
     F g[4];
     LOBE_UNROLL
     for (int a = 0; a < n; ++a) std::memcpy(&g[a], gl[a], sizeof(F));
