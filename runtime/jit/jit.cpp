@@ -5,6 +5,7 @@
 #include "noise_batch.h"
 #include "shadeop_bitcode.h"
 #include "shadeops.h"
+#include "small_loops.h"
 
 #include <llvm/Config/llvm-config.h>
 #include <llvm/ExecutionEngine/Orc/CompileUtils.h>
@@ -225,6 +226,12 @@ int Jit::optimize(llvm::Module& module, int opt_level) const {
     // The pure shadeops the module calls, from bitcode, so that the inliner below specialises
     // them on their arguments (shadeop_bitcode.h); the same bits as the out-of-line calls.
     link_shadeop_bitcode(module);
+    // Small counted loops unrolled in full by the pipeline's own LoopFullUnrollPass
+    // (small_loops.h).
+    a.pb.registerLateLoopOptimizationsEPCallback(
+        [](llvm::LoopPassManager& lpm, llvm::OptimizationLevel) {
+          lpm.addPass(MarkSmallLoopsPass());
+        });
     llvm::ModulePassManager mpm = a.pb.buildPerModuleDefaultPipeline(llvm::OptimizationLevel::O2);
     mpm.run(module, a.mam);
     return noise_batching() ? finish_noise_batching(module, tm) : 0;
@@ -396,6 +403,7 @@ std::string Jit::target_identity() const {
   std::string id = "llvm " LLVM_VERSION_STRING "; ";
   id += s_->jtmb->getTargetTriple().str() + "; cpu " + s_->jtmb->getCPU() + "; features " +
         s_->jtmb->getFeatures().getString() + "; codegen O1"; // Jit::create's CodeGenOptLevel::Less
+  id += "; unroll " + std::to_string(small_loop_budget());
   // What the code cached depends on: optimize()'s pipelines (this file), the linking of the
   // shadeop bitcode and the closure kernels' dispatchers (other files of this library). The
   // build ID of the file holding them changes with any of it; the stamp of this file stands in
