@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """bench/skip: what Lobe avoids computing, each with its measured effect.
 
-Each row runs the same work twice through `lobe shade` (shaders in bench/skip/shaders/): once
-where Lobe can skip part of it, once where that part is needed, interleaved repetition by
-repetition, and prints medians. The difference is what the skip saves:
+Each row runs the same work twice through `lobe shade` (shaders in bench/skip/shaders/; the
+unread-globals row through `lobe render`): once where Lobe can skip part of it, once where
+that part is needed, interleaved repetition by repetition, and prints medians. The difference
+is what the skip saves:
 
   unused layer        an expensive layer nothing reads, against the same layer connected
                       (and the cheap layer alone)
@@ -78,8 +79,8 @@ def kernels(lobe, closures_jit, work):
     r = subprocess.run([lobe, "render", "--res", "32", "16", "--spp", "1", "--closures",
                         "jit-setup", "--stats", "-o", os.path.join(work, "k.exr")],
                        env=env, capture_output=True, text=True)
-    m = re.search(r"(\d+) compiled in ([\d.]+)s, (?:\d+ from the cache, )?(\d+) with closure kernels",
-                  r.stdout + r.stderr)
+    m = re.search(r"(\d+) compiled in ([\d.]+)s, (?:\d+ from the cache, )?"
+                  r"(\d+) with closure kernels", r.stdout + r.stderr)
     mats = (float(m.group(2)), int(m.group(3))) if m else None
     every = None
     if closures_jit and os.path.exists(closures_jit):
