@@ -22,8 +22,7 @@ unsigned small_loop_budget() {
 llvm::PreservedAnalyses MarkSmallLoopsPass::run(llvm::Loop& loop, llvm::LoopAnalysisManager&,
                                                 llvm::LoopStandardAnalysisResults& ar,
                                                 llvm::LPMUpdater&) {
-  if (!loop.isInnermost() || llvm::findStringMetadataForLoop(&loop, "llvm.loop.unroll.full"))
-    return llvm::PreservedAnalyses::all();
+  if (!loop.isInnermost()) return llvm::PreservedAnalyses::all();
   llvm::BasicBlock* latch = loop.getLoopLatch();
   if (!latch || !loop.isLoopExiting(latch)) return llvm::PreservedAnalyses::all();
   unsigned trips = ar.SE.getSmallConstantTripCount(&loop, latch);

@@ -102,36 +102,31 @@ void lobe_noise_d(int kind, const float* x, const float* dx, const float* dy, in
 // bits). Only the bitcode's copies are called from shaders; the one-point vector forms are not
 // in the shadeop table (no signature letter for a vector).
 typedef float lobe_float4 __attribute__((vector_size(16)));
+// The W-point forms of a one-point function `name`: name_x4 and name_x8.
+#define LOBE_WIDE_DECLS(name)                                                                      \
+  void name##_x4(const float* x, const uint32_t* seed, float* out);                                \
+  void name##_x8(const float* x, const uint32_t* seed, float* out);
 float lobe_perlin_v2(float x, float y);
 lobe_float4 lobe_perlin_v2c(float x, float y);
-void lobe_perlin_v2_x4(const float* x, const uint32_t* seed, float* out);
-void lobe_perlin_v2_x8(const float* x, const uint32_t* seed, float* out);
-void lobe_perlin_v2c_x4(const float* x, const uint32_t* seed, float* out);
-void lobe_perlin_v2c_x8(const float* x, const uint32_t* seed, float* out);
 float lobe_perlin_v3(float x, float y, float z);
 lobe_float4 lobe_perlin_v3c(float x, float y, float z);
 float lobe_perlin_v4(float x, float y, float z, float w);
 lobe_float4 lobe_perlin_v4c(float x, float y, float z, float w);
-void lobe_perlin_v3_x4(const float* x, const uint32_t* seed, float* out);
-void lobe_perlin_v3_x8(const float* x, const uint32_t* seed, float* out);
-void lobe_perlin_v3c_x4(const float* x, const uint32_t* seed, float* out);
-void lobe_perlin_v3c_x8(const float* x, const uint32_t* seed, float* out);
-void lobe_perlin_v4_x4(const float* x, const uint32_t* seed, float* out);
-void lobe_perlin_v4_x8(const float* x, const uint32_t* seed, float* out);
-void lobe_perlin_v4c_x4(const float* x, const uint32_t* seed, float* out);
-void lobe_perlin_v4c_x8(const float* x, const uint32_t* seed, float* out);
 float lobe_simplex_v1(float x, uint32_t seed);
 float lobe_simplex_v2(float x, float y, uint32_t seed);
 float lobe_simplex_v3(float x, float y, float z, uint32_t seed);
 float lobe_simplex_v4(float x, float y, float z, float w, uint32_t seed);
-void lobe_simplex_v1_x4(const float* x, const uint32_t* seed, float* out);
-void lobe_simplex_v1_x8(const float* x, const uint32_t* seed, float* out);
-void lobe_simplex_v2_x4(const float* x, const uint32_t* seed, float* out);
-void lobe_simplex_v2_x8(const float* x, const uint32_t* seed, float* out);
-void lobe_simplex_v3_x4(const float* x, const uint32_t* seed, float* out);
-void lobe_simplex_v3_x8(const float* x, const uint32_t* seed, float* out);
-void lobe_simplex_v4_x4(const float* x, const uint32_t* seed, float* out);
-void lobe_simplex_v4_x8(const float* x, const uint32_t* seed, float* out);
+LOBE_WIDE_DECLS(lobe_perlin_v2)
+LOBE_WIDE_DECLS(lobe_perlin_v2c)
+LOBE_WIDE_DECLS(lobe_perlin_v3)
+LOBE_WIDE_DECLS(lobe_perlin_v3c)
+LOBE_WIDE_DECLS(lobe_perlin_v4)
+LOBE_WIDE_DECLS(lobe_perlin_v4c)
+LOBE_WIDE_DECLS(lobe_simplex_v1)
+LOBE_WIDE_DECLS(lobe_simplex_v2)
+LOBE_WIDE_DECLS(lobe_simplex_v3)
+LOBE_WIDE_DECLS(lobe_simplex_v4)
+#undef LOBE_WIDE_DECLS
 void lobe_noise_named_d(lobe::ShaderGlobals* sg, const char* name, const float* x, const float* dx,
                         const float* dy, int nin, const float* period, const void* gabor_opts,
                         float* out, float* odx, float* ody, int nout, const char* file, int line);
