@@ -22,10 +22,18 @@ endmacro()
 
 # lobe_gtest(NAME name SOURCES ... LIBS ... [LABELS ...] [TIMEOUT s]): a GoogleTest executable
 # registered with CTest, one CTest test per TEST(); label `heavy` keeps it out of the default run.
+# Each removes its tests' scratch in the temp folder when they pass (tests/scratch_cleanup.cpp).
 function(lobe_gtest)
   cmake_parse_arguments(T "" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  # Scratch clean-up (tests/scratch_cleanup.cpp), compiled once for every test executable.
+  if(NOT TARGET lobe_test_scratch)
+    add_library(lobe_test_scratch OBJECT ${CMAKE_SOURCE_DIR}/tests/scratch_cleanup.cpp)
+    target_link_libraries(lobe_test_scratch PRIVATE GTest::gtest)
+    lobe_warnings(lobe_test_scratch)
+  endif()
   add_executable(${T_NAME} ${T_SOURCES})
-  target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
+  target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} lobe_test_scratch GTest::gtest
+                                          GTest::gtest_main)
   lobe_warnings(${T_NAME})
   if(NOT T_TIMEOUT)
     set(T_TIMEOUT 300)

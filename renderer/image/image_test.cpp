@@ -8,12 +8,17 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <string>
+
+#include <unistd.h>
 
 using namespace lobe::image;
 
 namespace {
 std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("lobe_image_test_" + name)).string();
+  return (std::filesystem::temp_directory_path() /
+          ("lobe_image_test_" + std::to_string(::getpid()) + "." + name))
+      .string();
 }
 double srgb_reference(double x) {
   return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1 / 2.4) - 0.055;

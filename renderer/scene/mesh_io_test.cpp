@@ -8,13 +8,17 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <string>
+
+#include <unistd.h>
 
 using namespace lobe;
 using namespace lobe::scene;
 
 namespace {
 std::string write_file(const std::string& name, const std::string& content) {
-  auto p = std::filesystem::temp_directory_path() / ("lobe_mesh_test_" + name);
+  auto p = std::filesystem::temp_directory_path() /
+           ("lobe_mesh_test_" + std::to_string(::getpid()) + "." + name);
   std::ofstream(p, std::ios::binary) << content;
   return p.string();
 }

@@ -13,7 +13,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+
 #include <new>
+#include <unistd.h>
 
 using namespace lobe;
 using namespace lobe::render;
@@ -102,7 +104,8 @@ TEST(Globals, ReadDerivativesMatchThePixelFootprint) {
 TEST(Geometry, MeshSphereWithVertexNormalsInFurnace) {
   // An icosphere-like UV sphere written as OBJ with exact vertex normals: Lambert albedo 0.5
   // in a uniform environment renders to 0.5 (shading normals differ from the facets').
-  auto path = std::filesystem::temp_directory_path() / "lobe_globals_test_sphere.obj";
+  auto path = std::filesystem::temp_directory_path() /
+              ("lobe_globals_test_" + std::to_string(::getpid()) + ".sphere.obj");
   {
     std::ofstream obj(path);
     const int nu = 24, nv = 12;
@@ -194,7 +197,9 @@ TEST(Transparency, HalfTransparentLambertIsLosslessInFurnace) {
 
 TEST(Environment, LatLongMapFileLightsTheScene) {
   // A constant 0.25 map written as EXR: a white Lambert sphere renders to 0.25.
-  auto path = (std::filesystem::temp_directory_path() / "lobe_globals_test_env.exr").string();
+  auto path = (std::filesystem::temp_directory_path() /
+               ("lobe_globals_test_" + std::to_string(::getpid()) + ".env.exr"))
+                  .string();
   image::Image env(32, 16, {"R", "G", "B"});
   for (float& v : env.pixels) v = 0.25f;
   ASSERT_EQ(image::write_image(path, env), "");
