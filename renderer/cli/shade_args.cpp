@@ -261,11 +261,9 @@ const std::vector<Option>& options() {
       {"shadeimage", 0, none},
       {"noshadeimage", 0, none},
       {"expr", 1, [](Parser& p, const Use& u) { p.job.expressions.push_back(u.args[0]); }},
-      {"offsetuv", 2,
-       [](Parser& p, const Use& u) {
-         p.job.offset_u = to_f(u.args[0]);
-         p.job.offset_v = to_f(u.args[1]);
-       }},
+      // testshade 1.13.12 takes --offsetuv and sets nothing with it (its --offsetst offsets):
+      // accepted and ignored, so that a command line prints what testshade's prints.
+      {"offsetuv", 2, none},
       {"offsetst", 2,
        [](Parser& p, const Use& u) {
          p.job.offset_u = to_f(u.args[0]);
@@ -344,7 +342,8 @@ void print_shade_help() {
       "    --debuguninit                Report reads of uninitialised values\n"
       "    --groupoutputs               Accepted (outputs are per group in Lobe)\n"
       "    --expr EXPR                  A layer from an expression\n"
-      "    --offsetuv U V, --scaleuv U V  Offset and scale u and v (and P)\n"
+      "    --offsetst U V, --scaleuv U V  Offset and scale u and v (and P)\n"
+      "    --offsetuv U V               Accepted and ignored, as testshade 1.13.12 does\n"
       "    --userdata NAME VALUE        User data (type=T)\n"
       "    --userdata_isconnected       isconnected() is 1 for parameters that take user data\n"
       "    --vary_pdxdy --vary_udxdy --vary_vdxdy  Varying derivatives\n"

@@ -30,4 +30,8 @@ std::array<int, ir::kOpcodeCount> op_emitter_rows();
 llvm::Value* call_math(LayerEmitter& e, math::Fn f, shadeops::MathForm form,
                        std::vector<llvm::Value*> args);
 
+// `x` through the matrix spilled at `m` as a point (kind 0), vector (1) or normal (2), with its
+// derivatives when `derivs` (ops_geometry.cpp; transform() and the spaced constructors).
+Val transform_dual(LayerEmitter& e, llvm::Value* m, const Val& x, int kind, bool derivs);
+
 } // namespace lobe::codegen

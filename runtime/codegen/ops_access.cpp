@@ -137,18 +137,18 @@ void op_construct(LayerEmitter& e, const ir::Op& op) {
     for (size_t k = 0; k < 3; ++k) t.push_back(e.load_as(op, int(first + k), BaseType::Float)[0]);
   if (spaced) {
     llvm::Value* space = e.load(op.args[1])[0].v;
-    llvm::Value* in = e.spill(values(t));
-    llvm::Value* out = e.spill(values(t));
-    if (dst.type.base == BaseType::Color) {
+    if (dst.type.base == BaseType::Color) { // (colour conversions drop derivatives, as OSL's)
+      llvm::Value* in = e.spill(values(t));
+      llvm::Value* out = e.spill(values(t));
       e.call("lobe_color_from", {e.sg(), e.colors_ptr(), space, out, in});
-    } else {
+      std::vector<llvm::Value*> r = e.reload(out, 3);
+      t = Val{Dual{r[0]}, Dual{r[1]}, Dual{r[2]}};
+    } else { // space -> common, derivatives with the value (OSL: a transform op)
       llvm::Value* m = e.spill(std::vector<llvm::Value*>(16, e.fconst(0)));
       e.call("lobe_get_transform", {e.sg(), space, e.string_const("common"), m});
       int kind = dst.type.base == BaseType::Point ? 0 : (dst.type.base == BaseType::Vector ? 1 : 2);
-      e.call("lobe_transform", {out, m, in, e.iconst(kind)});
+      t = transform_dual(e, m, t, kind, e.wants_derivs(op.args[0]));
     }
-    std::vector<llvm::Value*> r = e.reload(out, 3);
-    t = Val{Dual{r[0]}, Dual{r[1]}, Dual{r[2]}};
   }
   e.store(op.args[0], t);
 }

@@ -192,6 +192,11 @@ void matrix_arith(LayerEmitter& e, const ir::Op& op) {
   if (op.args.size() > 2)
     b = scalar_b ? e.load_as(op, 2, BaseType::Float, false)
                  : e.load_as(op, 2, BaseType::Matrix, false);
+  // matrix / float divides plainly (a zero divisor gives inf, nan for 0 / 0), as OSL's Imath
+  // operator does at run time; only OSL's -O2 folds a constant zero divisor to a zero matrix.
+  const ir::Symbol* divisor = op.opcode == ir::Opcode::Div ? &e.arg(op, 2) : nullptr;
+  bool folded_zero = divisor && divisor->kind == ir::SymKind::Const && e.group().opt_level >= 2 &&
+                     (divisor->init.empty() || ir::const_all(*divisor, 0));
   Val r(16);
   for (size_t i = 0; i < 16; ++i) {
     Dual x = scalar_a ? a[0] : a[i];
@@ -207,7 +212,7 @@ void matrix_arith(LayerEmitter& e, const ir::Op& op) {
     else if (op.opcode == ir::Opcode::Mul)
       r[i] = d.mul(x, y);
     else
-      r[i] = d.div(x, y);
+      r[i] = folded_zero ? Dual{e.fconst(0)} : Dual{e.b().CreateFDiv(x.v, y.v)};
   }
   e.store(op.args[0], r);
 }

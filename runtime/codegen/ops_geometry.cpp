@@ -211,12 +211,14 @@ void op_normalize(LayerEmitter& e, const ir::Op& op) {
     e.store(op.args[0], r);
     return;
   }
-  if (!derivs) { // OSL: each component times the reciprocal length (0 for a zero vector)
+  if (!derivs) { // OSL: each component times the reciprocal length; the zero vector (+0, so
+    // also for -0 components) unless the length is positive (a NaN component gives zeros too)
     auto& B = e.b();
     llvm::Value* len = sqrt_pos(e, dot_fused(e, a, a));
-    llvm::Value* inv = B.CreateSelect(B.CreateFCmpOEQ(len, e.fconst(0)), e.fconst(0),
-                                      B.CreateFDiv(e.fconst(1), len));
-    for (const Dual& x : a) r.push_back(Dual{B.CreateFMul(x.v, inv)});
+    llvm::Value* pos = B.CreateFCmpOGT(len, e.fconst(0));
+    llvm::Value* inv = B.CreateFDiv(e.fconst(1), B.CreateSelect(pos, len, e.fconst(1)));
+    for (const Dual& x : a)
+      r.push_back(Dual{B.CreateSelect(pos, B.CreateFMul(x.v, inv), e.fconst(0))});
     e.store(op.args[0], r);
     return;
   }
@@ -250,22 +252,12 @@ void op_normalize(LayerEmitter& e, const ir::Op& op) {
   e.store(op.args[0], r);
 }
 
-// transform: (to, p) from common; (from, to, p); (M, p). The last operand's type decides the
-// rule (point, vector, normal). Derivatives transform as vectors (normals as normals).
-void op_transform(LayerEmitter& e, const ir::Op& op) {
-  size_t last = op.args.size() - 1;
-  const ir::Symbol& p = e.arg(op, int(last));
-  int kind = p.type.base == BaseType::Point ? 0 : (p.type.base == BaseType::Normal ? 2 : 1);
-  llvm::Value* m;
-  if (e.arg(op, 1).type.base == BaseType::Matrix) {
-    m = e.spill(values(e.load_as(op, 1, BaseType::Matrix, false)));
-  } else {
-    m = e.spill(std::vector<llvm::Value*>(16, e.fconst(0)));
-    llvm::Value* from = last == 3 ? e.load(op.args[1])[0].v : e.string_const("common");
-    llvm::Value* to = e.load(op.args[last - 1])[0].v;
-    e.call("lobe_get_transform", {e.sg(), from, to, m});
-  }
-  Val x = e.load_as(op, int(last), BaseType::Vector, e.wants_derivs(op.args[0]));
+} // namespace
+
+// `x` (its derivatives too when `derivs`) through the 4x4 matrix spilled at `m`, by the rule of
+// `kind` (0 point, 1 vector, 2 normal); derivatives transform as vectors (normals as normals),
+// a point's through the whole projective map.
+Val transform_dual(LayerEmitter& e, llvm::Value* m, const Val& x, int kind, bool derivs) {
   auto apply = [&](std::vector<llvm::Value*> comps, int k) {
     llvm::Value* in = e.spill(comps);
     llvm::Value* out = e.spill(comps);
@@ -273,7 +265,7 @@ void op_transform(LayerEmitter& e, const ir::Op& op) {
     return e.reload(out, 3);
   };
   Val r = from_values(apply(values(x), kind));
-  if (kind == 0 && e.wants_derivs(op.args[0]) && x[0].dx) {
+  if (kind == 0 && derivs && x[0].dx) {
     // A point's derivatives through the whole projective map, as OSL's dual arithmetic
     // computes them: a = p.M's column j (plus its translation), w = p.M's last column, and each
     // component a / w differentiated by the quotient rule, (1/w) (a' - (a/w) w'); 0 where w is
@@ -302,7 +294,7 @@ void op_transform(LayerEmitter& e, const ir::Op& op) {
       r[size_t(j)].dx = d(col(j, part(x[0].dx), part(x[1].dx), part(x[2].dx), false), wdx);
       r[size_t(j)].dy = d(col(j, part(x[0].dy), part(x[1].dy), part(x[2].dy), false), wdy);
     }
-  } else if (e.wants_derivs(op.args[0]) && x[0].dx) {
+  } else if (derivs && x[0].dx) {
     std::vector<llvm::Value*> dx, dy;
     for (const Dual& c : x) {
       dx.push_back(c.dx ? c.dx : e.fconst(0));
@@ -314,7 +306,29 @@ void op_transform(LayerEmitter& e, const ir::Op& op) {
       r[i].dy = ry[i];
     }
   }
-  e.store(op.args[0], r);
+  return r;
+}
+
+namespace {
+
+// transform: (to, p) from common; (from, to, p); (M, p). The last operand's type decides the
+// rule (point, vector, normal).
+void op_transform(LayerEmitter& e, const ir::Op& op) {
+  size_t last = op.args.size() - 1;
+  const ir::Symbol& p = e.arg(op, int(last));
+  int kind = p.type.base == BaseType::Point ? 0 : (p.type.base == BaseType::Normal ? 2 : 1);
+  llvm::Value* m;
+  if (e.arg(op, 1).type.base == BaseType::Matrix) {
+    m = e.spill(values(e.load_as(op, 1, BaseType::Matrix, false)));
+  } else {
+    m = e.spill(std::vector<llvm::Value*>(16, e.fconst(0)));
+    llvm::Value* from = last == 3 ? e.load(op.args[1])[0].v : e.string_const("common");
+    llvm::Value* to = e.load(op.args[last - 1])[0].v;
+    e.call("lobe_get_transform", {e.sg(), from, to, m});
+  }
+  bool derivs = e.wants_derivs(op.args[0]);
+  Val x = e.load_as(op, int(last), BaseType::Vector, derivs);
+  e.store(op.args[0], transform_dual(e, m, x, kind, derivs));
 }
 
 // transformu(["from",] "to", x): x times the ratio of the two length units (names in

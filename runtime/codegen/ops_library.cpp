@@ -8,6 +8,7 @@
 #include "format.h"
 #include "lobe/renderer_services.h"
 #include "lobe/shading.h"
+#include "shadeop_decls.h"
 #include "shadeops.h"
 
 #include <llvm/IR/Constants.h>
@@ -604,26 +605,17 @@ llvm::Value* sg_field(LayerEmitter& e, size_t offset, llvm::Type* t) {
   return e.b().CreateLoad(t, e.b().CreateConstInBoundsGEP1_64(e.b().getInt8Ty(), e.sg(), offset));
 }
 
-int raytype_bit(const std::string& name) {
-  static const std::pair<const char*, int> kNames[] = {
-      {"camera", kRayCamera},         {"shadow", kRayShadow},
-      {"reflection", kRayReflection}, {"refraction", kRayRefraction},
-      {"diffuse", kRayDiffuse},       {"glossy", kRayGlossy},
-      {"subsurface", kRaySubsurface}, {"displacement", kRayDisplacement}};
-  for (auto& [n, bit] : kNames)
-    if (name == n) return bit;
-  return 0;
-}
-
 void op_query(LayerEmitter& e, const ir::Op& op) {
   auto& B = e.b();
   const ir::Opcode o = op.opcode;
   Val r;
   if (o == ir::Opcode::RayType) {
-    int bit = raytype_bit(const_string(e.arg(op, 1)));
+    // A constant name's bit is known here; another's is looked up per shade (OSL does too).
+    llvm::Value* bit = is_const_string(e.arg(op, 1))
+                           ? e.iconst(lobe_raytype_bit(const_string(e.arg(op, 1)).c_str()))
+                           : e.call("lobe_raytype_bit", {e.load(op.args[1])[0].v});
     llvm::Value* rt = sg_field(e, offsetof(ShaderGlobals, raytype), e.i32());
-    r = Val{
-        Dual{B.CreateZExt(B.CreateICmpNE(B.CreateAnd(rt, e.iconst(bit)), e.iconst(0)), e.i32())}};
+    r = Val{Dual{B.CreateZExt(B.CreateICmpNE(B.CreateAnd(rt, bit), e.iconst(0)), e.i32())}};
   } else if (o == ir::Opcode::Backfacing) {
     r = Val{Dual{sg_field(e, offsetof(ShaderGlobals, backfacing), e.i32())}};
   } else if (o == ir::Opcode::SurfaceArea) {

@@ -136,6 +136,17 @@ int lobe_trace(lobe::ShaderGlobals* sg, const float* p, const float* dpdx, const
 // getattribute([object,] name, [index,] dest): OSL's own attributes first, then the renderer.
 // `object` is null when the shader named none; `index` is INT_MIN when it gave no index. Returns 1
 // when `dest` was written.
+int lobe_raytype_bit(const char* name) {
+  static const std::pair<const char*, int> kNames[] = {
+      {"camera", lobe::kRayCamera},         {"shadow", lobe::kRayShadow},
+      {"reflection", lobe::kRayReflection}, {"refraction", lobe::kRayRefraction},
+      {"diffuse", lobe::kRayDiffuse},       {"glossy", lobe::kRayGlossy},
+      {"subsurface", lobe::kRaySubsurface}, {"displacement", lobe::kRayDisplacement}};
+  for (const auto& [n, bit] : kNames)
+    if (name && std::strcmp(name, n) == 0) return bit;
+  return 0;
+}
+
 int lobe_getattribute(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* object,
                       const char* name, int index, int code, int derivs, void* dest,
                       const char* shadername, const char* layername, const char* groupname) {

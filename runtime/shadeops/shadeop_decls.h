@@ -45,6 +45,8 @@ void lobe_fprintf(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, cons
 const char* lobe_concat(lobe::shadeops::RuntimeEnv* env, const char* a, const char* b);
 const char* lobe_substr(lobe::shadeops::RuntimeEnv* env, const char* s, int start, int len);
 int lobe_strhash(const char* s);
+// raytype(name)'s bit in ShaderGlobals::raytype (kRayCamera...; 0 for a name that is none).
+int lobe_raytype_bit(const char* name);
 int32_t lobe_hash(const uint32_t* words, int32_t n);
 int lobe_regex(const char* s, const char* pattern, int full_match);
 int lobe_regex_results(const char* s, const char* pattern, int full_match, int* results, int n);

@@ -46,6 +46,7 @@ const ShadeOpSymbol kTable[] = {
     LOBE_SHADEOP(lobe_concat),
     LOBE_SHADEOP(lobe_substr),
     LOBE_SHADEOP(lobe_strhash),
+    LOBE_SHADEOP(lobe_raytype_bit),
 // clang-format off
     // the library calls, from their rows (runtime/registry/library_calls.h)
 #define LOBE_LIBRARY_TABLE_ROW(x, e, name, R, P, fn, doc) \

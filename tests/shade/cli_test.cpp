@@ -483,6 +483,17 @@ TEST(ShadeCli, ErrorsAndUsage) {
                      "Try `lobe shade --help` for an explanation of all arguments\n");
 }
 
+// Probes where Lobe once printed otherwise than OSL (layers/parity_probes.osl says which), at
+// -O2 and -O0, whose outputs differ where OSL's -O2 folds. Expected: layers/parity_probes.expected
+// and parity_probes.O0.expected, from OSL 1.13.12 (`testshade -g 2 1 [-O0] parity_probes`).
+TEST(ShadeCli, ParityProbesPrintAsOsl) {
+  std::string o2 = expected_file("parity_probes"), o0 = expected_file("parity_probes.O0");
+  ASSERT_FALSE(o2.empty());
+  ASSERT_FALSE(o0.empty());
+  EXPECT_EQ(run("-O2 -g 2 1 parity_probes"), o2 + "\n");
+  EXPECT_EQ(run("-O0 -g 2 1 parity_probes"), o0 + "\n");
+}
+
 // trace() and getmessage("trace", ...) answer as testshade's stand-in renderer does (no scene:
 // layers/trace_testshade.osl says how), at both levels. Expected: layers/trace_testshade.expected,
 // from OSL 1.13.12 (`testshade -g 3 3 trace_testshade`; testshade's final blank line added here).
