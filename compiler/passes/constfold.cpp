@@ -34,6 +34,7 @@ private:
   bool fold_pow(Op& op);
   bool fold_closure(Op& op);
   bool fold_algebraic(Op& op);
+  bool fold_zero_operand(Op& op);
   int root(int s) const {
     auto it = alias_.find(s);
     return it == alias_.end() ? s : it->second;
@@ -125,17 +126,26 @@ bool Folder::fold_pow(Op& op) {
 }
 
 // OSL's runtime optimizer's identities, for a varying x and a constant all of whose components
-// are 0 or 1: x * 0 = 0 * x = 0, x - x = 0, x + 0 = 0 + x = x - 0 = x * 1 = 1 * x = x / 1 = x.
-// OSL 1.13.12, `testshade` at its default -O2, prints "0 0 0 0 | -0 -0" for printf("%g %g %g %g
-// | %g %g", nan * 0, 0 * nan, nan - nan, nan - y, nz + 0, nz * 1) with nan a varying NaN, y = nan
-// and nz a varying -0 ("-nan -nan -nan -nan | 0 -0" at -O0, as the arithmetic computes).
+// are 0 or 1: x * 0 = 0 * x = 0 (also for a constant x, and for matrices), x - x = 0, x + 0 = 0 + x
+// = x - 0 = x * 1 = 1 * x = x / 1 = x. OSL 1.13.12, `testshade` at its default -O2, prints "0 0 0 0
+// | -0 -0" for printf("%g %g %g %g | %g %g", nan * 0, 0 * nan, nan - nan, nan - y, nz + 0, nz * 1)
+// with nan a varying NaN, y = nan and nz a varying -0 ("-nan -nan -nan -nan | 0 -0" at -O0, as the
+// arithmetic computes).
 bool Folder::fold_algebraic(Op& op) {
   if (!algebraic_ || op.args.size() != 3) return false;
   const Type& t = sh_.symbols[op.args[0]].type;
-  if (t.is_array() || !(t.base == BaseType::Float || t.base == BaseType::Int || t.is_triple()))
+  bool matrix = t.base == BaseType::Matrix;
+  if (t.is_array() ||
+      !(t.base == BaseType::Float || t.base == BaseType::Int || t.is_triple() || matrix))
     return false;
   int a = op.args[1], b = op.args[2];
   Opcode o = op.opcode;
+  // A product with an all-zero constant is +0, whatever the other factor, a constant too (OSL
+  // 1.13.12 -O2 prints "0 0 0 | 0" for vector(-1, 2, -3) * 0 and -2.0 * 0; -0 at -O0) or a
+  // matrix.
+  if (o == Opcode::Mul && (all_zero(a) || all_zero(b)))
+    return make_assign(op, op.args[0], intern_int(sh_, 0)), true;
+  if (matrix) return false;
   if (o == Opcode::Sub && root(a) == root(b) && !is_const(a))
     return make_assign(op, op.args[0], intern_int(sh_, 0)), true;
   if (is_const(a) == is_const(b)) return false; // two constants fold as they compute
@@ -150,6 +160,22 @@ bool Folder::fold_algebraic(Op& op) {
       return make_assign(op, op.args[0], x), op.identity_copy = true, true;
   }
   return false;
+}
+
+// More of OSL's runtime optimizer's folds (-O2): pow(0, x) = 0 for any x (OSL 1.13.12 prints 0
+// for pow(0.0, u - 0.5) at -O2, 1 at -O0 as its pow computes), and a dot product with an
+// all-zero constant is 0 whatever the other vector holds (0 for dot(V, vector(0)) with a varying V
+// holding an inf, where the arithmetic gives nan).
+bool Folder::fold_zero_operand(Op& op) {
+  if (!algebraic_ || op.args.size() != 3) return false;
+  const Type& t = sh_.symbols[op.args[0]].type;
+  if (t.is_array() || !(t.base == BaseType::Float || t.is_triple())) return false;
+  int a = op.args[1], b = op.args[2];
+  bool zero = (op.opcode == Opcode::Pow && all_zero(a) && !is_const(b)) ||
+              (op.opcode == Opcode::Dot && (all_zero(a) || all_zero(b)));
+  if (!zero) return false;
+  make_assign(op, op.args[0], intern_int(sh_, 0));
+  return true;
 }
 
 bool Folder::fold(Op& op) {
@@ -170,6 +196,7 @@ bool Folder::fold(Op& op) {
   if (!(info->flags & kPure)) return false;
   if (fold_pow(op)) return true;
   if (fold_algebraic(op)) return true;
+  if (fold_zero_operand(op)) return true;
   std::vector<ConstArg> srcs;
   for (size_t i = 1; i < op.args.size(); ++i) {
     if (!is_const(op.args[i])) return false;
