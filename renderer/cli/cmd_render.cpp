@@ -169,7 +169,8 @@ int run_render(int argc, char** argv) {
       ->check(CLI::IsMember({"mis", "bsdf", "light"}));
   app.add_option("--colorspace", a.colorspace,
                  "RGB space of shader colours (Rec709, sRGB, NTSC, EBU, PAL, SECAM, SMPTE, HDTV, "
-                 "CIE, AdobeRGB, ACEScg): transformc, luminance, blackbody, wavelength_color");
+                 "CIE, AdobeRGB, ACEScg, ACES2065-1, XYZ): transformc, luminance, blackbody, "
+                 "wavelength_color");
   app.add_option("--max-loop-iterations", a.max_loop_iterations,
                  "stop a shade whose loops run more than this many iterations, with an error "
                  "(0: unlimited, -1: no checks)")

@@ -431,8 +431,9 @@ ColorSystem::ColorSystem(std::string name, const Chromaticities& c) : name_(std:
 }
 
 const std::vector<std::string>& ColorSystem::names() {
-  static const std::vector<std::string> n = {"Rec709", "sRGB", "NTSC", "EBU",      "PAL",   "SECAM",
-                                             "SMPTE",  "HDTV", "CIE",  "AdobeRGB", "ACEScg"};
+  static const std::vector<std::string> n = {"Rec709", "sRGB",       "NTSC", "EBU", "PAL",
+                                             "SECAM",  "SMPTE",      "HDTV", "CIE", "AdobeRGB",
+                                             "ACEScg", "ACES2065-1", "XYZ"};
   return n;
 }
 
@@ -451,6 +452,8 @@ const ColorSystem* ColorSystem::find(std::string_view name) {
       {0.7355f, 0.2645f, 0.2658f, 0.7243f, 0.1669f, 0.0085f, 0.33333333f, 0.33333333f}, // CIE
       {0.64f, 0.33f, 0.21f, 0.71f, 0.15f, 0.06f, d65x, d65y},                           // AdobeRGB
       {0.713f, 0.293f, 0.165f, 0.830f, 0.128f, 0.044f, 0.32168f, 0.33767f},             // ACEScg
+      {0.7347f, 0.2653f, 0.0f, 1.0f, 0.0001f, -0.077f, 0.32168f, 0.33767f}, // ACES2065-1 (AP0)
+      {1.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.33333333f, 0.33333333f},       // XYZ itself (white E)
   };
   constexpr size_t kCount = sizeof(kSpaces) / sizeof(kSpaces[0]);
   static std::once_flag once[kCount];

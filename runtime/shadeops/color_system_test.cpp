@@ -36,7 +36,7 @@ Color3f tc(const ColorSystem& cs, const char* from, const char* to, Color3f c) {
 }
 
 TEST(ColorSystem, NamesAreOslsAndCaseSensitive) {
-  EXPECT_EQ(ColorSystem::names().size(), 11u);
+  EXPECT_EQ(ColorSystem::names().size(), 13u);
   for (const std::string& n : ColorSystem::names()) EXPECT_EQ(space(n.c_str()).name(), n);
   EXPECT_EQ(ColorSystem::find("rec709"), nullptr);
   EXPECT_EQ(ColorSystem::find("Rec2020"), nullptr);
@@ -64,6 +64,23 @@ TEST(ColorSystem, MatricesAndLuminanceFromChromaticities) {
                "CIE Y");
   EXPECT_EQ(space("SMPTE").luminance_weights()[1], 0.701260567f);
   EXPECT_EQ(space("EBU").luminance_weights()[0], space("SECAM").luminance_weights()[0]);
+}
+
+// The two spaces OSL 1.13 has beyond the RGB ones above: XYZ itself (primaries on the axes,
+// white E), whose matrices are the identity, and ACES2065-1 (AP0), whose RGB -> XYZ luminance row
+// the ACES specification gives (SMPTE ST 2065-1: 0.3439664498, 0.7281660966, -0.0721325464).
+// OSL 1.13.12 prints 0.2 and 0.15839 for luminance(color(.1, .2, .3)) with `testshade
+// --colorspace XYZ` and `--colorspace ACES2065-1`.
+TEST(ColorSystem, XyzAndAces2065) {
+  const ColorSystem& xyz = space("XYZ");
+  expect_color(tc(xyz, "rgb", "XYZ", {.1f, .7f, .2f}), .1f, .7f, .2f, "XYZ rgb -> XYZ");
+  expect_color(tc(xyz, "XYZ", "rgb", {.3f, .2f, .1f}), .3f, .2f, .1f, "XYZ XYZ -> rgb");
+  EXPECT_FLOAT_EQ(xyz.luminance({.1f, .2f, .3f}), .2f);
+  const ColorSystem& ap0 = space("ACES2065-1");
+  EXPECT_NEAR(ap0.luminance_weights()[0], 0.3439664498f, 2e-6f);
+  EXPECT_NEAR(ap0.luminance_weights()[1], 0.7281660966f, 2e-6f);
+  EXPECT_NEAR(ap0.luminance_weights()[2], -0.0721325464f, 2e-6f);
+  EXPECT_NEAR(ap0.luminance({.1f, .2f, .3f}), 0.15839f, 5e-6f);
 }
 
 // Colour models, including hue ties and out-of-gamut values.
