@@ -310,14 +310,14 @@ std::vector<ir::ConstValue> convert_const(const std::vector<ir::ConstValue>& v,
 
 // What OSL's -O2 knows of an upstream layer's output param at the end of the layer: written by
 // one `assign` of a constant or of a shading global (that the layer never writes; a copy as
-// written, not one the optimiser made of x * 1 or x + 0, which OSL keeps), with no jump before
-// it, or never written and holding a constant default. An input parameter connected onward is
-// known (a shader cannot write one) from its instance value (`given`, when there is one) or
-// its constant default, or from a computed default that is one copy (of a constant or a
-// global) when no instance value is given. `runtime_valued`: the param's value arrives while
-// shading (user data, a connection into it), so only a write in the layer could make it known.
-// `global` names the global of a copy; else `value` is the constant (in the param's type). Neither:
-// not known.
+// written, not one the optimiser made of x * 1 or x + 0, which OSL keeps) outside any
+// conditional construct (in_conditional), or never written and holding a constant default. An input
+// parameter connected onward is known (a shader cannot write one) from its instance value (`given`,
+// when there is one) or its constant default, or from a computed default that is one copy (of a
+// constant or a global) when no instance value is given. `runtime_valued`: the param's value
+// arrives while shading (user data, a connection into it), so only a write in the layer could make
+// it known. `global` names the global of a copy; else `value` is the constant (in the param's
+// type). Neither: not known.
 struct KnownOutput {
   std::vector<ir::ConstValue> value;
   std::string global;
@@ -338,6 +338,29 @@ KnownOutput known_copy(const ir::Shader& sh, const ir::Op& op, int si,
            src.type.components() == s.type.components() && same_kind(src.type, s.type))
     k.global = src.name;
   return k;
+}
+
+// Whether op `at` lies inside a conditional construct (an if or else branch, a loop's body), as
+// OSL's optimiser counts it: in the ops between a `cbr` and the join its branches reach (a
+// branch's jumps forward past the join widen it). An early exit() or return before the op does
+// not make it conditional (OSL 1.13.12 -O2 still passes the constant on from
+// `if (u > 0.25) exit(); o = 3;`).
+bool in_conditional(const ir::Shader& sh, int at) {
+  for (int c = sh.main_begin; c < at; ++c) {
+    const ir::Op& op = sh.ops[size_t(c)];
+    if (op.opcode != ir::Opcode::Cbr) continue;
+    int end = c;
+    for (int j : op.jumps) end = std::max(end, j);
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (int k = c + 1; k < end; ++k)
+        if (ir::is_jump(sh.ops[size_t(k)].opcode))
+          for (int j : sh.ops[size_t(k)].jumps)
+            if (j > end) end = j, grew = true;
+    }
+    if (at < end) return true;
+  }
+  return false;
 }
 
 KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool runtime_valued,
@@ -361,7 +384,6 @@ KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool run
   }
   if (s.kind != SymKind::OutputParam) return k;
   int writer = -1, writes = 0;
-  bool jump_before = false;
   std::set<int> written_globals;
   for (size_t i = size_t(sh.main_begin); i < sh.ops.size(); ++i) {
     const ir::Op& op = sh.ops[i];
@@ -374,15 +396,39 @@ KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool run
       if (sh.symbols[size_t(op.args[a])].kind == SymKind::Global)
         written_globals.insert(op.args[a]);
     }
-    bool jump = ir::is_jump(op.opcode);
-    if (jump && writer < 0) jump_before = true;
   }
   if (writes == 0) {
     if (!runtime_valued && s.init_begin < 0 && !s.init.empty()) k.value = s.init;
     return k;
   }
-  if (writes > 1 || jump_before) return k;
+  if (writes > 1 || in_conditional(sh, writer)) return k;
   return known_copy(sh, sh.ops[size_t(writer)], si, written_globals);
+}
+
+// isconnected(p) of layer `layer` as codegen answers it (codegen/ops_library.cpp), from the
+// connections as made: 1 when one leads into p (or p takes user data, with userdata_isconnected),
+// 2 when one leads out of it, 3 both. Each becomes an assignment of that constant.
+void resolve_isconnected(ir::Shader& sh, int layer, const std::vector<Link>& links,
+                         const std::set<std::string>& userdata, bool userdata_isconnected) {
+  for (ir::Op& op : sh.ops) {
+    if (op.opcode != ir::Opcode::IsConnected || op.args.size() != 2) continue;
+    const std::string& name = sh.symbols[size_t(op.args[1])].name;
+    int v = 0;
+    for (const Link& l : links) {
+      if (l.dst_layer == layer && l.dst.symbol == name) v |= 1;
+      if (l.src_layer == layer && l.src.symbol == name) v |= 2;
+    }
+    if (userdata_isconnected && userdata.count(name)) v |= 1;
+    ir::Symbol c;
+    c.name = "$isconnected" + std::to_string(sh.symbols.size());
+    c.type = ir::Type{ir::BaseType::Int, 0};
+    c.kind = SymKind::Const;
+    c.init = {ir::ConstValue{v, 0.0f, ""}};
+    sh.symbols.push_back(c);
+    op.opcode = ir::Opcode::Assign;
+    op.args = {op.args[0], int(sh.symbols.size()) - 1};
+    op.written_mask = 1;
+  }
 }
 
 } // namespace
@@ -553,6 +599,10 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         len[l.dst.symbol] = src.symbols[size_t(ss)].type.arraylen;
     }
     size_unsized_params(*sh, len);
+    // OSL -O2 answers isconnected() for the connections as made, also those a known value is
+    // about to replace (whose upstream layer then may not run at all): resolve it now.
+    if (specialize && elide_known_outputs)
+      resolve_isconnected(*sh, int(i), links, interp[i], out.plan.userdata_isconnected);
     // OSL -O2: whole connections from outputs of known value become that value.
     if (specialize && elide_known_outputs)
       for (Link& l : links) {
@@ -571,14 +621,6 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         if (ds < 0 || (k.value.empty() && k.global.empty())) continue;
         ir::Symbol& dsym = sh->symbols[size_t(ds)];
         if (dsym.kind != SymKind::Param) continue;
-        // isconnected() still answers for the connection as made: keep those.
-        auto asks = [](const ir::Shader& x, int symbol) {
-          for (const ir::Op& op : x.ops)
-            if (op.opcode == ir::Opcode::IsConnected && op.args.size() > 1 && op.args[1] == symbol)
-              return true;
-          return false;
-        };
-        if (asks(*sh, ds) || asks(src, src.find_symbol(l.src.symbol))) continue;
         if (!k.value.empty()) {
           const ir::Symbol& ssym = src.symbols[size_t(src.find_symbol(l.src.symbol))];
           std::vector<ir::ConstValue> v = convert_const(k.value, ssym.type, dsym.type);

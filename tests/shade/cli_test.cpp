@@ -763,6 +763,22 @@ TEST(ShadeCli, UpstreamLayersOfKnownValueAreElidedAtO2) {
             "Connect A.o to B.i\nreader ignores i\n\n");
   EXPECT_EQ(both("-g 1 1 -layer A elide_computed -layer B elide_ignorer -connect A o B i"),
             "Connect A.o to B.i\nignorer ran\n\n");
+  // An unconditional constant write after a loop and a branch that may exit is known (a write is
+  // conditional only inside an if or a loop), so the second point too reads 3 at -O2.
+  EXPECT_EQ(run("-O0 " + group("elide_after_branch", "o")),
+            "Connect A.o to B.i\nelide_after_branch loop 0\nelide_after_branch loop 1\nreader i 3\n"
+            "elide_after_branch loop 0\nelide_after_branch loop 1\nelide_after_branch exits\n"
+            "reader i 0\n\n");
+  EXPECT_EQ(run("-O2 " + group("elide_after_branch", "o")),
+            "Connect A.o to B.i\nreader i 3\nreader i 3\n\n");
+  // isconnected() answers for the connection as made, on both sides, and does not keep the
+  // layer: at -O2 `elide_asks` does not run. (`elide_reader_asks` reads `i`.)
+  const std::string asks = "-g 2 1 -layer A elide_asks -layer B elide_reader_asks -connect A o B i";
+  EXPECT_EQ(run("-O0 " + asks), "Connect A.o to B.i\nelide_asks ran, o connected 2\n"
+                                "reader i 2 connected 1\nelide_asks ran, o connected 2\n"
+                                "reader i 2 connected 1\n\n");
+  EXPECT_EQ(run("-O2 " + asks),
+            "Connect A.o to B.i\nreader i 2 connected 1\nreader i 2 connected 1\n\n");
 }
 
 } // namespace
