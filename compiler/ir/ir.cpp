@@ -3,6 +3,7 @@
 #include "ir/ir.h"
 #include "ir/opcodes.h"
 
+#include <algorithm>
 #include <string_view>
 #include <unordered_map>
 
@@ -84,6 +85,24 @@ const char* to_string(ShaderType t) {
     return "shader";
   }
   return "?";
+}
+
+bool in_conditional(const Shader& sh, int at) {
+  for (int c = sh.main_begin; c < at; ++c) {
+    const Op& op = sh.ops[size_t(c)];
+    if (op.opcode != Opcode::Cbr) continue;
+    int end = c;
+    for (int j : op.jumps) end = std::max(end, j);
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (int k = c + 1; k < end; ++k)
+        if (is_jump(sh.ops[size_t(k)].opcode))
+          for (int j : sh.ops[size_t(k)].jumps)
+            if (j > end) end = j, grew = true;
+    }
+    if (at < end) return true;
+  }
+  return false;
 }
 
 int Shader::find_symbol(const std::string& n) const {

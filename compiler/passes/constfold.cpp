@@ -6,6 +6,8 @@
 #include "ir/opcodes.h"
 #include "passes/consteval.h"
 
+#include <algorithm>
+#include <climits>
 #include <iterator>
 #include <set>
 #include <unordered_map>
@@ -40,6 +42,7 @@ private:
     return it == alias_.end() ? s : it->second;
   }
   void clear_block() { known_.clear(), null_.clear(), alias_.clear(); }
+  void once_assigned_constants();
   bool all_zero(int s) const;
   void make_assign(Op& op, int dst, int src);
   void record(const Op& op);
@@ -48,6 +51,8 @@ private:
   EvalOptions options_;
   bool algebraic_;
   std::unordered_map<int, int> known_; // symbol -> Const symbol with its value
+  // Locals known everywhere they are read (algebraic_: once_assigned_constants()).
+  std::unordered_map<int, int> fixed_;
   std::unordered_map<int, int> alias_; // symbol -> the symbol it was copied from (algebraic_)
   std::unordered_set<int> null_;       // closure symbols known to hold the null closure
   bool changed_ = false;
@@ -60,7 +65,7 @@ void Folder::substitute(Op& op) {
   for (size_t i = 0; i < op.args.size(); ++i) {
     if (op.writes(int(i))) continue;
     auto it = known_.find(op.args[i]);
-    if (it == known_.end()) continue;
+    if (it == known_.end() && (it = fixed_.find(op.args[i])) == fixed_.end()) continue;
     op.args[i] = it->second;
     changed_ = true;
   }
@@ -240,7 +245,43 @@ void Folder::record(const Op& op) {
   if (v && !dt.is_array()) known_[dst] = intern_const(sh_, dt, *v);
 }
 
+// OSL's runtime optimiser knows a local's value beyond its block when one unconditional
+// assignment of a constant is the local's only write and comes before every read (OSL 1.13.12
+// -O2 folds format("%.0f", x) to "2" after a loop that follows `float x = 2.5`, where the
+// unfolded format prints "3"). Blocks otherwise start knowing nothing (run()).
+void Folder::once_assigned_constants() {
+  std::vector<int> writes(sh_.symbols.size(), 0), writer(sh_.symbols.size(), -1),
+      first_read(sh_.symbols.size(), INT_MAX);
+  for (size_t i = 0; i < sh_.ops.size(); ++i) {
+    const Op& op = sh_.ops[i];
+    for (size_t a = 0; a < op.args.size(); ++a) {
+      int s = op.args[a];
+      if (op.writes(int(a))) {
+        ++writes[size_t(s)];
+        writer[size_t(s)] = int(i);
+      } else {
+        first_read[size_t(s)] = std::min(first_read[size_t(s)], int(i));
+      }
+    }
+  }
+  for (size_t s = 0; s < sh_.symbols.size(); ++s) {
+    const Symbol& sym = sh_.symbols[s];
+    if ((sym.kind != SymKind::Local && sym.kind != SymKind::Temp) || sym.type.is_array() ||
+        is_closure(int(s)) || writes[s] != 1 || writer[s] < sh_.main_begin ||
+        first_read[s] <= writer[s])
+      continue;
+    const Op& w = sh_.ops[size_t(writer[s])];
+    if (w.opcode != Opcode::Assign || w.args.size() != 2 || w.args[0] != int(s) ||
+        !is_const(w.args[1]) || ir::in_conditional(sh_, writer[s]))
+      continue;
+    const Symbol& c = sh_.symbols[size_t(w.args[1])];
+    if (auto v = convert_const(c.type, c.init, sym.type))
+      fixed_[int(s)] = intern_const(sh_, sym.type, *v);
+  }
+}
+
 bool Folder::run() {
+  if (algebraic_) once_assigned_constants();
   std::set<int> starts = {sh_.main_begin};
   for (const Op& op : sh_.ops) starts.insert(op.jumps.begin(), op.jumps.end());
   for (const Symbol& s : sh_.symbols)

@@ -311,10 +311,10 @@ std::vector<ir::ConstValue> convert_const(const std::vector<ir::ConstValue>& v,
 // What OSL's -O2 knows of an upstream layer's output param at the end of the layer: written by
 // one `assign` of a constant or of a shading global (that the layer never writes; a copy as
 // written, not one the optimiser made of x * 1 or x + 0, which OSL keeps) outside any
-// conditional construct (in_conditional), or never written and holding a constant default. An input
-// parameter connected onward is known (a shader cannot write one) from its instance value (`given`,
-// when there is one) or its constant default, or from a computed default that is one copy (of a
-// constant or a global) when no instance value is given. `runtime_valued`: the param's value
+// conditional construct (ir::in_conditional), or never written and holding a constant default. An
+// input parameter connected onward is known (a shader cannot write one) from its instance value
+// (`given`, when there is one) or its constant default, or from a computed default that is one copy
+// (of a constant or a global) when no instance value is given. `runtime_valued`: the param's value
 // arrives while shading (user data, a connection into it), so only a write in the layer could make
 // it known. `global` names the global of a copy; else `value` is the constant (in the param's
 // type). Neither: not known.
@@ -338,29 +338,6 @@ KnownOutput known_copy(const ir::Shader& sh, const ir::Op& op, int si,
            src.type.components() == s.type.components() && same_kind(src.type, s.type))
     k.global = src.name;
   return k;
-}
-
-// Whether op `at` lies inside a conditional construct (an if or else branch, a loop's body), as
-// OSL's optimiser counts it: in the ops between a `cbr` and the join its branches reach (a
-// branch's jumps forward past the join widen it). An early exit() or return before the op does
-// not make it conditional (OSL 1.13.12 -O2 still passes the constant on from
-// `if (u > 0.25) exit(); o = 3;`).
-bool in_conditional(const ir::Shader& sh, int at) {
-  for (int c = sh.main_begin; c < at; ++c) {
-    const ir::Op& op = sh.ops[size_t(c)];
-    if (op.opcode != ir::Opcode::Cbr) continue;
-    int end = c;
-    for (int j : op.jumps) end = std::max(end, j);
-    for (bool grew = true; grew;) {
-      grew = false;
-      for (int k = c + 1; k < end; ++k)
-        if (ir::is_jump(sh.ops[size_t(k)].opcode))
-          for (int j : sh.ops[size_t(k)].jumps)
-            if (j > end) end = j, grew = true;
-    }
-    if (at < end) return true;
-  }
-  return false;
 }
 
 KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool runtime_valued,
@@ -401,7 +378,7 @@ KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool run
     if (!runtime_valued && s.init_begin < 0 && !s.init.empty()) k.value = s.init;
     return k;
   }
-  if (writes > 1 || in_conditional(sh, writer)) return k;
+  if (writes > 1 || ir::in_conditional(sh, writer)) return k;
   return known_copy(sh, sh.ops[size_t(writer)], si, written_globals);
 }
 
