@@ -20,15 +20,32 @@ void int_result(LayerEmitter& e, const ir::Op& op, llvm::Value* r) {
 }
 
 // split r results str [sep [maxsplit]]: the pieces go straight into the array's storage;
-// sep defaults to "" (split at whitespace), maxsplit to the array's length.
+// sep defaults to "" (split at whitespace), maxsplit to the array's length. The elements past
+// the pieces keep what they held, except where OSL's -O2 folds the call (its inputs all
+// constants): the folded result is the whole array, "" past the pieces (OSL 1.13.12 prints
+// `1 [x   ]` for split("x", r, ",") after split("a,b", r, ","), `1 [x b  ]` at -O0).
 void op_split(LayerEmitter& e, const ir::Op& op) {
   int len = std::max(0, e.arg(op, 1).type.arraylen);
   llvm::Value* sep = op.args.size() > 3 ? e.load(op.args[3])[0].v : e.string_const("");
   llvm::Value* max =
       op.args.size() > 4 ? e.load_as(op, 4, BaseType::Int, false)[0].v : e.iconst(len);
-  int_result(e, op,
-             e.call("lobe_split", {e.env_ptr(), e.load(op.args[2])[0].v, sep, max,
-                                   e.storage_address(op.args[1]), e.iconst(len)}));
+  llvm::Value* results = e.storage_address(op.args[1]);
+  llvm::Value* count = e.call(
+      "lobe_split", {e.env_ptr(), e.load(op.args[2])[0].v, sep, max, results, e.iconst(len)});
+  bool folded = e.group().opt_level >= 2;
+  for (size_t a = 2; a < op.args.size(); ++a)
+    folded &= e.arg(op, int(a)).kind == ir::SymKind::Const;
+  if (folded) {
+    auto& B = e.b();
+    llvm::Type* ptr = B.getPtrTy();
+    for (int k = 0; k < len; ++k) {
+      llvm::Value* at = B.CreateConstInBoundsGEP1_64(ptr, results, uint64_t(k));
+      llvm::Value* kept = B.CreateLoad(ptr, at);
+      B.CreateStore(B.CreateSelect(B.CreateICmpSGT(count, e.iconst(k)), kept, e.string_const("")),
+                    at);
+    }
+  }
+  int_result(e, op, count);
 }
 
 // dict_find r "document" "query" | dict_find r node "query"
