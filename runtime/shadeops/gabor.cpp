@@ -437,14 +437,15 @@ void make_orthonormals(V3& v, V3& a, V3& b) {
   b = cross(v, a);
 }
 
-// The pixel-footprint filter. Determined against OSL's output (see noise_parity.md): the
-// footprint covariance is a quarter of the Gram matrix of the xy parts of Dx(P) and Dy(P)
-// ([[dx.dx, dx.dy], [dx.dy, dy.dy]] / 4), the impulses' directions and offsets are used in
-// texture xy as they are (no rotation into a tangent frame) and the slicing distance is along
-// z. That is exact whenever the footprint lies in the xy plane (always for the 2-D form
-// noise("gabor", x, y), and for a point input whose derivatives have no z part) and when the
-// filter is off; for a tilted 3-D footprint it is close but not OSL's to the bit (OSL's exact
-// tangent-frame handling there is not reproduced: see the report).
+// The pixel-footprint filter. Determined against OSL's output: the footprint covariance is a
+// quarter of the Gram matrix of the xy parts of Dx(P) and Dy(P) ([[dx.dx, dx.dy], [dx.dy,
+// dy.dy]] / 4), the impulses' directions and offsets are used in texture xy as they are (no
+// rotation into a tangent frame) and the slicing distance is along z. That is exact whenever
+// the footprint lies in the xy plane (always for the 2-D form noise("gabor", x, y), and for a
+// point input whose derivatives have no z part) and when the filter is off. A footprint tilted
+// out of that plane is not OSL's: the z parts of the derivatives are ignored (OSL 1.13.12 prints
+// 0.0325879 for noise("gabor", point(u, v, u)) at the first point of `testshade -g 2 2`, Lobe
+// -0.0102787, its value for point(u, v, 0)); OSL's tangent-frame handling is not reproduced.
 void setup_filter(const DV& P, Params& gp) {
   V3 n = cross(P.dx, P.dy);
   if (dot(n, n) < 1.0e-6f) {
