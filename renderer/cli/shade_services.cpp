@@ -146,9 +146,10 @@ bool ShadeServices::get_attribute(const ShaderGlobals& sg, std::string_view obje
                                   std::string_view name, int index, DataType type, bool derivatives,
                                   void* val) const {
   if (object == "options" && name == "blahblah") return write(floats({3.14159f}), index, type, val);
-  // The camera's attributes for any object (or none), whole only: testshade answers no
-  // element by index.
-  if (name.starts_with("camera:") && index >= 0) return false;
+  // The camera's attributes for any object (or none), whole only: testshade ignores an index
+  // (OSL 1.13.12 answers getattribute("camera:fov", 0, f) with 90, and
+  // getattribute("camera:resolution", 1, i) of an int with nothing).
+  if (name.starts_with("camera:")) index = -1;
   if (!object.empty() && !name.starts_with("camera:")) return false;
   float aspect = float(xres_) / float(yres_);
   Value v;

@@ -158,10 +158,13 @@ std::string nonexistent_param_note(const std::string& layer, const std::string& 
 }
 
 int metadata_lockgeom(const ir::Symbol& s) {
-  for (const ir::Metadata& m : s.metadata)
-    if (m.name == "lockgeom" && m.type == ir::Type{ir::BaseType::Int, 0} && !m.value.empty())
-      return m.value[0].i;
-  return -1;
+  int lockgeom = -1;
+  for (const ir::Metadata& m : s.metadata) {
+    if (m.type != ir::Type{ir::BaseType::Int, 0} || m.value.empty()) continue;
+    if (m.name == "lockgeom") lockgeom = m.value[0].i;
+    if (m.name == "interpolated") lockgeom = m.value[0].i ? 0 : 1;
+  }
+  return lockgeom;
 }
 
 } // namespace lobe::group

@@ -30,6 +30,8 @@ std::string nonexistent_param_note(const std::string& layer, const std::string& 
                                    const std::vector<std::string>& params);
 
 // The shader's own `[[ int lockgeom = N ]]` on parameter `s`: N, or -1 when it says nothing.
+// `[[ int interpolated = N ]]` says the same as lockgeom = !N (as OSL reads it); of several, the
+// last counts.
 int metadata_lockgeom(const ir::Symbol& s);
 
 // The same kind of value: one base type, or both triples (color, point, vector, normal).

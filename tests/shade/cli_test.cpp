@@ -494,6 +494,16 @@ TEST(ShadeCli, ParityProbesPrintAsOsl) {
   EXPECT_EQ(run("-O0 -g 2 1 parity_probes"), o0 + "\n");
 }
 
+// `[[ int interpolated = N ]]` makes a parameter take user data as lockgeom = !N does, the last
+// of the two counting. Expected: OSL 1.13.12, `testshade [-O0] --userdata:type=float b 2 ...
+// --userdata:type=float f 6 interpolated_userdata`.
+TEST(ShadeCli, InterpolatedMetadataTakesUserData) {
+  std::string ud;
+  for (const char* p : {"b 2", "c 3", "d 4", "e 5", "f 6"})
+    ud += std::string("--userdata:type=float ") + p + " ";
+  EXPECT_EQ(both(ud + "interpolated_userdata"), "b 2 c -1 d -1 e -1 f 6\n\n");
+}
+
 // trace() and getmessage("trace", ...) answer as testshade's stand-in renderer does (no scene:
 // layers/trace_testshade.osl says how), at both levels. Expected: layers/trace_testshade.expected,
 // from OSL 1.13.12 (`testshade -g 3 3 trace_testshade`; testshade's final blank line added here).
