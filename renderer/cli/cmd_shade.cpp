@@ -39,6 +39,7 @@
 #include <locale>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 
 namespace lobe::cli {
@@ -676,29 +677,53 @@ int Shade::run() {
   // optimised away). The names found are announced after compiling; the first not found stops
   // there ("Entry output NAME not found. Abording.", exit status 1).
   std::string entry_outputs = "Entry outputs:", missing_output;
+  std::set<std::string> output_layers; // the layers the entry outputs were found in
   if (!job_.entry_outputs.empty()) {
     std::vector<const ir::Shader*> shaders;
     for (const ShaderGroup::Layer& l : g.layers) shaders.push_back(layer_ir(l));
-    for (const std::string& name : job_.entry_outputs) {
+    for (const std::string& entry : job_.entry_outputs) {
       bool kept = false;
+      // "layer.param" names one layer's; a plain name is looked for in every layer.
+      std::string only_layer, name = entry;
+      if (size_t dot = entry.find('.'); dot != std::string::npos)
+        for (const ShaderGroup::Layer& l : g.layers)
+          if (l.name == entry.substr(0, dot)) only_layer = l.name, name = entry.substr(dot + 1);
+      auto leads = [&](const std::string& param, const std::string& p) {
+        return param == p || param.rfind(p + ".", 0) == 0 || param.rfind(p + "[", 0) == 0;
+      };
       for (size_t k = 0; k < g.layers.size() && !kept; ++k) {
-        int si = shaders[k] ? shaders[k]->find_symbol(name) : -1;
-        if (si < 0 || shaders[k]->symbols[size_t(si)].kind != ir::SymKind::OutputParam) continue;
         const std::string& layer = g.layers[k].name;
+        if (!only_layer.empty() && layer != only_layer) continue;
+        int si = shaders[k] ? shaders[k]->find_symbol(name) : -1;
+        if (si < 0) continue;
+        ir::SymKind kind = shaders[k]->symbols[size_t(si)].kind;
+        if (kind != ir::SymKind::OutputParam && kind != ir::SymKind::Param) continue;
         kept = ss_.options().opt_level == 0;
-        for (const Connection& c : g.connections)
-          kept = kept || (c.src_layer == layer &&
-                          (c.src_param == name || c.src_param.rfind(name + ".", 0) == 0 ||
-                           c.src_param.rfind(name + "[", 0) == 0));
+        for (const Connection& c : g.connections) // connected from, or (an input) into
+          kept = kept || (c.src_layer == layer && leads(c.src_param, name)) ||
+                 (kind == ir::SymKind::Param && c.dst_layer == layer && leads(c.dst_param, name));
         for (const std::string& r : g.renderer_outputs)
           kept = kept || r == name || r == layer + "." + name;
+        if (kept) output_layers.insert(layer);
       }
+      const std::string& name_given = entry;
       if (!kept) {
-        missing_output = name;
+        missing_output = name_given;
         break;
       }
-      entry_outputs += " " + name;
+      entry_outputs += " " + name_given;
     }
+  }
+  // With both --entry and --entryoutput, testshade 1.13.12 runs only the entry layers that hold
+  // an entry output (their upstream layers as reads need them): `--entry A --entry B
+  // --entryoutput A.o` runs A alone, `--entry A --entryoutput B.x` nothing at all.
+  bool shade_none = false;
+  if (!g.entry_layers.empty() && !job_.entry_outputs.empty() && missing_output.empty()) {
+    std::vector<std::string> running;
+    for (const std::string& e : g.entry_layers)
+      if (output_layers.count(e)) running.push_back(e);
+    shade_none = running.empty();
+    if (!shade_none) g.entry_layers = running;
   }
   if (job_.verbose || job_.oslquery) {
     std::vector<std::string> params; // --oslquery: each layer's, as OSLQuery lists them
@@ -755,7 +780,7 @@ int Shade::run() {
           if (l.name == r.layer) any = reparameter(l, r) || any;
       if (any && !compile(changed, reparam)) return 1;
     }
-    shade_grid(reparam ? *reparam : *mat_, it + 1 == job_.iters);
+    if (!shade_none) shade_grid(reparam ? *reparam : *mat_, it + 1 == job_.iters);
     if (g_cancel.load()) break;
   }
   std::signal(SIGINT, SIG_DFL);

@@ -338,6 +338,21 @@ TEST(ShadeCli, EntryOutputsAsTestshade) {
             "Connect A.o to B.i\nEntry outputs: o\nEntry output o2 not found. Abording.\n");
   EXPECT_EQ(run(g + "--entry A --entryoutput o -o A.o2 null"),
             "Connect A.o to B.i\n\nEntry layers: A(0)\nEntry outputs: o\nelide_computed ran\n\n");
+  // A name may be a layer's ("A.o"), and an input parameter a connection leads into ("B.i",
+  // "i"); with entry layers too, only those holding an entry output run (upstream layers as
+  // they are read): none at all for --entry A --entryoutput B.i.
+  EXPECT_EQ(run(g + "--entryoutput A.o"),
+            "Connect A.o to B.i\nEntry outputs: A.o\nelide_computed ran\nreader i 2\n\n");
+  EXPECT_EQ(run(g + "--entryoutput B.i"),
+            "Connect A.o to B.i\nEntry outputs: B.i\nelide_computed ran\nreader i 2\n\n");
+  EXPECT_EQ(
+      run(g + "--entry A --entry B --entryoutput A.o"),
+      "Connect A.o to B.i\nEntry layers: A(0) B(1)\nEntry outputs: A.o\nelide_computed ran\n\n");
+  EXPECT_EQ(run(g + "--entry A --entryoutput B.i"),
+            "Connect A.o to B.i\nEntry layers: A(0)\nEntry outputs: B.i\n\n");
+  EXPECT_EQ(run(g + "--entry B --entryoutput i"),
+            "Connect A.o to B.i\nEntry layers: B(1)\n"
+            "Entry outputs: i\nelide_computed ran\nreader i 2\n\n");
 }
 
 // --expr wraps an expression in a shader of testshade's form (s, t from u, v; outputs result
