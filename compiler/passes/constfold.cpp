@@ -245,10 +245,12 @@ void Folder::record(const Op& op) {
   if (v && !dt.is_array()) known_[dst] = intern_const(sh_, dt, *v);
 }
 
-// OSL's runtime optimiser knows a local's value beyond its block when one unconditional
-// assignment of a constant is the local's only write and comes before every read (OSL 1.13.12
-// -O2 folds format("%.0f", x) to "2" after a loop that follows `float x = 2.5`, where the
-// unfolded format prints "3"). Blocks otherwise start knowing nothing (run()).
+// OSL's runtime optimiser knows a local's value beyond its block when one assignment of a
+// constant is the local's only write and comes before every read, even inside a branch (a read
+// where it did not run would read an uninitialised value): OSL 1.13.12 -O2 folds
+// format("%.0f", x) to "2" after a loop that follows `float x = 2.5`, where the unfolded format
+// prints "3", and prints 1 at both points of `float x; if (u > 0.5) x = 1; printf("%g", x)` over
+// a 2x1 grid. Blocks otherwise start knowing nothing (run()).
 void Folder::once_assigned_constants() {
   std::vector<int> writes(sh_.symbols.size(), 0), writer(sh_.symbols.size(), -1),
       first_read(sh_.symbols.size(), INT_MAX);
@@ -272,7 +274,7 @@ void Folder::once_assigned_constants() {
       continue;
     const Op& w = sh_.ops[size_t(writer[s])];
     if (w.opcode != Opcode::Assign || w.args.size() != 2 || w.args[0] != int(s) ||
-        !is_const(w.args[1]) || ir::in_conditional(sh_, writer[s]))
+        !is_const(w.args[1]))
       continue;
     const Symbol& c = sh_.symbols[size_t(w.args[1])];
     if (auto v = convert_const(c.type, c.init, sym.type))

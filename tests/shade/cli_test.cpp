@@ -519,6 +519,12 @@ TEST(ShadeCli, InterpolatedMetadataTakesUserData) {
   EXPECT_EQ(both(ud + "interpolated_userdata"), "b 2 c -1 d -1 e -1 f 6\n\n");
 }
 
+// At -O2 a local whose only write is a constant in a branch reads as that constant also where
+// the branch did not run. Expected: OSL 1.13.12, `testshade -g 2 1 branch_only_constant`.
+TEST(ShadeCli, OnceAssignedLocalsAreConstantsAtO2) {
+  EXPECT_EQ(run("-O2 -g 2 1 branch_only_constant"), "x 1 c 1 2 3\nx 1 c 1 2 3\n\n");
+}
+
 // trace() and getmessage("trace", ...) answer as testshade's stand-in renderer does (no scene:
 // layers/trace_testshade.osl says how), at both levels. Expected: layers/trace_testshade.expected,
 // from OSL 1.13.12 (`testshade -g 3 3 trace_testshade`; testshade's final blank line added here).
