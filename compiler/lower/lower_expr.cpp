@@ -407,7 +407,13 @@ int Lowerer::incdec(const ast::IncDecExpr* e) {
     old = temp(t);
     emit(ir::Opcode::Assign, {old, cur}, 1, e);
   }
-  int one = t.base == ir::BaseType::Int ? ir::intern_int(sh_, 1) : ir::intern_float(sh_, 1.0f);
+  // 1 for every component: a float for a triple (broadcast by the add), all sixteen elements of
+  // a matrix (OSL 1.13.12: `matrix m = matrix(2); m++;` is 3 on the diagonal and 1 elsewhere).
+  int one = t.base == ir::BaseType::Int ? ir::intern_int(sh_, 1)
+            : t.base == ir::BaseType::Matrix
+                ? ir::intern_const(sh_, t,
+                                   std::vector<ir::ConstValue>(16, ir::ConstValue::of_float(1.0f)))
+                : ir::intern_float(sh_, 1.0f);
   int res = dst.whole() ? dst.sym : temp(t);
   emit(e->increment ? ir::Opcode::Add : ir::Opcode::Sub, {res, cur, one}, 1, e);
   store(dst, res, e);

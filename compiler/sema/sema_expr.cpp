@@ -440,7 +440,8 @@ void Sema::incdec(ast::IncDecExpr* e) {
   expr(e->operand);
   e->type = e->operand->type;
   if (e->type.is_error()) return;
-  if (!e->type.is_numeric()) {
+  // ints and floats, and as oslc allows, triples and matrices (every component steps by 1)
+  if (!e->type.is_numeric() && !e->type.is_triple() && !e->type.is_matrix()) {
     error(DiagId::err_bad_unary, e->range, {e->increment ? "++" : "--", tname(e->type)});
     return;
   }
