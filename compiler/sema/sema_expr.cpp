@@ -92,6 +92,13 @@ void Sema::convert(ExprPtr& e, const Type& to) {
 }
 
 void Sema::convert_assign(ExprPtr& e, const Type& to, const std::string& name) {
+  // A shorter array of the same element type fills the first elements, the rest keeping what
+  // they held (oslc accepts it: float[3] into float[5] gives 1 2 3 9 9 over 9s; a longer one is
+  // an error, as in oslc).
+  if (e->type.is_array() && to.is_array() && !e->type.is_unsized_array() &&
+      !to.is_unsized_array() && e->type.base == to.base && e->type.strct == to.strct &&
+      e->type.arraylen < to.arraylen)
+    return;
   if (e->type.is_float() && to.is_int()) {
     error(DiagId::warn_lose_precision, e->range, {"int", name, "float"});
     coerce(e, to);
