@@ -101,7 +101,9 @@ struct Knots {
   const float* kdx;
   const float* kdy;
   int n, comps, c;
+  // Knot i; 0 outside [0, n) (where OSL, given fewer than four knots, reads past the array).
   Md at(int i) const {
+    if (i < 0 || i >= n) return Md{0, 0, 0, kdx != nullptr};
     size_t k = size_t(i) * size_t(comps) + size_t(c);
     return kdx ? Md{v[k], kdx[k], kdy[k], true} : Md{v[k], 0, 0, false};
   }
@@ -112,11 +114,16 @@ struct Knots {
 // + tk3 with t the position in the segment, as duals where x or the knots carry derivatives.
 // A clamped x (outside [0, 1], or NaN, which reads as 0) carries no derivatives of its own;
 // "constant" returns knots[k+1] without derivatives.
+// Fewer than four knots leave OSL's segment count (n - 4) / step + 1 at zero or below and its
+// segment index negative: its degenerate segment is evaluated the same way here, the knots it
+// would read before the first (or past the last) as 0 (OSL reads whatever memory is there; at
+// the ends of such a segment those weigh nothing: spline("linear", 0.25, {5, 7, 9}) is 7 in
+// OSL 1.13.12, as "catmull-rom" and "bspline" are).
 Md eval(const Basis& b, Md x, const Knots& kn) {
-  if (kn.n < 4) return Md{0, 0, 0, x.d || kn.kdx};
+  if (kn.n < 1) return Md{0, 0, 0, x.d || kn.kdx};
   bool clamped = !(x.v >= 0 && x.v <= 1); // NaN too: it reads as 0
   if (clamped) x = Md{x.v > 1 ? 1.0f : 0.0f, 0, 0, false};
-  int nsegs = (kn.n - 4) / b.step + 1;
+  int nsegs = (kn.n - 4) / b.step + 1; // C's division: toward zero
   Md xs = scaled(float(nsegs), x);
   int seg = std::min(int(xs.v), nsegs - 1);
   int first = seg * b.step;
