@@ -7,10 +7,12 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <optional>
 
 namespace lobe::shadeops {
 
@@ -245,9 +247,24 @@ bool oiio_linear(std::string_view s) {
 struct OiioCurve {
   float (*f)(float);
   float (*df)(float);
+  bool gamma = false; // a gamma curve (f, df null): x to `power`, through fast_pow_pos
+  float power = 0;
 };
-// The curve OIIO applies from `from` to `to`, or {} when it has none.
+// OIIO's "GammaX.Y" (any case): X.Y as a float, 0 when there is no number.
+std::optional<float> oiio_gamma(std::string_view s) {
+  if (s.size() < 5 || !iequals(s.substr(0, 5), "gamma")) return std::nullopt;
+  std::string rest(s.substr(5));
+  char* end = nullptr;
+  float g = std::strtof(rest.c_str(), &end);
+  return end == rest.c_str() ? 0.0f : g;
+}
+// The curve OIIO applies from `from` to `to`, or {} when it has none: sRGB and Rec709 curves
+// between them and a linear space, and a gamma curve between a linear space and "GammaX.Y"
+// (OSL 1.13.12: transformc("linear", "Gamma2.2", color(.2, .5, .8)) is 0.481156 0.729737
+// 0.903545, as fast_pow_pos computes x^(1/2.2)).
 OiioCurve oiio_curve_for(std::string_view from, std::string_view to) {
+  if (auto g = oiio_gamma(to); g && oiio_linear(from)) return {nullptr, nullptr, true, 1.0f / *g};
+  if (auto g = oiio_gamma(from); g && oiio_linear(to)) return {nullptr, nullptr, true, *g};
   if (oiio_linear(from) && iequals(to, "sRGB")) return {oiio_linear_to_srgb, d_linear_to_srgb};
   if (oiio_linear(from) && iequals(to, "Rec709"))
     return {oiio_linear_to_rec709, d_linear_to_rec709};
@@ -256,8 +273,12 @@ OiioCurve oiio_curve_for(std::string_view from, std::string_view to) {
     return {oiio_rec709_to_linear, d_rec709_to_linear};
   return {nullptr, nullptr};
 }
-float apply(const OiioCurve& k, float x) { return k.f(x); }
-DualF apply(const OiioCurve& k, const DualF& x) { return oiio_curve(x, k.f, k.df); }
+float apply(const OiioCurve& k, float x) { return k.f ? k.f(x) : fast_pow_pos(x, k.power); }
+DualF apply(const OiioCurve& k, const DualF& x) {
+  if (k.f) return oiio_curve(x, k.f, k.df);
+  float d = k.power * safe_pow(x.v, k.power - 1.0f); // the exact slope (OSL's not measured)
+  return {fast_pow_pos(x.v, k.power), d * x.dx, d * x.dy};
+}
 
 bool is_linear_rgb(std::string_view s) { return s == "rgb" || s == "RGB" || s == "linear"; }
 
@@ -534,7 +555,7 @@ bool ColorSystem::transform_impl(std::string_view from, std::string_view to, con
   if (known) return true;
   // Either name is not OSL's own: the pair goes to OpenImageIO, as named.
   OiioCurve k = oiio_curve_for(from, to);
-  if (!k.f) {
+  if (!k.f && !k.gamma) {
     out = c;
     return false;
   }
