@@ -122,6 +122,8 @@ void apply_options(ShadeJob& job) {
       job.compile.lockgeom_default = to_i(value) != 0;
     } else if (name == "range_checking") {
       job.range_checking = to_i(value) != 0;
+    } else if (name == "lazylayers") {
+      job.compile.lazy_layers = to_i(value) != 0;
     } else if (name == "userdata_isconnected") {
       job.userdata_isconnected = to_i(value) != 0;
     } else if (name == "error_repeats") {

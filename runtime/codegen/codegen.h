@@ -71,6 +71,8 @@ struct GroupPlan {
   bool fast_math = true;             // CompileOptions::fast_math: the math shadeops' math::MathMode
   int opt_level = 2;                 // CompileOptions::opt_level (messages OSL words by its level)
   bool userdata_isconnected = false; // CompileOptions::userdata_isconnected
+  bool lazy_layers = true;           // CompileOptions::lazy_layers
+  bool explicit_entries = false;     // the group names its entry layers (ShaderGroup::entry_layers)
   // Bounded loops (CompileOptions::max_loop_iterations): with loop_count_offset >= 0, every
   // backward jump (a loop's back edge) counts down a per-layer-run counter of
   // kLoopChunk iterations; when it runs out the layer calls lobe_loop_check, which adds the

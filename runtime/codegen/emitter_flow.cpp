@@ -391,11 +391,13 @@ std::string emit_group(const GroupPlan& plan, llvm::Module& module, HostSymbols&
   llvm::Value* sg = entry->getArg(0);
   llvm::Value* gd = entry->getArg(1);
   // The entry layers in order, each unless it already ran (lazily, for an earlier one); with
-  // none marked, the last layer.
-  bool any_entry = false;
+  // none marked, the last layer. Without lazy layers (and with no entry layers named, where
+  // testshade stays lazy), every layer the group kept, in order.
+  bool any_entry = false, eager = !plan.lazy_layers && !plan.explicit_entries;
   for (const LayerPlan& lp : plan.layers) any_entry |= lp.entry;
   for (size_t i = 0; i < plan.layers.size(); ++i) {
-    if (!(any_entry ? plan.layers[i].entry : i + 1 == plan.layers.size())) continue;
+    bool runs = eager || (any_entry ? plan.layers[i].entry : i + 1 == plan.layers.size());
+    if (!runs) continue;
     llvm::Value* ran = b.CreateLoad(
         b.getInt32Ty(), b.CreateConstInBoundsGEP1_64(b.getInt8Ty(), gd, plan.layers[i].ran_offset));
     auto* run = llvm::BasicBlock::Create(ctx, "run_entry", entry);

@@ -728,6 +728,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
   }
   out.groupdata.assign(off, 0);
   out.plan.group_name = group.name;
+  out.plan.explicit_entries = !group.entry_layers.empty();
   for (size_t i = 0; i < n; ++i) {
     if (!needed[i]) continue;
     size_t li = size_t(new_index[i]);

@@ -126,6 +126,7 @@ std::string ShadingSystem::Impl::cache_key(const ShaderGroup& g,
   key += options.lockgeom_default ? "" : "u";
   key += options.userdata_isconnected ? "c" : "";
   key += options.range_checking ? "" : "r";
+  key += options.lazy_layers ? "" : "e";
   key += options.debug_nan ? "N" : "";
   key += options.debug_uninit ? "U" : "";
   key += options.fast_math ? "" : "x";
@@ -200,6 +201,7 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   b.plan.fast_math = options.fast_math;
   b.plan.opt_level = options.opt_level;
   b.plan.userdata_isconnected = options.userdata_isconnected;
+  b.plan.lazy_layers = options.lazy_layers;
   b.plan.max_loop_iterations = options.max_loop_iterations;
   b.plan.debug_nan = options.debug_nan;
   b.plan.debug_uninit = options.debug_uninit;

@@ -525,6 +525,21 @@ TEST(ShadeCli, OnceAssignedLocalsAreConstantsAtO2) {
   EXPECT_EQ(run("-O2 -g 2 1 branch_only_constant"), "x 1 c 1 2 3\nx 1 c 1 2 3\n\n");
 }
 
+// --options lazylayers=0 runs every layer the group needs at the start of each shade, in order,
+// lazylayers=1 (the default) an upstream one when its output is first read. Expected: OSL
+// 1.13.12, `testshade -O<n> -g 2 1 --options lazylayers=<L> -layer A eager_up -layer B
+// eager_down -connect A o B x`, and (-O0) with elide_computed/elide_reader.
+TEST(ShadeCli, LazyLayersOptionAsTestshade) {
+  const std::string g = "-g 2 1 -layer A eager_up -layer B eager_down -connect A o B x";
+  EXPECT_EQ(both("--options lazylayers=0 " + g),
+            "Connect A.o to B.x\neager_up 0\neager_down skips\neager_up 1\neager_down 11\n\n");
+  EXPECT_EQ(both("--options lazylayers=1 " + g),
+            "Connect A.o to B.x\neager_down skips\neager_up 1\neager_down 11\n\n");
+  EXPECT_EQ(run("-O0 -g 1 1 --options lazylayers=0 -layer A elide_computed -param:type=int use 0 "
+                "-layer B elide_reader -connect A o B i"),
+            "Connect A.o to B.i\nelide_computed ran\nreader ignores i\n\n");
+}
+
 // trace() and getmessage("trace", ...) answer as testshade's stand-in renderer does (no scene:
 // layers/trace_testshade.osl says how), at both levels. Expected: layers/trace_testshade.expected,
 // from OSL 1.13.12 (`testshade -g 3 3 trace_testshade`; testshade's final blank line added here).

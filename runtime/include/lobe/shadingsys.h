@@ -115,6 +115,10 @@ struct CompileOptions {
   // value found so is set to zero). All three are part of the material cache key.
   bool range_checking = true;
   bool debug_nan = false;
+  // OSL's "lazylayers": true runs an upstream layer the first time a downstream one reads its
+  // output; false runs every layer the group needs, in order, at the start of each shade
+  // (testshade's --options lazylayers=0). Part of the material cache key.
+  bool lazy_layers = true;
   bool debug_uninit = false;
   // The RGB space shader colours are in (OSL's ShadingSystem "colorspace", testshade's
   // --colorspace): it sets the XYZ matrices of transformc and color("XYZ", ...), luminance's
