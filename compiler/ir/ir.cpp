@@ -88,6 +88,12 @@ const char* to_string(ShaderType t) {
 }
 
 bool in_conditional(const Shader& sh, int at) {
+  // A loop body: between a back edge's target and the back edge (a do-while's body comes before
+  // its cbr, and for(;;) has none).
+  for (size_t k = size_t(std::max(at, sh.main_begin)); k < sh.ops.size(); ++k)
+    if (is_jump(sh.ops[k].opcode))
+      for (int j : sh.ops[k].jumps)
+        if (j <= at) return true;
   for (int c = sh.main_begin; c < at; ++c) {
     const Op& op = sh.ops[size_t(c)];
     if (op.opcode != Opcode::Cbr) continue;

@@ -172,8 +172,8 @@ struct Shader {
 
 // Whether op `at` of the main code lies inside a conditional construct (an if or else branch, a
 // loop's body), as OSL's runtime optimiser counts it: between a `cbr` and the join its branches
-// reach (a branch's jumps forward past the join widen it; a loop's back edge does not). An
-// early exit() or return before the op does not make it conditional.
+// reach (a branch's jumps forward past the join widen it), or between a loop's back edge and its
+// target. An early exit() or return before the op does not make it conditional.
 bool in_conditional(const Shader& shader, int at);
 
 } // namespace lobe::ir

@@ -64,7 +64,7 @@ inline constexpr uint8_t kValue = kPure;               // value ops without deri
   X(Add,              "add",               3, 3,         1, 0,  kArith,      "a = b + c (closures: sum of closures)") \
   X(Sub,              "sub",               3, 3,         1, 0,  kArith,      "a = b - c") \
   X(Mul,              "mul",               3, 3,         1, 0,  kArith,      "a = b * c (matrix product; closure scaled by float or color)") \
-  X(Div,              "div",               3, 3,         1, 0,  kArith,      "a = b / c, 0 where c == 0 (matrix: b * inverse(c))") \
+  X(Div,              "div",               3, 3,         1, 0,  kArith,      "a = b / c, 0 where c == 0 (matrix: b * inverse(c); matrix / float plainly)") \
   X(Mod,              "mod",               3, 3,         1, 0,  kArith,      "a = b % c: int remainder / fmod, 0 where c == 0") \
   X(Neg,              "neg",               2, 2,         1, 0,  kArith,      "a = -b (closure: scaled by -1)") \
   X(Eq,               "eq",                3, 3,         1, 0,  kValue,      "a = (b == c) as int 0/1; triples/matrices: all components") \

@@ -1,6 +1,7 @@
 // Implements fold_constants: one forward walk over the ops with a per-block map from symbol to
 // the Const symbol holding its current value (cleared at jump targets, region starts and after
-// jumps, where values from other paths could arrive).
+// jumps, where values from other paths could arrive), and, in the runtime's pass, the locals
+// known in every block (once_assigned_constants).
 #include "passes/constfold.h"
 #include "ir/edit.h"
 #include "ir/opcodes.h"

@@ -672,9 +672,10 @@ int Shade::run() {
   for (const ShadeOutput& o : job_.outputs)
     g.renderer_outputs.push_back(o.layer.empty() ? o.var : o.layer + "." + o.var);
   for (const std::string& e : job_.entry_layers) g.entry_layers.push_back(e);
-  // --entryoutput: as testshade, an output the group keeps: a layer's output parameter of that
+  // --entryoutput: as testshade, a parameter the group keeps: a layer's output parameter of that
   // name that a connection reads or the renderer reads (-o; any, at -O0, where nothing is
-  // optimised away). The names found are announced after compiling; the first not found stops
+  // optimised away), or an input parameter a connection leads into; "layer.name" names one
+  // layer's. The names found are announced after compiling; the first not found stops
   // there ("Entry output NAME not found. Abording.", exit status 1).
   std::string entry_outputs = "Entry outputs:", missing_output;
   std::set<std::string> output_layers; // the layers the entry outputs were found in
@@ -691,7 +692,8 @@ int Shade::run() {
       auto leads = [&](const std::string& param, const std::string& p) {
         return param == p || param.rfind(p + ".", 0) == 0 || param.rfind(p + "[", 0) == 0;
       };
-      for (size_t k = 0; k < g.layers.size() && !kept; ++k) {
+      // From the last layer back, as OSL's ShaderGroup::find_symbol looks a plain name up.
+      for (size_t k = g.layers.size(); k-- > 0 && !kept;) {
         const std::string& layer = g.layers[k].name;
         if (!only_layer.empty() && layer != only_layer) continue;
         int si = shaders[k] ? shaders[k]->find_symbol(name) : -1;

@@ -265,7 +265,10 @@ Val transform_dual(LayerEmitter& e, llvm::Value* m, const Val& x, int kind, bool
     return e.reload(out, 3);
   };
   Val r = from_values(apply(values(x), kind));
-  if (kind == 0 && derivs && x[0].dx) {
+  // Any component's derivatives count (a constructor's constant components have none).
+  bool moves = false;
+  for (const Dual& c : x) moves = moves || c.dx || c.dy;
+  if (kind == 0 && derivs && moves) {
     // A point's derivatives through the whole projective map, as OSL's dual arithmetic
     // computes them: a = p.M's column j (plus its translation), w = p.M's last column, and each
     // component a / w differentiated by the quotient rule, (1/w) (a' - (a/w) w'); 0 where w is
@@ -294,7 +297,7 @@ Val transform_dual(LayerEmitter& e, llvm::Value* m, const Val& x, int kind, bool
       r[size_t(j)].dx = d(col(j, part(x[0].dx), part(x[1].dx), part(x[2].dx), false), wdx);
       r[size_t(j)].dy = d(col(j, part(x[0].dy), part(x[1].dy), part(x[2].dy), false), wdy);
     }
-  } else if (derivs && x[0].dx) {
+  } else if (derivs && moves) {
     std::vector<llvm::Value*> dx, dy;
     for (const Dual& c : x) {
       dx.push_back(c.dx ? c.dx : e.fconst(0));

@@ -33,8 +33,8 @@ using Color3d = Color3T<DualF>; // value and derivatives
 class ColorSystem {
 public:
   // The named RGB spaces, as OSL 1.13 names them (case-sensitive): Rec709 (the default), sRGB
-  // (the same primaries), NTSC, EBU, PAL, SECAM, SMPTE, HDTV, CIE, AdobeRGB, ACEScg. Null for
-  // any other name. The result lives for the whole process.
+  // (the same primaries), NTSC, EBU, PAL, SECAM, SMPTE, HDTV, CIE, AdobeRGB, ACEScg, ACES2065-1,
+  // XYZ. Null for any other name. The result lives for the whole process.
   static const ColorSystem* find(std::string_view name);
   static const ColorSystem& rec709();
   static const std::vector<std::string>& names();

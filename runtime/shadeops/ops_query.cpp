@@ -133,9 +133,7 @@ int lobe_trace(lobe::ShaderGlobals* sg, const float* p, const float* dpdx, const
   return h.hit ? 1 : 0;
 }
 
-// getattribute([object,] name, [index,] dest): OSL's own attributes first, then the renderer.
-// `object` is null when the shader named none; `index` is INT_MIN when it gave no index. Returns 1
-// when `dest` was written.
+// raytype(name) for a name known only per shade (a constant one is folded by codegen).
 int lobe_raytype_bit(const char* name) {
   static const std::pair<const char*, int> kNames[] = {
       {"camera", lobe::kRayCamera},         {"shadow", lobe::kRayShadow},
@@ -147,6 +145,9 @@ int lobe_raytype_bit(const char* name) {
   return 0;
 }
 
+// getattribute([object,] name, [index,] dest): OSL's own attributes first, then the renderer.
+// `object` is null when the shader named none; `index` is INT_MIN when it gave no index. Returns 1
+// when `dest` was written.
 int lobe_getattribute(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, const char* object,
                       const char* name, int index, int code, int derivs, void* dest,
                       const char* shadername, const char* layername, const char* groupname) {

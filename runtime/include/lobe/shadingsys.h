@@ -140,7 +140,7 @@ struct CompileOptions {
 };
 
 // The colour spaces CompileOptions::colorspace accepts: Rec709, sRGB, NTSC, EBU, PAL, SECAM,
-// SMPTE, HDTV, CIE, AdobeRGB, ACEScg (case-sensitive, as OSL's).
+// SMPTE, HDTV, CIE, AdobeRGB, ACEScg, ACES2065-1, XYZ (case-sensitive, as OSL's).
 const std::vector<std::string>& colorspace_names();
 // "" when `name` is one of them (or empty: the default), else OSL's message for it: `Unknown color
 // space "NAME"` (testshade prints it once, as "ERROR: " + message, and keeps Rec709).
