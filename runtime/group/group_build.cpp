@@ -576,10 +576,10 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         len[l.dst.symbol] = src.symbols[size_t(ss)].type.arraylen;
     }
     size_unsized_params(*sh, len);
-    // OSL -O2 answers isconnected() for the connections as made, also those a known value is
-    // about to replace (whose upstream layer then may not run at all): resolve it now.
-    if (specialize && elide_known_outputs)
-      resolve_isconnected(*sh, int(i), links, interp[i], out.plan.userdata_isconnected);
+    // OSL answers isconnected() for the connections as made, also those a known value is about
+    // to replace at -O2 (whose upstream layer then may not run at all) and those into layers
+    // that never run: resolve it now, at every level.
+    resolve_isconnected(*sh, int(i), links, interp[i], out.plan.userdata_isconnected);
     // OSL -O2: whole connections from outputs of known value become that value.
     if (specialize && elide_known_outputs)
       for (Link& l : links) {
