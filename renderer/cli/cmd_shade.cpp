@@ -371,7 +371,22 @@ bool Shade::reparameter(ShaderGroup::Layer& l, const ShadeReparam& r) {
   for (const ir::Metadata& m : s.metadata)
     interactive = interactive || (m.name == "interactive" && m.type.base == ir::BaseType::Int &&
                                   !m.value.empty() && m.value[0].i != 0);
-  if (!interactive) return false;
+  if (!interactive) {
+    // testshade's error, for a parameter the group still has: any at -O0 and -O1; at -O2 one
+    // that stays a parameter (an output, a connection's destination, one taking user data),
+    // not one folded to a constant (OSL 1.13.12: `--reparam L h 5.0` on a lockgeom = 0 `h`
+    // prints it at every level, on a plain `m` only below -O2).
+    bool kept = ss_.options().opt_level < 2 || !ss_.options().specialize ||
+                s.kind == ir::SymKind::OutputParam || !ss_.options().lockgeom_default ||
+                group::metadata_lockgeom(s) == 0;
+    for (const Connection& c : job_.group.connections)
+      kept = kept || (c.dst_layer == l.name && c.dst_param == r.param);
+    if (kept)
+      std::fprintf(stderr,
+                   "ERROR: ReParameter cannot adjust %s.%s, which was not declared interactive\n",
+                   l.name.c_str(), r.param.c_str());
+    return false;
+  }
   std::string declared = ir::to_string(s.type);
   InstanceValue v = r.value;
   if (s.type.is_triple() && !s.type.is_array() && v.type == "float") {

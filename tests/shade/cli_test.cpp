@@ -412,7 +412,7 @@ TEST(ShadeCli, AttributesAsTestshadeAnswersThem) {
 // --reparam as testshade's ReParameter: a parameter interactive by its own metadata or by
 // -param:interactive=1 takes the value from the second iteration; a value of another type is
 // ignored without a word (5 for a float), a float for a colour sets its first component only.
-// Expected: OSL 1.13.12, `testshade -g 1 1 --iters 2 [-param...] -layer A reparam_print
+// Expected: OSL 1.13.12, `testshade [-O0] -g 1 1 --iters 2 [-param...] -layer A reparam_print
 // --reparam A ...`.
 TEST(ShadeCli, ReparamAsTestshade) {
   EXPECT_EQ(run("-g 1 1 --iters 2 -layer A reparam_print --reparam A f 5.0"),
@@ -423,6 +423,11 @@ TEST(ShadeCli, ReparamAsTestshade) {
                 "--reparam A c 0.25"),
             "f=1 c=0.5 0.5 0.5\nf=1 c=0.25 0.5 0.5\n\n");
   EXPECT_EQ(run("-g 1 1 --iters 2 -layer A reparam_print --reparam A c 0.25"),
+            "f=1 c=1 1 1\nf=1 c=1 1 1\n\n");
+  // A parameter not declared interactive that the group still has is an error (at -O0 every
+  // one; at -O2, as above, a plain one is folded away and nothing is said).
+  EXPECT_EQ(run("-O0 -g 1 1 --iters 2 -layer A reparam_print --reparam A c 0.25"),
+            "ERROR: ReParameter cannot adjust A.c, which was not declared interactive\n"
             "f=1 c=1 1 1\nf=1 c=1 1 1\n\n");
 }
 
