@@ -233,10 +233,11 @@ void print_group(const ShaderGroup& g, const std::vector<std::string>& shaders,
     const ShaderGroup::Layer& l = g.layers[k];
     std::printf("%s", group_params(l, irs[k], g.connections, lockgeom_default).c_str());
     std::printf("shader %s %s ;\n", shaders[k].c_str(), l.name.c_str());
+    for (const Connection& c : g.connections) // after the layer they lead into, as OSL's text
+      if (c.dst_layer == l.name)
+        std::printf("connect %s.%s %s.%s ;\n", c.src_layer.c_str(), c.src_param.c_str(),
+                    c.dst_layer.c_str(), c.dst_param.c_str());
   }
-  for (const Connection& c : g.connections)
-    std::printf("connect %s.%s %s.%s ;\n", c.src_layer.c_str(), c.src_param.c_str(),
-                c.dst_layer.c_str(), c.dst_param.c_str());
   std::printf("\n---\n\nShader group \"%s\" layers are:\n", g.name.c_str());
   for (size_t k = 0; k < g.layers.size(); ++k) {
     std::printf("    %s\n", g.layers[k].name.c_str());

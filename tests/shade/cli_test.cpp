@@ -454,6 +454,19 @@ TEST(ShadeCli, OslqueryListsTheLayersParameters) {
             "\toutput float s.a\n\toutput color s.c\n\n\n");
 }
 
+// -v prints each connection after the layer it leads into, as OSL's group text has them.
+// Expected: OSL 1.13.12, `testshade -g 1 1 -v -layer A elide_computed -layer B elide_reader
+// -layer C eager_down -connect A o B i -connect A o2 C x`.
+TEST(ShadeCli, VerboseConnectionsFollowTheirLayer) {
+  EXPECT_EQ(run_here("-g 1 1 -v -layer A elide_computed -layer B elide_reader -layer C eager_down "
+                     "-connect A o B i -connect A o2 C x"),
+            "Connect A.o to B.i\nConnect A.o2 to C.x\nShader group:\n---\n"
+            "shader elide_computed A ;\nshader elide_reader B ;\nconnect A.o B.i ;\n"
+            "shader eager_down C ;\nconnect A.o2 C.x ;\n\n---\n\n"
+            "Shader group \"unnamed_group_1\" layers are:\n    A\n    B\n    C\n\n"
+            "eager_down skips\n\n");
+}
+
 // The layer named after a shader given as a file is the name without folder or extension
 // (OSL 1.13.12: `testshade -g 1 1 gac.oso` prints gac_0 for getattribute("shader:layername")).
 TEST(ShadeCli, LayerNamesDropTheExtension) {
