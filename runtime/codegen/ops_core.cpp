@@ -149,6 +149,15 @@ void closure_arith(LayerEmitter& e, const ir::Op& op) {
   e.store(op.args[0], Val{Dual{r}});
 }
 
+// A div op's divisor when it is a constant: all zero (an empty value is zero) or not.
+enum class ConstDivisor { None, Zero, Nonzero };
+ConstDivisor const_divisor(LayerEmitter& e, const ir::Op& op) {
+  if (op.opcode != ir::Opcode::Div || op.args.size() < 3) return ConstDivisor::None;
+  const ir::Symbol& d = e.arg(op, 2);
+  if (d.kind != ir::SymKind::Const) return ConstDivisor::None;
+  return d.init.empty() || ir::const_all(d, 0) ? ConstDivisor::Zero : ConstDivisor::Nonzero;
+}
+
 // Matrix arithmetic: products and inverses through shadeops, the rest per element.
 void matrix_arith(LayerEmitter& e, const ir::Op& op) {
   bool am = e.arg(op, 1).type.base == BaseType::Matrix;
@@ -194,9 +203,7 @@ void matrix_arith(LayerEmitter& e, const ir::Op& op) {
                  : e.load_as(op, 2, BaseType::Matrix, false);
   // matrix / float divides plainly (a zero divisor gives inf, nan for 0 / 0), as OSL's Imath
   // operator does at run time; only OSL's -O2 folds a constant zero divisor to a zero matrix.
-  const ir::Symbol* divisor = op.opcode == ir::Opcode::Div ? &e.arg(op, 2) : nullptr;
-  bool folded_zero = divisor && divisor->kind == ir::SymKind::Const && e.group().opt_level >= 2 &&
-                     (divisor->init.empty() || ir::const_all(*divisor, 0));
+  bool folded_zero = e.group().opt_level >= 2 && const_divisor(e, op) == ConstDivisor::Zero;
   Val r(16);
   for (size_t i = 0; i < 16; ++i) {
     Dual x = scalar_a ? a[0] : a[i];
@@ -247,10 +254,8 @@ void arith(LayerEmitter& e, const ir::Op& op) {
   Val a = e.load_as(op, 1, t, derivs);
   Val b = unary ? Val{} : e.load_as(op, 2, t, derivs);
   if (derivs && !unary && op.opcode != ir::Opcode::Mod) zero_missing_derivs(e, a, b);
-  const ir::Symbol* divisor = op.opcode == ir::Opcode::Div ? &e.arg(op, 2) : nullptr;
-  // A constant divisor all zero (an empty value is zero) divides safely, as OSL's does.
-  bool plain_div = divisor && divisor->kind == ir::SymKind::Const && !divisor->init.empty() &&
-                   !ir::const_all(*divisor, 0);
+  // A constant divisor all zero divides safely, as OSL's does; another plainly.
+  bool plain_div = const_divisor(e, op) == ConstDivisor::Nonzero;
   DualOps d(e);
   Val r(a.size());
   for (size_t i = 0; i < a.size(); ++i) {

@@ -623,15 +623,10 @@ void op_query(LayerEmitter& e, const ir::Op& op) {
     e.store(op.args[0], e.convert(r, BaseType::Float, e.arg(op, 0).type.base));
     return;
   } else if (o == ir::Opcode::IsConnected) {
-    int s = op.args[1], v = 0;
-    for (const ConnectionPlan& c : e.group().layers[size_t(e.layer())].connections)
-      v |= c.dst_symbol == s ? 1 : 0;
-    for (const LayerPlan& lp : e.group().layers)
-      for (const ConnectionPlan& c : lp.connections)
-        v |= (c.src_layer == e.layer() && c.src_symbol == s) ? 2 : 0;
-    const std::vector<bool>& user = e.group().layers[size_t(e.layer())].userdata;
-    if (e.group().userdata_isconnected && size_t(s) < user.size() && user[size_t(s)]) v |= 1;
-    r = Val{Dual{e.iconst(v)}};
+    // The group builder answers every isconnected() from the connections as made, before
+    // codegen (runtime/group/group_build.cpp, resolve_isconnected); a plan built by hand,
+    // without it, has none.
+    r = Val{Dual{e.iconst(0)}};
   } else if (o == ir::Opcode::IsConstant) {
     // A constant of the shader as written; specialisation resolves isconstant before it turns
     // params into constants (runtime/group/group_build.cpp), so the answer is the same.

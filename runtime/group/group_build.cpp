@@ -175,6 +175,13 @@ std::set<int> written_symbols(const ir::Shader& sh) {
   return w;
 }
 
+// A query op (isconstant, isconnected) answered before shading: `dst = value`.
+void answer_with(ir::Shader& sh, ir::Op& op, int value) {
+  op.opcode = ir::Opcode::Assign;
+  op.args = {op.args[0], ir::intern_int(sh, value)};
+  op.written_mask = 1;
+}
+
 // Instance values -> constants; unconnected, unwritten params with known values -> Const.
 void specialize_layer(ir::Shader& sh,
                       const std::map<std::string, std::vector<ir::ConstValue>>& values,
@@ -182,19 +189,9 @@ void specialize_layer(ir::Shader& sh,
                       bool osl_o2) {
   // isconstant answers for the shader before specialisation (docs/language.md), as codegen
   // does without it: resolve it now, before params become constants.
-  for (ir::Op& op : sh.ops) {
-    if (op.opcode != ir::Opcode::IsConstant || op.args.size() != 2) continue;
-    ir::Symbol c;
-    c.name = "$isconstant" + std::to_string(sh.symbols.size());
-    c.type = ir::Type{ir::BaseType::Int, 0};
-    c.kind = SymKind::Const;
-    bool k = sh.symbols[size_t(op.args[1])].kind == SymKind::Const;
-    c.init = {ir::ConstValue{k ? 1 : 0, 0.0f, ""}};
-    sh.symbols.push_back(c);
-    op.opcode = ir::Opcode::Assign;
-    op.args = {op.args[0], int(sh.symbols.size()) - 1};
-    op.written_mask = 1;
-  }
+  for (ir::Op& op : sh.ops)
+    if (op.opcode == ir::Opcode::IsConstant && op.args.size() == 2)
+      answer_with(sh, op, sh.symbols[size_t(op.args[1])].kind == SymKind::Const ? 1 : 0);
   std::set<int> written = written_symbols(sh);
   for (size_t i = 0; i < sh.symbols.size(); ++i) {
     ir::Symbol& s = sh.symbols[i];
@@ -396,15 +393,7 @@ void resolve_isconnected(ir::Shader& sh, int layer, const std::vector<Link>& lin
       if (l.src_layer == layer && l.src.symbol == name) v |= 2;
     }
     if (userdata_isconnected && userdata.count(name)) v |= 1;
-    ir::Symbol c;
-    c.name = "$isconnected" + std::to_string(sh.symbols.size());
-    c.type = ir::Type{ir::BaseType::Int, 0};
-    c.kind = SymKind::Const;
-    c.init = {ir::ConstValue{v, 0.0f, ""}};
-    sh.symbols.push_back(c);
-    op.opcode = ir::Opcode::Assign;
-    op.args = {op.args[0], int(sh.symbols.size()) - 1};
-    op.written_mask = 1;
+    answer_with(sh, op, v);
   }
 }
 
