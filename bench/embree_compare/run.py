@@ -9,6 +9,7 @@ triangles), grey Lambert 0.5, uniform light of radiance 1 (`pathtracer --ambient
 Lobe: a constant environment), max path length 8.
 
 1. Equal spp: whole-process wall time of `pathtracer` and `lobe render` at --spp, interleaved
+   (Lobe with --no-aovs: both write the image alone, no albedo/normal/depth channels)
    (rep, renderer), --reps times; medians and the Embree/Lobe ratio (above 1: Lobe faster).
    Lobe's own split is printed from `lobe render --stats`.
 2. Error against time: each renderer at the --curve sample counts, relMSE (mean over pixels and
@@ -112,9 +113,10 @@ class Lobe:
         self.a, self.d, self.scene, self.name = a, d, scene, name
 
     def cmd(self, spp, out, seed=1, extra=()):
-        return ([self.a.lobe, "render", self.scene, "--res", str(self.a.res), str(self.a.res),
-                 "--spp", str(spp), "--max-depth", "8", "--threads", str(self.a.threads),
-                 "--seed", str(seed), "-q", "-o", out + ".exr"] + list(extra)), out + ".exr"
+        cmd = [self.a.lobe, "render", self.scene, "--res", str(self.a.res), str(self.a.res),
+               "--spp", str(spp), "--max-depth", "8", "--threads", str(self.a.threads),
+               "--seed", str(seed), "-q", "--no-aovs", "-o", out + ".exr"]
+        return cmd + list(extra), out + ".exr"
 
 
 class TestRender:

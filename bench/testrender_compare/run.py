@@ -82,7 +82,7 @@ def testrender_cmd(a, aa, out, res=None):
 def lobe_cmd(a, spp, out, seed=1, res=None, extra=()):
     res = res or a.res
     return [a.lobe, "render", "scene.xml", "--res", str(res[0]), str(res[1]), "--spp", str(spp),
-            "--threads", str(a.threads), "--seed", str(seed), "-q", "-o", out] + list(extra)
+            "--threads", str(a.threads), "--seed", str(seed), "-q", "--no-aovs", "-o", out] + list(extra)
 
 
 def main():

@@ -83,7 +83,7 @@ struct Args {
   long long seed = -1;
   long long max_loop_iterations = 100000000;
   float exposure = 0, clamp = -1;
-  bool quiet = false, stats = false;
+  bool quiet = false, stats = false, no_aovs = false;
   std::string progress = "auto";
 };
 
@@ -176,6 +176,8 @@ int run_render(int argc, char** argv) {
                  "(0: unlimited, -1: no checks)")
       ->check(CLI::Range(-1LL, 1LL << 62));
   app.add_flag("-q,--quiet", a.quiet, "no progress or summary");
+  app.add_flag("--no-aovs", a.no_aovs,
+               "an .exr holds R, G, B only (no albedo, normal, depth: not computed either)");
   app.add_flag("--stats", a.stats,
                "after the summary: set-up times by stage, the render's time split (traversal, "
                "hit data, shading, BSDF, lights; sampled on one path in 8) and Embree's raw "
@@ -283,7 +285,8 @@ int run_render(int argc, char** argv) {
   opt.seed = st.seed;
   opt.threads = a.threads;
   opt.strategy = parse_strategy(a.strategy);
-  opt.aovs = lobe::image::keeps_all_channels(out); // AOV channels only where they are kept
+  // AOV channels only where they are kept, and not when declined.
+  opt.aovs = lobe::image::keeps_all_channels(out) && !a.no_aovs;
   opt.profile = a.stats;
   opt.clamp = st.clamp;
   opt.pixel_filter = st.pixel_filter;

@@ -38,6 +38,7 @@ public:
     return {o, normalize(focus_point - o)};
   }
   // World-space width of one pixel at distance 1 along the view axis (ray differentials).
+  bool has_lens() const { return lens_ > 0; }
   float pixel_spread() const { return 2 * tan_half_ / float(h_); }
   const Vec3& position() const { return eye_; }
   const Vec3& right() const { return right_; }

@@ -147,7 +147,7 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
       out.L += depth >= 2 ? clamped(contrib, clamp_) : contrib;
       lap(&P::lights);
     }
-    if (depth == 0) {
+    if (depth == 0 && aovs_) {
       lap(&P::other);
       out.albedo = v.bsdf.albedo(wo) + v.bsdf.emission;
       lap(&P::bsdf);

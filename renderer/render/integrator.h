@@ -69,6 +69,8 @@ public:
   // (NEE from the second vertex on, emission and environment found by the second and later
   // BSDF rays); 0: none. Biased (loses the energy above the cap); direct light is exact.
   void set_clamp(float c) { clamp_ = c; }
+  // First-hit AOVs (PathResult::albedo, normal, depth): computed only when wanted.
+  void set_aovs(bool on) { aovs_ = on; }
 
   PathResult trace(const Ray& camera_ray, Sampler& sampler, ShadingContext& ctx,
                    ShadingContext& light_ctx, TraceCounters& counters, bool timed = false) const;
@@ -79,6 +81,7 @@ private:
   Strategy strategy_;
   bool time_;
   float clamp_ = 0;
+  bool aovs_ = true;
 };
 
 } // namespace lobe::render

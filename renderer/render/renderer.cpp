@@ -45,6 +45,7 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
   ts.ctx.cancel = ts.light_ctx.cancel = cancel; // Ctrl-C reaches shaders in their loops
   int tiles_x = (width + kTile - 1) / kTile;
   int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
+  const bool lens = scene.camera().has_lens();
   for (int y = y0; y < std::min(y0 + kTile, height); ++y) {
     for (int x = x0; x < std::min(x0 + kTile, width); ++x) {
       if (cancel && cancel->load(std::memory_order_relaxed)) return;
@@ -53,9 +54,9 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
       Accum& a = acc[pixel];
       for (int s = s0; s < s1; ++s) {
         Sampler sampler(pixel, uint64_t(s), opt.seed);
-        float jx, jy, l1, l2;
+        float jx, jy, l1 = 0.5f, l2 = 0.5f;
         sampler.next2(jx, jy);
-        sampler.next2(l1, l2);
+        if (lens) sampler.next2(l1, l2); // a pinhole draws no lens numbers
         if (opt.pixel_filter == scene::PixelFilter::Tent) {
           jx = 0.5f + tent_warp(jx);
           jy = 0.5f + tent_warp(jy);
@@ -106,6 +107,7 @@ image::Image render_image(const RenderScene& scene, int width, int height, const
   auto t0 = std::chrono::steady_clock::now();
   PathTracer pt(scene, opt.max_depth, opt.strategy, opt.time_shading);
   pt.set_clamp(opt.clamp);
+  pt.set_aovs(opt.aovs);
   std::vector<Accum> acc(size_t(width) * height);
   tbb::enumerable_thread_specific<ThreadState> states;
   int tiles = ((width + kTile - 1) / kTile) * ((height + kTile - 1) / kTile);

@@ -137,6 +137,33 @@ TEST(RenderCli, JitErrorsAreReportedAsTheyAre) {
 
 // An instance value for a parameter the shader does not have is an error naming the file,
 // the material, the parameter and the shader's parameters, in every backend.
+// --no-aovs: the .exr holds R, G, B only, and they are the same picture, bit for bit, as the
+// beauty of the render with AOVs (the AOVs take no random numbers, so the paths are the same).
+TEST(RenderCli, NoAovsWritesTheBeautyAlone) {
+  fs::path d = temp_dir("no_aovs");
+  write_file(d / "tinted.osl", kTinted);
+  write_file(d / "s.json", furnace_json(R"({"shader": "tinted"})"));
+  std::string scene = (d / "s.json").string();
+  CmdResult with = render("--materials jit --seed 3 " + scene + " -o " + (d / "a.exr").string());
+  ASSERT_EQ(with.status, 0) << with.out;
+  CmdResult without =
+      render("--materials jit --seed 3 --no-aovs " + scene + " -o " + (d / "b.exr").string());
+  ASSERT_EQ(without.status, 0) << without.out;
+  lobe::image::Image a, b;
+  ASSERT_EQ(lobe::image::read_image((d / "a.exr").string(), a), "");
+  ASSERT_EQ(lobe::image::read_image((d / "b.exr").string(), b), "");
+  EXPECT_EQ(a.channels.size(), 10u); // R G B, albedo.R/G/B, N.X/Y/Z, Z
+  EXPECT_EQ(b.channels, (std::vector<std::string>{"R", "G", "B"}));
+  ASSERT_EQ(a.width * a.height, b.width * b.height);
+  int differ = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x)
+      for (int c = 0; c < 3; ++c) differ += a.pixel(x, y)[c] != b.pixel(x, y)[c];
+  EXPECT_EQ(differ, 0);
+  // Not all black: the furnace lights the sphere (tinted diffuse, albedo 0.25 in red).
+  EXPECT_GT(mean_channel(d / "b.exr", "R"), 0.05);
+}
+
 TEST(RenderCli, UnknownParametersAreErrors) {
   fs::path d = temp_dir("unknown_param");
   fs::path scene = d / "s.json";
