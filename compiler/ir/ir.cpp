@@ -88,6 +88,7 @@ const char* to_string(ShaderType t) {
 }
 
 bool in_conditional(const Shader& sh, int at) {
+  if (at >= 0 && size_t(at) < sh.ops.size() && sh.ops[size_t(at)].in_function) return true;
   // A loop body: between a back edge's target and the back edge (a do-while's body comes before
   // its cbr, and for(;;) has none).
   for (size_t k = size_t(std::max(at, sh.main_begin)); k < sh.ops.size(); ++k)

@@ -147,6 +147,12 @@ struct Op {
   // as written: OSL's layer elision does not take it for a copy of a global (group_build.cpp).
   // Not part of the IR text.
   bool identity_copy = false;
+  // Emitted inside the body of an inlined user function, or the store of a call's result into
+  // the variable it is assigned to (`o = g()`: oslc returns into `o` from inside the body). OSL's
+  // runtime optimiser counts such an op as conditional (a function body lies between its
+  // `functioncall` op and that op's jump target), so an output written there is not known to it
+  // (in_conditional). Printed as `%infn`.
+  bool in_function = false;
 
   bool writes(int argi) const { return (written_mask >> argi) & 1u; }
 };
@@ -173,7 +179,8 @@ struct Shader {
 // Whether op `at` of the main code lies inside a conditional construct (an if or else branch, a
 // loop's body), as OSL's runtime optimiser counts it: between a `cbr` and the join its branches
 // reach (a branch's jumps forward past the join widen it), or between a loop's back edge and its
-// target. An early exit() or return before the op does not make it conditional.
+// target; or in an inlined function's body (Op::in_function). An early exit() or return before the
+// op does not make it conditional.
 bool in_conditional(const Shader& shader, int at);
 
 } // namespace lobe::ir

@@ -282,6 +282,33 @@ TEST(IrText, ExplicitWrittenMaskSurvives) {
   EXPECT_NE(print(*r.shader).find("compref z \"x y\" z wmask=5"), std::string::npos);
 }
 
+// `%infn` (an op of an inlined function's body) reads back, with a location or without; an op
+// without it stays unmarked.
+TEST(IrText, InlinedFunctionMarkSurvives) {
+  const char* text = R"(lobe-ir 1
+surface s
+symbols
+  oparam float o = 0
+  const float $c0 = 7
+main
+  assign o $c0 %infn @s.osl:1:26
+  assign o $c0 %infn
+  assign o $c0
+end
+)";
+  ParseResult r = parse(text);
+  ASSERT_TRUE(r.shader) << r.error.to_string();
+  ASSERT_EQ(r.shader->ops.size(), 3u);
+  EXPECT_TRUE(r.shader->ops[0].in_function);
+  EXPECT_EQ(r.shader->ops[0].loc.line, 1);
+  EXPECT_TRUE(r.shader->ops[1].in_function);
+  EXPECT_FALSE(r.shader->ops[2].in_function);
+  EXPECT_EQ(print(*r.shader), text);
+  // The mark makes the op conditional in OSL's sense; the unmarked one at the top level is not.
+  EXPECT_TRUE(in_conditional(*r.shader, 0));
+  EXPECT_FALSE(in_conditional(*r.shader, 2));
+}
+
 // An unsized array param with a computed default carries the default's length as `len=N`.
 TEST(IrText, UnsizedParamDefaultLengthSurvives) {
   ParseResult r = parse(kPrograms[1]);

@@ -337,14 +337,16 @@ void Parser::op_line(std::vector<Token>& toks) {
   size_t i = 1;
   for (; i < toks.size(); ++i) {
     const Token& t = toks[i];
-    if (!t.quoted && (t.text == "->" || t.text[0] == '@' || t.text.rfind("wmask=", 0) == 0)) break;
+    if (!t.quoted &&
+        (t.text == "->" || t.text[0] == '@' || t.text[0] == '%' || t.text.rfind("wmask=", 0) == 0))
+      break;
     auto it = syms_.find(t.text);
     if (it == syms_.end()) throw Fail{t.col, "unknown symbol '" + t.text + "'"};
     op.args.push_back(it->second);
   }
   if (i < toks.size() && toks[i].text == "->") {
     for (++i; i < toks.size() && !toks[i].quoted && toks[i].text[0] != '@' &&
-              toks[i].text.rfind("wmask=", 0) != 0;
+              toks[i].text[0] != '%' && toks[i].text.rfind("wmask=", 0) != 0;
          ++i) {
       pending_.push_back(
           {int(sh_.ops.size()), int(op.jumps.size()), line_no_, toks[i].col, toks[i].text});
@@ -355,6 +357,7 @@ void Parser::op_line(std::vector<Token>& toks) {
     const Token& t = toks[i++];
     op.written_mask = uint32_t(integer(Token{t.text.substr(6), false, t.col}, "written mask"));
   }
+  if (i < toks.size() && !toks[i].quoted && toks[i].text == "%infn") op.in_function = true, ++i;
   if (i < toks.size() && !toks[i].quoted && toks[i].text[0] == '@') op.loc = loc(toks[i++]);
   if (i < toks.size()) throw Fail{toks[i].col, "unexpected '" + toks[i].text + "'"};
   sh_.ops.push_back(std::move(op));

@@ -6,7 +6,7 @@
 //     kind type name [= values] [folded] [derivs] [init=B:E] [len=N] [struct=S] [[ metadata ]]
 //     [@loc]
 //   init                          (only when there are parameter-initialisation ops)
-//     opcode args... [-> Ltarget...] [wmask=N] [@loc]
+//     opcode args... [-> Ltarget...] [wmask=N] [%infn] [@loc]
 //   main
 //   L12:                          (a label before each jump target)
 //     ...
@@ -156,6 +156,7 @@ static std::string print_op(const Shader& sh, const Op& op) {
   }
   if (info(op.opcode).written != op.written_mask)
     line += " wmask=" + std::to_string(op.written_mask);
+  if (op.in_function) line += " %infn";
   append(line, format_loc(op.loc));
   return line;
 }

@@ -113,7 +113,8 @@ TEST(Verifier, LocationsAppearInMessages) {
 
 TEST(Verifier, JumpsStayInTheirRegion) {
   // An init op jumping into the main body, and a main op jumping into the init region.
-  ParseResult r = parse(std::string(kSymbols) + "init\n  br -> Lm\nmain\n  assign x x\nLm:\n  br -> Lm\nend\n");
+  ParseResult r =
+      parse(std::string(kSymbols) + "init\n  br -> Lm\nmain\n  assign x x\nLm:\n  br -> Lm\nend\n");
   ASSERT_TRUE(r.shader) << r.error.to_string();
   r.shader->ops[2].jumps = {0};
   auto errs = verify(*r.shader);

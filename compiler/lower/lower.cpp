@@ -144,6 +144,7 @@ int Lowerer::emit(ir::Opcode opcode, std::vector<int> args, uint32_t written,
   op.written_mask = written;
   op.jumps = std::move(jumps);
   op.loc = loc(where ? where : where_);
+  op.in_function = !inlines_.empty();
   std::vector<int> reads;
   for (size_t i = 0; i < op.args.size(); ++i) {
     int s = op.args[i];

@@ -372,7 +372,13 @@ int Lowerer::assign(const ast::AssignExpr* a, int hint) {
   bool direct = dst.whole() && a->rhs->kind != K::InitList;
   if (!a->compound) {
     int v = rvalue(a->rhs.get(), direct ? dst.sym : -1);
+    size_t first = sh_.ops.size();
     store(dst, v, a);
+    // `x = f(...)` of a user function: oslc returns into x from inside f's body, so the store
+    // counts as the body's (ir::Op::in_function).
+    if (direct && a->rhs->kind == K::Call &&
+        static_cast<const ast::CallExpr*>(a->rhs.get())->callee.kind == ast::CalleeKind::User)
+      for (size_t k = first; k < sh_.ops.size(); ++k) sh_.ops[k].in_function = true;
     return dst.whole() ? dst.sym : v;
   }
   if (a->overload) { // `x op= s` with a struct s: x = __operator__op__(x, s)

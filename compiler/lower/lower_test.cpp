@@ -157,6 +157,7 @@ end
 
 // float twice(float x, output float y) { y = x * 2; return x + 1; }
 // shader: float a; float r = twice(u, a);
+// The body's ops carry %infn (ir::Op::in_function): OSL counts them as conditional.
 TEST(Lower, InliningAliasesOutputArgsAndJumpsToEndOnReturn) {
   Builder b;
   VarDecl* u = b.global("u", BaseType::Float);
@@ -202,9 +203,9 @@ symbols
   const float $c0 = 2
   const float $c1 = 1
 main
-  mul a u $c0
-  add $t0 u $c1
-  br -> L3
+  mul a u $c0 %infn
+  add $t0 u $c1 %infn
+  br -> L3 %infn
 L3:
   assign r $t0
 end

@@ -835,6 +835,19 @@ TEST(ShadeCli, UpstreamLayersOfKnownValueAreElidedAtO2) {
             "reader i 0\n\n");
   EXPECT_EQ(run("-O2 " + group("elide_after_branch", "o")),
             "Connect A.o to B.i\nreader i 3\nreader i 3\n\n");
+  // Outputs set by user functions (elide_function.osl): a body counts as conditional, and
+  // `o = five()` and `set_seven(o2)` write there, so the layer runs at -O2 too; o3, computed
+  // after the call from a local it set, is known (`testshade -O2 -g 2 1 -layer A elide_function
+  // -layer B elide_reader -connect A o3 B i`, OSL 1.13.12).
+  auto ran = [](const std::string& out, const std::string& v) {
+    return "Connect A." + out + " to B.i\nelide_function ran\nreader i " + v +
+           "\nelide_function ran\nreader i " + v + "\n\n";
+  };
+  EXPECT_EQ(both(group("elide_function", "o")), ran("o", "5"));
+  EXPECT_EQ(both(group("elide_function", "o2")), ran("o2", "7"));
+  EXPECT_EQ(run("-O0 " + group("elide_function", "o3")), ran("o3", "6"));
+  EXPECT_EQ(run("-O2 " + group("elide_function", "o3")),
+            "Connect A.o3 to B.i\nreader i 6\nreader i 6\n\n");
   // isconnected() answers for the connection as made, on both sides, and does not keep the
   // layer: at -O2 `elide_asks` does not run. (`elide_reader_asks` reads `i`.)
   const std::string asks = "-g 2 1 -layer A elide_asks -layer B elide_reader_asks -connect A o B i";
