@@ -9,19 +9,6 @@
 
 namespace lobe::render {
 
-Vec3 offset_ray_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
-  constexpr float kOrigin = 1.0f / 32.0f, kFloatScale = 1.0f / 65536.0f, kIntScale = 256.0f;
-  Vec3 n = dot(ng, dir) < 0 ? -ng : ng;
-  Vec3 out;
-  for (int i = 0; i < 3; ++i) {
-    int32_t of = static_cast<int32_t>(kIntScale * n[i]);
-    int32_t bits = std::bit_cast<int32_t>(p[i]);
-    float pi = std::bit_cast<float>(bits + (p[i] < 0 ? -of : of));
-    out[i] = std::abs(p[i]) < kOrigin ? p[i] + kFloatScale * n[i] : pi;
-  }
-  return out;
-}
-
 Geometry::~Geometry() {
   if (scene_) rtcReleaseScene(scene_);
   if (device_) rtcReleaseDevice(device_);

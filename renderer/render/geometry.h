@@ -13,6 +13,9 @@
 
 #include <embree3/rtcore.h>
 
+#include <bit>
+#include <cmath>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -31,7 +34,19 @@ struct SurfaceHit {
 // Scenes with more mesh triangles than this build their BVH at Embree's MEDIUM quality.
 constexpr size_t kMediumBuildTriangles = 200000;
 
-Vec3 offset_ray_origin(const Vec3& p, const Vec3& ng, const Vec3& dir);
+// Inline: two calls a path vertex.
+inline Vec3 offset_ray_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
+  constexpr float kOrigin = 1.0f / 32.0f, kFloatScale = 1.0f / 65536.0f, kIntScale = 256.0f;
+  Vec3 n = dot(ng, dir) < 0 ? -ng : ng;
+  Vec3 out;
+  for (int i = 0; i < 3; ++i) {
+    int32_t of = static_cast<int32_t>(kIntScale * n[i]);
+    int32_t bits = std::bit_cast<int32_t>(p[i]);
+    float pi = std::bit_cast<float>(bits + (p[i] < 0 ? -of : of));
+    out[i] = std::abs(p[i]) < kOrigin ? p[i] + kFloatScale * n[i] : pi;
+  }
+  return out;
+}
 
 class Geometry {
 public:

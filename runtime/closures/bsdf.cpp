@@ -68,14 +68,20 @@ Color3 lobe_albedo_of(const ClosureKernels* k, int id, const void* state, const 
 struct BsdfBuilder {
   Bsdf& bsdf;
   const Vec3& wo;
+  // The closure registry, looked up once per build.
+  const std::span<const registry::ClosureEntry> table = registry::closures();
   // Each lobe's albedo at wo, estimated once when first wanted (known[i]): layer() weighs its
-  // top lobes with it and build() the selection weights of two or more lobes.
-  Color3 albedo[Bsdf::kMaxLobes];
+  // top lobes with it and build() the selection weights of two or more lobes. Not
+  // initialised: only known[i] says which hold a value.
+  union Albedos {
+    Albedos() {}
+    Color3 at[Bsdf::kMaxLobes];
+  } albedo;
   bool known[Bsdf::kMaxLobes] = {};
 
   const Color3& albedo_of(int i) {
-    if (!known[i]) albedo[i] = bsdf.lobe_albedo(i, wo), known[i] = true;
-    return albedo[i];
+    if (!known[i]) albedo.at[i] = bsdf.lobe_albedo(i, wo), known[i] = true;
+    return albedo.at[i];
   }
 
   void visit(const ClosureNode* node, const Color3& w, int depth) {
@@ -87,14 +93,14 @@ struct BsdfBuilder {
     } else if (node->id == kClosureMul) {
       const auto* m = static_cast<const ClosureMul*>(node);
       visit(m->closure, w * m->weight, depth + 1);
-    } else if (node->id >= 0 && node->id < static_cast<int>(registry::closures().size())) {
+    } else if (node->id >= 0 && node->id < static_cast<int>(table.size())) {
       const auto* c = static_cast<const ClosureComponent*>(node);
       component(c->id, c->params(), w * c->weight, depth);
     }
   }
 
   void component(int id, const unsigned char* p, const Color3& w, int depth) {
-    uint32_t fl = registry::closures()[id].flags;
+    uint32_t fl = table[size_t(id)].flags;
     if (fl & registry::kLayer) return layer(p, w, depth);
     if (!usable_weight(w)) return;
     if (fl & registry::kEmission) {
@@ -120,7 +126,7 @@ struct BsdfBuilder {
       // N (a vector, the first parameter) turned back to the outside of the object when it
       // faces the viewer, i.e. points into the object (a shader that already passes the
       // outside normal keeps it).
-      const auto& params = registry::closures()[id].params;
+      const auto& params = table[size_t(id)].params;
       size_t size = registry::param_block_size(params);
       if (size > sizeof(turned) || params.empty() || params[0].type != registry::ArgType::Vector)
         return;

@@ -108,7 +108,15 @@ private:
   const void* state(int i) const { return states_[i]; }
   Color3 lobe_albedo(int i, const Vec3& wo) const;
 
-  Lobe lobes_[kMaxLobes];
+  // Lobe slots not initialised on construction: build() writes the first n_lobes_, and the
+  // rest are never read (a path's Bsdf is made on its stack; zeroing all slots showed).
+  union Slots {
+    Slots() {}
+    Lobe& operator[](int i) { return at[i]; }
+    const Lobe& operator[](int i) const { return at[i]; }
+    Lobe at[kMaxLobes];
+  };
+  Slots lobes_;
   alignas(kLobeStateAlign) unsigned char states_[kMaxLobes][kLobeStateBytes];
   int n_lobes_ = 0;
   float total_select_ = 0;
