@@ -4,6 +4,7 @@
 #include "env.h"
 #include "ir/edit.h"
 #include "ir/opcodes.h"
+#include "ir/printer.h"
 #include "lobe/memory.h"
 #include "lobe/shading.h"
 #include "passes/derivs.h"
@@ -11,6 +12,7 @@
 #include "public_diag.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
 #include <map>
 #include <set>
@@ -397,6 +399,99 @@ void resolve_isconnected(ir::Shader& sh, int layer, const std::vector<Link>& lin
   }
 }
 
+// Whether two instance-value lists give a shader the same parameter values: a parameter given
+// in one only must hold that value as its constant default (a computed default is not known
+// here). Each value compares by its parameter's type, floats by their bits.
+bool same_values(const ir::Shader& sh, const std::map<std::string, std::vector<ir::ConstValue>>& a,
+                 const std::map<std::string, std::vector<ir::ConstValue>>& b) {
+  auto same = [](const ir::Type& t, const std::vector<ir::ConstValue>& x,
+                 const std::vector<ir::ConstValue>& y) {
+    if (x.size() != y.size()) return false;
+    for (size_t k = 0; k < x.size(); ++k) {
+      bool eq = t.base == ir::BaseType::String ? x[k].s == y[k].s
+                : t.base == ir::BaseType::Int
+                    ? x[k].i == y[k].i
+                    : std::bit_cast<uint32_t>(x[k].f) == std::bit_cast<uint32_t>(y[k].f);
+      if (!eq) return false;
+    }
+    return true;
+  };
+  auto param = [&](const std::string& name) -> const ir::Symbol* {
+    int si = sh.find_symbol(name);
+    return si < 0 ? nullptr : &sh.symbols[size_t(si)];
+  };
+  auto given_only = [&](const std::string& name, const std::vector<ir::ConstValue>& v) {
+    const ir::Symbol* sym = param(name);
+    return sym && sym->init_begin < 0 && same(sym->type, sym->init, v);
+  };
+  for (const auto& [name, v] : a) {
+    auto it = b.find(name);
+    const ir::Symbol* sym = param(name);
+    if (!sym) return false;
+    if (it == b.end() ? !given_only(name, v) : !same(sym->type, v, it->second)) return false;
+  }
+  for (const auto& [name, v] : b)
+    if (!a.count(name) && !given_only(name, v)) return false;
+  return true;
+}
+
+// OSL's merging of identical instances (its opt_merge_instances, on at -O1 and -O2): layer j is
+// merged into an earlier layer i running the same shader with the same parameter values, the
+// same parameters taking user data and the same connections into it: j's connections out then
+// leave from i, and j, needed by nothing, is not built (a named entry layer still runs, its
+// outputs connected to nothing: isconnected() says 0). Neither the last layer, nor layers the
+// renderer reads outputs of, or layers with an interactive parameter (--reparam may change it
+// later) take part. As OSL 1.13.12 does all this.
+void merge_identical_layers(
+    const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
+    const std::vector<std::map<std::string, std::vector<ir::ConstValue>>>& values,
+    const std::vector<std::set<std::string>>& interp, std::vector<Link>& links) {
+  const size_t n = group.layers.size();
+  auto pinned = [&](size_t j) {
+    if (j + 1 == n) return true;
+    for (const InstanceValue& v : group.layers[j].values)
+      if (v.interactive) return true;
+    for (const ir::Symbol& s : sources[j]->symbols)
+      if (renderer_reads(group, group.layers[j].name, s.name)) return true;
+    return false;
+  };
+  auto same_endpoint = [](const Endpoint& a, const Endpoint& b) {
+    return a.symbol == b.symbol && a.elem == b.elem && a.comp == b.comp;
+  };
+  // The connections into layer `l`, in the order made.
+  auto inputs = [&](size_t l) {
+    std::vector<const Link*> in;
+    for (const Link& k : links)
+      if (k.dst_layer == int(l)) in.push_back(&k);
+    return in;
+  };
+  std::vector<std::string> text(n); // each layer's shader printed, when first compared
+  auto shader_text = [&](size_t l) -> const std::string& {
+    if (text[l].empty()) text[l] = ir::print(*sources[l]);
+    return text[l];
+  };
+  std::vector<int> merged_into(n, -1);
+  for (size_t j = 1; j < n; ++j) {
+    if (pinned(j)) continue;
+    for (size_t i = 0; i < j; ++i) {
+      if (merged_into[i] >= 0 || pinned(i) || sources[i]->name != sources[j]->name) continue;
+      if (sources[i] != sources[j] && shader_text(i) != shader_text(j)) continue;
+      if (interp[i] != interp[j]) continue;
+      if (!same_values(*sources[i], values[i], values[j])) continue;
+      std::vector<const Link*> a = inputs(i), b = inputs(j);
+      bool same_in = a.size() == b.size();
+      for (size_t k = 0; same_in && k < a.size(); ++k)
+        same_in = a[k]->src_layer == b[k]->src_layer && same_endpoint(a[k]->src, b[k]->src) &&
+                  same_endpoint(a[k]->dst, b[k]->dst);
+      if (!same_in) continue;
+      merged_into[j] = int(i);
+      for (Link& k : links)
+        if (k.src_layer == int(j)) k.src_layer = int(i);
+      break;
+    }
+  }
+}
+
 } // namespace
 
 bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
@@ -534,6 +629,10 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       links.push_back({si->second, di->second, e, d->second});
     }
   }
+
+  // OSL -O1/-O2 (its opt_merge_instances): a layer identical to an earlier one is merged into
+  // it, so that the earlier one runs once where both ran (its printf shows once).
+  if (specialize) merge_identical_layers(group, sources, values, interp, links);
 
   // Layers the last one depends on, and layers with a renderer output (which run at every
   // shade) with theirs.

@@ -858,4 +858,34 @@ TEST(ShadeCli, UpstreamLayersOfKnownValueAreElidedAtO2) {
             "Connect A.o to B.i\nreader i 2 connected 1\nreader i 2 connected 1\n\n");
 }
 
+// Identical layers merged, as OSL 1.13.12's opt_merge_instances merges them at -O1 and -O2: B
+// runs the same shader as A with the same parameter values and the same connections into it,
+// so C reads A twice and A's printf shows once (`testshade -g 1 1 -O<n> -layer A merge_mid
+// -layer B merge_mid -layer C merge_sum -connect A o C a -connect B o C b`, and the variants
+// below, their outputs OSL's).
+TEST(ShadeCli, IdenticalLayersAreMergedAtO1AndO2) {
+  const std::string abc = " -layer C merge_sum -connect A o C a -connect B o C b";
+  const std::string g = "-g 1 1 -layer A merge_mid -layer B merge_mid" + abc;
+  const std::string head = "Connect A.o to C.a\nConnect B.o to C.b\n";
+  const std::string twice = "mid t 2.5 conn 2\nmid t 2.5 conn 2\nsum 2.5 2.5 0\n\n";
+  const std::string once = "mid t 2.5 conn 2\nsum 2.5 2.5 0\n\n";
+  EXPECT_EQ(run("-O0 " + g), head + twice);
+  EXPECT_EQ(run("-O1 " + g), head + once);
+  EXPECT_EQ(run("-O2 " + g), head + once);
+  // Another value is another layer; the default's value given is the same one.
+  EXPECT_EQ(run("-g 1 1 -layer A merge_mid -param x 2.0 -layer B merge_mid" + abc),
+            head + "mid t 2.5 conn 2\nmid t 4.5 conn 2\nsum 2.5 4.5 0\n\n");
+  EXPECT_EQ(run("-g 1 1 -layer A merge_mid -param x 1.0 -layer B merge_mid" + abc), head + once);
+  // A layer the renderer reads, or one with an interactive parameter, is not merged.
+  EXPECT_EQ(run(g + " -o A.o null"), head + "\n" + twice);
+  EXPECT_EQ(run("-g 1 1 -param:interactive=1 x 1.0 -layer A merge_mid -param:interactive=1 x "
+                "1.0 -layer B merge_mid" +
+                abc),
+            head + twice);
+  // An entry layer merged into an earlier one still runs, its output connected to nothing now.
+  EXPECT_EQ(run(g + " --entry B --entry C"),
+            head +
+                "Entry layers: B(1) C(2)\nmid t 2.5 conn 0\nmid t 2.5 conn 2\nsum 2.5 2.5 0\n\n");
+}
+
 } // namespace
