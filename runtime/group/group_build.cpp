@@ -399,6 +399,21 @@ void resolve_isconnected(ir::Shader& sh, int layer, const std::vector<Link>& lin
   }
 }
 
+// Whether `s` of layer `l` is interactive, as OSL takes it: by its instance value's
+// `interactive` flag when one is given (a plain value overrides the shader's metadata), else by
+// the shader's `[[ int interactive = 1 ]]`.
+bool interactive_param(const ShaderGroup::Layer& l, const ir::Symbol& s) {
+  const InstanceValue* given = nullptr;
+  for (const InstanceValue& v : l.values)
+    if (v.name == s.name) given = &v;
+  if (given) return given->interactive;
+  for (const ir::Metadata& m : s.metadata)
+    if (m.name == "interactive" && m.type.base == ir::BaseType::Int && !m.value.empty() &&
+        m.value[0].i != 0)
+      return true;
+  return false;
+}
+
 // Whether two instance-value lists give a shader the same parameter values: a parameter given
 // in one only must hold that value as its constant default (a computed default is not known
 // here). Each value compares by its parameter's type, floats by their bits.
@@ -449,10 +464,10 @@ void merge_identical_layers(
   const size_t n = group.layers.size();
   auto pinned = [&](size_t j) {
     if (j + 1 == n) return true;
-    for (const InstanceValue& v : group.layers[j].values)
-      if (v.interactive) return true;
     for (const ir::Symbol& s : sources[j]->symbols)
-      if (renderer_reads(group, group.layers[j].name, s.name)) return true;
+      if (renderer_reads(group, group.layers[j].name, s.name) ||
+          (is_param(s) && interactive_param(group.layers[j], s)))
+        return true;
     return false;
   };
   auto same_endpoint = [](const Endpoint& a, const Endpoint& b) {
@@ -734,6 +749,11 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     std::set<std::string> kept = runtime_valued;
     for (const Link& l : links)
       if (l.src_layer == int(i)) kept.insert(l.src.symbol);
+    // An interactive parameter (--reparam may change it) is not folded either, so neither is
+    // what it computes: OSL 1.13.12 runs a layer whose output is `x * 2` of an interactive x
+    // where it elides the same layer with a plain x.
+    for (const ir::Symbol& s : sources[i]->symbols)
+      if (is_param(s) && interactive_param(group.layers[i], s)) kept.insert(s.name);
     if (specialize)
       specialize_layer(*sh, values[i], kept, {out.plan.fast_math}, elide_known_outputs);
     new_index[i] = int(out.shaders.size());

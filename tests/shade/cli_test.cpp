@@ -848,6 +848,23 @@ TEST(ShadeCli, UpstreamLayersOfKnownValueAreElidedAtO2) {
   EXPECT_EQ(run("-O0 " + group("elide_function", "o3")), ran("o3", "6"));
   EXPECT_EQ(run("-O2 " + group("elide_function", "o3")),
             "Connect A.o3 to B.i\nreader i 6\nreader i 6\n\n");
+  // Outputs computed from interactive parameters are not known (elide_interactive.osl): the
+  // layer runs; a plain value, also one overriding the metadata's interactive = 1, is known
+  // (`testshade -O2 -g 2 1 [-param...] -layer A elide_interactive -layer B elide_reader
+  // -connect A o B i`, OSL 1.13.12).
+  auto ran_i = [](const std::string& out, const std::string& v) {
+    return "Connect A." + out + " to B.i\nelide_interactive ran\nreader i " + v +
+           "\nelide_interactive ran\nreader i " + v + "\n\n";
+  };
+  auto elided = [](const std::string& out, const std::string& v) {
+    return "Connect A." + out + " to B.i\nreader i " + v + "\nreader i " + v + "\n\n";
+  };
+  const std::string up = " -layer A elide_interactive -layer B elide_reader -connect A ";
+  EXPECT_EQ(run("-O2 -g 2 1" + up + "o B i"), elided("o", "2"));
+  EXPECT_EQ(run("-O2 -g 2 1 -param:interactive=1 x 3.0" + up + "o B i"), ran_i("o", "6"));
+  EXPECT_EQ(run("-O2 -g 2 1" + up + "om B i"), ran_i("om", "2"));
+  EXPECT_EQ(run("-O2 -g 2 1 -param m 3.0" + up + "om B i"), elided("om", "6"));
+  EXPECT_EQ(run("-O2 -g 2 1 -param:interactive=1 m 3.0" + up + "om B i"), ran_i("om", "6"));
   // isconnected() answers for the connection as made, on both sides, and does not keep the
   // layer: at -O2 `elide_asks` does not run. (`elide_reader_asks` reads `i`.)
   const std::string asks = "-g 2 1 -layer A elide_asks -layer B elide_reader_asks -connect A o B i";
