@@ -149,8 +149,10 @@ int Lowerer::emit(ir::Opcode opcode, std::vector<int> args, uint32_t written,
   for (size_t i = 0; i < op.args.size(); ++i) {
     int s = op.args[i];
     SymKind k = sh_.symbols[s].kind;
+    // isconnected(p) asks about p's connections, not its value: it does not use p (OSL runs no
+    // upstream layer for it).
     if ((k == SymKind::Param || k == SymKind::OutputParam) && ir::op_reads(op, int(i)) &&
-        used_params_.insert(s).second)
+        opcode != ir::Opcode::IsConnected && used_params_.insert(s).second)
       reads.push_back(s);
   }
   if (!reads.empty()) {

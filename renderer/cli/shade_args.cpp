@@ -124,6 +124,8 @@ void apply_options(ShadeJob& job) {
       job.range_checking = to_i(value) != 0;
     } else if (name == "lazylayers") {
       job.compile.lazy_layers = to_i(value) != 0;
+    } else if (name == "opt_merge_instances") {
+      job.compile.merge_instances = to_i(value) != 0;
     } else if (name == "userdata_isconnected") {
       job.userdata_isconnected = to_i(value) != 0;
     } else if (name == "error_repeats") {

@@ -37,8 +37,9 @@ public:
     Vec3 o = eye_ + right_ * (lx * lens_) + up_ * (ly * lens_);
     return {o, normalize(focus_point - o)};
   }
-  // World-space width of one pixel at distance 1 along the view axis (ray differentials).
+  // A thin lens (an aperture): generate() reads its two lens numbers.
   bool has_lens() const { return lens_ > 0; }
+  // World-space width of one pixel at distance 1 along the view axis (ray differentials).
   float pixel_spread() const { return 2 * tan_half_ / float(h_); }
   const Vec3& position() const { return eye_; }
   const Vec3& right() const { return right_; }

@@ -383,9 +383,12 @@ KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool run
 
 // isconnected(p) of layer `layer` as codegen answers it (codegen/ops_library.cpp), from the
 // connections as made: 1 when one leads into p (or p takes user data, with userdata_isconnected),
-// 2 when one leads out of it, 3 both. Each becomes an assignment of that constant.
+// 2 when one leads out of it or the renderer reads it (a renderer output, testshade's -o, Cout
+// by default, counts as a connection out, as in OSL), 3 both. Each becomes an assignment of
+// that constant.
 void resolve_isconnected(ir::Shader& sh, int layer, const std::vector<Link>& links,
-                         const std::set<std::string>& userdata, bool userdata_isconnected) {
+                         const std::set<std::string>& userdata, bool userdata_isconnected,
+                         const ShaderGroup& group) {
   for (ir::Op& op : sh.ops) {
     if (op.opcode != ir::Opcode::IsConnected || op.args.size() != 2) continue;
     const std::string& name = sh.symbols[size_t(op.args[1])].name;
@@ -395,6 +398,9 @@ void resolve_isconnected(ir::Shader& sh, int layer, const std::vector<Link>& lin
       if (l.src_layer == layer && l.src.symbol == name) v |= 2;
     }
     if (userdata_isconnected && userdata.count(name)) v |= 1;
+    if (sh.symbols[size_t(op.args[1])].kind == SymKind::OutputParam &&
+        renderer_reads(group, group.layers[size_t(layer)].name, name))
+      v |= 2;
     answer_with(sh, op, v);
   }
 }
@@ -511,7 +517,7 @@ void merge_identical_layers(
 
 bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
                  bool specialize, GroupBuild& out, DiagnosticList& diags, bool lockgeom_default,
-                 bool elide_known_outputs) {
+                 bool elide_known_outputs, bool merge_instances) {
   size_t n = group.layers.size();
   std::map<std::string, int> layer_index;
   for (size_t i = 0; i < n; ++i) layer_index[group.layers[i].name] = int(i);
@@ -647,7 +653,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
 
   // OSL -O1/-O2 (its opt_merge_instances): a layer identical to an earlier one is merged into
   // it, so that the earlier one runs once where both ran (its printf shows once).
-  if (specialize) merge_identical_layers(group, sources, values, interp, links);
+  if (specialize && merge_instances) merge_identical_layers(group, sources, values, interp, links);
 
   // Layers the last one depends on, and layers with a renderer output (which run at every
   // shade) with theirs.
@@ -682,7 +688,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     // OSL answers isconnected() for the connections as made, also those a known value is about
     // to replace at -O2 (whose upstream layer then may not run at all) and those into layers
     // that never run: resolve it now, at every level.
-    resolve_isconnected(*sh, int(i), links, interp[i], out.plan.userdata_isconnected);
+    resolve_isconnected(*sh, int(i), links, interp[i], out.plan.userdata_isconnected, group);
     // OSL -O2: whole connections from outputs of known value become that value.
     if (specialize && elide_known_outputs)
       for (Link& l : links) {

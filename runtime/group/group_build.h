@@ -34,8 +34,11 @@ struct GroupBuild {
 // output whose value at the end of its layer is known (a constant, or a copy of a shading
 // global) is replaced by that value, and an upstream layer no remaining connection reads is
 // not compiled and does not run, its printf output then disappearing as in OSL (docs/language.md).
+// `merge_instances` (OSL's opt_merge_instances, with `specialize`): a layer identical to an
+// earlier one is merged into it.
 bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
                  bool specialize, GroupBuild& out, DiagnosticList& diags,
-                 bool lockgeom_default = true, bool elide_known_outputs = false);
+                 bool lockgeom_default = true, bool elide_known_outputs = false,
+                 bool merge_instances = true);
 
 } // namespace lobe::group

@@ -127,6 +127,7 @@ std::string ShadingSystem::Impl::cache_key(const ShaderGroup& g,
   key += options.userdata_isconnected ? "c" : "";
   key += options.range_checking ? "" : "r";
   key += options.lazy_layers ? "" : "e";
+  key += options.merge_instances ? "" : "m";
   key += options.debug_nan ? "N" : "";
   key += options.debug_uninit ? "U" : "";
   key += options.fast_math ? "" : "x";
@@ -207,7 +208,7 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   b.plan.debug_uninit = options.debug_uninit;
   bool specialize = options.specialize && options.opt_level > 0;
   if (!group::build_group(g, layers, specialize, b, diags, options.lockgeom_default,
-                          options.opt_level >= 2))
+                          options.opt_level >= 2, options.merge_instances))
     return nullptr;
   stats.specialize_ms = ms_since(t0);
 

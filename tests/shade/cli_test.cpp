@@ -905,4 +905,28 @@ TEST(ShadeCli, IdenticalLayersAreMergedAtO1AndO2) {
                 "Entry layers: B(1) C(2)\nmid t 2.5 conn 0\nmid t 2.5 conn 2\nsum 2.5 2.5 0\n\n");
 }
 
+// isconnected() as OSL 1.13.12 answers it beyond connections between layers: asking it of an
+// input is no use of the input, so the upstream layer does not run (at any level); a renderer
+// output (-o, testshade's default Cout) counts as a connection out (`testshade [-O0] -g 2 1
+// -layer A elide_const -layer B isconnected_asker -connect A o B x`; `testshade -g 1 1
+// isconnected_out [-o r null]`).
+TEST(ShadeCli, IsconnectedIsNoUseAndSeesRendererOutputs) {
+  const std::string asker =
+      "-g 2 1 -layer A elide_const -layer B isconnected_asker -connect A o B x";
+  const std::string asked =
+      "Connect A.o to B.x\nasker: isconnected(x) 1\nasker: isconnected(x) 1\n\n";
+  EXPECT_EQ(run("-O0 " + asker), asked);
+  EXPECT_EQ(run("-O2 " + asker), asked);
+  EXPECT_EQ(run("-g 1 1 isconnected_out"), "out: r 0 Cout 2\n\n");
+  EXPECT_EQ(run("-g 1 1 isconnected_out -o r null"), "\nout: r 2 Cout 0\n\n");
+  EXPECT_EQ(run("-g 1 1 -layer X isconnected_out -layer Y isconnected_out -connect X r Y a -o Y.r "
+                "null"),
+            "Connect X.r to Y.a\n\nout: r 2 Cout 0\nout: r 2 Cout 0\n\n");
+  // --options opt_merge_instances=0: identical layers are not merged (both print).
+  EXPECT_EQ(run("--options opt_merge_instances=0 -g 1 1 -layer A merge_mid -layer B merge_mid "
+                "-layer C merge_sum -connect A o C a -connect B o C b"),
+            "Connect A.o to C.a\nConnect B.o to C.b\nmid t 2.5 conn 2\nmid t 2.5 conn 2\n"
+            "sum 2.5 2.5 0\n\n");
+}
+
 } // namespace

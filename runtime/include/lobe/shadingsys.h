@@ -119,6 +119,10 @@ struct CompileOptions {
   // output; false runs every layer the group needs, in order, at the start of each shade
   // (testshade's --options lazylayers=0). Part of the material cache key.
   bool lazy_layers = true;
+  // OSL's "opt_merge_instances": at -O1 and -O2 a layer identical to an earlier one (the same
+  // shader, parameter values and connections in) is merged into it and runs once
+  // (docs/language.md). Part of the material cache key.
+  bool merge_instances = true;
   bool debug_uninit = false;
   // The RGB space shader colours are in (OSL's ShadingSystem "colorspace", testshade's
   // --colorspace): it sets the XYZ matrices of transformc and color("XYZ", ...), luminance's
