@@ -106,6 +106,11 @@ private:
   void init_symbols();
   void init_params();
   void fetch_connection(const ConnectionPlan& c);
+  // The group's layers share one ShaderGlobals, as OSL's do: around a call of an upstream layer
+  // this one's written globals go out to it (store_globals) and every global comes back
+  // (reload_globals, values only: derivatives stay as they are).
+  void store_globals();
+  void reload_globals();
   void emit_region(int begin, int end, llvm::BasicBlock* after);
   void emit_op(int index);
   void emit_loop_check(const ir::Op& op); // counts a back edge (GroupPlan::loop_count_offset)

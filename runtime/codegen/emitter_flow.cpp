@@ -172,7 +172,9 @@ void LayerEmitter::fetch_connection(const ConnectionPlan& c) {
   auto* have = llvm::BasicBlock::Create(ctx(), "upstream_done", fn_);
   b_.CreateCondBr(b_.CreateICmpEQ(ran, iconst(0)), run, have);
   b_.SetInsertPoint(run);
+  store_globals();
   b_.CreateCall(layer_fns_[size_t(c.src_layer)], {sg_, gd_});
+  reload_globals();
   b_.CreateBr(have);
   b_.SetInsertPoint(have);
 
@@ -295,6 +297,36 @@ void LayerEmitter::emit_loop_check(const ir::Op& op) {
   b_.SetInsertPoint(stop);
   b_.CreateBr(exit_block_);
   b_.SetInsertPoint(go);
+}
+
+void LayerEmitter::store_globals() {
+  const auto& syms = shader().symbols;
+  std::vector<bool> written(syms.size(), false);
+  for (const ir::Op& op : shader().ops)
+    for (size_t a = 0; a < op.args.size(); ++a)
+      if (op.writes(int(a))) written[size_t(op.args[a])] = true;
+  for (size_t i = 0; i < syms.size(); ++i) {
+    if (syms[i].kind != SymKind::Global || !written[i]) continue;
+    const GlobalField* g = find_global(syms[i].name);
+    Val v = load(int(i), nullptr, false);
+    for (size_t c = 0; c < v.size(); ++c)
+      b_.CreateStore(v[c].v, b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), sg_, g->offset + 4 * c));
+  }
+}
+
+void LayerEmitter::reload_globals() {
+  const auto& syms = shader().symbols;
+  for (size_t i = 0; i < syms.size(); ++i) {
+    if (syms[i].kind != SymKind::Global) continue;
+    const GlobalField* g = find_global(syms[i].name);
+    llvm::Type* t =
+        g->kind == GlobalKind::Closure ? ptr() : (g->kind == GlobalKind::Int ? i32() : f32());
+    Val v = load(int(i)); // with its derivatives, which the store below keeps
+    for (size_t c = 0; c < v.size(); ++c)
+      v[c].v =
+          b_.CreateLoad(t, b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), sg_, g->offset + 4 * c));
+    store(int(i), v);
+  }
 }
 
 // Stores output params (and every param another layer reads) to group data and the written

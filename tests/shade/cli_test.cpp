@@ -929,4 +929,23 @@ TEST(ShadeCli, IsconnectedIsNoUseAndSeesRendererOutputs) {
             "sum 2.5 2.5 0\n\n");
 }
 
+// The layers of a group share one set of globals: the upstream layer, run when the downstream
+// one first reads x, sees the P that layer wrote before, and the downstream layer then sees the
+// Ci the upstream one set (`testshade -O<n> -g 2 1 -layer A globals_up -layer B globals_down
+// -connect A f B x`, OSL 1.13.12; Lobe gave each layer its own copy).
+TEST(ShadeCli, LayersShareTheirGlobals) {
+  const std::string diffuse = "Ci (1, 1, 1) * diffuse ((0, 0, 1), \"label\", \"\")\n";
+  const std::string emission = "Ci (1, 1, 1) * emission ()\n";
+  const std::string expected = "Connect A.f to B.x\n"
+                               "down before x: P 0 N 0 " +
+                               diffuse +
+                               "up sees P 0 N 0\n"
+                               "down: x 0 P 0 N 0 " +
+                               emission + "down before x: P 10 N 0 " + diffuse +
+                               "up sees P 10 N 0\n"
+                               "down: x 10 P 10 N 0 " +
+                               emission + "\n";
+  EXPECT_EQ(both("-g 2 1 -layer A globals_up -layer B globals_down -connect A f B x"), expected);
+}
+
 } // namespace
