@@ -140,6 +140,7 @@ void print_oslc_warning(const Diagnostic& d, const std::vector<const Diagnostic*
 void print_diagnostics(const DiagnosticList& diags, bool notes, const std::string& group = "",
                        bool compiler = true) {
   bool connect_error = false;
+  std::set<std::string> said;       // group-level warnings given
   for (const Diagnostic& d : diags) // testshade has printed its "Connect ..." lines by then
     if (d.id.rfind("connect_", 0) == 0) std::fflush(stdout);
   for (const Diagnostic& d : diags) {
@@ -157,8 +158,11 @@ void print_diagnostics(const DiagnosticList& diags, bool notes, const std::strin
     }
     // Group-level warnings print as testshade prints them: "WARNING: ...", and so do
     // connection errors (OSL's ConnectShaders words, "ERROR: ...").
-    if (d.severity == Diagnostic::Severity::Warning && t.rfind("warning: ", 0) == 0)
+    if (d.severity == Diagnostic::Severity::Warning && t.rfind("warning: ", 0) == 0) {
       t = "WARNING: " + t.substr(9);
+      // As OSL's shading system, which does not repeat a warning it has just given.
+      if (!said.insert(t).second) continue;
+    }
     if (d.severity == Diagnostic::Severity::Error && d.id.rfind("connect_", 0) == 0 &&
         t.rfind("error: ", 0) == 0) {
       t = "ERROR: " + t.substr(7);

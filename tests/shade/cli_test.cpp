@@ -899,6 +899,13 @@ TEST(ShadeCli, IdenticalLayersAreMergedAtO1AndO2) {
                 "1.0 -layer B merge_mid" +
                 abc),
             head + twice);
+  // The same warning for both layers is given once, as OSL's shading system gives it.
+  EXPECT_EQ(run("-g 1 1 -param:type=string x s -layer A merge_mid -param:type=string x s -layer B "
+                "merge_mid" +
+                abc),
+            "WARNING: attempting to set parameter with wrong type: x (expected 'float', received "
+            "'string')\n" +
+                head + once);
   // An entry layer merged into an earlier one still runs, its output connected to nothing now.
   EXPECT_EQ(run(g + " --entry B --entry C"),
             head +
