@@ -405,6 +405,15 @@ void resolve_isconnected(ir::Shader& sh, int layer, const std::vector<Link>& lin
   }
 }
 
+// A type as OSL's messages name it: a closure is a "closure color" ("closure color[2]").
+std::string osl_type_name(const ir::Type& t) {
+  std::string s = ir::to_string(t);
+  if (t.base == ir::BaseType::Closure && s.rfind("closure", 0) == 0 &&
+      s.rfind("closure color", 0) != 0)
+    s.insert(7, " color");
+  return s;
+}
+
 // Whether `s` of layer `l` is interactive, as OSL takes it: by its instance value's
 // `interactive` flag when one is given (a plain value overrides the shader's metadata), else by
 // the shader's `[[ int interactive = 1 ]]`.
@@ -605,7 +614,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     auto type_of = [&](const ir::Shader& sh, const std::map<std::string, Endpoint>& ends) {
       if (ends.empty()) return std::string("unknown");
       if (ends.size() > 1 || !ends.count("")) return "struct " + struct_of(sh, ends);
-      return ir::to_string(endpoint_type(sh, ends.at("")));
+      return osl_type_name(endpoint_type(sh, ends.at("")));
     };
     if (src.empty() || dst.empty()) {
       const bool src_missing = src.empty();
@@ -641,8 +650,8 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       }
       if (!connectable(endpoint_type(src_sh, e), endpoint_type(dst_sh, d->second))) {
         diags.push_back(err(
-            "ConnectShaders: cannot connect a " + ir::to_string(endpoint_type(src_sh, e)) + " (" +
-                c.src_param + suffix + ") to a " + ir::to_string(endpoint_type(dst_sh, d->second)) +
+            "ConnectShaders: cannot connect a " + osl_type_name(endpoint_type(src_sh, e)) + " (" +
+                c.src_param + suffix + ") to a " + osl_type_name(endpoint_type(dst_sh, d->second)) +
                 " (" + c.dst_param + suffix + ")",
             DiagId::connect_type));
         return false;

@@ -95,6 +95,19 @@ TEST(ShadeCli, ConnectionsOfTypesOslRefusesAreErrors) {
   EXPECT_EQ(connect("s", "f"), "Connect A.s to B.f\nERROR: ConnectShaders: cannot connect a string "
                                "(s) to a float (f)\n" +
                                    group + "rc 1\n");
+  // A closure is a "closure color" in OSL's words (`-layer A connect_closure_src`).
+  auto closure = [](const std::string& src, const std::string& dst) {
+    return run_cmd(std::string("cd ") + LOBE_SHADE_CORPUS + "/layers && { " + LOBE_EXE +
+                   " shade -g 1 1 -layer A connect_closure_src -layer B connect_types_dst "
+                   "-connect A " +
+                   src + " B " + dst + " 2>&1; echo \"rc $?\"; }");
+  };
+  EXPECT_EQ(closure("cc", "c"), "Connect A.cc to B.c\nERROR: ConnectShaders: cannot connect a "
+                                "closure color (cc) to a color (c)\n" +
+                                    group + "rc 1\n");
+  EXPECT_EQ(closure("ca", "f"), "Connect A.ca to B.f\nERROR: ConnectShaders: cannot connect a "
+                                "closure color[2] (ca) to a float (f)\n" +
+                                    group + "rc 1\n");
   EXPECT_EQ(connect("nosuch", "f"),
             "Connect A.nosuch to B.f\nERROR: ConnectShaders: \"nosuch\" is not a parameter or "
             "global of layer \"A\" (shader \"connect_types_src\")\nERROR: ConnectShaders: cannot "
