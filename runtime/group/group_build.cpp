@@ -213,6 +213,19 @@ void specialize_layer(ir::Shader& sh,
   opt.algebraic = true; // as OSL's runtime optimizer, which oslc's folding is not
   opt.part_stores = osl_o2;
   passes::optimize(sh, opt);
+  // A parameter no op reads any more (its reads were dead and went) is no longer used: its
+  // useparam goes too, so an upstream layer that only fed dead code does not run, as at OSL's
+  // -O2 (`oo = x` into an output nothing reads, `float t = x` never read).
+  std::vector<bool> read(sh.symbols.size(), false);
+  for (const ir::Op& op : sh.ops)
+    if (op.opcode != ir::Opcode::UseParam)
+      for (size_t a = 0; a < op.args.size(); ++a)
+        if (ir::op_reads(op, int(a))) read[size_t(op.args[a])] = true;
+  for (ir::Op& op : sh.ops) {
+    if (op.opcode != ir::Opcode::UseParam) continue;
+    std::erase_if(op.args, [&](int a) { return !read[size_t(a)]; });
+    if (op.args.empty()) op.opcode = ir::Opcode::Nop;
+  }
 }
 
 // Closes existing derivative flags backwards through kPropagates ops (after a downstream

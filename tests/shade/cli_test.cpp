@@ -861,6 +861,14 @@ TEST(ShadeCli, UpstreamLayersOfKnownValueAreElidedAtO2) {
   EXPECT_EQ(run("-O0 " + group("elide_function", "o3")), ran("o3", "6"));
   EXPECT_EQ(run("-O2 " + group("elide_function", "o3")),
             "Connect A.o3 to B.i\nreader i 6\nreader i 6\n\n");
+  // An input read only by dead code (an output nothing takes, a local never read) is unused at
+  // -O2, so its upstream layer does not run (`testshade -O<n> -g 2 1 -layer A elide_computed
+  // -layer B elide_deadread -connect A o B i`, OSL 1.13.12).
+  const std::string dead =
+      "-g 2 1 -layer A elide_computed -layer B elide_deadread -connect A o B i";
+  EXPECT_EQ(run("-O0 " + dead), "Connect A.o to B.i\nelide_computed ran\ndeadread ran\n"
+                                "elide_computed ran\ndeadread ran\n\n");
+  EXPECT_EQ(run("-O2 " + dead), "Connect A.o to B.i\ndeadread ran\ndeadread ran\n\n");
   // Outputs computed from interactive parameters are not known (elide_interactive.osl): the
   // layer runs; a plain value, also one overriding the metadata's interactive = 1, is known
   // (`testshade -O2 -g 2 1 [-param...] -layer A elide_interactive -layer B elide_reader
