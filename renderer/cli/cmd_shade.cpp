@@ -237,10 +237,22 @@ void print_group(const ShaderGroup& g, const std::vector<std::string>& shaders,
     const ShaderGroup::Layer& l = g.layers[k];
     std::printf("%s", group_params(l, irs[k], g.connections, lockgeom_default).c_str());
     std::printf("shader %s %s ;\n", shaders[k].c_str(), l.name.c_str());
-    for (const Connection& c : g.connections) // after the layer they lead into, as OSL's text
-      if (c.dst_layer == l.name)
-        std::printf("connect %s.%s %s.%s ;\n", c.src_layer.c_str(), c.src_param.c_str(),
-                    c.dst_layer.c_str(), c.dst_param.c_str());
+    for (const Connection& c : g.connections) { // after the layer they lead into, as OSL's text
+      if (c.dst_layer != l.name) continue;
+      // A whole struct connects (and prints) leaf by leaf: "connect A.s.f B.t.f ;".
+      const ir::Shader* src = nullptr;
+      for (size_t j = 0; j < g.layers.size(); ++j)
+        if (g.layers[j].name == c.src_layer) src = irs[j];
+      std::vector<std::string> leaves;
+      if (src && src->find_symbol(c.src_param) < 0)
+        for (const ir::Symbol& s : src->symbols)
+          if (s.name.size() > c.src_param.size() + 1 && s.name.rfind(c.src_param + ".", 0) == 0)
+            leaves.push_back(s.name.substr(c.src_param.size()));
+      if (leaves.empty()) leaves.push_back("");
+      for (const std::string& leaf : leaves)
+        std::printf("connect %s.%s%s %s.%s%s ;\n", c.src_layer.c_str(), c.src_param.c_str(),
+                    leaf.c_str(), c.dst_layer.c_str(), c.dst_param.c_str(), leaf.c_str());
+    }
   }
   std::printf("\n---\n\nShader group \"%s\" layers are:\n", g.name.c_str());
   for (size_t k = 0; k < g.layers.size(); ++k) {

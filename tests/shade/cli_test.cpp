@@ -480,6 +480,19 @@ TEST(ShadeCli, VerboseConnectionsFollowTheirLayer) {
             "eager_down skips\n\n");
 }
 
+// -v prints a whole struct's connection one line per leaf field, nested structs included, as
+// OSL's group text (`testshade -g 1 1 -v -layer A struct_conn_src -layer B struct_conn_dst
+// -connect A mx B m`, OSL 1.13.12).
+TEST(ShadeCli, VerboseStructConnectionsListTheirLeaves) {
+  EXPECT_EQ(
+      run_here("-g 1 1 -v -layer A struct_conn_src -layer B struct_conn_dst -connect A mx B m"),
+      "Connect A.mx to B.m\nShader group:\n---\nshader struct_conn_src A ;\n"
+      "shader struct_conn_dst B ;\nconnect A.mx.c B.m.c ;\nconnect A.mx.f B.m.f ;\n"
+      "connect A.mx.name B.m.name ;\nconnect A.mx.i B.m.i ;\n"
+      "connect A.mx.in.a B.m.in.a ;\nconnect A.mx.in.b B.m.in.b ;\n\n---\n\n"
+      "Shader group \"unnamed_group_1\" layers are:\n    A\n    B\n\nf 0.5 a 4\n\n");
+}
+
 // The layer named after a shader given as a file is the name without folder or extension
 // (OSL 1.13.12: `testshade -g 1 1 gac.oso` prints gac_0 for getattribute("shader:layername")).
 TEST(ShadeCli, LayerNamesDropTheExtension) {
