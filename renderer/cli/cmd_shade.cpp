@@ -395,22 +395,25 @@ bool Shade::reparameter(ShaderGroup::Layer& l, const ShadeReparam& r) {
     // prints it at every level, on a plain `m` only below -O2).
     bool kept = ss_.options().opt_level < 2 || !ss_.options().specialize ||
                 s.kind == ir::SymKind::OutputParam || !ss_.options().lockgeom_default ||
-                group::metadata_lockgeom(s) == 0;
+                group::metadata_lockgeom(s) == 0 ||
+                (current && (current->interpolated || current->lockgeom == 0));
     for (const Connection& c : job_.group.connections)
       kept = kept || (c.dst_layer == l.name && c.dst_param == r.param);
-    if (kept)
+    if (kept) {
+      std::fflush(stdout); // after the "Connect ..." lines, as testshade's output comes
       std::fprintf(stderr,
                    "ERROR: ReParameter cannot adjust %s.%s, which was not declared interactive\n",
                    l.name.c_str(), r.param.c_str());
+    }
     return false;
   }
   std::string declared = ir::to_string(s.type);
   InstanceValue v = r.value;
   if (s.type.is_triple() && !s.type.is_array() && v.type == "float") {
     std::vector<float> comps; // the value until now: the instance value's, else the default's
-    if (current && (current->words.size() == 3 || current->words.size() == 1))
-      for (size_t k = 0; k < 3; ++k) // one number stands for all three
-        comps.push_back(std::strtof(current->words[k % current->words.size()].c_str(), nullptr));
+    group::ValueFit fit;
+    if (current && (fit = group::fit_instance_value(*current, s.type)).ok)
+      for (const ir::ConstValue& c : fit.values) comps.push_back(c.f);
     else
       for (const ir::ConstValue& c : s.init) comps.push_back(c.f);
     if (comps.size() != 3) return false;

@@ -22,6 +22,7 @@ struct Token {
 // unterminated string (`line` says where it starts).
 bool tokenize(const std::string& s, std::vector<Token>& out, int& line) {
   line = 1;
+  bool hints = false; // inside [[ ... ]], where ',' separates hints and ends no statement
   for (size_t i = 0; i < s.size();) {
     char c = s[i];
     if (c == '\n') ++line;
@@ -29,6 +30,9 @@ bool tokenize(const std::string& s, std::vector<Token>& out, int& line) {
       ++i;
     } else if (c == '#') {
       while (i < s.size() && s[i] != '\n') ++i;
+    } else if (c == ',' && hints) {
+      out.push_back({",", true, line}); // a word of the hints, not an end
+      ++i;
     } else if (c == ';' || c == ',') {
       out.push_back({std::string(1, c), false, line});
       ++i;
@@ -54,6 +58,8 @@ bool tokenize(const std::string& s, std::vector<Token>& out, int& line) {
       while (i < s.size() && !std::isspace(static_cast<unsigned char>(s[i])) && s[i] != ';' &&
              s[i] != ',' && s[i] != '"')
         t.text += s[i++];
+      if (t.text.find("[[") != std::string::npos) hints = true;
+      if (t.text.find("]]") != std::string::npos) hints = false;
       out.push_back(t);
     }
   }
@@ -133,11 +139,23 @@ std::unique_ptr<ShaderGroup> parse_group_text(const std::string& text, const std
         v.value += st[k].text;
         v.words.push_back(st[k].text);
       }
-      std::string meta; // of the metadata, `int lockgeom = 0|1` is kept
-      for (; k < st.size(); ++k) meta += st[k].text + " ";
-      static const std::regex kLockgeom(R"(\bint\s+lockgeom\s*=\s*([01])\b)");
-      std::smatch m;
-      if (std::regex_search(meta, m, kLockgeom)) v.lockgeom = m[1].str() == "0" ? 0 : 1;
+      // The hints, as testshade takes them: `int lockgeom = 0|1`, `int interpolated = 1` (the
+      // same as lockgeom = 0), `int interactive = 1`, separated by commas in the first [[ ]]
+      // (OSL 1.13.12 reads no further).
+      std::string meta;
+      for (; k < st.size(); ++k) {
+        meta += st[k].text + " ";
+        if (!st[k].quoted && st[k].text.find("]]") != std::string::npos) break;
+      }
+      auto hint = [&](const char* name) -> int {
+        static const std::string kInt = R"(\bint\s+)";
+        std::smatch m;
+        std::regex re(kInt + name + R"(\s*=\s*(-?\d+)\b)");
+        return std::regex_search(meta, m, re) ? std::stoi(m[1].str()) : -1;
+      };
+      if (int lg = hint("lockgeom"); lg >= 0) v.lockgeom = lg == 0 ? 0 : 1;
+      v.interpolated = hint("interpolated") > 0;
+      v.interactive = hint("interactive") > 0;
       pending.push_back(std::move(v));
     } else if (kw == "shader") {
       if (st.size() < 2 || st.size() > 3) {

@@ -493,6 +493,24 @@ TEST(ShadeCli, VerboseStructConnectionsListTheirLeaves) {
       "Shader group \"unnamed_group_1\" layers are:\n    A\n    B\n\nf 0.5 a 4\n\n");
 }
 
+// Hints on a group text's param as testshade takes them: comma-separated in the first [[ ]]
+// (interactive, lockgeom = 0 printed as interpolated), `param color c 0.5` one component (the
+// others 0), and --reparam of the interactive c then changes that component alone
+// (`testshade -g 1 1 [-v | --iters 2 --reparam A c 0.25] -group 'param color c 0.5 [[int
+// interactive=1, int lockgeom=0]] ; shader reparam_print A ;'`, OSL 1.13.12).
+TEST(ShadeCli, GroupTextHints) {
+  const std::string g =
+      "-group 'param color c 0.5 [[int interactive=1, int lockgeom=0]] ; shader reparam_print A ;'";
+  EXPECT_EQ(run_here("-g 1 1 -v " + g),
+            "Processing group specification:\n---\nparam color c 0.5 [[int interactive=1, int "
+            "lockgeom=0]] ; shader reparam_print A ;\n---\nShader group:\n---\n"
+            "param color c 0.5 0 0 [[int interpolated=1]] [[int interactive=1]] ;\n"
+            "shader reparam_print A ;\n\n---\n\nShader group \"unnamed_group_2\" layers are:\n"
+            "    A\n\nf=1 c=0.5 0 0\n\n");
+  EXPECT_EQ(run_here("-g 1 1 --iters 2 --reparam A c 0.25 " + g),
+            "f=1 c=0.5 0 0\nf=1 c=0.25 0 0\n\n");
+}
+
 // The layer named after a shader given as a file is the name without folder or extension
 // (OSL 1.13.12: `testshade -g 1 1 gac.oso` prints gac_0 for getattribute("shader:layername")).
 TEST(ShadeCli, LayerNamesDropTheExtension) {
