@@ -53,7 +53,7 @@ const Row kTable[] = {
     ROW(err_pp_expr, Error, "invalid #if expression: %0"),
     ROW(err_pragma_error, Error, "%0"),
     ROW(warn_pragma_warning, Warning, "%0"),
-    ROW(warn_unknown_pragma, Warning, "unknown pragma '%0'"),
+    ROW(warn_unknown_pragma, Warning, "Unknown pragma '%0'"),
     ROW(err_bad_line_directive, Error, "#line directive requires a positive line number"),
     ROW(warn_extra_tokens, Warning, "extra tokens at end of #%0 directive"),
     // parser

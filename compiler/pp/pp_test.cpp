@@ -243,7 +243,7 @@ TEST(PP, PragmaOslNames) {
   r.run("#pragma OSL nowarn\n#pragma osl nowarn x y\n#pragma foo nowarn\n#pragma osl NoWarn\n");
   ASSERT_EQ(r.diags.diagnostics().size(), 1u);
   EXPECT_EQ(r.diags.diagnostics()[0].id, DiagId::warn_unknown_pragma);
-  EXPECT_EQ(r.diags.diagnostics()[0].message, "unknown pragma 'NoWarn'");
+  EXPECT_EQ(r.diags.diagnostics()[0].message, "Unknown pragma 'NoWarn'");
   EXPECT_EQ(r.sm.presumed(r.diags.diagnostics()[0].range.begin).line, 4);
   // The lines after the two nowarn pragmas, as the file numbers them.
   using Lines = std::set<std::pair<std::string, int>>;

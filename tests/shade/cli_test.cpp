@@ -511,6 +511,23 @@ TEST(ShadeCli, GroupTextHints) {
             "f=1 c=0.5 0 0\nf=1 c=0.25 0 0\n\n");
 }
 
+// "rgb" names the identity for transform() and the spaced constructors, silently, but is no
+// space getmatrix() or matrix(from, to) knows: an error and 0, as OSL 1.13.12 gives
+// (`testshade [-O0] -g 1 1 rgbspace`, both levels alike).
+TEST(ShadeCli, RgbIsATransformIdentityOnly) {
+  auto dir = scratch_dir("rgbspace.osl",
+                         "shader rgbspace()\n{\n    point p = transform(\"rgb\", point(1, 2, 3));\n"
+                         "    point q = point(\"rgb\", 4, 5, 6);\n    matrix m;\n"
+                         "    int ok = getmatrix(\"rgb\", \"common\", m);\n"
+                         "    matrix a = matrix(\"common\", \"rgb\");\n"
+                         "    vector w = transform(\"common\", \"rgb\", vector(1, 0, 0));\n"
+                         "    printf(\"%g | %g | %d | %g | %g\\n\", p, q, ok, a[0][0], w);\n}\n");
+  const std::string expected = "ERROR: Unknown transformation \"rgb\"\n"
+                               "1 2 3 | 4 5 6 | 0 | 1 | 1 0 0\n\n";
+  EXPECT_EQ(run_in(dir, "-g 1 1 rgbspace"), expected);
+  EXPECT_EQ(run_in(dir, "-O0 -g 1 1 rgbspace"), expected);
+}
+
 // The layer named after a shader given as a file is the name without folder or extension
 // (OSL 1.13.12: `testshade -g 1 1 gac.oso` prints gac_0 for getattribute("shader:layername")).
 TEST(ShadeCli, LayerNamesDropTheExtension) {
