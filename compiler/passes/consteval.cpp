@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 
 namespace lobe::passes {
 
@@ -205,7 +206,13 @@ std::optional<Values> arith(Opcode op, const Type& dst, const std::vector<ConstA
     } else if (args.size() == 2) {
       auto f = float_binop(op, mode);
       if (!f) return std::nullopt;
-      out[c] = ConstValue::of_float(f(args[0][c].f, args[1][c].f));
+      // OSL folds fmod of triples with C's fmod: a zero component of the divisor gives NaN
+      // there (a float's fold gives 0, as math::fmod; at run time both give 0).
+      const math::FnInfo* fi = math_fn(op, 2);
+      if (fi && fi->fn == math::Fn::Fmod && dst.is_triple() && args[1][c].f == 0.0f)
+        out[c] = ConstValue::of_float(std::numeric_limits<float>::quiet_NaN());
+      else
+        out[c] = ConstValue::of_float(f(args[0][c].f, args[1][c].f));
     } else if (args.size() == 3) {
       auto f = float_ternop(op);
       if (!f) return std::nullopt;

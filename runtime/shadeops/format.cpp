@@ -196,8 +196,9 @@ bool append_bare(std::string& out, char conv, char code, const void* p) {
   return true;
 }
 
-// Appends a whole argument: every component of every element, space-separated. `head` is the
-// spec without its length modifier and conversion ("%08.3").
+// Appends a whole argument: every component of every element, space-separated (the elements of
+// a closure array run together, as OSL prints them). `head` is the spec without its length
+// modifier and conversion ("%08.3").
 // Out of line: its general path's temporaries would burden the bare conversions' caller.
 __attribute__((noinline)) void append_arg(std::string& out, const RuntimeEnv& env,
                                           std::string_view head, char conv, bool length, ArgDesc d,
@@ -207,7 +208,7 @@ __attribute__((noinline)) void append_arg(std::string& out, const RuntimeEnv& en
   bool bare = head.size() == 1;
   std::string spec;
   for (int k = 0; k < n; ++k) {
-    if (k) out += ' ';
+    if (k && d.code != 'c') out += ' ';
     const void* c = static_cast<const char*>(p) + k * stride;
     if (bare && append_bare(out, conv, d.code, c)) continue;
     if (spec.empty()) spec = head;

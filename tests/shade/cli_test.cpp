@@ -528,6 +528,21 @@ TEST(ShadeCli, RgbIsATransformIdentityOnly) {
   EXPECT_EQ(run_in(dir, "-O0 -g 1 1 rgbspace"), expected);
 }
 
+// At -O2 OSL folds fmod() of triples with C's fmod, so a zero component of the divisor gives nan
+// (a float's folds to 0); the elements of a printed closure array run together
+// (`testshade -g 1 1 fmodfold`, OSL 1.13.12).
+TEST(ShadeCli, TripleFmodFoldsAndClosureArraysPrintAsOsl) {
+  auto dir = scratch_dir("fmodfold.osl",
+                         "shader fmodfold()\n{\n    vector b = vector(4, 4, 0) + u * 0;\n"
+                         "    printf(\"%g | %g | %g\\n\", fmod(color(5, -6, 7), color(4, 4, 0)), "
+                         "fmod(vector(5, -6, 7), b), fmod(5.0, 0.0));\n"
+                         "    closure color two[2] = { diffuse(N), 0.5 * emission() };\n"
+                         "    printf(\"<%s>\\n\", two);\n}\n");
+  EXPECT_EQ(run_in(dir, "-g 1 1 fmodfold"),
+            "1 -2 nan | 1 -2 nan | 0\n<(1, 1, 1) * diffuse ((0, 0, 1), \"label\", \"\")(0.5, 0.5, "
+            "0.5) * emission ()>\n\n");
+}
+
 // The layer named after a shader given as a file is the name without folder or extension
 // (OSL 1.13.12: `testshade -g 1 1 gac.oso` prints gac_0 for getattribute("shader:layername")).
 TEST(ShadeCli, LayerNamesDropTheExtension) {
