@@ -341,6 +341,10 @@ void LayerEmitter::finish_exit_block() {
   for (const ir::Op& op : shader().ops)
     for (size_t a = 0; a < op.args.size(); ++a)
       if (op.writes(int(a))) written[size_t(op.args[a])] = true;
+  // A connected input that leads on to another layer holds its upstream value when it leaves,
+  // read or not, as OSL resolves it (the upstream layer runs now if nothing here read it).
+  for (const ConnectionPlan& c : plan().connections)
+    if (is_source[size_t(c.dst_symbol)]) run_useparam(c.dst_symbol);
   for (size_t i = 0; i < syms.size(); ++i) {
     const ir::Symbol& s = syms[i];
     bool param = s.kind == SymKind::Param || s.kind == SymKind::OutputParam;

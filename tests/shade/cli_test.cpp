@@ -543,6 +543,16 @@ TEST(ShadeCli, TripleFmodFoldsAndClosureArraysPrintAsOsl) {
             "0.5) * emission ()>\n\n");
 }
 
+// An input connected in and on (B.bi from A, on to C) carries A's value to C although B never
+// reads it: A runs when B finishes (`testshade -O<n> -g 2 1 -layer A passon_up -layer B
+// passon_mid -layer C passon_down -connect A fo B bi -connect B bi C ci`, OSL 1.13.12).
+TEST(ShadeCli, ConnectedInputsLeadTheirUpstreamValueOn) {
+  EXPECT_EQ(both("-g 2 1 -layer A passon_up -layer B passon_mid -layer C passon_down -connect A fo "
+                 "B bi -connect B bi C ci"),
+            "Connect A.fo to B.bi\nConnect B.bi to C.ci\nmid: bj=-2\nup: fo=11\ndown: ci=11\n"
+            "mid: bj=-2\nup: fo=12\ndown: ci=12\n\n");
+}
+
 // The layer named after a shader given as a file is the name without folder or extension
 // (OSL 1.13.12: `testshade -g 1 1 gac.oso` prints gac_0 for getattribute("shader:layername")).
 TEST(ShadeCli, LayerNamesDropTheExtension) {
