@@ -388,7 +388,11 @@ struct FunctionDecl : Decl {
   std::vector<VarDeclPtr> params;     // storage FuncParam
   std::unique_ptr<CompoundStmt> body; // null for a prototype
   Metadata metadata;
-  bool is_builtin = false;           // parser: metadata has `int builtin = 1`
+  bool is_builtin = false; // parser: metadata has `int builtin = 1`
+  // parser: metadata has `int osl_builtin = 1`: a stdosl.h function Lobe writes out that OSL
+  // implements as a builtin op, so its body is not a function body in OSL's sense
+  // (ir::Op::in_function).
+  bool osl_builtin = false;
   FunctionDecl* enclosing = nullptr; // nested definitions: the function defined in (or null)
   FunctionDecl() : Decl(DeclKind::Function) {}
 };

@@ -171,6 +171,10 @@ struct Shader {
   // parameter default initialisers referenced by Symbol::init_begin/init_end.
   std::vector<Op> ops;
   int main_begin = 0;
+  // Reads of connected params are announced by `useparam` ops (lowering writes them; the text
+  // parser sets this when it reads one). Without, codegen fetches the connections a layer reads
+  // when it starts. Specialisation may remove every useparam op and keeps this set.
+  bool useparams = false;
 
   int find_symbol(const std::string& name) const;               // -1 if absent
   const StructType* find_struct(const std::string& name) const; // null if absent

@@ -360,6 +360,7 @@ void Parser::op_line(std::vector<Token>& toks) {
   if (i < toks.size() && !toks[i].quoted && toks[i].text == "%infn") op.in_function = true, ++i;
   if (i < toks.size() && !toks[i].quoted && toks[i].text[0] == '@') op.loc = loc(toks[i++]);
   if (i < toks.size()) throw Fail{toks[i].col, "unexpected '" + toks[i].text + "'"};
+  if (op.opcode == Opcode::UseParam) sh_.useparams = true;
   sh_.ops.push_back(std::move(op));
 }
 

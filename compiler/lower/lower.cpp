@@ -144,7 +144,8 @@ int Lowerer::emit(ir::Opcode opcode, std::vector<int> args, uint32_t written,
   op.written_mask = written;
   op.jumps = std::move(jumps);
   op.loc = loc(where ? where : where_);
-  op.in_function = !inlines_.empty();
+  op.in_function =
+      std::any_of(inlines_.begin(), inlines_.end(), [](const Inline& in) { return in.function; });
   std::vector<int> reads;
   for (size_t i = 0; i < op.args.size(); ++i) {
     int s = op.args[i];

@@ -376,8 +376,10 @@ int Lowerer::assign(const ast::AssignExpr* a, int hint) {
     store(dst, v, a);
     // `x = f(...)` of a user function: oslc returns into x from inside f's body, so the store
     // counts as the body's (ir::Op::in_function).
-    if (direct && a->rhs->kind == K::Call &&
-        static_cast<const ast::CallExpr*>(a->rhs.get())->callee.kind == ast::CalleeKind::User)
+    const auto* call =
+        a->rhs->kind == K::Call ? static_cast<const ast::CallExpr*>(a->rhs.get()) : nullptr;
+    if (direct && call && call->callee.kind == ast::CalleeKind::User && call->callee.function &&
+        !call->callee.function->osl_builtin)
       for (size_t k = first; k < sh_.ops.size(); ++k) sh_.ops[k].in_function = true;
     return dst.whole() ? dst.sym : v;
   }

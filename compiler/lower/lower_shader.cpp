@@ -113,6 +113,7 @@ LowerResult Lowerer::run() {
     return res;
   }
   sh_.type = shader_type(sd->shader_type);
+  sh_.useparams = true; // emit() announces the reads of params
   sh_.name = sd->name;
   auto metadata = [&](const ast::Metadata& md) {
     std::vector<ir::Metadata> out;

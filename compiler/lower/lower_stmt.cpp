@@ -186,6 +186,7 @@ std::vector<int> Lowerer::call_user(const ast::FunctionDecl* f,
     vars_[p] = bound[i];
   }
   Inline in;
+  in.function = !f->osl_builtin;
   if (!f->return_type.is_void())
     for (const Leaf& l : leaves(f->return_type, f)) in.result.push_back(temp(irtype(l.type, f)));
   inlines_.push_back(in);

@@ -121,6 +121,7 @@ public:
   struct Inline {
     std::vector<int> result;
     std::vector<int> returns; // `br` ops to patch to the end of the body
+    bool function = true;     // a function in OSL's sense (not an osl_builtin): Op::in_function
   };
   std::vector<Inline> inlines_;
   void patch(const std::vector<int>& ops, int target);

@@ -372,6 +372,7 @@ std::unique_ptr<ast::FunctionDecl> Parser::function_rest(ast::Type ret, const To
   for (auto& m : f->metadata) {
     auto* v = ast::as<ast::IntLit>(m.value.get());
     if (m.name == "builtin" && v && v->value != 0) f->is_builtin = true;
+    if (m.name == "osl_builtin" && v && v->value != 0) f->osl_builtin = true;
   }
   if (!accept(Tok::Semi)) {
     functions_.push_back(f.get());

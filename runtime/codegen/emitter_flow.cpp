@@ -135,9 +135,7 @@ void LayerEmitter::init_params() {
   // those of params something reads (an op, or a downstream layer through a connection from
   // the param): as OSL, an upstream layer whose value nothing reads does not run.
   const auto& ops = shader().ops;
-  if (std::any_of(ops.begin(), ops.end(),
-                  [](const ir::Op& op) { return op.opcode == ir::Opcode::UseParam; }))
-    return; // the useparam ops fetch them where they are first read
+  if (shader().useparams) return; // the useparam ops fetch them where they are first read
   std::vector<bool> read(syms.size(), false);
   for (const ir::Op& op : ops)
     for (size_t a = 0; a < op.args.size(); ++a)

@@ -934,6 +934,10 @@ TEST(ShadeCli, UpstreamLayersOfKnownValueAreElidedAtO2) {
   EXPECT_EQ(run("-O0 " + group("elide_function", "o3")), ran("o3", "6"));
   EXPECT_EQ(run("-O2 " + group("elide_function", "o3")),
             "Connect A.o3 to B.i\nreader i 6\nreader i 6\n\n");
+  // mix() is a builtin op in OSL (Lobe's stdosl.h body is osl_builtin): o4 = mix() is known.
+  EXPECT_EQ(run("-O0 " + group("elide_function", "o4")), ran("o4", "2"));
+  EXPECT_EQ(run("-O2 " + group("elide_function", "o4")),
+            "Connect A.o4 to B.i\nreader i 2\nreader i 2\n\n");
   // An input read only by dead code (an output nothing takes, a local never read) is unused at
   // -O2, so its upstream layer does not run (`testshade -O<n> -g 2 1 -layer A elide_computed
   // -layer B elide_deadread -connect A o B i`, OSL 1.13.12).
