@@ -206,10 +206,16 @@ std::optional<Values> arith(Opcode op, const Type& dst, const std::vector<ConstA
     } else if (args.size() == 2) {
       auto f = float_binop(op, mode);
       if (!f) return std::nullopt;
-      // OSL folds fmod of triples with C's fmod: a zero component of the divisor gives NaN
-      // there (a float's fold gives 0, as math::fmod; at run time both give 0).
+      // OSL folds fmod of triples with C's fmod once the divisor is not all zero (an all-zero
+      // one, or a float 0, gives 0): a zero component of it gives NaN there (a float's fold
+      // gives 0, as math::fmod; at run time both give 0).
       const math::FnInfo* fi = math_fn(op, 2);
-      if (fi && fi->fn == math::Fn::Fmod && dst.is_triple() && args[1][c].f == 0.0f)
+      auto all_zero = [&] {
+        for (const ConstValue& d : args[1])
+          if (d.f != 0.0f) return false;
+        return true;
+      };
+      if (fi && fi->fn == math::Fn::Fmod && dst.is_triple() && args[1][c].f == 0.0f && !all_zero())
         out[c] = ConstValue::of_float(std::numeric_limits<float>::quiet_NaN());
       else
         out[c] = ConstValue::of_float(f(args[0][c].f, args[1][c].f));

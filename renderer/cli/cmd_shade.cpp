@@ -384,10 +384,10 @@ bool Shade::reparameter(ShaderGroup::Layer& l, const ShadeReparam& r) {
   InstanceValue* current = nullptr;
   for (InstanceValue& v : l.values)
     if (v.name == r.param) current = &v;
-  bool interactive = current && current->interactive;
-  for (const ir::Metadata& m : s.metadata)
-    interactive = interactive || (m.name == "interactive" && m.type.base == ir::BaseType::Int &&
-                                  !m.value.empty() && m.value[0].i != 0);
+  // Interactive as the group build takes it (group::interactive_param): by the instance
+  // value's mark when one was given (a plain value overrides the metadata), else by the
+  // shader's `[[ int interactive = 1 ]]`.
+  bool interactive = group::interactive_param(l, s);
   if (!interactive) {
     // testshade's error, for a parameter the group still has: any at -O0 and -O1; at -O2 one
     // that stays a parameter (an output, a connection's destination, one taking user data),

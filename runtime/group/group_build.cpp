@@ -427,21 +427,6 @@ std::string osl_type_name(const ir::Type& t) {
   return s;
 }
 
-// Whether `s` of layer `l` is interactive, as OSL takes it: by its instance value's
-// `interactive` flag when one is given (a plain value overrides the shader's metadata), else by
-// the shader's `[[ int interactive = 1 ]]`.
-bool interactive_param(const ShaderGroup::Layer& l, const ir::Symbol& s) {
-  const InstanceValue* given = nullptr;
-  for (const InstanceValue& v : l.values)
-    if (v.name == s.name) given = &v;
-  if (given) return given->interactive;
-  for (const ir::Metadata& m : s.metadata)
-    if (m.name == "interactive" && m.type.base == ir::BaseType::Int && !m.value.empty() &&
-        m.value[0].i != 0)
-      return true;
-  return false;
-}
-
 // Whether two instance-value lists give a shader the same parameter values: a parameter given
 // in one only must hold that value as its constant default (a computed default is not known
 // here). Each value compares by its parameter's type, floats by their bits.
@@ -493,7 +478,7 @@ void merge_identical_layers(
   auto pinned = [&](size_t j) {
     if (j + 1 == n) return true;
     for (const ir::Symbol& s : sources[j]->symbols)
-      if (renderer_reads(group, group.layers[j].name, s.name) ||
+      if ((s.kind == SymKind::OutputParam && renderer_reads(group, group.layers[j].name, s.name)) ||
           (is_param(s) && interactive_param(group.layers[j], s)))
         return true;
     return false;

@@ -147,15 +147,20 @@ std::unique_ptr<ShaderGroup> parse_group_text(const std::string& text, const std
         meta += st[k].text + " ";
         if (!st[k].quoted && st[k].text.find("]]") != std::string::npos) break;
       }
-      auto hint = [&](const char* name) -> int {
-        static const std::string kInt = R"(\bint\s+)";
-        std::smatch m;
-        std::regex re(kInt + name + R"(\s*=\s*(-?\d+)\b)");
-        return std::regex_search(meta, m, re) ? std::stoi(m[1].str()) : -1;
-      };
-      if (int lg = hint("lockgeom"); lg >= 0) v.lockgeom = lg == 0 ? 0 : 1;
-      v.interpolated = hint("interpolated") > 0;
-      v.interactive = hint("interactive") > 0;
+      // Each hint: absent, zero or nonzero (any length of digits).
+      enum class Hint { Absent, Zero, Nonzero };
+      static const std::regex kHint(R"(\bint\s+(lockgeom|interpolated|interactive)\s*=\s*-?(\d+))");
+      Hint lockgeom = Hint::Absent, interpolated = Hint::Absent, interactive = Hint::Absent;
+      for (auto it = std::sregex_iterator(meta.begin(), meta.end(), kHint);
+           it != std::sregex_iterator(); ++it) {
+        Hint h =
+            (*it)[2].str().find_first_not_of('0') == std::string::npos ? Hint::Zero : Hint::Nonzero;
+        const std::string name = (*it)[1].str();
+        (name == "lockgeom" ? lockgeom : name == "interpolated" ? interpolated : interactive) = h;
+      }
+      if (lockgeom != Hint::Absent) v.lockgeom = lockgeom == Hint::Zero ? 0 : 1;
+      v.interpolated = interpolated == Hint::Nonzero;
+      v.interactive = interactive == Hint::Nonzero;
       pending.push_back(std::move(v));
     } else if (kw == "shader") {
       if (st.size() < 2 || st.size() > 3) {

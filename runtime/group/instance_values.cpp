@@ -167,4 +167,16 @@ int metadata_lockgeom(const ir::Symbol& s) {
   return lockgeom;
 }
 
+bool interactive_param(const ShaderGroup::Layer& l, const ir::Symbol& s) {
+  const InstanceValue* given = nullptr;
+  for (const InstanceValue& v : l.values)
+    if (v.name == s.name) given = &v;
+  if (given) return given->interactive;
+  for (const ir::Metadata& m : s.metadata)
+    if (m.name == "interactive" && m.type.base == ir::BaseType::Int && !m.value.empty() &&
+        m.value[0].i != 0)
+      return true;
+  return false;
+}
+
 } // namespace lobe::group

@@ -29,6 +29,11 @@ std::string nonexistent_param_note(const std::string& layer, const std::string& 
                                    const std::string& param,
                                    const std::vector<std::string>& params);
 
+// Whether parameter `s` of layer `l` is interactive, as OSL takes it: by its instance value's
+// `interactive` mark when one is given (a plain value overrides the shader's metadata), else by
+// the shader's `[[ int interactive = 1 ]]`. An interactive parameter is never folded.
+bool interactive_param(const ShaderGroup::Layer& l, const ir::Symbol& s);
+
 // The shader's own `[[ int lockgeom = N ]]` on parameter `s`: N, or -1 when it says nothing.
 // `[[ int interpolated = N ]]` says the same as lockgeom = !N (as OSL reads it); of several, the
 // last counts.

@@ -147,6 +147,8 @@ std::string ShadingSystem::Impl::cache_key(const ShaderGroup& g,
       key += "value " + v.type + " " + v.name + " " + v.value + " ";
       key += std::to_string(v.lockgeom);
       key += v.osl_rules ? " osl" : " fit";
+      key += v.interpolated ? " interp" : "";
+      key += v.interactive ? " inter" : "";
       for (const std::string& w : v.words) key += " [" + w + "]";
       key += "\n";
     }

@@ -135,8 +135,6 @@ TEST(RenderCli, JitErrorsAreReportedAsTheyAre) {
                        "without connections\n");
 }
 
-// An instance value for a parameter the shader does not have is an error naming the file,
-// the material, the parameter and the shader's parameters, in every backend.
 // --no-aovs: the .exr holds R, G, B only, and they are the same picture, bit for bit, as the
 // beauty of the render with AOVs (the AOVs take no random numbers, so the paths are the same).
 TEST(RenderCli, NoAovsWritesTheBeautyAlone) {
@@ -164,6 +162,8 @@ TEST(RenderCli, NoAovsWritesTheBeautyAlone) {
   EXPECT_GT(mean_channel(d / "b.exr", "R"), 0.05);
 }
 
+// An instance value for a parameter the shader does not have is an error naming the file,
+// the material, the parameter and the shader's parameters, in every backend.
 TEST(RenderCli, UnknownParametersAreErrors) {
   fs::path d = temp_dir("unknown_param");
   fs::path scene = d / "s.json";

@@ -538,6 +538,12 @@ TEST(ShadeCli, TripleFmodFoldsAndClosureArraysPrintAsOsl) {
                          "fmod(vector(5, -6, 7), b), fmod(5.0, 0.0));\n"
                          "    closure color two[2] = { diffuse(N), 0.5 * emission() };\n"
                          "    printf(\"<%s>\\n\", two);\n}\n");
+  // An all-zero divisor (or a float 0) folds to 0 as at run time (`testshade -g 1 1 fmodzero`).
+  auto zero = scratch_dir("fmodzero.osl",
+                          "shader fmodzero() { printf(\"%g | %g | %g | %g\\n\", fmod(color(1,2,3), "
+                          "0.0), fmod(color(1,2,3), color(0)), fmod(color(0), color(2,0,1)), "
+                          "fmod(color(5,6,7), color(2,0,4))); }\n");
+  EXPECT_EQ(run_in(zero, "-g 1 1 fmodzero"), "0 0 0 | 0 0 0 | 0 nan 0 | 1 nan 3\n\n");
   EXPECT_EQ(run_in(dir, "-g 1 1 fmodfold"),
             "1 -2 nan | 1 -2 nan | 0\n<(1, 1, 1) * diffuse ((0, 0, 1), \"label\", \"\")(0.5, 0.5, "
             "0.5) * emission ()>\n\n");
@@ -963,6 +969,10 @@ TEST(ShadeCli, UpstreamLayersOfKnownValueAreElidedAtO2) {
   EXPECT_EQ(run("-O2 -g 2 1" + up + "om B i"), ran_i("om", "2"));
   EXPECT_EQ(run("-O2 -g 2 1 -param m 3.0" + up + "om B i"), elided("om", "6"));
   EXPECT_EQ(run("-O2 -g 2 1 -param:interactive=1 m 3.0" + up + "om B i"), ran_i("om", "6"));
+  // A plain value overriding the metadata leaves m not interactive: --reparam changes nothing
+  // and says nothing at -O2 (`testshade -O2 -g 1 1 --iters 2 -param m 3.0 ... --reparam A m 5.0`).
+  EXPECT_EQ(run("-O2 -g 1 1 --iters 2 -param m 3.0" + up + "om B i --reparam A m 5.0"),
+            "Connect A.om to B.i\nreader i 6\nreader i 6\n\n");
   // isconnected() answers for the connection as made, on both sides, and does not keep the
   // layer: at -O2 `elide_asks` does not run. (`elide_reader_asks` reads `i`.)
   const std::string asks = "-g 2 1 -layer A elide_asks -layer B elide_reader_asks -connect A o B i";
