@@ -76,38 +76,30 @@ TEST(ShadeCli, ConnectionsAreAnnouncedAndFollowed) {
 // Expected: OSL 1.13.12, `oslc connect_types_src.osl connect_types_dst.osl; testshade -g 1 1
 // -layer A connect_types_src -layer B connect_types_dst -connect A X B Y` (stdout, then stderr).
 TEST(ShadeCli, ConnectionsOfTypesOslRefusesAreErrors) {
-  auto connect = [](const std::string& src, const std::string& dst) {
-    return run_cmd(
-        std::string("cd ") + LOBE_SHADE_CORPUS + "/layers && { " + LOBE_EXE +
-        " shade -g 1 1 -layer A connect_types_src -layer B connect_types_dst -connect A " + src +
-        " B " + dst + " 2>&1; echo \"rc $?\"; }");
-  };
-  const std::string group = "        group: unnamed_group_1\n";
-  EXPECT_EQ(connect("f", "i"), "Connect A.f to B.i\nERROR: ConnectShaders: cannot connect a float "
-                               "(f) to a int (i)\n" +
-                                   group + "rc 1\n");
-  EXPECT_EQ(connect("c", "f"), "Connect A.c to B.f\nERROR: ConnectShaders: cannot connect a color "
-                               "(c) to a float (f)\n" +
-                                   group + "rc 1\n");
-  EXPECT_EQ(connect("a3", "a2"), "Connect A.a3 to B.a2\nERROR: ConnectShaders: cannot connect a "
-                                 "float[3] (a3) to a float[2] (a2)\n" +
-                                     group + "rc 1\n");
-  EXPECT_EQ(connect("s", "f"), "Connect A.s to B.f\nERROR: ConnectShaders: cannot connect a string "
-                               "(s) to a float (f)\n" +
-                                   group + "rc 1\n");
-  // A closure is a "closure color" in OSL's words (`-layer A connect_closure_src`).
-  auto closure = [](const std::string& src, const std::string& dst) {
+  auto connect_from = [](const std::string& shader, const std::string& src,
+                         const std::string& dst) {
     return run_cmd(std::string("cd ") + LOBE_SHADE_CORPUS + "/layers && { " + LOBE_EXE +
-                   " shade -g 1 1 -layer A connect_closure_src -layer B connect_types_dst "
-                   "-connect A " +
+                   " shade -g 1 1 -layer A " + shader + " -layer B connect_types_dst -connect A " +
                    src + " B " + dst + " 2>&1; echo \"rc $?\"; }");
   };
-  EXPECT_EQ(closure("cc", "c"), "Connect A.cc to B.c\nERROR: ConnectShaders: cannot connect a "
-                                "closure color (cc) to a color (c)\n" +
-                                    group + "rc 1\n");
-  EXPECT_EQ(closure("ca", "f"), "Connect A.ca to B.f\nERROR: ConnectShaders: cannot connect a "
-                                "closure color[2] (ca) to a float (f)\n" +
-                                    group + "rc 1\n");
+  auto connect = [&](const std::string& src, const std::string& dst) {
+    return connect_from("connect_types_src", src, dst);
+  };
+  const std::string group = "        group: unnamed_group_1\n";
+  // OSL's words for a refused connection of src to dst: "cannot connect a <what>".
+  auto refused = [&](const std::string& src, const std::string& dst, const std::string& what) {
+    return "Connect A." + src + " to B." + dst + "\nERROR: ConnectShaders: cannot connect a " +
+           what + "\n" + group + "rc 1\n";
+  };
+  EXPECT_EQ(connect("f", "i"), refused("f", "i", "float (f) to a int (i)"));
+  EXPECT_EQ(connect("c", "f"), refused("c", "f", "color (c) to a float (f)"));
+  EXPECT_EQ(connect("a3", "a2"), refused("a3", "a2", "float[3] (a3) to a float[2] (a2)"));
+  EXPECT_EQ(connect("s", "f"), refused("s", "f", "string (s) to a float (f)"));
+  // A closure is a "closure color" in OSL's words (`-layer A connect_closure_src`).
+  EXPECT_EQ(connect_from("connect_closure_src", "cc", "c"),
+            refused("cc", "c", "closure color (cc) to a color (c)"));
+  EXPECT_EQ(connect_from("connect_closure_src", "ca", "f"),
+            refused("ca", "f", "closure color[2] (ca) to a float (f)"));
   EXPECT_EQ(connect("nosuch", "f"),
             "Connect A.nosuch to B.f\nERROR: ConnectShaders: \"nosuch\" is not a parameter or "
             "global of layer \"A\" (shader \"connect_types_src\")\nERROR: ConnectShaders: cannot "
