@@ -177,9 +177,15 @@ std::optional<Values> arith(Opcode op, const Type& dst, const std::vector<ConstA
   // Division by a constant that is not all zero divides plainly, a zero component giving inf,
   // as the generated code divides (and OSL: vector(4) / vector(0, 1, 2) is "inf 4 2" in OSL
   // 1.13.12, folded or not); an all-zero divisor gives 0.
-  bool plain_div = false;
-  if (op == Opcode::Div && args.size() == 2 && dst.base != BaseType::Int)
-    for (const ConstValue& b : args[1]) plain_div = plain_div || b.f != 0.0f;
+  bool divisor_nonzero = false; // a float divisor (second operand) that is not all zero
+  if (args.size() == 2 && dst.base != BaseType::Int)
+    for (const ConstValue& b : args[1]) divisor_nonzero = divisor_nonzero || b.f != 0.0f;
+  const bool plain_div = op == Opcode::Div && divisor_nonzero;
+  // OSL folds fmod of triples with C's fmod once the divisor is not all zero (an all-zero one,
+  // or a float 0, gives 0): a zero component of it gives NaN there (a float's fold gives 0, as
+  // math::fmod; at run time both give 0).
+  const math::FnInfo* fi = math_fn(op, 2);
+  const bool c_fmod = fi && fi->fn == math::Fn::Fmod && dst.is_triple() && divisor_nonzero;
   for (size_t c = 0; c < out.size(); ++c) {
     if (plain_div) {
       out[c] = ConstValue::of_float(args[0][c].f / args[1][c].f);
@@ -206,16 +212,7 @@ std::optional<Values> arith(Opcode op, const Type& dst, const std::vector<ConstA
     } else if (args.size() == 2) {
       auto f = float_binop(op, mode);
       if (!f) return std::nullopt;
-      // OSL folds fmod of triples with C's fmod once the divisor is not all zero (an all-zero
-      // one, or a float 0, gives 0): a zero component of it gives NaN there (a float's fold
-      // gives 0, as math::fmod; at run time both give 0).
-      const math::FnInfo* fi = math_fn(op, 2);
-      auto all_zero = [&] {
-        for (const ConstValue& d : args[1])
-          if (d.f != 0.0f) return false;
-        return true;
-      };
-      if (fi && fi->fn == math::Fn::Fmod && dst.is_triple() && args[1][c].f == 0.0f && !all_zero())
+      if (c_fmod && args[1][c].f == 0.0f)
         out[c] = ConstValue::of_float(std::numeric_limits<float>::quiet_NaN());
       else
         out[c] = ConstValue::of_float(f(args[0][c].f, args[1][c].f));

@@ -40,15 +40,15 @@ vector clamp(vector x, float lo, float hi) { return clamp(x, vector(lo), vector(
 normal clamp(normal x, float lo, float hi) { return clamp(x, normal(lo), normal(hi)); }
 
 // mix(a, b, t) = a * (1 - t) + b * t (OSL's are builtin ops: osl_builtin)
-float mix(float a, float b, float t) [[ int osl_builtin = 1 ]] { return a * (1 - t) + b * t; }
-color mix(color a, color b, color t) [[ int osl_builtin = 1 ]] { return a * (1 - t) + b * t; }
-point mix(point a, point b, point t) [[ int osl_builtin = 1 ]] { return a * (1 - t) + b * t; }
-vector mix(vector a, vector b, vector t) [[ int osl_builtin = 1 ]] { return a * (1 - t) + b * t; }
-normal mix(normal a, normal b, normal t) [[ int osl_builtin = 1 ]] { return a * (1 - t) + b * t; }
-color mix(color a, color b, float t) [[ int osl_builtin = 1 ]] { return a * (1 - t) + b * t; }
-point mix(point a, point b, float t) [[ int osl_builtin = 1 ]] { return a * (1 - t) + b * t; }
-vector mix(vector a, vector b, float t) [[ int osl_builtin = 1 ]] { return a * (1 - t) + b * t; }
-normal mix(normal a, normal b, float t) [[ int osl_builtin = 1 ]] { return a * (1 - t) + b * t; }
+float mix(float a, float b, float t)[[int osl_builtin = 1]] { return a * (1 - t) + b * t; }
+color mix(color a, color b, color t)[[int osl_builtin = 1]] { return a * (1 - t) + b * t; }
+point mix(point a, point b, point t)[[int osl_builtin = 1]] { return a * (1 - t) + b * t; }
+vector mix(vector a, vector b, vector t)[[int osl_builtin = 1]] { return a * (1 - t) + b * t; }
+normal mix(normal a, normal b, normal t)[[int osl_builtin = 1]] { return a * (1 - t) + b * t; }
+color mix(color a, color b, float t)[[int osl_builtin = 1]] { return a * (1 - t) + b * t; }
+point mix(point a, point b, float t)[[int osl_builtin = 1]] { return a * (1 - t) + b * t; }
+vector mix(vector a, vector b, float t)[[int osl_builtin = 1]] { return a * (1 - t) + b * t; }
+normal mix(normal a, normal b, float t)[[int osl_builtin = 1]] { return a * (1 - t) + b * t; }
 closure color mix(closure color a, closure color b, float t) { return (1 - t) * a + t * b; }
 closure color mix(closure color a, closure color b, color t) { return (1 - t) * a + t * b; }
 

@@ -17,6 +17,10 @@
 #include <string>
 #include <vector>
 
+namespace lobe {
+struct GlobalField;
+}
+
 namespace lobe::codegen {
 
 struct Dual {
@@ -107,10 +111,11 @@ private:
   void init_params();
   void fetch_connection(const ConnectionPlan& c);
   // The group's layers share one ShaderGlobals, as OSL's do: around a call of an upstream layer
-  // this one's written globals go out to it (store_globals) and every global comes back
-  // (reload_globals, values only: derivatives stay as they are).
+  // (and at the exit) this one's written globals go out to it (store_globals) and after the
+  // call every global comes back (reload_globals, values only: derivatives stay as they are).
   void store_globals();
   void reload_globals();
+  llvm::Type* global_type(const GlobalField& g); // a ShaderGlobals field's scalar type
   void emit_region(int begin, int end, llvm::BasicBlock* after);
   void emit_op(int index);
   void emit_loop_check(const ir::Op& op); // counts a back edge (GroupPlan::loop_count_offset)
@@ -137,6 +142,7 @@ private:
   std::vector<llvm::Value*> storage_;       // per symbol: alloca (null for scalar consts)
   std::vector<llvm::Value*> fetched_flag_;  // per symbol: i1 alloca "connection fetched"
   std::vector<char> leader_;                // per op: starts a basic block
+  std::vector<bool> written_;               // per symbol: some op writes it
   std::vector<int> osl_opnum_;              // per op: its number as OSL counts (debug_uninit)
   std::map<int, llvm::BasicBlock*> blocks_; // op index -> block
   int region_end_ = 0;

@@ -79,8 +79,7 @@ void LayerEmitter::init_symbols() {
       };
       int comps = s.type.components();
       Val v(static_cast<size_t>(comps));
-      llvm::Type* t =
-          g->kind == GlobalKind::Closure ? ptr() : (g->kind == GlobalKind::Int ? i32() : f32());
+      llvm::Type* t = global_type(*g);
       for (int c = 0; c < comps; ++c) {
         v[size_t(c)].v = field(g->offset, c, t);
         if (s.derivs && g->dx) {
@@ -297,14 +296,14 @@ void LayerEmitter::emit_loop_check(const ir::Op& op) {
   b_.SetInsertPoint(go);
 }
 
+llvm::Type* LayerEmitter::global_type(const GlobalField& g) {
+  return g.kind == GlobalKind::Closure ? ptr() : (g.kind == GlobalKind::Int ? i32() : f32());
+}
+
 void LayerEmitter::store_globals() {
   const auto& syms = shader().symbols;
-  std::vector<bool> written(syms.size(), false);
-  for (const ir::Op& op : shader().ops)
-    for (size_t a = 0; a < op.args.size(); ++a)
-      if (op.writes(int(a))) written[size_t(op.args[a])] = true;
   for (size_t i = 0; i < syms.size(); ++i) {
-    if (syms[i].kind != SymKind::Global || !written[i]) continue;
+    if (syms[i].kind != SymKind::Global || !written_[i]) continue;
     const GlobalField* g = find_global(syms[i].name);
     Val v = load(int(i), nullptr, false);
     for (size_t c = 0; c < v.size(); ++c)
@@ -317,8 +316,7 @@ void LayerEmitter::reload_globals() {
   for (size_t i = 0; i < syms.size(); ++i) {
     if (syms[i].kind != SymKind::Global) continue;
     const GlobalField* g = find_global(syms[i].name);
-    llvm::Type* t =
-        g->kind == GlobalKind::Closure ? ptr() : (g->kind == GlobalKind::Int ? i32() : f32());
+    llvm::Type* t = global_type(*g);
     Val v = load(int(i)); // with its derivatives, which the store below keeps
     for (size_t c = 0; c < v.size(); ++c)
       v[c].v =
@@ -332,13 +330,10 @@ void LayerEmitter::reload_globals() {
 void LayerEmitter::finish_exit_block() {
   b_.SetInsertPoint(exit_block_);
   const auto& syms = shader().symbols;
-  std::vector<bool> is_source(syms.size(), false), written(syms.size(), false);
+  std::vector<bool> is_source(syms.size(), false);
   for (const LayerPlan& lp : group_.layers)
     for (const ConnectionPlan& c : lp.connections)
       if (c.src_layer == layer_) is_source[size_t(c.src_symbol)] = true;
-  for (const ir::Op& op : shader().ops)
-    for (size_t a = 0; a < op.args.size(); ++a)
-      if (op.writes(int(a))) written[size_t(op.args[a])] = true;
   // A connected input that leads on to another layer holds its upstream value when it leaves,
   // read or not, as OSL resolves it (the upstream layer runs now if nothing here read it).
   for (const ConnectionPlan& c : plan().connections)
@@ -349,14 +344,8 @@ void LayerEmitter::finish_exit_block() {
     if (param && plan().symbol_offset[i] >= 0 && (s.kind == SymKind::OutputParam || is_source[i]))
       b_.CreateMemCpy(groupdata_address(layer_, int(i), 0, 0, 0), llvm::MaybeAlign(4), storage_[i],
                       llvm::MaybeAlign(8), storage_bytes(s));
-    if (s.kind == SymKind::Global && written[i]) {
-      const GlobalField* g = find_global(s.name);
-      Val v = load(int(i), nullptr, false);
-      for (size_t c = 0; c < v.size(); ++c)
-        b_.CreateStore(v[c].v,
-                       b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), sg_, g->offset + 4 * c));
-    }
   }
+  store_globals();
   b_.CreateRetVoid();
 }
 
@@ -376,6 +365,10 @@ bool LayerEmitter::emit() {
         if (t >= 0 && size_t(t) <= ops.size()) leader_[size_t(t)] = 1;
     }
   }
+  written_.assign(shader().symbols.size(), false);
+  for (const ir::Op& op : ops)
+    for (size_t a = 0; a < op.args.size(); ++a)
+      if (op.writes(int(a))) written_[size_t(op.args[a])] = true;
   if (group_.debug_uninit) number_ops_as_osl();
   b_.SetInsertPoint(start);
   create_storage();

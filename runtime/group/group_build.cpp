@@ -473,25 +473,22 @@ bool same_values(const ir::Shader& sh, const std::map<std::string, std::vector<i
 void merge_identical_layers(
     const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
     const std::vector<std::map<std::string, std::vector<ir::ConstValue>>>& values,
-    const std::vector<std::set<std::string>>& interp, std::vector<Link>& links) {
+    const std::vector<std::set<std::string>>& interp,
+    const std::vector<std::set<std::string>>& interactive, std::vector<Link>& links) {
   const size_t n = group.layers.size();
-  auto pinned = [&](size_t j) {
-    if (j + 1 == n) return true;
-    for (const ir::Symbol& s : sources[j]->symbols)
-      if ((s.kind == SymKind::OutputParam && renderer_reads(group, group.layers[j].name, s.name)) ||
-          (is_param(s) && interactive_param(group.layers[j], s)))
-        return true;
-    return false;
-  };
+  // Per layer, once: whether it takes no part, and the connections into it in the order made
+  // (pointers: a merge redirects their sources in place).
+  std::vector<bool> pinned(n, false);
+  std::vector<std::vector<const Link*>> inputs(n);
+  for (size_t l = 0; l < n; ++l) {
+    pinned[l] = l + 1 == n || !interactive[l].empty();
+    for (const ir::Symbol& s : sources[l]->symbols)
+      pinned[l] = pinned[l] || (s.kind == SymKind::OutputParam &&
+                                renderer_reads(group, group.layers[l].name, s.name));
+  }
+  for (const Link& k : links) inputs[size_t(k.dst_layer)].push_back(&k);
   auto same_endpoint = [](const Endpoint& a, const Endpoint& b) {
     return a.symbol == b.symbol && a.elem == b.elem && a.comp == b.comp;
-  };
-  // The connections into layer `l`, in the order made.
-  auto inputs = [&](size_t l) {
-    std::vector<const Link*> in;
-    for (const Link& k : links)
-      if (k.dst_layer == int(l)) in.push_back(&k);
-    return in;
   };
   std::vector<std::string> text(n); // each layer's shader printed, when first compared
   auto shader_text = [&](size_t l) -> const std::string& {
@@ -500,13 +497,13 @@ void merge_identical_layers(
   };
   std::vector<int> merged_into(n, -1);
   for (size_t j = 1; j < n; ++j) {
-    if (pinned(j)) continue;
+    if (pinned[j]) continue;
     for (size_t i = 0; i < j; ++i) {
-      if (merged_into[i] >= 0 || pinned(i) || sources[i]->name != sources[j]->name) continue;
+      if (merged_into[i] >= 0 || pinned[i] || sources[i]->name != sources[j]->name) continue;
       if (sources[i] != sources[j] && shader_text(i) != shader_text(j)) continue;
       if (interp[i] != interp[j]) continue;
       if (!same_values(*sources[i], values[i], values[j])) continue;
-      std::vector<const Link*> a = inputs(i), b = inputs(j);
+      const std::vector<const Link*>&a = inputs[i], &b = inputs[j];
       bool same_in = a.size() == b.size();
       for (size_t k = 0; same_in && k < a.size(); ++k)
         same_in = a[k]->src_layer == b[k]->src_layer && same_endpoint(a[k]->src, b[k]->src) &&
@@ -578,6 +575,11 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       if (interpolated(sym, lg == lockgeom[i].end() ? -1 : lg->second, lockgeom_default))
         interp[i].insert(sym.name);
     }
+  // Interactive params, per layer: never folded (--reparam may change them), never merged.
+  std::vector<std::set<std::string>> interactive(n);
+  for (size_t i = 0; i < n; ++i)
+    for (const ir::Symbol& sym : sources[i]->symbols)
+      if (is_param(sym) && interactive_param(group.layers[i], sym)) interactive[i].insert(sym.name);
 
   // Connections, by names.
   std::vector<Link> links;
@@ -660,7 +662,8 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
 
   // OSL -O1/-O2 (its opt_merge_instances): a layer identical to an earlier one is merged into
   // it, so that the earlier one runs once where both ran (its printf shows once).
-  if (specialize && merge_instances) merge_identical_layers(group, sources, values, interp, links);
+  if (specialize && merge_instances)
+    merge_identical_layers(group, sources, values, interp, interactive, links);
 
   // Layers the last one depends on, and layers with a renderer output (which run at every
   // shade) with theirs.
@@ -765,8 +768,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     // An interactive parameter (--reparam may change it) is not folded either, so neither is
     // what it computes: OSL 1.13.12 runs a layer whose output is `x * 2` of an interactive x
     // where it elides the same layer with a plain x.
-    for (const ir::Symbol& s : sources[i]->symbols)
-      if (is_param(s) && interactive_param(group.layers[i], s)) kept.insert(s.name);
+    kept.insert(interactive[i].begin(), interactive[i].end());
     if (specialize)
       specialize_layer(*sh, values[i], kept, {out.plan.fast_math}, elide_known_outputs);
     new_index[i] = int(out.shaders.size());
