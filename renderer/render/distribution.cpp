@@ -84,7 +84,11 @@ Distribution2D::Distribution2D(const std::vector<float>& f, int w, int h) : w_(w
   for (int y = 0; y < h; ++y) {
     Distribution1D row(
         std::vector<float>(f.begin() + size_t(y) * w, f.begin() + size_t(y + 1) * w));
-    marg[size_t(y)] = row.integral();
+    // A row of zeros is uniform within itself but never chosen (Distribution1D's integral of
+    // an all-zero function is that of the uniform one it becomes).
+    bool zero = true;
+    for (int x = 0; x < w && zero; ++x) zero = !(f[size_t(y) * w + x] > 0);
+    marg[size_t(y)] = zero ? 0.0f : row.integral();
     float* cdf = &cdf_[size_t(y) * (w + 1)];
     for (int i = 0; i <= w; ++i) cdf[i] = row.cdf(i);
     for (int x = 0; x < w; ++x) row_pdf[size_t(y) * w + x] = row.pdf(x);

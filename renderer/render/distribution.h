@@ -47,6 +47,7 @@ public:
   static constexpr int kRowGuide = 64;
 
   Distribution2D() = default;
+  // `f` >= 0; a row of zeros has density 0 (never sampled); an all-zero f becomes uniform.
   Distribution2D(const std::vector<float>& f, int w, int h);
   // Sample (u, v) in [0,1)^2 with density pdf over the unit square.
   void sample(float u1, float u2, float& u, float& v, float& pdf) const;

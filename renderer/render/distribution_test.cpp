@@ -90,6 +90,25 @@ TEST(Distribution2D, PdfIntegratesToOneAndMatchesSamples) {
   }
 }
 
+TEST(Distribution2D, ARowOfZerosIsNeverSampled) {
+  // Rows 0 and 2 of three are zero: they have density 0 and no sample lands in them; the
+  // middle row then holds all the mass (density 3 over its third of the square, times f / mean
+  // within the row: 3 * 3 / 2 for the cell of weight 3 in {1, 3, 2}).
+  std::vector<float> f = {0, 0, 0, 1, 3, 2, 0, 0, 0};
+  Distribution2D d(f, 3, 3);
+  EXPECT_EQ(d.pdf(0.5f, 0.1f), 0.0f);
+  EXPECT_EQ(d.pdf(0.5f, 0.9f), 0.0f);
+  EXPECT_NEAR(d.pdf(0.5f, 0.5f), 4.5f, 1e-5);
+  lobe::render::RandomStream s(3, 1, 4);
+  for (int i = 0; i < 1000; ++i) {
+    float u, v, pdf;
+    d.sample(s.next(), s.next(), u, v, pdf);
+    ASSERT_GE(v, 1.0f / 3) << i;
+    ASSERT_LT(v, 2.0f / 3) << i;
+    EXPECT_NEAR(pdf, d.pdf(u, v), 1e-4 * pdf);
+  }
+}
+
 // The row search through the coarse guides finds the cell a plain scan of the row's CDF finds
 // (the last i with cdf[i] <= u, skipping zero-width cells), on rows wider than the guide with
 // dark runs and a spike: the whole of a row's mass in one cell makes every other cell's guide

@@ -34,6 +34,7 @@ EnvironmentLight::EnvironmentLight(std::vector<float> rgb, int w, int h, float r
   avg_lum_ = weight_sum > 0 ? float(lum_sum / weight_sum) : 0;
   if (constant_ && !rgb.empty()) color_ = {rgb[0], rgb[1], rgb[2]};
   dist_ = Distribution2D(f, w, h);
+  if (!constant_) build_oriented(f);
   tex_.resize(size_t(w) * h * 4);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -41,6 +42,47 @@ EnvironmentLight::EnvironmentLight(std::vector<float> rgb, int w, int h, float r
       for (int c = 0; c < 3; ++c) tex_[i * 4 + c] = rgb[i * 3 + c];
       tex_[i * 4 + 3] = dist_.pdf_cell(x, y);
     }
+}
+
+// The six oriented tables at half resolution: each cell's weight is the sum of its texels'
+// sampling weights (luminance times sin(theta)) times the largest cosine to the axis over the
+// cell's corners and centre, clamped at 0 (a cell across the axis' horizon keeps the part
+// above it). Built in parallel, one table a task.
+void EnvironmentLight::build_oriented(const std::vector<float>& weight) {
+  const int ow = (w_ + 1) / 2, oh = (h_ + 1) / 2;
+  std::vector<float> block(size_t(ow) * oh, 0.0f);
+  for (int y = 0; y < h_; ++y)
+    for (int x = 0; x < w_; ++x) block[size_t(y / 2) * ow + x / 2] += weight[size_t(y) * w_ + x];
+  // Directions of the cells' corners ((ow + 1) x (oh + 1)) and centres.
+  std::vector<Vec3> corner(size_t(ow + 1) * (oh + 1)), centre(size_t(ow) * oh);
+  for (int y = 0; y <= oh; ++y)
+    for (int x = 0; x <= ow; ++x)
+      corner[size_t(y) * (ow + 1) + x] = uv_to_dir(float(x) / float(ow), float(y) / float(oh));
+  for (int y = 0; y < oh; ++y)
+    for (int x = 0; x < ow; ++x)
+      centre[size_t(y) * ow + x] = uv_to_dir((x + 0.5f) / float(ow), (y + 0.5f) / float(oh));
+  oriented_.assign(6, Distribution2D());
+  tbb::parallel_for(0, 6, [&](int k) {
+    const int axis = k / 2;
+    const float sign = k % 2 ? -1.0f : 1.0f;
+    std::vector<float> f(size_t(ow) * oh);
+    for (int y = 0; y < oh; ++y)
+      for (int x = 0; x < ow; ++x) {
+        float c = sign * centre[size_t(y) * ow + x][axis];
+        for (int dy = 0; dy <= 1; ++dy)
+          for (int dx = 0; dx <= 1; ++dx)
+            c = std::max(c, sign * corner[size_t(y + dy) * (ow + 1) + x + dx][axis]);
+        f[size_t(y) * ow + x] = block[size_t(y) * ow + x] * std::max(c, 0.0f);
+      }
+    oriented_[size_t(k)] = Distribution2D(f, ow, oh);
+  });
+}
+
+int EnvironmentLight::oriented_index(const Vec3& n) const {
+  if (oriented_.empty() || is_zero(n)) return -1;
+  Vec3 a{std::abs(n.x), std::abs(n.y), std::abs(n.z)};
+  int axis = a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
+  return 2 * axis + (n[axis] < 0 ? 1 : 0);
 }
 
 EnvironmentLight EnvironmentLight::from_function(const std::function<Color3(const Vec3&)>& radiance,
@@ -99,7 +141,7 @@ float EnvironmentLight::pdf(const Vec3& dir) const {
 
 Color3 EnvironmentLight::eval_pdf(const Vec3& dir, const Vec3& n, float& pdf) const {
   if (constant_) {
-    pdf = std::max(0.0f, dot(dir, n)) * kInvPi;
+    pdf = is_zero(n) ? 1 / (4 * kPi) : std::max(0.0f, dot(dir, n)) * kInvPi;
     return color_;
   }
   if (!valid()) {
@@ -109,7 +151,9 @@ Color3 EnvironmentLight::eval_pdf(const Vec3& dir, const Vec3& n, float& pdf) co
   float u, v;
   dir_to_uv(dir, u, v);
   const float* p = texel(u, v);
-  pdf = table_pdf(p, sin_theta(dir));
+  int k = oriented_index(n);
+  pdf = k < 0 ? table_pdf(p, sin_theta(dir))
+              : solid_angle_pdf(oriented_[size_t(k)].pdf(u, v), sin_theta(dir));
   return {p[0], p[1], p[2]};
 }
 
@@ -126,6 +170,10 @@ Vec3 EnvironmentLight::sample(float u1, float u2, float& pdf) const {
 }
 
 Vec3 EnvironmentLight::sample(const Vec3& n, float u1, float u2, float& pdf, Color3& L) const {
+  if (constant_ && is_zero(n)) {
+    L = color_;
+    return sample(u1, u2, pdf);
+  }
   if (constant_) {
     Vec3 l = sample_cosine_hemisphere(u1, u2);
     pdf = l.z * kInvPi;
@@ -134,6 +182,14 @@ Vec3 EnvironmentLight::sample(const Vec3& n, float u1, float u2, float& pdf, Col
   }
   float u, v;
   int x, y;
+  if (int k = oriented_index(n); k >= 0) {
+    const Distribution2D& d = oriented_[size_t(k)];
+    d.sample_cell(u1, u2, u, v, x, y);
+    const float* t = texel(u, v);
+    L = {t[0], t[1], t[2]};
+    pdf = solid_angle_pdf(d.pdf_cell(x, y), std::sin(v * kPi));
+    return uv_to_dir(u, v);
+  }
   dist_.sample_cell(u1, u2, u, v, x, y);
   // The sampled cell's density, from its texel, which also holds the radiance: one cache miss.
   // (The radiance is read at (u, v), the same texel but where u * w rounds up to the next.)
@@ -146,8 +202,9 @@ Vec3 EnvironmentLight::sample(const Vec3& n, float u1, float u2, float& pdf, Col
 }
 
 float EnvironmentLight::pdf(const Vec3& dir, const Vec3& n) const {
-  if (!constant_) return pdf(dir);
-  return std::max(0.0f, dot(dir, n)) * kInvPi;
+  float p;
+  eval_pdf(dir, n, p);
+  return p;
 }
 
 } // namespace lobe::render

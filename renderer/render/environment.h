@@ -11,6 +11,15 @@
 // sphere, or cosine-weighted about a surface normal when one is given (pdf cos/pi on its
 // hemisphere, 0 below), with exact pdfs; the expected image is the same.
 //
+// Light samples for a surface: a table is sampled from one of six oriented tables, one per
+// axis (+X, -X, +Y, -Y, +Z, -Z), at half the resolution: the radiance times the cosine to the
+// axis (the largest over the cell, clamped at 0), so a surface facing its normal's nearest
+// axis draws its light samples about as radiance times cosine, not over the whole sphere
+// (half of which lies behind it). Directions a table gives no density (beyond its axis'
+// horizon, yet above the surface's) are left to the BSDF's samples, whose MIS weight is then
+// 1: the estimate stays unbiased. A zero normal (a surface that transmits diffusely, lit
+// from both sides) takes the whole-sphere table, or the uniform sphere when constant.
+//
 // Mapping (after rotating by -rotation about +Y): v = theta/pi with theta measured from +Y
 // (row 0 is straight up), u = 0.5 + atan2(x, -z) / (2 pi) (the image centre looks down -Z).
 #pragma once
@@ -43,9 +52,10 @@ public:
   }
   float pdf(const Vec3& dir) const;                  // solid-angle density of sample()
   Vec3 sample(float u1, float u2, float& pdf) const; // direction towards the environment
-  // As seen from a surface with unit normal `n` (on the side the light is wanted): a constant
-  // environment is sampled cosine-weighted about n; a table as above (n unused). `L` gets the
-  // radiance of the sampled texel (no second lookup).
+  // As seen from a surface with unit normal `n` (on the side the light is wanted), or a zero
+  // `n` (both sides wanted): a constant environment is sampled cosine-weighted about n
+  // (uniformly over the sphere for a zero n); a table from the oriented table of n's nearest
+  // axis (the whole-sphere table for a zero n). `L` gets the radiance of the sampled texel.
   Vec3 sample(const Vec3& n, float u1, float u2, float& pdf, Color3& L) const;
   float pdf(const Vec3& dir, const Vec3& n) const; // solid-angle density of sample(n, ...)
   // eval(dir) and pdf(dir, n) with one direction-to-texel mapping.
@@ -58,6 +68,10 @@ public:
 
 private:
   Color3 eval_table(const Vec3& dir) const;
+  // The oriented table for normal n: 0..5 for +X, -X, +Y, -Y, +Z, -Z (n's largest component
+  // and its sign), -1 for a zero n or when there are none (constant or empty environments).
+  int oriented_index(const Vec3& n) const;
+  void build_oriented(const std::vector<float>& weight);
   // A texel: radiance r, g, b and the distribution's density over the unit square there (one
   // cache line holds what eval and pdf read).
   const float* texel(float u, float v) const {
@@ -66,7 +80,11 @@ private:
     return &tex_[(size_t(y) * w_ + x) * 4];
   }
   static float table_pdf(const float* t, float sin_theta) {
-    return sin_theta > 0 ? t[3] / (2 * kPi * kPi * sin_theta) : 0;
+    return solid_angle_pdf(t[3], sin_theta);
+  }
+  // Solid-angle density of a density `p` over the unit (u, v) square.
+  static float solid_angle_pdf(float p, float sin_theta) {
+    return sin_theta > 0 ? p / (2 * kPi * kPi * sin_theta) : 0;
   }
 
   std::vector<float> tex_; // w x h texels of 4 floats (see texel())
@@ -76,6 +94,7 @@ private:
   bool constant_ = false;
   Color3 color_; // the colour of a constant table
   Distribution2D dist_;
+  std::vector<Distribution2D> oriented_; // six, or none (see oriented_index)
 };
 
 } // namespace lobe::render

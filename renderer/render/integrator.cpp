@@ -49,6 +49,16 @@ float weight_bsdf_hit(Strategy s, bool after_delta, float bsdf_pdf, float light_
   return power_heuristic(bsdf_pdf, light_pdf);
 }
 
+// Whether a lobe transmits and is not a delta: light from behind the surface reaches it, so
+// light samples are drawn over the whole sphere (EnvironmentLight::sample with a zero normal).
+bool transmits_diffusely(const Bsdf& b) {
+  for (int i = 0; i < b.lobe_count(); ++i) {
+    uint32_t f = b.lobe(i).flags;
+    if ((f & kLobeTransmit) && !(f & kLobeSpecular)) return true;
+  }
+  return false;
+}
+
 // Scales `c` down to luminance `cap` when above it (cap 0: unchanged).
 Color3 clamped(const Color3& c, float cap) {
   if (!(cap > 0)) return c;
@@ -138,8 +148,11 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
     path_length += v.hit.t;
     shade_into(scene_, v.hit, ray.dir, raytype, ctx, v.bsdf, c, time_, lap, path_length);
     const Vec3 wo = -ray.dir;
-    // The shading normal on the viewer's side: the hemisphere the environment is sampled over.
-    const Vec3 n_lit = dot(v.hit.N, wo) < 0 ? -v.hit.N : v.hit.N;
+    // The shading normal on the viewer's side: the hemisphere the environment is sampled over
+    // (none, the whole sphere, for a surface lit through from behind).
+    const Vec3 n_lit = transmits_diffusely(v.bsdf) ? Vec3{}
+                       : dot(v.hit.N, wo) < 0      ? -v.hit.N
+                                                   : v.hit.N;
     if (!is_zero(v.bsdf.emission)) {
       float lp = lights.is_emitter(v.hit.shape) ? lights.pdf_area(prev_p, v.hit) : 0;
       Color3 contrib =
