@@ -1,6 +1,8 @@
 // testshade's value reading (see shade_values.h).
 #include "shade_values.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 
@@ -89,8 +91,9 @@ TypedValue read_typed_value(const std::string& type_name, const std::string& tex
   if (r.type.base == DataType::Base::String) r.words.resize(n);
   for (size_t k = 0; k < n; ++k) {
     const char* w = k < r.words.size() ? r.words[k].c_str() : "";
-    if (r.type.base == DataType::Base::Int)
-      r.ints.push_back(int32_t(std::strtol(w, nullptr, 10)));
+    if (r.type.base == DataType::Base::Int) // out of range: the nearest int, as testshade
+      r.ints.push_back(
+          int32_t(std::clamp<long>(std::strtol(w, nullptr, 10), INT32_MIN, INT32_MAX)));
     else if (r.type.is_float_based())
       r.floats.push_back(std::strtof(w, nullptr));
   }

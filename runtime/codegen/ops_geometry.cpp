@@ -112,14 +112,14 @@ float imath_length(const float v[3], bool fused) {
 }
 
 // The same at run time, as OSL's shadeop computes it (contracted multiply-adds); lengthTiny on
-// its own branch, so the common case pays a compare. (A NaN squared length gives 0, as
-// sqrt_pos.)
+// its own branch, so the common case pays a compare. A NaN component gives NaN, as in OSL (the
+// squared length is not below the threshold, and its square root is NaN).
 llvm::Value* length_value(LayerEmitter& e, const Val& a) {
   float c[3];
   if (constant3(a, c)) return e.fconst(imath_length(c, true));
   auto& B = e.b();
   llvm::Value* len2 = dot_fused(e, a, a);
-  llvm::Value* normal = sqrt_pos(e, len2);
+  llvm::Value* normal = B.CreateUnaryIntrinsic(llvm::Intrinsic::sqrt, len2);
   llvm::BasicBlock* from = B.GetInsertBlock();
   llvm::Function* fn = from->getParent();
   auto* tiny = llvm::BasicBlock::Create(e.ctx(), "length_tiny", fn);
@@ -177,8 +177,11 @@ void op_distance(LayerEmitter& e, const ir::Op& op) {
   auto dot = [&](const Val& x, const Val& y) {
     return derivs ? dot3(d, x, y) : Dual{dot_fused(e, x, y)};
   };
+  // Without derivatives, the plain square root of the squared length, as OSL's distance
+  // computes it (0 where it underflowed, NaN for a NaN component).
   auto length = [&](const Val& x) {
-    return derivs ? sqrt_dual(e, d, dot3(d, x, x)) : Dual{sqrt_pos(e, dot_fused(e, x, x))};
+    return derivs ? sqrt_dual(e, d, dot3(d, x, x))
+                  : Dual{e.b().CreateUnaryIntrinsic(llvm::Intrinsic::sqrt, dot_fused(e, x, x))};
   };
   auto minus = [&](const Val& x, const Val& y) {
     Val r(3);

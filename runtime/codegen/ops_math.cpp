@@ -205,6 +205,15 @@ void op_nary(LayerEmitter& e, const ir::Op& op) {
   }
   DualOps d(e);
   Val r;
+  // fmod by a constant divisor that is not all zeros is C's fmod of each component, as OSL
+  // generates it (LLVM's frem): a zero component gives NaN (fmod(v, vector(0, 1, 0)) is
+  // "-nan 0 -nan" at run time in OSL 1.13.12), NaN keeps the sign C gives it (fmod(-inf, 2) is
+  // -nan); an all-zero constant divisor gives 0 (math::fmod).
+  bool c_fmod = false;
+  const math::FnInfo* fn2 = passes::math_fn(o, 2);
+  if (fn2 && fn2->fn == math::Fn::Fmod && a.size() > 1 && e.arg(op, 2).kind == ir::SymKind::Const)
+    for (const Dual& y : a[1])
+      if (auto* k = llvm::dyn_cast<llvm::ConstantFP>(y.v); !k || !k->isZero()) c_fmod = true;
   for (size_t c = 0; c < a[0].size(); ++c) {
     const Dual& x = a[0][c];
     const Dual& y = a.size() > 1 ? a[1][c] : x;
@@ -214,6 +223,8 @@ void op_nary(LayerEmitter& e, const ir::Op& op) {
       bool has = x.dx || x.dy || y.dx || y.dy;
       if (f->fn == math::Fn::Fmod && e.arg(op, 2).kind != ir::SymKind::Const)
         out = Dual{fmod_varying(e, x.v, y.v), x.dx, x.dy};
+      else if (f->fn == math::Fn::Fmod && c_fmod)
+        out = Dual{B.CreateFRem(x.v, y.v), x.dx, x.dy};
       else if (f->fn == math::Fn::Fmod || !has) // fmod passes a's derivatives on
         out = Dual{call_math(e, f->fn, MathForm::Value, {x.v, y.v}), x.dx, x.dy};
       else

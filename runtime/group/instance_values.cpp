@@ -2,6 +2,8 @@
 // with OSL's rules when the value says its type (see InstanceValue in lobe/shadingsys.h).
 #include "instance_values.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <sstream>
 
@@ -38,6 +40,13 @@ std::optional<ir::Type> declared_type(const std::string& name) {
   return ir::Type{kBase[size_t(d->base)], unsized ? -1 : d->arraylen};
 }
 
+// An int as OSL reads one (OpenImageIO's stoi): a number past the range of int is the nearest
+// int (99999999999 is 2147483647), not its low 32 bits.
+int32_t read_int(const char* text, char** end) {
+  long v = std::strtol(text, end, 10);
+  return int32_t(std::clamp<long>(v, INT32_MIN, INT32_MAX));
+}
+
 // OSL's typed value: `t`'s elements x components values read from the words as C's atof and
 // atoi read them (junk after a number is ignored, no number is 0); missing values are 0 and
 // extra ones ignored. A scalar string is the whole text. An unsized `t` takes its length from
@@ -56,7 +65,7 @@ std::vector<ir::ConstValue> read_typed(const InstanceValue& v, ir::Type& t,
     if (t.base == ir::BaseType::String)
       out[k].s = w[k];
     else if (t.base == ir::BaseType::Int)
-      out[k].i = int32_t(std::strtol(w[k].c_str(), &end, 10));
+      out[k].i = read_int(w[k].c_str(), &end);
     else
       out[k].f = std::strtof(w[k].c_str(), &end);
     if (end == w[k].c_str()) junk.push_back(w[k]);
@@ -83,7 +92,7 @@ bool fit_untyped(const InstanceValue& v, const ir::Type& t, std::vector<ir::Cons
     } else {
       char* end = nullptr;
       if (t.base == ir::BaseType::Int) {
-        c.i = int32_t(std::strtol(w.c_str(), &end, 10));
+        c.i = read_int(w.c_str(), &end);
         if (*end == '.' || *end == 'e') c.i = int32_t(std::strtof(w.c_str(), &end));
       } else {
         c.f = std::strtof(w.c_str(), &end);

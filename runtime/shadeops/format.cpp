@@ -130,18 +130,41 @@ std::string format_float_runtime(std::string head, char conv, double v) {
 // An int through OSL's printf: ints are 32 bits, %x and %X print them unsigned (-1 is
 // ffffffff), %o prints the sign and the magnitude in octal (-1 is -1), and every other
 // conversion prints a decimal with C's width and precision ("%8.3f" of -1 is "    -001").
-std::string format_int(const std::string& head, char conv, int32_t v) {
-  if (conv == 'x' || conv == 'X') return printf1(head + conv, unsigned(uint32_t(v)));
+// Through format() %o is unsigned too, as in C (-8 is 37777777770).
+std::string format_int(const std::string& head, char conv, int32_t v, FormatRule rule) {
+  if (conv == 'x' || conv == 'X' || (conv == 'o' && rule != FormatRule::Printf))
+    return printf1(head + conv, unsigned(uint32_t(v)));
   if (conv == 'o') {
     std::string h = "%";
     for (char c : head)
       if (c == '#') h += c;
     unsigned mag = v < 0 ? 0u - unsigned(v) : unsigned(v);
-    std::string body = (v < 0 ? "-" : "") + printf1(h + "o", mag);
+    std::string body = printf1(h + "o", mag);
+    if (v < 0) body.insert(body.begin(), '-');
     bool left = head.find('-') != std::string::npos;
     return pad(head, body, !left, false);
   }
   return printf1(head + 'd', int(v));
+}
+
+// An infinity or NaN through a float conversion: C's text ("inf", "-nan", with the + and space
+// flags), but OSL's printf aligns it left in its width unless the 0 flag is given ("%5g" of inf
+// is "inf  ", "%05g" is "  inf"), and its format() run while shading spells it "Inf", "NaN"
+// (right-aligned, as C); its folded format() prints C's text.
+std::string format_nonfinite(const std::string& head, char conv, double v, FormatRule rule) {
+  size_t k = 1;
+  while (k < head.size() && std::strchr("-+ #0", head[k])) ++k;
+  std::string flags = head.substr(1, k - 1), spec = "%";
+  spec += flags;
+  spec += conv;
+  std::string body = printf1(spec, v);
+  if (rule == FormatRule::Format)
+    for (const char* word : {"inf", "nan", "INF", "NAN"})
+      if (size_t at = body.find(word); at != std::string::npos)
+        body.replace(at, 3, std::isinf(v) ? "Inf" : "NaN");
+  bool left = flags.find('-') != std::string::npos ||
+              (rule == FormatRule::Printf && flags.find('0') == std::string::npos);
+  return pad(head, body, !left, false);
 }
 
 // Formats one scalar component with conversion `conv` and the spec's flags (`head` is the
@@ -158,10 +181,12 @@ std::string format_scalar(const RuntimeEnv& env, const std::string& head, char c
     auto* node = *static_cast<const ClosureNode* const*>(p);
     return closure_text(env, node);
   }
-  if (code == 'i') return format_int(head, conv, *static_cast<const int32_t*>(p));
+  if (code == 'i') return format_int(head, conv, *static_cast<const int32_t*>(p), rule);
   // A float: its own conversions as in C; any other prints as %f, or %g after a length
   // modifier ("%ld" of -3.75 is -3.75), as OSL 1.13 does.
   double v = *static_cast<const float*>(p);
+  if (!std::isfinite(v) && std::strchr("fFgGeE", conv))
+    return format_nonfinite(head, conv, v, rule);
   if (rule == FormatRule::Format && std::strchr("fFgGeE", conv))
     return format_float_runtime(head, conv, v);
   if (std::strchr("fFgGeEaA", conv)) return printf1(head + conv, v);

@@ -68,6 +68,32 @@ TEST(Format, ArraysAndConversions) {
   EXPECT_EQ(format_values(env, "[%g] %g %d", "f{3}i", args), "[1 2 3.5] 7 %d");
 }
 
+// Infinities and NaNs, and %o of a negative int, in each of OSL's three rules. Expected text
+// from OSL 1.13.12 (testshade test, the values varying so that format() runs while shading, or
+// constant so that -O2 folds it):
+//   printf("[%5g] [%6f] [%10.3e] [%+6g] [%05g]", inf, -inf, nan, inf, inf)
+//     -> [inf  ] [-inf  ] [nan       ] [+inf  ] [  inf]
+//   format("%g %f %e [%5g]", inf, -inf, nan, inf) -> Inf -Inf NaN [  Inf]
+//   format("%o %#o", -8, -8) -> 37777777770 037777777770; printf("%o", -8) -> -10
+TEST(Format, NonFiniteFloatsAndNegativeOctalAsOsl) {
+  RuntimeEnv env;
+  float inf = INFINITY, ninf = -INFINITY, nan = std::nanf("");
+  const void* p[] = {&inf, &ninf, &nan, &inf, &inf};
+  EXPECT_EQ(format_values(env, "[%5g] [%6f] [%10.3e] [%+6g] [%05g]", "fffff", p),
+            "[inf  ] [-inf  ] [nan       ] [+inf  ] [  inf]");
+  const void* q[] = {&inf, &ninf, &nan, &inf};
+  EXPECT_EQ(format_values(env, "%g %f %e [%5g]", "ffff", q, FormatRule::Format),
+            "Inf -Inf NaN [  Inf]");
+  EXPECT_EQ(format_values(env, "%g %f %g [%5g]", "ffff", q, FormatRule::FormatFolded),
+            "inf -inf nan [  inf]");
+  int m8 = -8;
+  const void* o[] = {&m8, &m8};
+  EXPECT_EQ(format_values(env, "%o %#o", "ii", o, FormatRule::Format), "37777777770 037777777770");
+  EXPECT_EQ(format_values(env, "%o %#o", "ii", o, FormatRule::FormatFolded),
+            "37777777770 037777777770");
+  EXPECT_EQ(format_values(env, "%o", "i", o), "-10");
+}
+
 // format() of ints is remembered per thread: asked again, or after more formats than the memo
 // holds, it gives the same interned string, read from the format's text (not its address) and
 // interned in the asking table (not one since destroyed).

@@ -42,10 +42,11 @@ void* texsys(RuntimeEnv* env, const lobe::oiio::Api*& api, std::string& why) {
 
 // After a failed lookup: the shader's missing colour (no error; an "errormessage" output is
 // ""), or zeros and an error in OSL's words (`[RendererServices::texture] Could not open file
-// "x.exr"`; nothing for a file OpenImageIO explained before), or the reason in the
-// "errormessage" output instead ("unknown" when it was told before).
+// "x.exr"`, `kind` naming the lookup: texture, texture3d or environment; nothing for a file
+// OpenImageIO explained before), or the reason in the "errormessage" output instead
+// ("unknown" when it was told before).
 void missing(ShaderGlobals* sg, RuntimeEnv* env, std::string err, const TextureArgs* a,
-             const char* file, int n, float* out) {
+             const char* file, int n, float* out, const char* kind) {
   for (int c = 0; c < n; ++c) out[c] = a->has_missing ? a->missing[std::min(c, 3)] : 0.0f;
   bool explained = err == lobe::oiio::kNoExplanation;
   // No reason given: the lookup of a file that opened failed otherwise (OpenImageIO said nothing).
@@ -55,7 +56,7 @@ void missing(ShaderGlobals* sg, RuntimeEnv* env, std::string err, const TextureA
     return;
   }
   if (a->has_missing || explained || !sg || !sg->context) return;
-  sg->context->error("[RendererServices::texture] " + err);
+  sg->context->error("[RendererServices::" + std::string(kind) + "] " + err);
 }
 
 // After a lookup that succeeded: an "errormessage" output is "".
@@ -77,7 +78,7 @@ void lobe_texture(ShaderGlobals* sg, RuntimeEnv* env, const char* file, float s,
   if (ts && api->texture(ts, file, a, s, t, dsdx, dtdx, dsdy, dtdy, n, out, dds, ddt)) {
     found(env, a);
   } else {
-    missing(sg, env, ts ? api->texture_error(ts) : why, a, file, n, out);
+    missing(sg, env, ts ? api->texture_error(ts) : why, a, file, n, out, "texture");
     if (dds) std::fill(dds, dds + n, 0.0f);
     if (ddt) std::fill(ddt, ddt + n, 0.0f);
   }
@@ -93,7 +94,7 @@ void lobe_texture3d(ShaderGlobals* sg, RuntimeEnv* env, const char* file, const 
   if (ts && api->texture3d(ts, file, a, p, dpdx, dpdy, dpdz, n, out))
     found(env, a);
   else
-    missing(sg, env, ts ? api->texture_error(ts) : why, a, file, n, out);
+    missing(sg, env, ts ? api->texture_error(ts) : why, a, file, n, out, "texture3d");
 }
 
 // As lobe_texture3d, for a direction r; the third derivative is unused (an environment is a
@@ -107,7 +108,7 @@ void lobe_environment(ShaderGlobals* sg, RuntimeEnv* env, const char* file, cons
   if (ts && api->environment(ts, file, a, r, drdx, drdy, n, out))
     found(env, a);
   else
-    missing(sg, env, ts ? api->texture_error(ts) : why, a, file, n, out);
+    missing(sg, env, ts ? api->texture_error(ts) : why, a, file, n, out, "environment");
 }
 
 // gettextureinfo(file, [s, t,] query, dest): OIIO's get_texture_info ("exists", "resolution",

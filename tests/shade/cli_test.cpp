@@ -1056,3 +1056,18 @@ TEST(ShadeCli, LayersShareTheirGlobals) {
 }
 
 } // namespace
+
+// A failed lookup's error names its kind, and an int parameter given a value past int's range
+// takes the nearest int, as `testshade -param i 99999999999 lookup_kinds` (OSL 1.13.12) prints.
+TEST(ShadeCli, LookupErrorsNameTheirKindAndIntValuesSaturate) {
+  EXPECT_EQ(run_here("-param i 99999999999 lookup_kinds"),
+            "ERROR: [RendererServices::texture] Could not open file: nosuch.tif: No such file or "
+            "directory\n"
+            "ERROR: [RendererServices::environment] Could not open file: nosuch.env: No such file "
+            "or directory\n"
+            "ERROR: [RendererServices::texture3d] Image \"nosuch.vdb\" does not exist. Also, it is "
+            "not the name of an image format that OpenImageIO recognizes.\n"
+            "0 0 0 0 0 0 0 0 0 i=2147483647\n\n");
+  std::string low = run_here("-param i -99999999999 lookup_kinds");
+  EXPECT_NE(low.find("i=-2147483648\n"), std::string::npos) << low;
+}
