@@ -107,12 +107,10 @@ bool info(const std::string& name, const Options& o) {
   dirs.insert(dirs.end(), o.includes.begin(), o.includes.end());
   if (std::string stdlib = lobe::stdlib_shader_dir(); !stdlib.empty()) dirs.push_back(stdlib);
   std::string path = lobe::driver::find_shader(name, dirs, lobe::driver::Prefer::Compiled);
-  if (path.empty()) {
-    std::string base =
-        name.size() > 4 && name.ends_with(".oso") ? name.substr(0, name.size() - 4) : name;
-    bool has_ext = base.ends_with(".osl") || base.ends_with(".lir");
+  if (path.empty()) { // in oslinfo's words: the name with .oso unless it ends so
     std::printf(" \"\"\n");
-    std::fprintf(stderr, "ERROR: File %s not found\n", (has_ext ? base : base + ".osl").c_str());
+    std::fprintf(stderr, "ERROR: File %s not found\n",
+                 (name.ends_with(".oso") ? name : name + ".oso").c_str());
     return false;
   }
   lobe::driver::Options d;

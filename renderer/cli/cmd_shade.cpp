@@ -128,7 +128,8 @@ void print_oslc_warning(const Diagnostic& d, const std::vector<const Diagnostic*
     others = others || !chosen;
     std::string sig = n->message.substr(n->message.find(':') + 2);
     bool builtin = n->file.empty() || n->file.ends_with("stdosl.h");
-    std::string at = builtin ? "" : n->file + ":" + std::to_string(n->line) + "\t";
+    std::string at;
+    if (!builtin) at.append(n->file).append(":").append(std::to_string(n->line)).append("\t");
     std::fprintf(stderr, "    %s%s\n", at.c_str(), diag::oslc_signature(sig).c_str());
   }
 }
@@ -703,7 +704,11 @@ int Shade::run() {
       missing = true;
     }
   }
-  if (missing) return 1; // testshade goes on with nothing to shade (exit status 0)
+  if (missing) { // testshade goes on with nothing to shade: its closing blank line (status 0)
+    std::fflush(stderr);
+    std::fputs("\n", stdout);
+    return 1;
+  }
   for (const ShadeOutput& o : job_.outputs)
     g.renderer_outputs.push_back(o.layer.empty() ? o.var : o.layer + "." + o.var);
   for (const std::string& e : job_.entry_layers) g.entry_layers.push_back(e);

@@ -394,6 +394,35 @@ KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool run
   return known_copy(sh, sh.ops[size_t(writer)], si, written_globals);
 }
 
+// OSL -O2's getmessage of a message nothing can have set yet: a getmessage without a source
+// whose name is a constant that no setmessage before it set (in an earlier layer, or earlier
+// in this one's ops, which is textual order: in a loop, a set after the get in the body does
+// not count) becomes `result = 0`, its destination untouched, and no query is remembered, so a
+// later set is no error (OSL 1.13.12: "get before set: 0", then "get after set: 1 4").
+// `sent` gathers the constant names set so far, `unknown_sent` whether a name only known while
+// shading was (then nothing is folded after it).
+void fold_impossible_getmessages(ir::Shader& sh, std::set<std::string>& sent, bool& unknown_sent) {
+  auto const_string = [&](int sym) -> const std::string* {
+    const ir::Symbol& s = sh.symbols[size_t(sym)];
+    if (s.kind != SymKind::Const || s.type.base != ir::BaseType::String || s.type.is_array() ||
+        s.init.empty())
+      return nullptr;
+    return &s.init[0].s;
+  };
+  for (size_t i = size_t(sh.main_begin); i < sh.ops.size(); ++i) {
+    ir::Op& op = sh.ops[i];
+    if (op.opcode == ir::Opcode::SetMessage && !op.args.empty()) {
+      if (const std::string* name = const_string(op.args[0]))
+        sent.insert(*name);
+      else
+        unknown_sent = true;
+    } else if (op.opcode == ir::Opcode::GetMessage && op.args.size() == 3 && !unknown_sent) {
+      const std::string* name = const_string(op.args[2]);
+      if (name && !sent.count(*name)) answer_with(sh, op, 0);
+    }
+  }
+}
+
 // isconnected(p) of layer `layer` as codegen answers it (codegen/ops_library.cpp), from the
 // connections as made: 1 when one leads into p (or p takes user data, with userdata_isconnected),
 // 2 when one leads out of it or the renderer reads it (a renderer output, testshade's -o, Cout
@@ -683,6 +712,8 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
 
   // Specialise copies of the needed layers.
   std::vector<int> new_index(n, -1);
+  std::set<std::string> messages_sent; // constant names set by the layers so far (-O2)
+  bool unknown_message_sent = false;
   for (size_t i = 0; i < n; ++i) {
     if (!needed[i]) continue;
     auto sh = std::make_unique<ir::Shader>(*sources[i]);
@@ -771,6 +802,8 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     kept.insert(interactive[i].begin(), interactive[i].end());
     if (specialize)
       specialize_layer(*sh, values[i], kept, {out.plan.fast_math}, elide_known_outputs);
+    if (specialize && elide_known_outputs)
+      fold_impossible_getmessages(*sh, messages_sent, unknown_message_sent);
     new_index[i] = int(out.shaders.size());
     out.shaders.push_back(std::move(sh));
     out.layer_names.push_back(group.layers[i].name);

@@ -488,8 +488,8 @@ surface down(float in = 0) {
   // (`testshade -O2` of the same group prints nothing).
   EXPECT_EQ(shade(g, 1, nullptr),
             GetParam() >= 2 ? ""
-                            : "ERROR: message \"m\" was set by layer #1 (down.osl:3) but is being "
-                              "queried by layer #0 (up.osl:4) - messages may only be transferred "
+                            : "ERROR: message \"m\" was set by layer #3 (down.osl:3) but is being "
+                              "queried by layer #2 (up.osl:4) - messages may only be transferred "
                               "from nodes that appear earlier in the shading network\nupstream "
                               "got 0 -1\n");
 }

@@ -239,8 +239,12 @@ int lobe_getmessage(lobe::ShaderGlobals* sg, lobe::shadeops::RuntimeEnv* env, co
     return 0;
   }
   if (e->set && e->layer > layer) { // a later layer ran first (lazily) and set it
-    report(sg, {"message \"", name, "\" was set by layer #", std::to_string(e->layer), " (",
-                where(e->file, e->line), ") but is being queried by layer #", std::to_string(layer),
+    // Layers numbered as OSL numbers them here, by their shader instance's id, which testshade
+    // starts at 2 for a group's first layer (OSL 1.13.12 prints #3 and #2 for layers 1 and 0).
+    constexpr int kOslFirstInstanceId = 2;
+    report(sg, {"message \"", name, "\" was set by layer #",
+                std::to_string(e->layer + kOslFirstInstanceId), " (", where(e->file, e->line),
+                ") but is being queried by layer #", std::to_string(layer + kOslFirstInstanceId),
                 " (", where(file, line),
                 ") - messages may only be transferred from nodes that appear earlier in the "
                 "shading network"});

@@ -324,15 +324,17 @@ TEST(LobeInfo, FindsShadersOnTheSearchPath) {
   EXPECT_EQ(lobe("info -v info.lir", dir).out, slurp(kOslinfoDir / "info.v.txt"));
 }
 
-// A missing shader: oslinfo prints ` ""` and an error, and exits 0; Lobe exits 1 (a bad input
-// is an error) and names the file it looked for. The other files are still listed.
+// A missing shader: oslinfo prints ` ""` and an error in its words, and exits 0; Lobe exits 1 (a
+// bad input is an error). The other files are still listed.
 TEST(LobeInfo, MissingOrBrokenShaderIsAnError) {
   fs::path dir = scratch("ok.osl", "shader ok() {}\n");
   CliRun r = lobe("info nosuch ok", dir);
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.out, " \"\"\nshader \"ok\"\n");
-  EXPECT_EQ(r.err, "ERROR: File nosuch.osl not found\n");
-  EXPECT_EQ(lobe("info nosuch.oso", dir).err, "ERROR: File nosuch.osl not found\n");
+  EXPECT_EQ(r.err, "ERROR: File nosuch.oso not found\n");
+  // oslinfo's words (OSL 1.13.12: `oslinfo nosuch.oso`, `oslinfo nosuch.osl`).
+  EXPECT_EQ(lobe("info nosuch.oso", dir).err, "ERROR: File nosuch.oso not found\n");
+  EXPECT_EQ(lobe("info nosuch.osl", dir).err, "ERROR: File nosuch.osl.oso not found\n");
   std::ofstream(dir / "broken.osl") << "shader broken() { int x = ; }\n";
   r = lobe("info broken", dir);
   EXPECT_EQ(r.status, 1);

@@ -583,12 +583,13 @@ TEST(ShadeCli, ColorspaceOption) {
 
 TEST(ShadeCli, ErrorsAndUsage) {
   // Every shader not found, in testshade's words (OSL 1.13.12: `testshade -g 1 1 -layer a
-  // nosuch -layer b nosuch2`; it then goes on with exit status 0, Lobe stops with 1).
+  // nosuch -layer b nosuch2`; it then goes on with nothing to shade, to its closing blank
+  // line, with exit status 0; Lobe stops there with 1).
   EXPECT_EQ(run("-layer a no_such_shader -layer b no_such_2 -groupname G"),
             "ERROR: No .oso file could be found for shader \"no_such_shader\"\n"
             "ERROR: Could not find shader \"no_such_shader\"\n        group: G\n"
             "ERROR: No .oso file could be found for shader \"no_such_2\"\n"
-            "ERROR: Could not find shader \"no_such_2\"\n        group: G\n");
+            "ERROR: Could not find shader \"no_such_2\"\n        group: G\n\n");
   EXPECT_NE(run("--help").find("Usage: lobe shade"), std::string::npos);
   EXPECT_EQ(run("--bogus unsized_array"),
             "lobe shade: error: Invalid option \"--bogus\" (lobe shade --help lists them)\n");
@@ -1070,4 +1071,29 @@ TEST(ShadeCli, LookupErrorsNameTheirKindAndIntValuesSaturate) {
             "0 0 0 0 0 0 0 0 0 i=2147483647\n\n");
   std::string low = run_here("-param i -99999999999 lookup_kinds");
   EXPECT_NE(low.find("i=-2147483648\n"), std::string::npos) << low;
+}
+
+// At -O2 a getmessage of a constant name nothing set before it is 0 without a query (so a later
+// set is no error), as OSL's optimiser folds it; at -O0 the query is made and remembered. OSL
+// numbers layers by instance id in its message errors (testshade's first layer is #2).
+// Expected: OSL 1.13.12, `testshade -O0|-O2 msg_fold` and `testshade -O0|-O2 -layer A
+// msg_late_get -layer B msg_late_set -connect A o B i`.
+TEST(ShadeCli, ImpossibleGetmessageFoldsAtO2) {
+  EXPECT_EQ(run_here("-O2 msg_fold"),
+            "get before set: 0\nget after set: 1 3\nloop 0: 0\nloop 1: 0\nERROR: message \"n\" "
+            "already exists (created here: msg_fold.osl:12) cannot set again from "
+            "msg_fold.osl:12\n\n");
+  EXPECT_EQ(run_here("-O0 msg_fold"),
+            "get before set: 0\nERROR: message \"m\" was queried before being set (queried here: "
+            "msg_fold.osl:7) setting it now (msg_fold.osl:3) would lead to inconsistent "
+            "results\nget after set: 0 -1\nloop 0: 0\nERROR: message \"n\" was queried before "
+            "being set (queried here: msg_fold.osl:11) setting it now (msg_fold.osl:12) would "
+            "lead to inconsistent results\nloop 1: 0\n\n");
+  const std::string group = "-layer A msg_late_get -layer B msg_late_set -connect A o B i";
+  EXPECT_EQ(run_here("-O2 " + group), "Connect A.o to B.i\nfirst: 0\nsecond: 0.5\n\n");
+  EXPECT_EQ(run_here("-O0 " + group),
+            "Connect A.o to B.i\nERROR: message \"late\" was set by layer #3 "
+            "(msg_late_set.osl:4) but is being queried by layer #2 (msg_late_get.osl:5) - "
+            "messages may only be transferred from nodes that appear earlier in the shading "
+            "network\nfirst: 0\nsecond: 0.5\n\n");
 }
