@@ -21,7 +21,7 @@ namespace lobe::diag {
 // A function's signature as oslc words it in messages: `float f (float)` for `float f(float)`.
 inline std::string oslc_signature(std::string s) {
   if (size_t at = s.find('('); at != std::string::npos && at > 0 && s[at - 1] != ' ')
-    s.insert(at, " ");
+    s.insert(s.begin() + std::ptrdiff_t(at), ' ');
   return s;
 }
 } // namespace lobe::diag

@@ -202,7 +202,13 @@ void Preprocessor::do_pragma(const std::vector<PPToken>& line, bool c_style) {
   // gets oslc's warning. (oslc 1.13, `oslc -q`: `#pragma OSL nowarn` works, `#pragma nowarn`
   // and `#pragma foo nowarn` are ignored, `#pragma osl NoWarn` warns "Unknown pragma 'NoWarn'".)
   if (!c_style && lower(what) == "osl") {
+    // The name is the word's leading letters, as oslc reads it (`nowarn2` is nowarn,
+    // `Foo_Bar` warns "Unknown pragma 'Foo'", `9abc` "Unknown pragma ''").
     std::string name = k + 1 < line.size() ? line[k + 1].text : "";
+    size_t letters = 0;
+    while (letters < name.size() && std::isalpha(static_cast<unsigned char>(name[letters])))
+      ++letters;
+    name.resize(letters);
     if (name == "nowarn") {
       diag::PresumedLoc p = sm_.presumed(line[k].loc);
       nowarn_.lines.insert({p.file, p.line + 1});

@@ -248,6 +248,15 @@ TEST(PP, PragmaOslNames) {
   // The lines after the two nowarn pragmas, as the file numbers them.
   using Lines = std::set<std::pair<std::string, int>>;
   EXPECT_EQ(r.nowarn.lines, (Lines{{"main.osl", 2}, {"main.osl", 3}}));
+  // The name is the word's leading letters (oslc 1.13.12: `#pragma osl bogus2` warns "Unknown
+  // pragma 'bogus'", `Foo_Bar` 'Foo', `9abc` '', and `nowarn2` is nowarn).
+  PPRun q;
+  q.run("#pragma osl bogus2\n#pragma osl Foo_Bar\n#pragma osl 9abc\n#pragma osl nowarn2\n");
+  ASSERT_EQ(q.diags.diagnostics().size(), 3u);
+  EXPECT_EQ(q.diags.diagnostics()[0].message, "Unknown pragma 'bogus'");
+  EXPECT_EQ(q.diags.diagnostics()[1].message, "Unknown pragma 'Foo'");
+  EXPECT_EQ(q.diags.diagnostics()[2].message, "Unknown pragma ''");
+  EXPECT_EQ(q.nowarn.lines, (Lines{{"main.osl", 5}}));
 }
 
 TEST(PP, LineDirective) {

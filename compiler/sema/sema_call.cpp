@@ -471,6 +471,15 @@ void Sema::report_no_match(ast::CallExpr* e, const std::vector<Candidate>& chain
 void Sema::report_ambiguous(ast::CallExpr* e, const std::vector<Candidate>& chain,
                             const OverloadChoice& choice) {
   bool structs = choice.kind == OverloadChoice::Kind::StructTie;
+  // oslc resolves a call again each time it checks it (see call()) only when a built-in is
+  // among the candidates; a choice among user functions alone it keeps, and warns once
+  // (OSL 1.13.12: printf("%g %g\n", 1.0, r(0)) with two user r(float) warns once, with a user
+  // noise(float) beside the built-ins three times).
+  bool builtin = std::any_of(chain.begin(), chain.end(), [](const Candidate& c) {
+    return c.builtin || (c.fn && c.fn->from_stdlib);
+  });
+  int repeat = diags_.oslc_repeat();
+  if (!builtin) diags_.set_oslc_repeat(1);
   error(structs ? DiagId::err_ambiguous_call : DiagId::warn_ambiguous_call, e->name_range,
         {e->name, arg_types(e->args)});
   if (!structs) {
@@ -479,6 +488,7 @@ void Sema::report_ambiguous(ast::CallExpr* e, const std::vector<Candidate>& chai
   }
   note_candidates(e, chain, choice.others,
                   structs ? DiagId::note_candidate : DiagId::note_other_candidate);
+  diags_.set_oslc_repeat(repeat);
 }
 
 // Notes for the candidates `which` (indices into `chain`), at most kMaxCandidateNotes.

@@ -104,8 +104,9 @@ void print_oslc_warning(const Diagnostic& d, const std::vector<const Diagnostic*
     std::fprintf(stderr, "%swarning: %s\n", place.c_str(), d.message.c_str());
     bool first = true; // the earlier definition or declaration, in oslc's layout
     for (const Diagnostic* n : notes) {
-      if (n->id != "note_previous_decl" || n->file.empty()) continue;
-      std::string at = n->file + ":" + std::to_string(n->line);
+      bool builtin = n->id == "note_previous_builtin" && d.id == "warn_function_redefined";
+      if (!builtin && (n->id != "note_previous_decl" || n->file.empty())) continue;
+      std::string at = builtin ? "built-in" : n->file + ":" + std::to_string(n->line);
       if (d.id == "warn_function_redefined")
         std::fprintf(stderr, "%s    %s\n", first ? "  Previous definitions:\n" : "", at.c_str());
       else if (d.id == "warn_param_hides_function")

@@ -1097,3 +1097,13 @@ TEST(ShadeCli, ImpossibleGetmessageFoldsAtO2) {
             "messages may only be transferred from nodes that appear earlier in the shading "
             "network\nfirst: 0\nsecond: 0.5\n\n");
 }
+
+// A built-in redefined names "built-in" as its previous definition; a tie among user functions
+// alone is warned once, oslc keeping its first resolution, where one with built-ins among the
+// candidates repeats with each check of its printf argument. Expected: OSL 1.13.12, `oslc
+// oslc_overloads.osl; testshade oslc_overloads` (testshade's final blank line dropped).
+TEST(ShadeCli, RedefinitionAndAmbiguityWarningsAsOslc) {
+  std::string expected = expected_file("oslc_overloads");
+  ASSERT_FALSE(expected.empty());
+  EXPECT_EQ(run_here("oslc_overloads"), expected + "\n");
+}
