@@ -44,45 +44,101 @@ EnvironmentLight::EnvironmentLight(std::vector<float> rgb, int w, int h, float r
     }
 }
 
-// The six oriented tables at half resolution: each cell's weight is the sum of its texels'
-// sampling weights (luminance times sin(theta)) times the largest cosine to the axis over the
-// cell's corners and centre, clamped at 0 (a cell across the axis' horizon keeps the part
-// above it). Built in parallel, one table a task.
+namespace {
+
+// The oriented tables' directions: the 26 s in {-1, 0, 1}^3 but 0 (index (s.x + 1) * 9 +
+// (s.y + 1) * 3 + s.z + 1; 13, the zero vector, unused), each with a cone: a unit normal
+// within the cone of the direction it takes (oriented_index) sees, above its horizon, only
+// directions within 90 degrees plus the cone of it. The nearest of the 26 is at most 27.6
+// degrees from any normal (the cone: 28); one within 2 degrees of an axis (floors, walls)
+// takes that axis' tight table instead (index 27 + 2 axis + (negative)).
+constexpr int kWideTables = 27, kTightTables = 6;
+constexpr float kWideCone = 28.0f * kPi / 180, kTightCone = 2.0f * kPi / 180;
+
+Vec3 table_direction(int k) {
+  if (k >= kWideTables) {
+    Vec3 d{};
+    d[(k - kWideTables) / 2] = (k - kWideTables) % 2 ? -1.0f : 1.0f;
+    return d;
+  }
+  return normalize(Vec3{float(k / 9 - 1), float(k / 3 % 3 - 1), float(k % 3 - 1)});
+}
+
+// The sampling weight of a cell for a table: 1 where the cell comes within the cone of its
+// direction, else the cosine of its angle from the cone's edge, 0 from 90 degrees past it.
+// `c`: the cosine of the cell's least angle to the direction; `ca`, `sa`: the cone's cosine and
+// sine.
+float cone_weight(float c, float ca, float sa) {
+  if (c >= ca) return 1.0f;
+  float st = std::sqrt(std::max(0.0f, 1 - c * c));
+  return std::max(0.0f, c * ca + st * sa); // cos(theta - cone)
+}
+
+} // namespace
+
+// The oriented tables: the texels' sampling weights (luminance times sin(theta)) summed into
+// coarser cells (tight tables at half the resolution, wide ones at a quarter, capped), times
+// each cell's cone weight (cone_weight of the largest cosine to the table's direction over
+// its corners and centre). Built in parallel, one table a task.
 void EnvironmentLight::build_oriented(const std::vector<float>& weight) {
-  const int ow = (w_ + 1) / 2, oh = (h_ + 1) / 2;
-  std::vector<float> block(size_t(ow) * oh, 0.0f);
-  for (int y = 0; y < h_; ++y)
-    for (int x = 0; x < w_; ++x) block[size_t(y / 2) * ow + x / 2] += weight[size_t(y) * w_ + x];
-  // Directions of the cells' corners ((ow + 1) x (oh + 1)) and centres.
-  std::vector<Vec3> corner(size_t(ow + 1) * (oh + 1)), centre(size_t(ow) * oh);
-  for (int y = 0; y <= oh; ++y)
-    for (int x = 0; x <= ow; ++x)
-      corner[size_t(y) * (ow + 1) + x] = uv_to_dir(float(x) / float(ow), float(y) / float(oh));
-  for (int y = 0; y < oh; ++y)
-    for (int x = 0; x < ow; ++x)
-      centre[size_t(y) * ow + x] = uv_to_dir((x + 0.5f) / float(ow), (y + 0.5f) / float(oh));
-  oriented_.assign(6, Distribution2D());
-  tbb::parallel_for(0, 6, [&](int k) {
-    const int axis = k / 2;
-    const float sign = k % 2 ? -1.0f : 1.0f;
-    std::vector<float> f(size_t(ow) * oh);
-    for (int y = 0; y < oh; ++y)
-      for (int x = 0; x < ow; ++x) {
-        float c = sign * centre[size_t(y) * ow + x][axis];
+  struct Grid {
+    int w, h;
+    std::vector<float> block;
+    std::vector<Vec3> corner, centre;
+  };
+  auto grid = [&](int w, int h) {
+    Grid g{w, h, std::vector<float>(size_t(w) * h, 0.0f), {}, {}};
+    for (int y = 0; y < h_; ++y)
+      for (int x = 0; x < w_; ++x)
+        g.block[size_t(y * h / h_) * w + size_t(x * w / w_)] += weight[size_t(y) * w_ + x];
+    g.corner.resize(size_t(w + 1) * (h + 1));
+    g.centre.resize(size_t(w) * h);
+    for (int y = 0; y <= h; ++y)
+      for (int x = 0; x <= w; ++x)
+        g.corner[size_t(y) * (w + 1) + x] = uv_to_dir(float(x) / float(w), float(y) / float(h));
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        g.centre[size_t(y) * w + x] = uv_to_dir((x + 0.5f) / float(w), (y + 0.5f) / float(h));
+    return g;
+  };
+  const Grid tight = grid(std::min((w_ + 1) / 2, 1024), std::min((h_ + 1) / 2, 512));
+  const Grid wide = grid(std::min((w_ + 3) / 4, 512), std::min((h_ + 3) / 4, 256));
+  oriented_.assign(kWideTables + kTightTables, Distribution2D());
+  tbb::parallel_for(0, kWideTables + kTightTables, [&](int k) {
+    if (k == 13) return; // the zero vector
+    const Grid& g = k >= kWideTables ? tight : wide;
+    const float cone = k >= kWideTables ? kTightCone : kWideCone;
+    const float ca = std::cos(cone), sa = std::sin(cone);
+    const Vec3 d = table_direction(k);
+    std::vector<float> f(size_t(g.w) * g.h);
+    for (int y = 0; y < g.h; ++y)
+      for (int x = 0; x < g.w; ++x) {
+        float c = dot(g.centre[size_t(y) * g.w + x], d);
         for (int dy = 0; dy <= 1; ++dy)
           for (int dx = 0; dx <= 1; ++dx)
-            c = std::max(c, sign * corner[size_t(y + dy) * (ow + 1) + x + dx][axis]);
-        f[size_t(y) * ow + x] = block[size_t(y) * ow + x] * std::max(c, 0.0f);
+            c = std::max(c, dot(g.corner[size_t(y + dy) * (g.w + 1) + x + dx], d));
+        f[size_t(y) * g.w + x] = g.block[size_t(y) * g.w + x] * cone_weight(c, ca, sa);
       }
-    oriented_[size_t(k)] = Distribution2D(f, ow, oh);
+    oriented_[size_t(k)] = Distribution2D(f, g.w, g.h);
   });
 }
 
+// The nearest of the 26 directions to unit n: the one, two or three largest components of n
+// with their signs, whichever gives the largest cosine (their sum over the square root of
+// their count); the tight table of an axis within its cone.
 int EnvironmentLight::oriented_index(const Vec3& n) const {
   if (oriented_.empty() || is_zero(n)) return -1;
-  Vec3 a{std::abs(n.x), std::abs(n.y), std::abs(n.z)};
-  int axis = a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
-  return 2 * axis + (n[axis] < 0 ? 1 : 0);
+  float a[3] = {std::abs(n.x), std::abs(n.y), std::abs(n.z)};
+  int order[3] = {0, 1, 2};
+  std::sort(order, order + 3, [&](int i, int j) { return a[i] > a[j] || (a[i] == a[j] && i < j); });
+  float c1 = a[order[0]], c2 = (a[order[0]] + a[order[1]]) * 0.70710678f,
+        c3 = (a[0] + a[1] + a[2]) * 0.57735027f;
+  int count = c1 >= c2 && c1 >= c3 ? 1 : (c2 >= c3 ? 2 : 3);
+  if (count == 1 && c1 >= std::cos(kTightCone))
+    return kWideTables + 2 * order[0] + (n[order[0]] < 0 ? 1 : 0);
+  int s[3] = {0, 0, 0};
+  for (int i = 0; i < count; ++i) s[order[i]] = n[order[i]] < 0 ? -1 : 1;
+  return (s[0] + 1) * 9 + (s[1] + 1) * 3 + s[2] + 1;
 }
 
 EnvironmentLight EnvironmentLight::from_function(const std::function<Color3(const Vec3&)>& radiance,
