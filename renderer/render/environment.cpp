@@ -34,7 +34,6 @@ EnvironmentLight::EnvironmentLight(std::vector<float> rgb, int w, int h, float r
   avg_lum_ = weight_sum > 0 ? float(lum_sum / weight_sum) : 0;
   if (constant_ && !rgb.empty()) color_ = {rgb[0], rgb[1], rgb[2]};
   dist_ = Distribution2D(f, w, h);
-  if (!constant_) build_oriented(f);
   tex_.resize(size_t(w) * h * 4);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -42,6 +41,7 @@ EnvironmentLight::EnvironmentLight(std::vector<float> rgb, int w, int h, float r
       for (int c = 0; c < 3; ++c) tex_[i * 4 + c] = rgb[i * 3 + c];
       tex_[i * 4 + 3] = dist_.pdf_cell(x, y);
     }
+  if (!constant_) build_oriented();
 }
 
 namespace {
@@ -54,6 +54,9 @@ namespace {
 // takes that axis' tight table instead (index 27 + 2 axis + (negative)).
 constexpr int kWideTables = 27, kTightTables = 6;
 constexpr float kWideCone = 28.0f * kPi / 180, kTightCone = 2.0f * kPi / 180;
+
+// Tight tables use grid 0, wide ones grid 1.
+int grid_of(int k) { return k >= kWideTables ? 0 : 1; }
 
 Vec3 table_direction(int k) {
   if (k >= kWideTables) {
@@ -76,51 +79,77 @@ float cone_weight(float c, float ca, float sa) {
 
 } // namespace
 
-// The oriented tables: the texels' sampling weights (luminance times sin(theta)) summed into
-// coarser cells (tight tables at half the resolution, wide ones at a quarter, capped), times
-// each cell's cone weight (cone_weight of the largest cosine to the table's direction over
-// its corners and centre). Built in parallel, one table a task.
-void EnvironmentLight::build_oriented(const std::vector<float>& weight) {
-  struct Grid {
-    int w, h;
-    std::vector<float> block;
+// The texels [x0, x1) x [y0, y1) of cell (cx, cy) of a grid: texel x is in cell x * g.w / w_.
+void EnvironmentLight::block(const Grid& g, int cx, int cy, int& x0, int& x1, int& y0,
+                             int& y1) const {
+  x0 = int((int64_t(cx) * w_ + g.w - 1) / g.w), x1 = int((int64_t(cx + 1) * w_ + g.w - 1) / g.w);
+  y0 = int((int64_t(cy) * h_ + g.h - 1) / g.h), y1 = int((int64_t(cy + 1) * h_ + g.h - 1) / g.h);
+}
+
+// The oriented tables, over two grids of blocks of texels (tight tables: blocks of about 2 x 2
+// texels, at most 1024 x 512 of them; wide ones about 4 x 4, at most 512 x 256). A block's
+// weight is the sum of its texels' densities (Grid::sum) times its cone weight for the table
+// (cone_weight of the largest cosine to the table's direction over the block's corners and
+// centre). Sampling picks a block from the table, then a texel in it by the texels' own
+// densities: radiance at the table's full resolution, the cosine at the block's. Built in
+// parallel, one table a task.
+void EnvironmentLight::build_oriented() {
+  struct Geometry {
     std::vector<Vec3> corner, centre;
   };
-  auto grid = [&](int w, int h) {
-    Grid g{w, h, std::vector<float>(size_t(w) * h, 0.0f), {}, {}};
+  Geometry geo[2];
+  auto make = [&](Grid& g, Geometry& ge, int gw, int gh) {
+    g.w = gw, g.h = gh;
+    g.sum.assign(size_t(gw) * gh, 0.0f);
     for (int y = 0; y < h_; ++y)
       for (int x = 0; x < w_; ++x)
-        g.block[size_t(y * h / h_) * w + size_t(x * w / w_)] += weight[size_t(y) * w_ + x];
-    g.corner.resize(size_t(w + 1) * (h + 1));
-    g.centre.resize(size_t(w) * h);
-    for (int y = 0; y <= h; ++y)
-      for (int x = 0; x <= w; ++x)
-        g.corner[size_t(y) * (w + 1) + x] = uv_to_dir(float(x) / float(w), float(y) / float(h));
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        g.centre[size_t(y) * w + x] = uv_to_dir((x + 0.5f) / float(w), (y + 0.5f) / float(h));
-    return g;
+        g.sum[size_t(int64_t(y) * gh / h_) * gw + size_t(int64_t(x) * gw / w_)] +=
+            tex_[(size_t(y) * w_ + x) * 4 + 3];
+    std::vector<float> cu(size_t(gw) + 1), cv(size_t(gh) + 1);
+    for (int c = 0; c <= gw; ++c) cu[size_t(c)] = float((int64_t(c) * w_ + gw - 1) / gw) / w_;
+    for (int c = 0; c <= gh; ++c) cv[size_t(c)] = float((int64_t(c) * h_ + gh - 1) / gh) / h_;
+    ge.corner.resize(size_t(gw + 1) * (gh + 1));
+    ge.centre.resize(size_t(gw) * gh);
+    for (int y = 0; y <= gh; ++y)
+      for (int x = 0; x <= gw; ++x)
+        ge.corner[size_t(y) * (gw + 1) + x] = uv_to_dir(cu[size_t(x)], cv[size_t(y)]);
+    for (int y = 0; y < gh; ++y)
+      for (int x = 0; x < gw; ++x)
+        ge.centre[size_t(y) * gw + x] = uv_to_dir(0.5f * (cu[size_t(x)] + cu[size_t(x) + 1]),
+                                                  0.5f * (cv[size_t(y)] + cv[size_t(y) + 1]));
   };
-  const Grid tight = grid(std::min((w_ + 1) / 2, 1024), std::min((h_ + 1) / 2, 512));
-  const Grid wide = grid(std::min((w_ + 3) / 4, 512), std::min((h_ + 3) / 4, 256));
+  make(grids_[0], geo[0], std::min((w_ + 1) / 2, 1024), std::min((h_ + 1) / 2, 512));
+  make(grids_[1], geo[1], std::min((w_ + 3) / 4, 512), std::min((h_ + 3) / 4, 256));
   oriented_.assign(kWideTables + kTightTables, Distribution2D());
   tbb::parallel_for(0, kWideTables + kTightTables, [&](int k) {
     if (k == 13) return; // the zero vector
-    const Grid& g = k >= kWideTables ? tight : wide;
+    const Grid& g = grids_[grid_of(k)];
+    const Geometry& ge = geo[grid_of(k)];
     const float cone = k >= kWideTables ? kTightCone : kWideCone;
     const float ca = std::cos(cone), sa = std::sin(cone);
     const Vec3 d = table_direction(k);
     std::vector<float> f(size_t(g.w) * g.h);
     for (int y = 0; y < g.h; ++y)
       for (int x = 0; x < g.w; ++x) {
-        float c = dot(g.centre[size_t(y) * g.w + x], d);
+        float c = dot(ge.centre[size_t(y) * g.w + x], d);
         for (int dy = 0; dy <= 1; ++dy)
           for (int dx = 0; dx <= 1; ++dx)
-            c = std::max(c, dot(g.corner[size_t(y + dy) * (g.w + 1) + x + dx], d));
-        f[size_t(y) * g.w + x] = g.block[size_t(y) * g.w + x] * cone_weight(c, ca, sa);
+            c = std::max(c, dot(ge.corner[size_t(y + dy) * (g.w + 1) + x + dx], d));
+        f[size_t(y) * g.w + x] = g.sum[size_t(y) * g.w + x] * cone_weight(c, ca, sa);
       }
     oriented_[size_t(k)] = Distribution2D(f, g.w, g.h);
   });
+}
+
+// Density over the unit square of texel (x, y) under oriented table k: the table's probability
+// of the texel's block, times the texel's share of the block's density, over the texel's area.
+float EnvironmentLight::oriented_density(int k, int x, int y) const {
+  const Grid& g = grids_[grid_of(k)];
+  int cx = int(int64_t(x) * g.w / w_), cy = int(int64_t(y) * g.h / h_);
+  float total = g.sum[size_t(cy) * g.w + cx];
+  if (!(total > 0)) return 0;
+  float cell = oriented_[size_t(k)].pdf_cell(cx, cy) / (float(g.w) * float(g.h));
+  return cell * tex_[(size_t(y) * w_ + x) * 4 + 3] / total * (float(w_) * float(h_));
 }
 
 // The nearest of the 26 directions to unit n: the one, two or three largest components of n
@@ -208,8 +237,13 @@ Color3 EnvironmentLight::eval_pdf(const Vec3& dir, const Vec3& n, float& pdf) co
   dir_to_uv(dir, u, v);
   const float* p = texel(u, v);
   int k = oriented_index(n);
-  pdf = k < 0 ? table_pdf(p, sin_theta(dir))
-              : solid_angle_pdf(oriented_[size_t(k)].pdf(u, v), sin_theta(dir));
+  if (k < 0) {
+    pdf = table_pdf(p, sin_theta(dir));
+  } else {
+    int x = std::min(std::max(int(u * w_), 0), w_ - 1),
+        y = std::min(std::max(int(v * h_), 0), h_ - 1);
+    pdf = solid_angle_pdf(oriented_density(k, x, y), sin_theta(dir));
+  }
   return {p[0], p[1], p[2]};
 }
 
@@ -239,11 +273,36 @@ Vec3 EnvironmentLight::sample(const Vec3& n, float u1, float u2, float& pdf, Col
   float u, v;
   int x, y;
   if (int k = oriented_index(n); k >= 0) {
-    const Distribution2D& d = oriented_[size_t(k)];
-    d.sample_cell(u1, u2, u, v, x, y);
-    const float* t = texel(u, v);
+    // The block from the table, then a texel in it by the texels' densities (the position in
+    // the block along u chooses, its rest and the position along v place the point).
+    const Grid& g = grids_[grid_of(k)];
+    int cx, cy;
+    oriented_[size_t(k)].sample_cell(u1, u2, u, v, cx, cy);
+    float total = g.sum[size_t(cy) * g.w + cx];
+    pdf = 0;
+    L = {};
+    if (!(total > 0)) return {0, 1, 0};
+    constexpr float kBelowOne = 0x1.fffffep-1f;
+    float fu = std::clamp(u * g.w - cx, 0.0f, kBelowOne),
+          fv = std::clamp(v * g.h - cy, 0.0f, kBelowOne);
+    int x0, x1, y0, y1;
+    block(g, cx, cy, x0, x1, y0, y1);
+    float target = fu * total, acc = 0, before = 0, p = 0;
+    int sx = -1, sy = -1;
+    for (int ty = y0; ty < y1 && !(p > 0 && acc > target); ++ty)
+      for (int tx = x0; tx < x1; ++tx) {
+        float q = tex_[(size_t(ty) * w_ + tx) * 4 + 3];
+        if (!(q > 0)) continue;
+        before = acc, p = q, sx = tx, sy = ty; // the last texel with density so far
+        acc += q;
+        if (acc > target) break;
+      }
+    if (sx < 0) return {0, 1, 0};
+    float r = std::clamp((target - before) / p, 0.0f, kBelowOne);
+    u = (float(sx) + r) / float(w_), v = (float(sy) + fv) / float(h_);
+    const float* t = &tex_[(size_t(sy) * w_ + sx) * 4];
     L = {t[0], t[1], t[2]};
-    pdf = solid_angle_pdf(d.pdf_cell(x, y), std::sin(v * kPi));
+    pdf = solid_angle_pdf(oriented_density(k, sx, sy), std::sin(v * kPi));
     return uv_to_dir(u, v);
   }
   dist_.sample_cell(u1, u2, u, v, x, y);

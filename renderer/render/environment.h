@@ -68,10 +68,17 @@ public:
 
 private:
   Color3 eval_table(const Vec3& dir) const;
-  // The oriented table for normal n: 0..5 for +X, -X, +Y, -Y, +Z, -Z (n's largest component
-  // and its sign), -1 for a zero n or when there are none (constant or empty environments).
+  // The oriented table for unit normal n (environment.cpp), -1 for a zero n or when there are
+  // none (constant or empty environments).
   int oriented_index(const Vec3& n) const;
-  void build_oriented(const std::vector<float>& weight);
+  // A grid of blocks of texels for the oriented tables: per block, its texels' densities summed.
+  struct Grid {
+    int w = 0, h = 0;
+    std::vector<float> sum;
+  };
+  void build_oriented();
+  void block(const Grid& g, int cx, int cy, int& x0, int& x1, int& y0, int& y1) const;
+  float oriented_density(int k, int x, int y) const;
   // A texel: radiance r, g, b and the distribution's density over the unit square there (one
   // cache line holds what eval and pdf read).
   const float* texel(float u, float v) const {
@@ -94,7 +101,8 @@ private:
   bool constant_ = false;
   Color3 color_; // the colour of a constant table
   Distribution2D dist_;
-  std::vector<Distribution2D> oriented_; // six, or none (see oriented_index)
+  Grid grids_[2];                        // the tight tables' blocks, the wide ones'
+  std::vector<Distribution2D> oriented_; // 33 (see oriented_index), or none
 };
 
 } // namespace lobe::render

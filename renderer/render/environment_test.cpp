@@ -164,8 +164,10 @@ TEST(Environment, OrientedLightSamplesKeepTheEstimateAndCutItsVariance) {
     estimate(n, n, m_axis, v_axis);
     estimate(n, Vec3{}, m_sphere, v_sphere);
     // The table is piecewise constant over 64x32 texels: 1.5% for tabulation, as above.
-    if (n.y == 1) EXPECT_NEAR(m_axis, 2.5 * M_PI, 0.015 * 2.5 * M_PI);
-    if (n.y == 1) EXPECT_NEAR(m_sphere, 2.5 * M_PI, 0.015 * 2.5 * M_PI);
+    if (n.y == 1) {
+      EXPECT_NEAR(m_axis, 2.5 * M_PI, 0.015 * 2.5 * M_PI);
+      EXPECT_NEAR(m_sphere, 2.5 * M_PI, 0.015 * 2.5 * M_PI);
+    }
     EXPECT_NEAR(m_axis, m_sphere, 0.005 * m_sphere);
     // A wide table's cone is broad (28 degrees): less gain than an axis' tight one, still some.
     EXPECT_LT(v_axis, (n.y == 1 ? 0.5 : 0.9) * v_sphere) << v_axis / v_sphere;
