@@ -157,16 +157,23 @@ float EnvironmentLight::oriented_density(int k, int x, int y) const {
 // their count); the tight table of an axis within its cone.
 int EnvironmentLight::oriented_index(const Vec3& n) const {
   if (oriented_.empty() || is_zero(n)) return -1;
+  constexpr float kCosTight = 0.99939083f; // cos(kTightCone)
   float a[3] = {std::abs(n.x), std::abs(n.y), std::abs(n.z)};
-  int order[3] = {0, 1, 2};
-  std::sort(order, order + 3, [&](int i, int j) { return a[i] > a[j] || (a[i] == a[j] && i < j); });
-  float c1 = a[order[0]], c2 = (a[order[0]] + a[order[1]]) * 0.70710678f,
-        c3 = (a[0] + a[1] + a[2]) * 0.57735027f;
-  int count = c1 >= c2 && c1 >= c3 ? 1 : (c2 >= c3 ? 2 : 3);
-  if (count == 1 && c1 >= std::cos(kTightCone))
-    return kWideTables + 2 * order[0] + (n[order[0]] < 0 ? 1 : 0);
+  // The components by size, largest first (ties: the lower index first).
+  int i0 = 0, i1 = 1, i2 = 2;
+  if (a[i1] > a[i0]) std::swap(i0, i1);
+  if (a[i2] > a[i1]) std::swap(i1, i2);
+  if (a[i1] > a[i0] || (a[i1] == a[i0] && i1 < i0)) std::swap(i0, i1);
+  if (a[i2] == a[i1] && i2 < i1) std::swap(i1, i2);
+  float c1 = a[i0], c2 = (a[i0] + a[i1]) * 0.70710678f, c3 = (a[0] + a[1] + a[2]) * 0.57735027f;
+  if (c1 >= c2 && c1 >= c3) {
+    if (c1 >= kCosTight) return kWideTables + 2 * i0 + (n[i0] < 0 ? 1 : 0);
+    return 13 + (n[i0] < 0 ? -1 : 1) * (i0 == 0 ? 9 : i0 == 1 ? 3 : 1);
+  }
   int s[3] = {0, 0, 0};
-  for (int i = 0; i < count; ++i) s[order[i]] = n[order[i]] < 0 ? -1 : 1;
+  s[i0] = n[i0] < 0 ? -1 : 1;
+  s[i1] = n[i1] < 0 ? -1 : 1;
+  if (c3 > c2) s[i2] = n[i2] < 0 ? -1 : 1;
   return (s[0] + 1) * 9 + (s[1] + 1) * 3 + s[2] + 1;
 }
 
