@@ -353,6 +353,10 @@ namespace lobe::codegen {
 namespace {
 // The op's name as OSL's run-time checks print it: Lobe's `construct` is OSL's type-named
 // constructor op (`color`, `point`, ...), a conditional branch OSL's `if`.
+// A symbol's name as the source spells it: a local that shadows another of its name is `x~2`
+// in the IR, `x` in OSL's messages.
+std::string source_name(const std::string& name) { return name.substr(0, name.find('~')); }
+
 std::string osl_opname(const ir::Op& op, const ir::Shader& sh) {
   if (op.opcode == ir::Opcode::Construct && !op.args.empty())
     return to_string(sh.symbols[size_t(op.args[0])].type.base);
@@ -432,7 +436,7 @@ void LayerEmitter::check_uninit_reads(int index) {
     int kind = s.type.base == BaseType::Int ? 1 : s.type.base == BaseType::String ? 2 : 0;
     call("lobe_uninit_check",
          {sg_, env_ptr(), address(si, 0, nullptr, 0), iconst(kind), first, count,
-          string_const(to_string(s.type)), string_const(s.name),
+          string_const(to_string(s.type)), string_const(source_name(s.name)),
           string_const(op.loc.file.empty() ? shader().name : op.loc.file), iconst(op.loc.line),
           string_const(layer_description()),
           iconst(size_t(index) < osl_opnum_.size() ? osl_opnum_[size_t(index)] : index),
@@ -469,8 +473,9 @@ void LayerEmitter::check_nan_writes(int index) {
     }
     call("lobe_naninf_check",
          {sg_, address(si, 0, nullptr, 0), iconst(all), iconst(s.derivs ? 1 : 0), first, count,
-          string_const(s.name), string_const(op.loc.file.empty() ? shader().name : op.loc.file),
-          iconst(op.loc.line), string_const(opname)});
+          string_const(source_name(s.name)),
+          string_const(op.loc.file.empty() ? shader().name : op.loc.file), iconst(op.loc.line),
+          string_const(opname)});
   }
 }
 

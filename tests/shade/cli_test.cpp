@@ -1107,3 +1107,17 @@ TEST(ShadeCli, RedefinitionAndAmbiguityWarningsAsOslc) {
   ASSERT_FALSE(expected.empty());
   EXPECT_EQ(run_here("oslc_overloads"), expected + "\n");
 }
+
+// A local shadowing another of its name is reported by its source name (`x`, not Lobe's IR name
+// `x~2`). Expected: OSL 1.13.12, `testshade -O0 --debuguninit|--debugnan debug_shadowed`.
+TEST(ShadeCli, DebugReportsNameShadowingLocalsAsTheSourceDoes) {
+  EXPECT_EQ(run_here("-O0 --debuguninit debug_shadowed"),
+            "ERROR: Detected possible use of uninitialized value in float x at "
+            "debug_shadowed.osl:10 (group unnamed_group_1, layer 0 debug_shadowed_0, shader "
+            "debug_shadowed, op 4 'printf', arg 1)\ninner x = 0\nERROR: Detected possible use of "
+            "uninitialized value in float big at debug_shadowed.osl:12 (group unnamed_group_1, "
+            "layer 0 debug_shadowed_0, shader debug_shadowed, op 8 'sub', arg 1)\nr = 0\n\n");
+  EXPECT_EQ(run_here("-O0 --debugnan debug_shadowed"),
+            "inner x = 0\nERROR: Detected inf value in big at debug_shadowed.osl:11 (op mul)\n"
+            "ERROR: Detected -nan value in r at debug_shadowed.osl:12 (op sub)\nr = -nan\n\n");
+}
