@@ -97,9 +97,12 @@ std::string shader_name(std::string s) {
 
 // A compiler warning as oslc prints it, without column or source line: `file:line: warning:
 // message`, an ambiguous call with oslc's words and its candidates (a built-in one without a
-// place). `notes` are the warning's own notes.
-void print_oslc_warning(const Diagnostic& d, const std::vector<const Diagnostic*>& notes) {
-  std::string place = d.file.empty() ? "" : d.file + ":" + std::to_string(d.line) + ": ";
+// place). `notes` are the warning's own notes; `prefix` leads its first line (testshade's
+// "WARNING: " before the warnings of an --expr shader, which it compiles itself).
+void print_oslc_warning(const Diagnostic& d, const std::vector<const Diagnostic*>& notes,
+                        const std::string& prefix = "") {
+  std::string place = prefix;
+  if (!d.file.empty()) place.append(d.file).append(":").append(std::to_string(d.line)).append(": ");
   if (d.id != "warn_ambiguous_call") {
     std::fprintf(stderr, "%swarning: %s\n", place.c_str(), d.message.c_str());
     bool first = true; // the earlier definition or declaration, in oslc's layout
@@ -684,6 +687,15 @@ int Shade::run() {
       print_diagnostics(diags, true);
       std::fprintf(stderr, "Could not compile \"%s\"\n", name.c_str());
       return 1;
+    }
+    for (size_t i = 0; i < diags.size(); ++i) { // its warnings, as testshade's compile gives them
+      if (diags[i].severity != Diagnostic::Severity::Warning) continue;
+      std::vector<const Diagnostic*> own;
+      for (size_t k = i + 1; k < diags.size() && diags[k].severity == Diagnostic::Severity::Note;
+           ++k)
+        own.push_back(&diags[k]);
+      for (int r = 0; r < std::max(1, diags[i].oslc_repeat); ++r)
+        print_oslc_warning(diags[i], own, "WARNING: ");
     }
   }
   ShaderGroup& g = job_.group;

@@ -378,6 +378,13 @@ TEST(ShadeCli, ExpressionShader) {
             "Entry outputs:\nEntry output result not found. Abording.\n");
   EXPECT_EQ(run("-g 1 1 --expr 'result = color(u);' --entryoutput result -o result null"),
             "\nEntry outputs: result\n\n");
+  // Its compiler warnings, as testshade's own compile of it prints them ("WARNING: " and oslc's
+  // text, repeated as oslc repeats it; `testshade --expr 'printf("%g\n", noise(P*10))'`).
+  const std::string ambiguous = "WARNING: <buffer>:8: warning: Ambiguous call to 'noise (point)'\n"
+                                "  Chosen function is:\n    float noise (point)\n"
+                                "  Other candidates are:\n    color noise (point)\n"
+                                "    vector noise (point)\n";
+  EXPECT_EQ(run("--expr 'printf(\"%g\\n\", noise(P*10))'"), ambiguous + ambiguous + "0.5\n\n");
 }
 
 // Attributes as testshade answers them: the camera's whole for any object (no element by index:
