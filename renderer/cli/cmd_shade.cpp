@@ -426,6 +426,12 @@ bool Shade::reparameter(ShaderGroup::Layer& l, const ShadeReparam& r) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.9g %.9g %.9g", comps[0], comps[1], comps[2]);
     v = param_value(declared, r.param, buf);
+  } else if (s.type.base == ir::BaseType::Float && s.type.arraylen == 3 &&
+             (v.type == "color" || v.type == "point" || v.type == "vector" ||
+              v.type == "normal")) {
+    // Three floats either way: OSL takes a value of the same base type and size (an untyped
+    // `7,8,9`, read as a vector, for a float[3]).
+    v = param_value(declared, r.param, v.value);
   } else if (v.type != declared && !(s.type.is_triple() && !s.type.is_array() &&
                                      (v.type == "color" || v.type == "point" ||
                                       v.type == "vector" || v.type == "normal"))) {

@@ -441,6 +441,12 @@ TEST(ShadeCli, ReparamAsTestshade) {
   EXPECT_EQ(run("-O0 -g 1 1 --iters 2 -layer A reparam_print --reparam A c 0.25"),
             "ERROR: ReParameter cannot adjust A.c, which was not declared interactive\n"
             "f=1 c=1 1 1\nf=1 c=1 1 1\n\n");
+  // A value of the same base type and size is taken: an untyped 7,8,9 (a vector) for a
+  // float[3] (`testshade --iters 2 -layer L rp --reparam L fa 7,8,9`).
+  auto dir = scratch_dir("rp.osl", "shader rp (float fa[3] = {1,2,3} [[ int interactive = 1 ]])"
+                                   " { printf (\"fa = %g\\n\", fa); }\n");
+  EXPECT_EQ(run_in(dir, "--iters 2 -layer L rp --reparam L fa 7,8,9"),
+            "fa = 1 2 3\nfa = 7 8 9\n\n");
 }
 
 // --userdata_isconnected (OSL's userdata_isconnected): isconnected() is 1 for a parameter that
