@@ -153,6 +153,12 @@ struct Op {
   // `functioncall` op and that op's jump target), so an output written there is not known to it
   // (in_conditional). Printed as `%infn`.
   bool in_function = false;
+  // How many inlined user function calls have their body begin at this op: OSL numbers a
+  // `functioncall` op before each (debug_uninit's op numbers). Not part of the IR text.
+  int calls_begin = 0;
+  // A `br` for a `return` before the end of an inlined function's body: OSL numbers it as its
+  // `return` op (the last statement's return falls through, with no op). Not part of the IR text.
+  bool osl_return = false;
 
   bool writes(int argi) const { return (written_mask >> argi) & 1u; }
 };

@@ -105,7 +105,7 @@ void Lowerer::index_refs(std::vector<LRef>& refs, int len, int idx, const ast::N
   }
 }
 
-int Lowerer::load(const LRef& r, const ast::Node* where) {
+int Lowerer::load(const LRef& r, const ast::Node* where, int hint) {
   if (r.whole()) return r.sym;
   int base = r.sym;
   ir::Type et = sh_.symbols[size_t(base)].type;
@@ -122,12 +122,12 @@ int Lowerer::load(const LRef& r, const ast::Node* where) {
     return a;
   }
   if (r.index >= 0) {
-    int t = temp(et);
+    int t = r.comp < 0 ? pick(hint, et) : temp(et);
     emit(ir::Opcode::ARef, {t, base, r.index}, 1, where);
     base = t;
   }
   if (r.comp < 0) return base;
-  int f = temp(ir::Type{ir::BaseType::Float});
+  int f = pick(hint, ir::Type{ir::BaseType::Float});
   if (r.comp2 >= 0)
     emit(ir::Opcode::MxCompRef, {f, base, r.comp, r.comp2}, 1, where);
   else
@@ -474,7 +474,7 @@ int Lowerer::rvalue(const ast::Expr* e, int hint) {
   case K::Ident:
   case K::Index:
   case K::Member:
-    r = load(lvalue(e)[0], e);
+    r = load(lvalue(e)[0], e, hint);
     break;
   case K::Unary: {
     auto* u = static_cast<const ast::UnaryExpr*>(e);

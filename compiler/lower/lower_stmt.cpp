@@ -116,7 +116,9 @@ void Lowerer::stmt(const ast::Stmt* s) {
     } else if (r->value && !result.empty()) {
       store(LRef{result[0]}, rvalue(r->value.get(), result[0]), s);
     }
-    inlines_.back().returns.push_back(emit(ir::Opcode::Br, {}, 0, s, {-1}));
+    int br = emit(ir::Opcode::Br, {}, 0, s, {-1});
+    sh_.ops[size_t(br)].osl_return = true;
+    inlines_.back().returns.push_back(br);
     break;
   }
   case S::Empty:
@@ -127,7 +129,7 @@ void Lowerer::stmt(const ast::Stmt* s) {
 
 std::vector<int> Lowerer::call_user(const ast::FunctionDecl* f,
                                     const std::vector<const ast::Expr*>& args,
-                                    const ast::Node* where) {
+                                    const ast::Node* where, int hint) {
   // As oslc 1.13: a call of a void function without a body does nothing; of a non-void one,
   // it is an error at the call (oslc reports it only where the function is called).
   if (f && !f->body && f->return_type.is_void()) return {};
@@ -187,10 +189,18 @@ std::vector<int> Lowerer::call_user(const ast::FunctionDecl* f,
   }
   Inline in;
   in.function = !f->osl_builtin;
-  if (!f->return_type.is_void())
-    for (const Leaf& l : leaves(f->return_type, f)) in.result.push_back(temp(irtype(l.type, f)));
+  if (!f->return_type.is_void()) {
+    std::vector<Leaf> ls = leaves(f->return_type, f);
+    for (const Leaf& l : ls)
+      in.result.push_back(ls.size() == 1 ? pick(hint, irtype(l.type, f)) : temp(irtype(l.type, f)));
+  }
   inlines_.push_back(in);
+  size_t body_begins = sh_.ops.size();
   stmt(f->body.get());
+  if (in.function && sh_.ops.size() > body_begins) ++sh_.ops[body_begins].calls_begin;
+  // The body's last op a return's jump: the last statement's return, no op of OSL's.
+  if (sh_.ops.size() > body_begins && sh_.ops.back().opcode == ir::Opcode::Br)
+    sh_.ops.back().osl_return = false;
   int end = here();
   patch(inlines_.back().returns, end);
   std::vector<int> result = inlines_.back().result;
@@ -359,7 +369,7 @@ int Lowerer::call(const ast::CallExpr* c, int hint) {
     }
     std::vector<const ast::Expr*> args;
     for (const auto& a : c->args) args.push_back(a.get());
-    std::vector<int> r = call_user(f, args, c);
+    std::vector<int> r = call_user(f, args, c, hint);
     return r.empty() ? -1 : r[0];
   }
   default:

@@ -70,7 +70,9 @@ public:
   int folded(const ast::Expr* e); // the constant an all-constant expression folds to, or -1
   std::vector<int> rvalue_flat(const ast::Expr* e); // struct value -> one symbol per leaf
   std::vector<LRef> lvalue(const ast::Expr* e);     // storage of an lvalue (one per leaf)
-  int load(const LRef& r, const ast::Node* where);
+  // The value at `r`; an element or component read goes into `hint` when it has that type (as
+  // oslc writes `x = a[i]` straight into x).
+  int load(const LRef& r, const ast::Node* where, int hint = -1);
   // `refs` (the leaves of an array of length `len`) indexed by int symbol `idx`.
   void index_refs(std::vector<LRef>& refs, int len, int idx, const ast::Node* where);
   int int_add(int a, int b, const ast::Node* where); // a + b (folded when both are constants)
@@ -93,9 +95,11 @@ public:
 
   // ---- lower_stmt.cpp
   void stmt(const ast::Stmt* s);
-  // Inlines `f` with the given argument expressions; returns the result's symbols.
+  // Inlines `f` with the given argument expressions; returns the result's symbols. A result of
+  // one leaf is returned into `hint` when it has that type (oslc returns into `x` of `x = f()`
+  // from inside f's body).
   std::vector<int> call_user(const ast::FunctionDecl* f, const std::vector<const ast::Expr*>& args,
-                             const ast::Node* where);
+                             const ast::Node* where, int hint = -1);
   int call_builtin(const ast::CallExpr* c, int hint);
   int call_closure(const ast::CallExpr* c, const std::string& key, int hint,
                    ir::Opcode opcode = ir::Opcode::Closure);

@@ -370,8 +370,9 @@ std::string osl_opname(const ir::Op& op, const ir::Shader& sh) {
 // `br` ops (the jump back of a loop, over an else) are part of OSL's `for`/`if` ops, and OSL
 // inserts its own `useparam` ops: before an op, one for each input parameter the op reads
 // that no earlier op outside a conditional read, and one at the start of the main code for the
-// outputs connected or read downstream (LayerPlan::osl_output_useparam); Lobe's useparam ops are
-// not counted.
+// outputs connected or read downstream (LayerPlan::osl_output_useparam), and a `functioncall`
+// op before each inlined user function's body (ir::Op::calls_begin) and a `return` op for a
+// return before its end (ir::Op::osl_return); Lobe's useparam ops are not counted.
 void LayerEmitter::number_ops_as_osl() {
   const auto& ops = shader().ops;
   osl_opnum_.assign(ops.size(), 0);
@@ -382,7 +383,8 @@ void LayerEmitter::number_ops_as_osl() {
     const ir::Op& op = ops[i];
     if (int(i) == shader().main_begin && plan().osl_output_useparam) ++n;
     bool conditional = furthest > int(i);
-    if (op.opcode != ir::Opcode::UseParam && op.opcode != ir::Opcode::Br) {
+    n += op.calls_begin; // OSL's functioncall ops
+    if (op.opcode != ir::Opcode::UseParam && (op.opcode != ir::Opcode::Br || op.osl_return)) {
       std::vector<int> fresh;
       for (size_t a = 0; a < op.args.size(); ++a) {
         int si = op.args[a];
