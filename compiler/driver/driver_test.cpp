@@ -107,6 +107,21 @@ TEST(Search, DeclaredNameAfterFileNames) {
   EXPECT_EQ(find_shader("ray_type.osl", {t.dir("a")}), ""); // a file name is not a shader name
 }
 
+// A shader name the preprocessor makes (OSL's *_xmacro.h test headers: `shader
+// __OSL_CONCAT(test_, __OSL_XMACRO_OPNAME)`, oslc naming the .oso after it) is found too, the
+// header found beside the file.
+TEST(Search, DeclaredNameMadeByMacros) {
+  TempDir t;
+  t.put("common/name_xmacro.h", "#define CAT2(a, b) a##b\n#define CAT(a, b) CAT2(a, b)\n"
+                                "shader CAT(test_, OPNAME) (float x = 1) { printf(\"%g\", x); }\n");
+  std::string f = t.put("c/sqrt_u_float.osl",
+                        "#define OPNAME sqrt_u_float\n#include \"../common/name_xmacro.h\"\n");
+  std::string g = t.put("c/other.osl", "#define NAME(a) test_##a\nshader NAME(cos) () {}\n");
+  EXPECT_EQ(find_shader("test_sqrt_u_float", {t.dir("c")}), f);
+  EXPECT_EQ(find_shader("test_cos", {t.dir("c")}), g);
+  EXPECT_EQ(find_shader("test_tan", {t.dir("c")}), "");
+}
+
 // IR text and OSL source give the same shader: `lobe compile`'s .lir loads back unchanged.
 TEST(Load, IrTextAndSourceAgree) {
   TempDir t;

@@ -17,8 +17,25 @@ bool is_file(const fs::path& p) {
   return fs::is_regular_file(p, ec);
 }
 
-// Step 4 of the search: an .osl in one of `dirs` declaring shader `name`.
+// The shader name `file` declares once preprocessed (`shader NAME(sqrt)` with a macro NAME, as
+// OSL's *_xmacro.h test headers build names): oslc names the compiled file after it. Includes
+// are searched beside the file and in `dirs`; a header not found (stdosl.h) reads as empty.
+std::string preprocessed_shader_name(const fs::path& file, const std::vector<std::string>& dirs) {
+  pp::PPOptions o;
+  o.include_dirs = {file.has_parent_path() ? file.parent_path().string() : "."};
+  o.include_dirs.insert(o.include_dirs.end(), dirs.begin(), dirs.end());
+  o.builtin_header = [](const std::string&) -> std::optional<std::string> { return ""; };
+  diag::SourceManager sm;
+  diag::DiagnosticEngine diags;
+  pp::Preprocessor p(sm, diags, o);
+  if (!p.process_file(file.string())) return "";
+  return declared_shader_name(sm.buffer_text(p.finish()));
+}
+
+// Step 4 of the search: an .osl in one of `dirs` declaring shader `name`, as written, else once
+// preprocessed.
 std::string find_by_declared_name(const std::string& name, const std::vector<std::string>& dirs) {
+  std::vector<fs::path> macro_named; // declaring no name as written
   for (const std::string& d : dirs) {
     std::error_code ec;
     std::vector<fs::path> files;
@@ -28,9 +45,16 @@ std::string find_by_declared_name(const std::string& name, const std::vector<std
     std::sort(files.begin(), files.end());
     for (const fs::path& f : files) {
       std::optional<std::string> text = pp::read_file_from_disk(f.string());
-      if (text && declared_shader_name(*text) == name) return f.lexically_normal().string();
+      if (!text) continue;
+      std::string declared = declared_shader_name(*text);
+      if (declared == name) return f.lexically_normal().string();
+      if (declared.empty() || text->find("#define") != std::string::npos ||
+          text->find("#include") != std::string::npos)
+        macro_named.push_back(f);
     }
   }
+  for (const fs::path& f : macro_named)
+    if (preprocessed_shader_name(f, dirs) == name) return f.lexically_normal().string();
   return "";
 }
 
