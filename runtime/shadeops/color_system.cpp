@@ -533,12 +533,18 @@ bool ColorSystem::transform_impl(std::string_view from, std::string_view to, con
                                  C& out) const {
   auto srgb_decode = [](const auto& x) { return srgb_to_linear(x); };
   auto srgb_encode = [](const auto& x) { return linear_to_srgb(x); };
-  if (from == to) { // any name, known or not
-    out = c;
-    return true;
-  }
   C rgb;
   bool known = true;
+  if (from == to) { // as OSL, through rgb for a space of its own (XYZ to XYZ rounds a little)
+    if (is_linear_rgb(from) || from == name_) {
+      out = c;
+    } else if (from == "sRGB") {
+      out = per_component(per_component(c, srgb_decode), srgb_encode);
+    } else if (!to_rgb_builtin(from, c, rgb) || !from_rgb_builtin(to, rgb, out)) {
+      out = c; // a name not OSL's own: the colour unchanged
+    }
+    return true;
+  }
   if (is_linear_rgb(from) || from == name_)
     rgb = c;
   else if (from == "sRGB")
