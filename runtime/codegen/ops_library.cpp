@@ -730,8 +730,9 @@ void op_gettextureinfo(LayerEmitter& e, const ir::Op& op) {
       "lobe_gettextureinfo",
       {e.sg(), e.env_ptr(),
        // OSL words a failure by how it looked the file up: a name constant at -O2 as
-       // the shader's error, any other through its RendererServices (null here).
-       is_const_string(e.arg(op, 2)) && e.group().opt_level >= 2
+       // the shader's error (not with s and t), any other through its RendererServices (null
+       // here).
+       is_const_string(e.arg(op, 2)) && e.group().opt_level >= 2 && !udim
            ? e.string_const(e.shader().name)
            : llvm::ConstantPointerNull::get(e.b().getPtrTy()),
        e.load(op.args[2])[0].v, e.iconst(udim ? 1 : 0), s, t, e.load(op.args[udim ? 5 : 3])[0].v,

@@ -1084,6 +1084,11 @@ TEST(ShadeCli, LookupErrorsNameTheirKindAndIntValuesSaturate) {
             "0 0 0 0 0 0 0 0 0 i=2147483647\n\n");
   std::string low = run_here("-param i -99999999999 lookup_kinds");
   EXPECT_NE(low.find("i=-2147483648\n"), std::string::npos) << low;
+  // gettextureinfo's UDIM form (`testshade [-O0] gti_udim_missing`).
+  for (const char* o : {"-O0 ", "-O2 "})
+    EXPECT_EQ(run_here(std::string(o) + "gti_udim_missing"),
+              "ERROR: [RendererServices::get_texture_info] Invalid image file \"nosuch.tx\": Could "
+              "not open file: nosuch.tx: No such file or directory\nok 0 [-1 -1]\n\n");
 }
 
 // At -O2 a getmessage of a constant name nothing set before it is 0 without a query (so a later
