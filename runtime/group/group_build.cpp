@@ -563,6 +563,10 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     for (const InstanceValue& v : group.layers[i].values) {
       if (v.lockgeom >= 0) lockgeom[i][v.name] = v.lockgeom;
       int s = sources[i]->find_symbol(v.name);
+      bool whole_struct = false; // a struct parameter named whole: OSL ignores it, silently
+      for (const ir::Symbol& ps : sources[i]->symbols)
+        whole_struct |= is_param(ps) && ps.name.rfind(v.name + ".", 0) == 0;
+      if (s < 0 && whole_struct) continue;
       if (s < 0 || !is_param(sources[i]->symbols[size_t(s)])) {
         std::vector<std::string> names; // the shader's parameters, as a hint
         for (const ir::Symbol& ps : sources[i]->symbols)

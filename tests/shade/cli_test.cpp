@@ -1163,3 +1163,15 @@ TEST(ShadeCli, DebugReportsOfReadsAndCallsAsOsl) {
             "value in float w at debug_direct.osl:16 (group unnamed_group_1, layer 0 "
             "debug_direct_0, shader debug_direct, op 17 'add', arg 2)\n0 0 0 1.5\n\n");
 }
+
+// -param naming a whole struct parameter is ignored without a word; a field takes its value; a
+// name the shader lacks is warned of. Expected: OSL 1.13.12, `testshade -param pp 5,6 sp`,
+// `-param pp.x 5.5`, `-param ppx 1`.
+TEST(ShadeCli, ParamOfAWholeStructIsIgnored) {
+  auto dir = scratch_dir("sp.osl", "struct Pt { float x; float y; };\nshader sp (Pt pp = { 1, 2 }) "
+                                   "{ printf (\"pp = (%g, %g)\\n\", pp.x, pp.y); }\n");
+  EXPECT_EQ(run_in(dir, "-param pp 5,6 sp"), "pp = (1, 2)\n\n");
+  EXPECT_EQ(run_in(dir, "-param pp.x 5.5 sp"), "pp = (5.5, 2)\n\n");
+  EXPECT_EQ(run_in(dir, "-param ppx 1 sp"),
+            "WARNING: attempting to set nonexistent parameter: ppx\npp = (1, 2)\n\n");
+}
