@@ -6,6 +6,7 @@
 #include "mathops.h"
 #include "passes/math_opcode.h"
 
+#include <bit>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
@@ -106,8 +107,8 @@ std::function<float(float, float, float)> float_ternop(Opcode op) {
 }
 
 // Comparisons with codegen's rules: ints and strings exactly; floats unordered (a NaN makes
-// every comparison true), triples by all components (==) or any (!=).
-std::optional<Values> compare(Opcode op, const std::vector<ConstArg>& s) {
+// every comparison true), or as C with `c_compares`; triples by all components (==) or any (!=).
+std::optional<Values> compare(Opcode op, const std::vector<ConstArg>& s, bool c_compares) {
   bool strings = s[0].type == Type{BaseType::String} && s[1].type == s[0].type;
   if (strings) { // compared by content: strings have no numeric value to widen
     if (op != Opcode::Eq && op != Opcode::Neq) return std::nullopt;
@@ -130,19 +131,30 @@ std::optional<Values> compare(Opcode op, const std::vector<ConstArg>& s) {
     return Values{ConstValue::of_int(r)};
   }
   if (op == Opcode::Eq || op == Opcode::Neq) {
+    // OSL's folder takes two constants of the same bits as equal before comparing (so a NaN
+    // equals itself there).
+    bool same_bits = a->size() == b->size();
+    for (size_t i = 0; same_bits && i < a->size(); ++i)
+      same_bits = std::bit_cast<uint32_t>((*a)[i].f) == std::bit_cast<uint32_t>((*b)[i].f);
+    if (c_compares && same_bits) return Values{ConstValue::of_int(op == Opcode::Eq)};
     bool all_eq = true, any_ne = false;
     for (size_t i = 0; i < a->size(); ++i) {
-      all_eq &= math::eq((*a)[i].f, (*b)[i].f);
-      any_ne |= math::ne((*a)[i].f, (*b)[i].f);
+      float x = (*a)[i].f, y = (*b)[i].f;
+      all_eq &= c_compares ? x == y : math::eq(x, y);
+      any_ne |= c_compares ? x != y : math::ne(x, y);
     }
     return Values{ConstValue::of_int(op == Opcode::Eq ? all_eq : any_ne)};
   }
   if (t->is_triple()) return std::nullopt;
   float x = (*a)[0].f, y = (*b)[0].f;
-  bool r = op == Opcode::Lt   ? math::lt(x, y)
-           : op == Opcode::Le ? math::le(x, y)
-           : op == Opcode::Gt ? math::gt(x, y)
-                              : math::ge(x, y);
+  bool r = c_compares ? (op == Opcode::Lt   ? x < y
+                         : op == Opcode::Le ? x <= y
+                         : op == Opcode::Gt ? x > y
+                                            : x >= y)
+                      : (op == Opcode::Lt   ? math::lt(x, y)
+                         : op == Opcode::Le ? math::le(x, y)
+                         : op == Opcode::Gt ? math::gt(x, y)
+                                            : math::ge(x, y));
   return Values{ConstValue::of_int(r)};
 }
 
@@ -253,10 +265,11 @@ std::optional<Values> evaluate(Opcode op, const Type& dst, const std::vector<Con
   if ((op == Opcode::Eq || op == Opcode::Neq || op == Opcode::Lt || op == Opcode::Le ||
        op == Opcode::Gt || op == Opcode::Ge) &&
       s.size() == 2)
-    return compare(op, s);
+    return compare(op, s, options.c_compares);
   if (op == Opcode::Not && s.size() == 1 && is_num(s[0].type)) {
     const ConstValue& c = (*s[0].value)[0];
-    return Values{ConstValue::of_int(s[0].type.base == BaseType::Int ? c.i == 0 : c.f == 0)};
+    bool zero = options.c_compares ? c.f == 0 : math::eq(c.f, 0); // !nan: 0 in C, else 1
+    return Values{ConstValue::of_int(s[0].type.base == BaseType::Int ? c.i == 0 : zero)};
   }
   if (op == Opcode::CompRef && s.size() == 2 && s[0].type.is_triple() && !s[0].type.is_array()) {
     int i = (*s[1].value)[0].i;

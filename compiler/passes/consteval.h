@@ -17,6 +17,10 @@ namespace lobe::passes {
 // How the math builtins compute (CompileOptions::fast_math; docs/language.md, "Math").
 struct EvalOptions {
   bool fast_math = true;
+  // Float comparisons and `!` as C computes them (a NaN is unequal to everything, `!nan` is 0),
+  // as OSL's -O2 optimiser folds them; otherwise as the generated code computes them (a NaN
+  // makes every comparison true, and `!nan` 1).
+  bool c_compares = false;
 };
 
 struct ConstArg {

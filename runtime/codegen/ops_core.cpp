@@ -337,9 +337,21 @@ void compare(LayerEmitter& e, const ir::Op& op) {
           e.convert(Val{Dual{B.CreateZExt(r, e.i32())}}, BaseType::Int, e.arg(op, 0).type.base));
 }
 
+// `!x`: x == 0, unordered for floats as OSL's generated code computes it (`!nan` is 1, while
+// `nan` is also true as a condition: truthy).
 void logic_not(LayerEmitter& e, const ir::Op& op) {
-  llvm::Value* nz = e.truthy(e.load(op.args[1], nullptr, false), e.arg(op, 1).type.base);
-  Val r{Dual{e.b().CreateZExt(e.b().CreateNot(nz), e.i32())}};
+  BaseType t = e.arg(op, 1).type.base;
+  Val v = e.load(op.args[1], nullptr, false);
+  llvm::Value* zero = nullptr;
+  if (t == BaseType::Int || t == BaseType::String || t == BaseType::Closure) {
+    zero = e.b().CreateNot(e.truthy(v, t));
+  } else {
+    for (const Dual& d : v) {
+      llvm::Value* z = e.b().CreateFCmpUEQ(d.v, e.fconst(0));
+      zero = zero ? e.b().CreateAnd(zero, z) : z;
+    }
+  }
+  Val r{Dual{e.b().CreateZExt(zero, e.i32())}};
   e.store(op.args[0], e.convert(r, BaseType::Int, e.arg(op, 0).type.base));
 }
 

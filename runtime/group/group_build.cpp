@@ -210,7 +210,8 @@ void specialize_layer(ir::Shader& sh,
   }
   passes::OptimizeOptions opt;
   opt.math = math;
-  opt.algebraic = true; // as OSL's runtime optimizer, which oslc's folding is not
+  opt.math.c_compares = osl_o2; // OSL's -O2 folds float comparisons as C computes them
+  opt.algebraic = true;         // as OSL's runtime optimizer, which oslc's folding is not
   opt.part_stores = osl_o2;
   passes::optimize(sh, opt);
   // A parameter no op reads any more (its reads were dead and went) is no longer used: its
