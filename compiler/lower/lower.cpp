@@ -11,6 +11,7 @@
 #include "passes/derivs.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace lobe::lower {
 
@@ -146,6 +147,7 @@ int Lowerer::emit(ir::Opcode opcode, std::vector<int> args, uint32_t written,
   op.loc = loc(where ? where : where_);
   op.in_function =
       std::any_of(inlines_.begin(), inlines_.end(), [](const Inline& in) { return in.function; });
+  op.calls_begin = std::exchange(pending_calls_, 0);
   std::vector<int> reads;
   for (size_t i = 0; i < op.args.size(); ++i) {
     int s = op.args[i];

@@ -191,13 +191,19 @@ std::vector<int> Lowerer::call_user(const ast::FunctionDecl* f,
   in.function = !f->osl_builtin;
   if (!f->return_type.is_void()) {
     std::vector<Leaf> ls = leaves(f->return_type, f);
+    // Into `hint` even when arguments are written back after the body, as oslc orders them:
+    // `c = f(c[0])` stores the result, then the output argument into c[0]; `i = f(a[i])`
+    // writes a[i] of the new i (OSL 1.13.12, tests/shade/call_into_osl.osl).
     for (const Leaf& l : ls)
       in.result.push_back(ls.size() == 1 ? pick(hint, irtype(l.type, f)) : temp(irtype(l.type, f)));
   }
   inlines_.push_back(in);
   size_t body_begins = sh_.ops.size();
   stmt(f->body.get());
-  if (in.function && sh_.ops.size() > body_begins) ++sh_.ops[body_begins].calls_begin;
+  if (in.function && sh_.ops.size() > body_begins)
+    ++sh_.ops[body_begins].calls_begin;
+  else if (in.function)
+    ++pending_calls_; // an empty body: OSL's functioncall op still counts, before the next op
   // The body's last op a return's jump: the last statement's return, no op of OSL's.
   if (sh_.ops.size() > body_begins && sh_.ops.back().opcode == ir::Opcode::Br)
     sh_.ops.back().osl_return = false;

@@ -128,6 +128,7 @@ public:
     bool function = true;     // a function in OSL's sense (not an osl_builtin): Op::in_function
   };
   std::vector<Inline> inlines_;
+  int pending_calls_ = 0; // inlined calls with empty bodies, counted on the next op emitted
   void patch(const std::vector<int>& ops, int target);
 };
 

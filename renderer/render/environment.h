@@ -11,14 +11,16 @@
 // sphere, or cosine-weighted about a surface normal when one is given (pdf cos/pi on its
 // hemisphere, 0 below), with exact pdfs; the expected image is the same.
 //
-// Light samples for a surface: a table is sampled from one of six oriented tables, one per
-// axis (+X, -X, +Y, -Y, +Z, -Z), at half the resolution: the radiance times the cosine to the
-// axis (the largest over the cell, clamped at 0), so a surface facing its normal's nearest
-// axis draws its light samples about as radiance times cosine, not over the whole sphere
-// (half of which lies behind it). Directions a table gives no density (beyond its axis'
-// horizon, yet above the surface's) are left to the BSDF's samples, whose MIS weight is then
-// 1: the estimate stays unbiased. A zero normal (a surface that transmits diffusely, lit
-// from both sides) takes the whole-sphere table, or the uniform sphere when constant.
+// Light samples for a surface: a table is sampled through an oriented table chosen by the
+// surface's normal (environment.cpp): one per direction s in {-1, 0, 1}^3 but 0 (the nearest
+// of the 26 to the normal, with a 28-degree cone), or an axis' tight one (2 degrees) for a
+// normal that close to an axis. A table weighs blocks of texels by their radiance times the
+// cosine past the cone, so the light samples avoid most directions behind the surface and
+// leave none in front of it without density (but for the corners-and-centre estimate of a
+// block's nearest angle); a sample picks a block, then a texel in it by its own density, so
+// radiance keeps the table's resolution. The escaped ray's MIS pdf takes the same normal, so
+// the estimate stays unbiased. A zero normal (a surface that transmits diffusely, lit from
+// both sides) takes the whole-sphere table, or the uniform sphere when constant.
 //
 // Mapping (after rotating by -rotation about +Y): v = theta/pi with theta measured from +Y
 // (row 0 is straight up), u = 0.5 + atan2(x, -z) / (2 pi) (the image centre looks down -Z).
@@ -54,8 +56,8 @@ public:
   Vec3 sample(float u1, float u2, float& pdf) const; // direction towards the environment
   // As seen from a surface with unit normal `n` (on the side the light is wanted), or a zero
   // `n` (both sides wanted): a constant environment is sampled cosine-weighted about n
-  // (uniformly over the sphere for a zero n); a table from the oriented table of n's nearest
-  // axis (the whole-sphere table for a zero n). `L` gets the radiance of the sampled texel.
+  // (uniformly over the sphere for a zero n); a table through the oriented table n takes (the
+  // whole-sphere table for a zero n). `L` gets the radiance of the sampled texel.
   Vec3 sample(const Vec3& n, float u1, float u2, float& pdf, Color3& L) const;
   float pdf(const Vec3& dir, const Vec3& n) const; // solid-angle density of sample(n, ...)
   // eval(dir) and pdf(dir, n) with one direction-to-texel mapping.
@@ -102,7 +104,7 @@ private:
   Color3 color_; // the colour of a constant table
   Distribution2D dist_;
   Grid grids_[2];                        // the tight tables' blocks, the wide ones'
-  std::vector<Distribution2D> oriented_; // 33 (see oriented_index), or none
+  std::vector<Distribution2D> oriented_; // 33 slots, 32 tables (13 unused), or none
 };
 
 } // namespace lobe::render

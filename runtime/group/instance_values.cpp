@@ -93,7 +93,10 @@ bool fit_untyped(const InstanceValue& v, const ir::Type& t, std::vector<ir::Cons
       char* end = nullptr;
       if (t.base == ir::BaseType::Int) {
         c.i = read_int(w.c_str(), &end);
-        if (*end == '.' || *end == 'e') c.i = int32_t(std::strtof(w.c_str(), &end));
+        if (*end == '.' || *end == 'e') { // a float's digits: truncated, then the nearest int
+          float f = std::strtof(w.c_str(), &end);
+          c.i = f != f ? 0 : int32_t(std::clamp(f, -2147483648.0f, 2147483520.0f));
+        }
       } else {
         c.f = std::strtof(w.c_str(), &end);
       }
