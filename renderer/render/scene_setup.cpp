@@ -282,9 +282,17 @@ std::string RenderScene::build_environment() {
     image::Image img;
     if (std::string err = image::read_image(e.file, img); !err.empty()) return e.where + ": " + err;
     std::vector<float> rgb(size_t(img.width) * img.height * 3);
+    size_t bad = 0; // NaN or infinite values (or ones the intensity makes infinite): read as 0
     for (size_t p = 0; p < size_t(img.width) * img.height; ++p)
-      for (int c = 0; c < 3; ++c)
-        rgb[p * 3 + c] = k * img.pixels[p * img.nchannels() + std::min(c, img.nchannels() - 1)];
+      for (int c = 0; c < 3; ++c) {
+        float v = k * img.pixels[p * img.nchannels() + std::min(c, img.nchannels() - 1)];
+        bad += !std::isfinite(v);
+        rgb[p * 3 + c] = std::isfinite(v) ? v : 0.0f;
+      }
+    if (bad)
+      stats_.warnings.push_back(e.where + ": environment map '" + e.file +
+                                "': " + std::to_string(bad) +
+                                " values are not finite numbers (NaN or infinite); read as 0");
     env_ = EnvironmentLight(std::move(rgb), img.width, img.height, e.rotation);
     return "";
   }

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -298,4 +299,40 @@ TEST(RenderCli, ColorspaceOptionReachesTheMaterials) {
   EXPECT_EQ(r.status, 0);
   EXPECT_EQ(r.out, "ERROR: Unknown color space \"Rec2020\"\n");
   EXPECT_NEAR(mean_channel(d / "o.exr", "albedo.R"), 0.536424339, 1e-6);
+}
+
+// An environment map with NaN and infinite values: a warning naming the file and how many, and
+// those values read as 0 (the image is the one of the same map with zeros there, bit for bit).
+TEST(RenderCli, NonFiniteEnvironmentTexelsAreWarnedOfAndReadAsZero) {
+  fs::path d = temp_dir("nonfinite_env");
+  auto write_env = [&](const std::string& name, bool bad) {
+    lobe::image::Image img(16, 8, {"R", "G", "B"});
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 16; ++x)
+        for (int c = 0; c < 3; ++c) img.pixel(x, y)[c] = y < 4 ? 0.9f : 0.3f;
+    float bad_values[3] = {NAN, INFINITY, -INFINITY};
+    for (int k = 0; k < 3; ++k) img.pixel(2 + 3 * k, 1 + 2 * k)[k] = bad ? bad_values[k] : 0.0f;
+    ASSERT_EQ(lobe::image::write_image((d / name).string(), img), "");
+  };
+  write_env("bad.exr", true);
+  write_env("zero.exr", false);
+  auto scene = [&](const std::string& map) {
+    return R"({"camera": {"eye": [0, 1, 4], "look_at": [0, 0.5, 0], "fov": 40},
+  "settings": {"resolution": [16, 12], "spp": 8},
+  "environment": {"type": "map", "file": ")" +
+           map + R"("},
+  "materials": {"m": {"shader": "matte", "params": {"Cs": [0.5, 0.5, 0.5]}}},
+  "shapes": [{"type": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": "m"}]})";
+  };
+  write_file(d / "bad.json", scene("bad.exr"));
+  write_file(d / "zero.json", scene("zero.exr"));
+  CmdResult bad = render("--no-aovs bad.json -o bad_out.exr", d);
+  ASSERT_EQ(bad.status, 0) << bad.out;
+  EXPECT_EQ(bad.out, "warning: bad.json: /environment: environment map 'bad.exr': 3 values are "
+                     "not finite numbers (NaN or infinite); read as 0\n");
+  ASSERT_EQ(render("--no-aovs zero.json -o zero_out.exr", d).status, 0);
+  lobe::image::Image a, b;
+  ASSERT_EQ(lobe::image::read_image((d / "bad_out.exr").string(), a), "");
+  ASSERT_EQ(lobe::image::read_image((d / "zero_out.exr").string(), b), "");
+  EXPECT_EQ(a.pixels, b.pixels);
 }
