@@ -741,6 +741,9 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         if (l.dst_layer != int(i) || l.dead || l.src.elem >= 0 || l.src.comp >= 0 ||
             l.dst.elem >= 0 || l.dst.comp >= 0)
           continue;
+        // An output the renderer reads (-o) keeps its connection: OSL 1.13.12 runs the upstream
+        // layer for it (`--entry D -o out` with U.out -> D.x prints U's printf).
+        if (renderer_reads(group, group.layers[size_t(l.src_layer)].name, l.src.symbol)) continue;
         const ir::Shader& src = *out.shaders[size_t(new_index[size_t(l.src_layer)])];
         bool src_runtime = interp[size_t(l.src_layer)].count(l.src.symbol) > 0;
         for (const Link& up : links)

@@ -1175,3 +1175,13 @@ TEST(ShadeCli, ParamOfAWholeStructIsIgnored) {
   EXPECT_EQ(run_in(dir, "-param ppx 1 sp"),
             "WARNING: attempting to set nonexistent parameter: ppx\npp = (1, 2)\n\n");
 }
+
+// An upstream output the renderer reads (-o) keeps its connection at -O2 (not replaced by its
+// known value), so the upstream layer runs for the downstream entry layer. Expected: OSL
+// 1.13.12, `testshade -layer U entry_up -layer D entry_dn --connect U out D x --entry D -o out
+// null`.
+TEST(ShadeCli, RendererOutputsKeepTheirConnections) {
+  EXPECT_EQ(run_here("-layer U entry_up -layer D entry_dn --connect U out D x --entry D -o out "
+                     "null"),
+            "Connect U.out to D.x\n\nEntry layers: D(1)\nup ran\ndn: x = 100\n\n");
+}
