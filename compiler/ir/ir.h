@@ -120,6 +120,12 @@ struct Symbol {
   SourceLoc loc;
 };
 
+// The value of a constant string symbol (not an array), or null for any other symbol.
+inline const std::string* string_value(const Symbol& s) {
+  bool string = s.kind == SymKind::Const && s.type.base == BaseType::String && !s.type.is_array();
+  return string && !s.init.empty() ? &s.init[0].s : nullptr;
+}
+
 // A struct type of a struct parameter, for the interface listing (`lobe info`): the params are
 // flattened into one symbol per leaf field, and this keeps the fields' order, types and nesting.
 struct StructField {

@@ -133,10 +133,10 @@ std::optional<Values> compare(Opcode op, const std::vector<ConstArg>& s, bool c_
   if (op == Opcode::Eq || op == Opcode::Neq) {
     // OSL's folder takes two constants of the same bits as equal before comparing (so a NaN
     // equals itself there).
-    bool same_bits = a->size() == b->size();
+    bool same_bits = c_compares && a->size() == b->size();
     for (size_t i = 0; same_bits && i < a->size(); ++i)
       same_bits = std::bit_cast<uint32_t>((*a)[i].f) == std::bit_cast<uint32_t>((*b)[i].f);
-    if (c_compares && same_bits) return Values{ConstValue::of_int(op == Opcode::Eq)};
+    if (same_bits) return Values{ConstValue::of_int(op == Opcode::Eq)};
     bool all_eq = true, any_ne = false;
     for (size_t i = 0; i < a->size(); ++i) {
       float x = (*a)[i].f, y = (*b)[i].f;

@@ -138,6 +138,15 @@ void print_oslc_warning(const Diagnostic& d, const std::vector<const Diagnostic*
   }
 }
 
+// Warning `i` of `diags` with the notes that follow it, as often as oslc prints it.
+void print_oslc_warning_at(const DiagnosticList& diags, size_t i, const std::string& prefix = "") {
+  std::vector<const Diagnostic*> own;
+  for (size_t k = i + 1; k < diags.size() && diags[k].severity == Diagnostic::Severity::Note; ++k)
+    own.push_back(&diags[k]);
+  for (int r = 0; r < std::max(1, diags[i].oslc_repeat); ++r)
+    print_oslc_warning(diags[i], own, prefix);
+}
+
 // `group`: the group's name, which testshade prints after a connection error. `compiler`: the
 // compiler's own warnings (a shader's source compiled here) as Lobe renders them (caret and
 // notes); otherwise as oslc prints them, since a testshade run follows oslc's (OSL's testsuite
@@ -152,13 +161,8 @@ void print_diagnostics(const DiagnosticList& diags, bool notes, const std::strin
     if (d.severity == Diagnostic::Severity::Note && !notes) continue;
     std::string t = d.text;
     if (!compiler && d.severity != Diagnostic::Severity::Error && t.rfind("warning: ", 0) != 0) {
-      if (d.severity == Diagnostic::Severity::Warning) { // a compiler warning, then its notes
-        std::vector<const Diagnostic*> own;
-        for (size_t k = size_t(&d - diags.data()) + 1;
-             k < diags.size() && diags[k].severity == Diagnostic::Severity::Note; ++k)
-          own.push_back(&diags[k]);
-        for (int r = 0; r < std::max(1, d.oslc_repeat); ++r) print_oslc_warning(d, own);
-      }
+      if (d.severity == Diagnostic::Severity::Warning) // a compiler warning, then its notes
+        print_oslc_warning_at(diags, size_t(&d - diags.data()));
       continue;
     }
     // Group-level warnings print as testshade prints them: "WARNING: ...", and so do
@@ -414,6 +418,8 @@ bool Shade::reparameter(ShaderGroup::Layer& l, const ShadeReparam& r) {
   }
   std::string declared = ir::to_string(s.type);
   InstanceValue v = r.value;
+  bool triple_value =
+      v.type == "color" || v.type == "point" || v.type == "vector" || v.type == "normal";
   if (s.type.is_triple() && !s.type.is_array() && v.type == "float") {
     std::vector<float> comps; // the value until now: the instance value's, else the default's
     group::ValueFit fit;
@@ -426,15 +432,11 @@ bool Shade::reparameter(ShaderGroup::Layer& l, const ShadeReparam& r) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.9g %.9g %.9g", comps[0], comps[1], comps[2]);
     v = param_value(declared, r.param, buf);
-  } else if (s.type.base == ir::BaseType::Float && s.type.arraylen == 3 &&
-             (v.type == "color" || v.type == "point" || v.type == "vector" ||
-              v.type == "normal")) {
+  } else if (s.type.base == ir::BaseType::Float && s.type.arraylen == 3 && triple_value) {
     // Three floats either way: OSL takes a value of the same base type and size (an untyped
     // `7,8,9`, read as a vector, for a float[3]).
     v = param_value(declared, r.param, v.value);
-  } else if (v.type != declared && !(s.type.is_triple() && !s.type.is_array() &&
-                                     (v.type == "color" || v.type == "point" ||
-                                      v.type == "vector" || v.type == "normal"))) {
+  } else if (v.type != declared && !(s.type.is_triple() && !s.type.is_array() && triple_value)) {
     return false;
   }
   v.interactive = true;
@@ -694,15 +696,9 @@ int Shade::run() {
       std::fprintf(stderr, "Could not compile \"%s\"\n", name.c_str());
       return 1;
     }
-    for (size_t i = 0; i < diags.size(); ++i) { // its warnings, as testshade's compile gives them
-      if (diags[i].severity != Diagnostic::Severity::Warning) continue;
-      std::vector<const Diagnostic*> own;
-      for (size_t k = i + 1; k < diags.size() && diags[k].severity == Diagnostic::Severity::Note;
-           ++k)
-        own.push_back(&diags[k]);
-      for (int r = 0; r < std::max(1, diags[i].oslc_repeat); ++r)
-        print_oslc_warning(diags[i], own, "WARNING: ");
-    }
+    for (size_t i = 0; i < diags.size(); ++i) // its warnings, as testshade's compile gives them
+      if (diags[i].severity == Diagnostic::Severity::Warning)
+        print_oslc_warning_at(diags, i, "WARNING: ");
   }
   ShaderGroup& g = job_.group;
   // A shader named without a path resolves on the search path here, so that one found in the

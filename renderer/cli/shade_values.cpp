@@ -1,8 +1,8 @@
 // testshade's value reading (see shade_values.h).
 #include "shade_values.h"
 
-#include <algorithm>
-#include <cstdint>
+#include "instance_values.h"
+
 #include <cstdio>
 #include <cstdlib>
 
@@ -92,8 +92,7 @@ TypedValue read_typed_value(const std::string& type_name, const std::string& tex
   for (size_t k = 0; k < n; ++k) {
     const char* w = k < r.words.size() ? r.words[k].c_str() : "";
     if (r.type.base == DataType::Base::Int) // out of range: the nearest int, as testshade
-      r.ints.push_back(
-          int32_t(std::clamp<long>(std::strtol(w, nullptr, 10), INT32_MIN, INT32_MAX)));
+      r.ints.push_back(group::read_int(w, nullptr));
     else if (r.type.is_float_based())
       r.floats.push_back(std::strtof(w, nullptr));
   }

@@ -53,6 +53,7 @@ namespace {
 // degrees from any normal (the cone: 28); one within 2 degrees of an axis (floors, walls)
 // takes that axis' tight table instead (index 27 + 2 axis + (negative)).
 constexpr int kWideTables = 27, kTightTables = 6;
+constexpr int kZeroDirection = 13; // s = (0, 0, 0): no table
 constexpr float kWideCone = 28.0f * kPi / 180, kTightCone = 2.0f * kPi / 180;
 
 // Tight tables use grid 0, wide ones grid 1.
@@ -122,7 +123,7 @@ void EnvironmentLight::build_oriented() {
   make(grids_[1], geo[1], std::min((w_ + 3) / 4, 512), std::min((h_ + 3) / 4, 256));
   oriented_.assign(kWideTables + kTightTables, Distribution2D());
   tbb::parallel_for(0, kWideTables + kTightTables, [&](int k) {
-    if (k == 13) return; // the zero vector
+    if (k == kZeroDirection) return;
     const Grid& g = grids_[grid_of(k)];
     const Geometry& ge = geo[grid_of(k)];
     const float cone = k >= kWideTables ? kTightCone : kWideCone;
@@ -168,7 +169,7 @@ int EnvironmentLight::oriented_index(const Vec3& n) const {
   float c1 = a[i0], c2 = (a[i0] + a[i1]) * 0.70710678f, c3 = (a[0] + a[1] + a[2]) * 0.57735027f;
   if (c1 >= c2 && c1 >= c3) {
     if (c1 >= kCosTight) return kWideTables + 2 * i0 + (n[i0] < 0 ? 1 : 0);
-    return 13 + (n[i0] < 0 ? -1 : 1) * (i0 == 0 ? 9 : i0 == 1 ? 3 : 1);
+    return kZeroDirection + (n[i0] < 0 ? -1 : 1) * (i0 == 0 ? 9 : i0 == 1 ? 3 : 1);
   }
   int s[3] = {0, 0, 0};
   s[i0] = n[i0] < 0 ? -1 : 1;
@@ -247,8 +248,8 @@ Color3 EnvironmentLight::eval_pdf(const Vec3& dir, const Vec3& n, float& pdf) co
   if (k < 0) {
     pdf = table_pdf(p, sin_theta(dir));
   } else {
-    int x = std::min(std::max(int(u * w_), 0), w_ - 1),
-        y = std::min(std::max(int(v * h_), 0), h_ - 1);
+    int x, y;
+    texel_at(u, v, x, y);
     pdf = solid_angle_pdf(oriented_density(k, x, y), sin_theta(dir));
   }
   return {p[0], p[1], p[2]};
@@ -294,16 +295,19 @@ Vec3 EnvironmentLight::sample(const Vec3& n, float u1, float u2, float& pdf, Col
           fv = std::clamp(v * g.h - cy, 0.0f, kBelowOne);
     int x0, x1, y0, y1;
     block(g, cx, cy, x0, x1, y0, y1);
-    float target = fu * total, acc = 0, before = 0, p = 0;
+    // The texel where the running sum of densities passes fu * total (else the last with any).
+    float target = fu * total, before = 0, p = 0;
     int sx = -1, sy = -1;
-    for (int ty = y0; ty < y1 && !(p > 0 && acc > target); ++ty)
-      for (int tx = x0; tx < x1; ++tx) {
-        float q = tex_[(size_t(ty) * w_ + tx) * 4 + 3];
-        if (!(q > 0)) continue;
-        before = acc, p = q, sx = tx, sy = ty; // the last texel with density so far
-        acc += q;
-        if (acc > target) break;
-      }
+    [&] {
+      float acc = 0;
+      for (int ty = y0; ty < y1; ++ty)
+        for (int tx = x0; tx < x1; ++tx) {
+          float q = tex_[(size_t(ty) * w_ + tx) * 4 + 3];
+          if (!(q > 0)) continue;
+          before = acc, p = q, sx = tx, sy = ty;
+          if ((acc += q) > target) return;
+        }
+    }();
     if (sx < 0) return {0, 1, 0};
     float r = std::clamp((target - before) / p, 0.0f, kBelowOne);
     u = (float(sx) + r) / float(w_), v = (float(sy) + fv) / float(h_);

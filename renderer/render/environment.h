@@ -84,9 +84,13 @@ private:
   // A texel: radiance r, g, b and the distribution's density over the unit square there (one
   // cache line holds what eval and pdf read).
   const float* texel(float u, float v) const {
-    int x = std::min(std::max(int(u * w_), 0), w_ - 1),
-        y = std::min(std::max(int(v * h_), 0), h_ - 1);
+    int x, y;
+    texel_at(u, v, x, y);
     return &tex_[(size_t(y) * w_ + x) * 4];
+  }
+  // The texel (x, y) holding (u, v), clamped to the table.
+  void texel_at(float u, float v, int& x, int& y) const {
+    x = std::min(std::max(int(u * w_), 0), w_ - 1), y = std::min(std::max(int(v * h_), 0), h_ - 1);
   }
   static float table_pdf(const float* t, float sin_theta) {
     return solid_angle_pdf(t[3], sin_theta);

@@ -29,6 +29,11 @@ int planes_of(const ir::Symbol& s) { return s.derivs ? 3 : 1; }
 size_t scalar_bytes(const ir::Symbol& s) {
   return (s.type.base == BaseType::String || s.type.base == BaseType::Closure) ? 8 : 4;
 }
+// A symbol's name as the source spells it: a local that shadows another of its name is `x~2`
+// in the IR, `x` in OSL's run-time messages.
+std::string source_name(const std::string& name) {
+  return std::string(name.begin(), std::find(name.begin(), name.end(), '~'));
+}
 } // namespace
 
 size_t storage_bytes(const ir::Symbol& s) {
@@ -334,12 +339,11 @@ llvm::Value* LayerEmitter::checked_index(const ir::Op& op, int index_arg, int le
   bool store = op.opcode == ir::Opcode::AAssign || op.opcode == ir::Opcode::CompAssign ||
                op.opcode == ir::Opcode::MxCompAssign;
   const ir::Symbol& what = arg(op, store ? 0 : 1);
-  std::string where = "(" + layer_description() + ")";
-  // A name a nested scope reused is `s~2` inside Lobe; the message gives the source's name.
-  call("lobe_range_error",
-       {sg_, idx, iconst(length), string_const(what.name.substr(0, what.name.find('~'))),
-        string_const(op.loc.file.empty() ? shader().name : op.loc.file), iconst(op.loc.line),
-        string_const(where)});
+  std::string where = "(";
+  where.append(layer_description()).append(")");
+  call("lobe_range_error", {sg_, idx, iconst(length), string_const(source_name(what.name)),
+                            string_const(op.loc.file.empty() ? shader().name : op.loc.file),
+                            iconst(op.loc.line), string_const(where)});
   b_.CreateBr(ok);
   b_.SetInsertPoint(ok);
   llvm::Value* lo = b_.CreateSelect(b_.CreateICmpSLT(idx, iconst(0)), iconst(0), idx);
@@ -353,10 +357,6 @@ namespace lobe::codegen {
 namespace {
 // The op's name as OSL's run-time checks print it: Lobe's `construct` is OSL's type-named
 // constructor op (`color`, `point`, ...), a conditional branch OSL's `if`.
-// A symbol's name as the source spells it: a local that shadows another of its name is `x~2`
-// in the IR, `x` in OSL's messages.
-std::string source_name(const std::string& name) { return name.substr(0, name.find('~')); }
-
 std::string osl_opname(const ir::Op& op, const ir::Shader& sh) {
   if (op.opcode == ir::Opcode::Construct && !op.args.empty())
     return to_string(sh.symbols[size_t(op.args[0])].type.base);

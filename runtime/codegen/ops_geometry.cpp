@@ -378,15 +378,8 @@ void op_transformc(LayerEmitter& e, const ir::Op& op) {
   Val c = e.load_as(op, int(last), BaseType::Color, derivs);
   // The same constant space on both sides: OSL's -O2 folds the call away (the colour as it
   // is); below -O2, and for names known only while shading, it goes through rgb.
-  auto const_name = [&](int i) -> const std::string* {
-    const ir::Symbol& s = e.arg(op, i);
-    return s.kind == ir::SymKind::Const && s.type.base == BaseType::String && !s.type.is_array() &&
-                   !s.init.empty()
-               ? &s.init[0].s
-               : nullptr;
-  };
-  const std::string* cf = last == 3 ? const_name(1) : nullptr;
-  const std::string* ct = const_name(int(last) - 1);
+  const std::string* cf = last == 3 ? ir::string_value(e.arg(op, 1)) : nullptr;
+  const std::string* ct = ir::string_value(e.arg(op, int(last) - 1));
   if (e.group().opt_level >= 2 && cf && ct && *cf == *ct) {
     e.store(op.args[0], c);
     return;

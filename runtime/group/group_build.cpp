@@ -403,13 +403,7 @@ KnownOutput known_output(const ir::Shader& sh, const std::string& name, bool run
 // `sent` gathers the constant names set so far, `unknown_sent` whether a name only known while
 // shading was (then nothing is folded after it).
 void fold_impossible_getmessages(ir::Shader& sh, std::set<std::string>& sent, bool& unknown_sent) {
-  auto const_string = [&](int sym) -> const std::string* {
-    const ir::Symbol& s = sh.symbols[size_t(sym)];
-    if (s.kind != SymKind::Const || s.type.base != ir::BaseType::String || s.type.is_array() ||
-        s.init.empty())
-      return nullptr;
-    return &s.init[0].s;
-  };
+  auto const_string = [&](int sym) { return ir::string_value(sh.symbols[size_t(sym)]); };
   for (size_t i = size_t(sh.main_begin); i < sh.ops.size(); ++i) {
     ir::Op& op = sh.ops[i];
     if (op.opcode == ir::Opcode::SetMessage && !op.args.empty()) {
@@ -564,10 +558,11 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     for (const InstanceValue& v : group.layers[i].values) {
       if (v.lockgeom >= 0) lockgeom[i][v.name] = v.lockgeom;
       int s = sources[i]->find_symbol(v.name);
-      bool whole_struct = false; // a struct parameter named whole: OSL ignores it, silently
-      for (const ir::Symbol& ps : sources[i]->symbols)
-        whole_struct |= is_param(ps) && ps.name.rfind(v.name + ".", 0) == 0;
-      if (s < 0 && whole_struct) continue;
+      if (s < 0 && std::any_of(sources[i]->symbols.begin(), sources[i]->symbols.end(),
+                               [&](const ir::Symbol& ps) {
+                                 return is_param(ps) && ps.name.rfind(v.name + ".", 0) == 0;
+                               }))
+        continue; // a struct parameter named whole (its fields are the params): OSL ignores it
       if (s < 0 || !is_param(sources[i]->symbols[size_t(s)])) {
         std::vector<std::string> names; // the shader's parameters, as a hint
         for (const ir::Symbol& ps : sources[i]->symbols)

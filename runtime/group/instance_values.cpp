@@ -40,13 +40,6 @@ std::optional<ir::Type> declared_type(const std::string& name) {
   return ir::Type{kBase[size_t(d->base)], unsized ? -1 : d->arraylen};
 }
 
-// An int as OSL reads one (OpenImageIO's stoi): a number past the range of int is the nearest
-// int (99999999999 is 2147483647), not its low 32 bits.
-int32_t read_int(const char* text, char** end) {
-  long v = std::strtol(text, end, 10);
-  return int32_t(std::clamp<long>(v, INT32_MIN, INT32_MAX));
-}
-
 // OSL's typed value: `t`'s elements x components values read from the words as C's atof and
 // atoi read them (junk after a number is ignored, no number is 0); missing values are 0 and
 // extra ones ignored. A scalar string is the whole text. An unsized `t` takes its length from
@@ -189,6 +182,12 @@ bool interactive_param(const ShaderGroup::Layer& l, const ir::Symbol& s) {
         m.value[0].i != 0)
       return true;
   return false;
+}
+
+// OpenImageIO's stoi saturates: the nearest int.
+int32_t read_int(const char* text, char** end) {
+  long v = std::strtol(text, end, 10);
+  return int32_t(std::clamp<long>(v, INT32_MIN, INT32_MAX));
 }
 
 } // namespace lobe::group

@@ -34,6 +34,10 @@ std::string nonexistent_param_note(const std::string& layer, const std::string& 
 // the shader's `[[ int interactive = 1 ]]`. An interactive parameter is never folded.
 bool interactive_param(const ShaderGroup::Layer& l, const ir::Symbol& s);
 
+// An int as OSL reads one (OpenImageIO's stoi): a number past the range of int is the nearest
+// int (99999999999 is 2147483647), not its low 32 bits. `end` as strtol's.
+int32_t read_int(const char* text, char** end);
+
 // The shader's own `[[ int lockgeom = N ]]` on parameter `s`: N, or -1 when it says nothing.
 // `[[ int interpolated = N ]]` says the same as lockgeom = !N (as OSL reads it); of several, the
 // last counts.

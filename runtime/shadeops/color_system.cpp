@@ -533,18 +533,10 @@ bool ColorSystem::transform_impl(std::string_view from, std::string_view to, con
                                  C& out) const {
   auto srgb_decode = [](const auto& x) { return srgb_to_linear(x); };
   auto srgb_encode = [](const auto& x) { return linear_to_srgb(x); };
+  // The same space on both sides goes through rgb too, as OSL computes it (XYZ to XYZ rounds a
+  // little); a name not OSL's own is the colour unchanged (below).
   C rgb;
   bool known = true;
-  if (from == to) { // as OSL, through rgb for a space of its own (XYZ to XYZ rounds a little)
-    if (is_linear_rgb(from) || from == name_) {
-      out = c;
-    } else if (from == "sRGB") {
-      out = per_component(per_component(c, srgb_decode), srgb_encode);
-    } else if (!to_rgb_builtin(from, c, rgb) || !from_rgb_builtin(to, rgb, out)) {
-      out = c; // a name not OSL's own: the colour unchanged
-    }
-    return true;
-  }
   if (is_linear_rgb(from) || from == name_)
     rgb = c;
   else if (from == "sRGB")
@@ -559,6 +551,10 @@ bool ColorSystem::transform_impl(std::string_view from, std::string_view to, con
   else
     known = from_rgb_builtin(to, rgb, out);
   if (known) return true;
+  if (from == to) { // any other name to itself: the colour unchanged, no error
+    out = c;
+    return true;
+  }
   // Either name is not OSL's own: the pair goes to OpenImageIO, as named.
   OiioCurve k = oiio_curve_for(from, to);
   if (!k.f && !k.gamma) {

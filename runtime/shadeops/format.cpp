@@ -51,11 +51,16 @@ std::string closure_text(const RuntimeEnv& env, const ClosureNode* c) {
   return "closure#" + std::to_string(c->id);
 }
 
+// Where the flags of a conversion spec (`head`, from its `%`) end: the width follows.
+size_t flags_end(const std::string& head) {
+  size_t k = 1;
+  while (k < head.size() && std::strchr("-+ #0", head[k])) ++k;
+  return k;
+}
+
 // Pads `body` to the spec's width: left-aligned unless `right`, with zeros when `zeros`.
 std::string pad(const std::string& head, std::string body, bool right, bool zeros) {
-  size_t w = 0, k = 1;
-  while (k < head.size() && std::strchr("-+ #0", head[k])) ++k;
-  w = size_t(std::atoi(head.c_str() + k));
+  size_t w = size_t(std::atoi(head.c_str() + flags_end(head)));
   if (body.size() >= w) return body;
   std::string fill(w - body.size(), zeros ? '0' : ' ');
   return right ? fill + body : body + fill;
@@ -85,8 +90,7 @@ std::string format_string(const std::string& head, const char* s, FormatRule rul
                head.find_first_of("0") < head.find_first_of("123456789.");
   std::string h = head.substr(0, dot);
   if (extra) { // widen the field by the bytes that are not characters of their own
-    size_t k = 1;
-    while (k < h.size() && std::strchr("-+ #0", h[k])) ++k;
+    size_t k = flags_end(h);
     if (k < h.size()) h = h.substr(0, k) + std::to_string(std::atoi(h.c_str() + k) + int(extra));
   }
   return pad(h, body, zeros || (rule != FormatRule::Printf && !left), zeros);
@@ -152,9 +156,7 @@ std::string format_int(const std::string& head, char conv, int32_t v, FormatRule
 // is "inf  ", "%05g" is "  inf"), and its format() run while shading spells it "Inf", "NaN"
 // (right-aligned, as C); its folded format() prints C's text.
 std::string format_nonfinite(const std::string& head, char conv, double v, FormatRule rule) {
-  size_t k = 1;
-  while (k < head.size() && std::strchr("-+ #0", head[k])) ++k;
-  std::string flags = head.substr(1, k - 1), spec = "%";
+  std::string flags = head.substr(1, flags_end(head) - 1), spec = "%";
   spec += flags;
   spec += conv;
   std::string body = printf1(spec, v);
