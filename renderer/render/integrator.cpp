@@ -98,7 +98,7 @@ static void shade_into(const RenderScene& scene, const SurfaceHit& hit, const Ve
     c.shade_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingContext& ctx,
+PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, ShadingContext& ctx,
                              ShadingContext& light_ctx, TraceCounters& c, bool timed) const {
   Laps lap(timed ? &c.phases : nullptr);
   using P = PhaseTicks;
@@ -168,13 +168,17 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
       out.depth = v.hit.t;
     }
     if (depth >= max_depth_) break;
+    namespace g = path_groups;
+    const uint64_t groups = g::kFirstVertex + uint64_t(depth) * g::kVertexGroups;
 
     // Transparency (transparent() closures): pass straight through with probability
     // p = T / (T + albedo) (by luminance), else scatter; each branch divides by its probability.
     if (!is_zero(v.bsdf.transparency)) {
       float t = luminance(v.bsdf.transparency), a = luminance(v.bsdf.albedo(wo));
       float p = t > 0 ? std::min(1.0f, t / (t + std::max(a, 0.0f))) : 0.0f;
-      if (sampler.next() < p) {
+      float u;
+      sampler.groups<1>(groups + g::kTransparency, {1}, &u);
+      if (u < p) {
         beta = beta * v.bsdf.transparency / p;
         ray = Ray{offset_ray_origin(v.hit.P, v.hit.Ng, ray.dir), ray.dir};
         // Shadow rays treat transparent surfaces as opaque: light reached through one is
@@ -186,11 +190,21 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
       beta = beta / (1 - p);
     }
 
+    // The vertex's numbers, drawn together (Sampler::groups): the light sample's two, the BSDF
+    // sample's three, Russian roulette's, and the light choice's when there is a choice.
+    static_assert(g::kBsdf == g::kLight + 1 && g::kRoulette == g::kLight + 2 &&
+                  g::kLightChoice == g::kLight + 3);
+    float un[7];
+    un[6] = 0.5f;
+    if (lights.count() > 1)
+      sampler.groups<4>(groups + g::kLight, {2, 3, 1, 1}, un);
+    else
+      sampler.groups<3>(groups + g::kLight, {2, 3, 1}, un);
+    const float u1 = un[0], u2 = un[1], u_roulette = un[5], us = un[6];
+    const Vec3 u_bsdf{un[2], un[3], un[4]};
+
     // Next-event estimation.
     if (strategy_ != Strategy::BsdfOnly && v.bsdf.has_non_delta()) {
-      // The light is chosen with a number of its own, drawn only when there is a choice.
-      float us = lights.count() > 1 ? sampler.next() : 0.5f, u1, u2;
-      sampler.next2(u1, u2);
       LightSample ls;
       lap(&P::other);
       bool sampled = lights.sample(v.hit.P, n_lit, us, u1, u2, ls);
@@ -230,7 +244,7 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
 
     // Continue the path by sampling the BSDF.
     lap(&P::other);
-    auto s = v.bsdf.sample(wo, sampler.next3());
+    auto s = v.bsdf.sample(wo, u_bsdf);
     lap(&P::bsdf);
     if (!s) break;
     beta *= s->weight;
@@ -245,7 +259,7 @@ PathResult PathTracer::trace(const Ray& camera_ray, Sampler& sampler, ShadingCon
     if (s->flags & kLobeTransmit) eta_scale *= s->eta * s->eta;
     if (depth >= 3) {
       float q = std::min(0.95f, max_component(beta) * eta_scale);
-      if (sampler.next() >= q) break;
+      if (u_roulette >= q) break;
       beta = beta / q;
     }
   }

@@ -56,6 +56,20 @@ struct TraceCounters {
   std::string stopped;
 };
 
+// The Sampler groups of a path: the camera's (its pixel position, then its lens position), then
+// kVertexGroups for each vertex, one per use, so that each use at each depth is stratified
+// over a pixel's samples whichever other uses a sample skipped.
+namespace path_groups {
+inline constexpr uint64_t kPixel = 1, kLens = 2, kFirstVertex = 3;
+// Offsets within a vertex's groups.
+inline constexpr uint64_t kLight = 0;        // 2-D: the light sample's position
+inline constexpr uint64_t kBsdf = 1;         // 3-D: the BSDF sample (lobe choice, direction)
+inline constexpr uint64_t kRoulette = 2;     // 1-D: Russian roulette
+inline constexpr uint64_t kLightChoice = 3;  // 1-D: which light, when there is a choice
+inline constexpr uint64_t kTransparency = 4; // 1-D: through a transparent surface or not
+inline constexpr uint64_t kVertexGroups = 5;
+} // namespace path_groups
+
 class PathTracer {
 public:
   PathTracer(const RenderScene& scene, int max_depth, Strategy strategy, bool time_shading)
@@ -72,7 +86,7 @@ public:
   // First-hit AOVs (PathResult::albedo, normal, depth): computed only when wanted.
   void set_aovs(bool on) { aovs_ = on; }
 
-  PathResult trace(const Ray& camera_ray, Sampler& sampler, ShadingContext& ctx,
+  PathResult trace(const Ray& camera_ray, const Sampler& sampler, ShadingContext& ctx,
                    ShadingContext& light_ctx, TraceCounters& counters, bool timed = false) const;
 
 private:

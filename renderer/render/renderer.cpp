@@ -54,9 +54,13 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
       Accum& a = acc[pixel];
       for (int s = s0; s < s1; ++s) {
         Sampler sampler(pixel, uint64_t(s), opt.seed);
-        float jx, jy, l1 = 0.5f, l2 = 0.5f;
-        sampler.next2(jx, jy);
-        if (lens) sampler.next2(l1, l2); // a pinhole draws no lens numbers
+        float u[4] = {0, 0, 0.5f, 0.5f}; // pixel position, lens position
+        static_assert(path_groups::kLens == path_groups::kPixel + 1);
+        if (lens)
+          sampler.groups<2>(path_groups::kPixel, {2, 2}, u);
+        else // a pinhole draws no lens numbers
+          sampler.groups<1>(path_groups::kPixel, {2}, u);
+        float jx = u[0], jy = u[1], l1 = u[2], l2 = u[3];
         if (opt.pixel_filter == scene::PixelFilter::Tent) {
           jx = 0.5f + tent_warp(jx);
           jy = 0.5f + tent_warp(jy);

@@ -154,3 +154,24 @@ TEST(Sampler, NumbersArePureFunctionsOfPixelSampleSeedAndGroup) {
   EXPECT_NE(x, d.next()); // and so is another seed
   EXPECT_NE(a.next(), x); // the next group is not the same number
 }
+
+TEST(Sampler, GroupsDrawnTogetherAreTheGroupsDrawnInTurn) {
+  // groups<K>(first, dims) is the numbers of groups first.. first + K - 1 that next(),
+  // next2() and next3() give one group at a time (they take groups 1, 2, 3, ...).
+  for (uint64_t s : {0ull, 3ull, 77ull}) {
+    Sampler turn(12, s, 4), together(12, s, 4);
+    float want[7];
+    turn.next2(want[0], want[1]);
+    lobe::Vec3 u = turn.next3();
+    want[2] = u.x, want[3] = u.y, want[4] = u.z;
+    want[5] = turn.next();
+    want[6] = turn.next();
+    float got[7];
+    together.groups<4>(1, {2, 3, 1, 1}, got);
+    for (int i = 0; i < 7; ++i) EXPECT_EQ(got[i], want[i]) << s << " " << i;
+    float third[3];
+    together.groups<1>(2, {3}, third); // a group alone, out of turn
+    EXPECT_EQ(third[0], want[2]);
+    EXPECT_EQ(third[2], want[4]);
+  }
+}
