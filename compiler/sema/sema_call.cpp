@@ -418,7 +418,7 @@ void Sema::check_format_args(ast::CallExpr* e) {
       continue;
     }
     size_t start = i++;
-    while (i < f.size() && std::strchr("0123456789.#-+ lh", f[i])) ++i;
+    while (i < f.size() && std::strchr("0123456789.#-+ lhLjztq", f[i])) ++i;
     if (i >= f.size()) break; // a lone '%' at the end prints as itself
     char conv = f[i];
     ++needed;

@@ -1,6 +1,8 @@
 // OSL printf formatting (see format.h).
 #include "format.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -131,24 +133,57 @@ std::string format_float_runtime(std::string head, char conv, double v) {
   return printf1(head + conv, v);
 }
 
-// An int through OSL's printf: ints are 32 bits, %x and %X print them unsigned (-1 is
-// ffffffff), %o prints the sign and the magnitude in octal (-1 is -1), and every other
-// conversion prints a decimal with C's width and precision ("%8.3f" of -1 is "    -001").
-// Through format() %o is unsigned too, as in C (-8 is 37777777770).
+// An int through OSL's format() (printf's are printf_value's): ints are 32 bits, %x and %X
+// print them unsigned (-1 is ffffffff), %o too (-8 is 37777777770), and every other conversion
+// prints a decimal with C's width and precision ("%8.3f" of -1 is "    -001"). Unlike C, an
+// explicit zero precision prints a zero through %d as "0"; folded (a constant format() at -O2)
+// also through %x and %o, and the + and space flags sign %x and %X ("%+x" of 5 is "+5", of -5
+// "+fffffffb", "%+05X" of 5 "+0005"), which format() run while shading ignores, as C does.
 std::string format_int(const std::string& head, char conv, int32_t v, FormatRule rule) {
-  if (conv == 'x' || conv == 'X' || (conv == 'o' && rule != FormatRule::Printf))
-    return printf1(head + conv, unsigned(uint32_t(v)));
+  const bool folded = rule == FormatRule::FormatFolded;
+  std::string h = head;
+  if (size_t dot = h.find('.'); v == 0 && dot != std::string::npos &&
+                                std::atoi(h.c_str() + dot + 1) == 0 && rule != FormatRule::Printf &&
+                                (folded || std::strchr("di", conv)))
+    h.erase(dot);
+  const size_t fe = flags_end(h);
+  const std::string flags = h.substr(1, fe - 1);
+  if (conv == 'x' || conv == 'X' || (conv == 'o' && rule != FormatRule::Printf)) {
+    unsigned u = unsigned(uint32_t(v));
+    bool plus = flags.find('+') != std::string::npos, space = flags.find(' ') != std::string::npos;
+    if (conv == 'o' || !folded || (!plus && !space)) return printf1(h + conv, u);
+    std::string rest = "%"; // the spec without its sign flags and width
+    if (flags.find('#') != std::string::npos) rest += '#';
+    if (size_t dot = h.find('.'); dot != std::string::npos) rest += h.substr(dot);
+    std::string body(1, plus ? '+' : ' ');
+    body += printf1(rest + conv, u);
+    size_t w = size_t(std::max(0, std::atoi(h.c_str() + fe)));
+    if (body.size() >= w) return body;
+    if (flags.find('-') != std::string::npos) return body.append(w - body.size(), ' ');
+    bool zeros = flags.find('0') != std::string::npos && h.find('.') == std::string::npos;
+    return body.insert(zeros ? 1 : 0, w - body.size(), zeros ? '0' : ' ');
+  }
   if (conv == 'o') {
-    std::string h = "%";
+    std::string o = "%";
     for (char c : head)
-      if (c == '#') h += c;
+      if (c == '#') o += c;
     unsigned mag = v < 0 ? 0u - unsigned(v) : unsigned(v);
-    std::string body = printf1(h + "o", mag);
+    std::string body = printf1(o + "o", mag);
     if (v < 0) body.insert(body.begin(), '-');
     bool left = head.find('-') != std::string::npos;
     return pad(head, body, !left, false);
   }
-  return printf1(head + 'd', int(v));
+  return printf1(h + 'd', int(v));
+}
+
+// C's %#g, but with a digit after a point that ends the number, as OSL's format() prints it
+// ("%#g" of 100000 is "100000.0", "%#.1g" of 2 is "2.0"; with an exponent C's "1.e+10" stays).
+std::string alt_general(const std::string& head, char conv, double v) {
+  size_t fe = flags_end(head), dot = head.find('.', fe);
+  std::string bare = head.substr(0, fe) + (dot == std::string::npos ? "" : head.substr(dot));
+  std::string body = printf1(bare + conv, v);
+  if (!body.empty() && body.back() == '.') body += '0';
+  return pad(head, body, head.find('-') == std::string::npos, false);
 }
 
 // An infinity or NaN through a float conversion: C's text ("inf", "-nan", with the + and space
@@ -169,15 +204,99 @@ std::string format_nonfinite(const std::string& head, char conv, double v, Forma
   return pad(head, body, !left, false);
 }
 
+// The length modifiers of a conversion: none, a lone L (which OSL's printf ignores), or any
+// other (l, h, ll, j, z, t, q, ...), after which OSL's printf drops the conversion's type.
+enum class Length { None, LoneL, Other };
+
+// One value through OSL's printf (and warning(), error(), fprintf()), which formats as the fmt
+// library (9.x, OSL's) does a spec made of the printf one: its flags in their order with '-' as
+// '<' (so "%-05d" of 5 is "50000" and "%+-5d" is "5++++"), the width, the precision and the
+// conversion's type, or no type after a length modifier other than a lone L ("%lf" of 2.25 is
+// the shortest "2.25", "%.2lf" two significant digits, "%lx" of -5 the unsigned value in
+// decimal). Hence fmt's own rules: strings align left and their widths count display columns
+// (two for East Asian wide characters), infinities and NaNs align left, + and space apply to
+// %x, "%#x" of 0 is "0x0", "%#g" keeps a ".0". An int's 32 bits print unsigned through %x and
+// %X, with sign and magnitude through %o. Where fmt has no such spec OSL's printf differs: a 0
+// flag pads a string with zeros (on the right after '-'); an int's precision is its least
+// number of digits, as in C, but the 0 flag still pads ("%08.3d" of 5 is "00000005") and
+// "%.0d" of 0 is "0". A spec fmt refuses prints the value as fmt's "{}" (OSL 1.13.12's
+// output, probed flag by flag).
+std::string printf_value(const std::string& head, char conv, Length length, char code,
+                         const void* p) {
+  const size_t fe = flags_end(head);
+  const std::string flags = head.substr(1, fe - 1);
+  const size_t dot = head.find('.', fe);
+  const std::string width =
+      head.substr(fe, dot == std::string::npos ? std::string::npos : dot - fe);
+  const bool general = length == Length::Other, minus = flags.find('-') != std::string::npos,
+             zero = flags.find('0') != std::string::npos;
+  auto run = [](const std::string& spec, auto v) {
+    try {
+      return fmt::format(fmt::runtime("{:" + spec + "}"), v);
+    } catch (const std::exception&) {
+      return fmt::format("{}", v);
+    }
+  };
+  std::string spec;
+  for (char c : flags) spec += c == '-' ? '<' : c;
+  if (code == 's') {
+    const char* s = *static_cast<const char* const*>(p);
+    std::string rest;
+    for (char c : flags)
+      if (c != '-' && c != '0') rest += c;
+    spec = (zero ? (minus ? "0<" : "0>") : (minus ? "<" : "")) + rest + head.substr(fe);
+    if (!general) spec += 's';
+    return run(spec, s ? s : "");
+  }
+  if (code == 'i') {
+    int32_t v = *static_cast<const int32_t*>(p);
+    bool as_unsigned = conv == 'x' || conv == 'X';
+    int64_t wide = as_unsigned ? int64_t(uint32_t(v)) : int64_t(v);
+    char type = conv == 'x' || conv == 'X' || conv == 'o' ? conv : 'd';
+    if (general) return run(spec + width, wide);
+    if (dot == std::string::npos) return run(spec + width + type, wide);
+    // A precision: C's least number of digits, then OSL's padding.
+    uint64_t mag =
+        as_unsigned ? uint64_t(uint32_t(v)) : (v < 0 ? 0 - uint64_t(int64_t(v)) : uint64_t(v));
+    std::string digits = fmt::format(fmt::runtime(std::string("{:") + type + "}"), mag);
+    size_t prec = size_t(std::max(0, std::atoi(head.c_str() + dot + 1)));
+    if (digits.size() < prec) digits.insert(0, prec - digits.size(), '0');
+    std::string prefix = !as_unsigned && v < 0                  ? "-"
+                         : flags.find('+') != std::string::npos ? "+"
+                         : flags.find(' ') != std::string::npos ? " "
+                                                                : "";
+    if (flags.find('#') != std::string::npos) {
+      if (conv == 'x' || conv == 'X') prefix += conv == 'x' ? "0x" : "0X";
+      if (conv == 'o' && digits[0] != '0') digits.insert(0, 1, '0');
+    }
+    std::string body = prefix + digits;
+    size_t w = size_t(std::max(0, std::atoi(width.c_str())));
+    if (body.size() < w) {
+      if (minus)
+        body.append(w - body.size(), zero ? '0' : ' ');
+      else
+        body.insert(zero ? prefix.size() : 0, w - body.size(), zero ? '0' : ' ');
+    }
+    return body;
+  }
+  float v = *static_cast<const float*>(p);
+  return run(spec + head.substr(fe) + (general ? std::string() : std::string(1, conv)), v);
+}
+
 // Formats one scalar component with conversion `conv` and the spec's flags (`head` is the
 // spec without its conversion character). A literal format string was checked by the type
 // checker (OSL's rules); one known only at run time may pair any conversion with any value,
 // which converts as OSL does: a float to an int conversion truncates, an int to a float one
 // widens, and %s prints a number as %g would.
-std::string format_scalar(const RuntimeEnv& env, const std::string& head, char conv, bool length,
-                          char code, const void* p, FormatRule rule) {
+std::string format_scalar(const RuntimeEnv& env, const std::string& head, char conv,
+                          Length length_kind, char code, const void* p, FormatRule rule) {
+  const bool length = length_kind != Length::None;
   bool int_conv = conv == 'd' || conv == 'i' || conv == 'x' || conv == 'X' || conv == 'o' ||
                   conv == 'u' || conv == 'c';
+  if (rule == FormatRule::Printf && code != 'c' &&
+      (length_kind == Length::Other || code == 's' ||
+       (code == 'i' ? std::strchr("dioxX", conv) : std::strchr("feg", conv))))
+    return printf_value(head, conv, length_kind, code, p);
   if (code == 's') return format_string(head, *static_cast<const char* const*>(p), rule);
   if (code == 'c') { // a closure prints its whole tree, ignoring width and precision (as OSL)
     auto* node = *static_cast<const ClosureNode* const*>(p);
@@ -191,6 +310,8 @@ std::string format_scalar(const RuntimeEnv& env, const std::string& head, char c
     return format_nonfinite(head, conv, v, rule);
   if (rule == FormatRule::Format && std::strchr("fFgGeE", conv))
     return format_float_runtime(head, conv, v);
+  if ((conv == 'g' || conv == 'G') && head.find('#') != std::string::npos)
+    return alt_general(head, conv, v);
   if (std::strchr("fFgGeEaA", conv)) return printf1(head + conv, v);
   return printf1(head + (int_conv && length ? 'g' : 'f'), v);
 }
@@ -228,8 +349,8 @@ bool append_bare(std::string& out, char conv, char code, const void* p) {
 // modifier and conversion ("%08.3").
 // Out of line: its general path's temporaries would burden the bare conversions' caller.
 __attribute__((noinline)) void append_arg(std::string& out, const RuntimeEnv& env,
-                                          std::string_view head, char conv, bool length, ArgDesc d,
-                                          const void* p, FormatRule rule) {
+                                          std::string_view head, char conv, Length length,
+                                          ArgDesc d, const void* p, FormatRule rule) {
   size_t stride = (d.code == 's' || d.code == 'c') ? sizeof(void*) : 4;
   int n = components(d.code) * d.count;
   bool bare = head.size() == 1;
@@ -312,7 +433,8 @@ void append_formatted(std::string& out, const RuntimeEnv& env, std::string_view 
     size_t length_at = j;
     while (j < fmt.size() && is_length_char(fmt[j]))
       ++j; // length modifiers are meaningless for shader types
-    bool length = j > length_at;
+    std::string_view mods = fmt.substr(length_at, j - length_at);
+    Length length = mods.empty() ? Length::None : mods == "L" ? Length::LoneL : Length::Other;
     if (j >= fmt.size()) {
       out += fmt.substr(i);
       break;
@@ -342,6 +464,7 @@ namespace {
 struct FormatMemo {
   uint64_t serial = 0;
   const char* fmt = nullptr;
+  FormatRule rule = FormatRule::Format;
   std::string fmt_text;
   int count = 0;
   std::array<int32_t, kMemoInts> ints{};
@@ -356,8 +479,8 @@ const char* format_interned(RuntimeEnv& env, const char* fmt, const char* codes,
   FormatRule rule = FormatRule::Format;
   if (codes[0] == kFormatRuntimeCode || codes[0] == kFormatFoldedCode)
     rule = *codes++ == kFormatFoldedCode ? FormatRule::FormatFolded : FormatRule::Format;
-  // The memo's key: up to kMemoInts scalar ints ("", "i", "ii", ...) and the format (ints
-  // print alike under every rule).
+  // The memo's key: up to kMemoInts scalar ints ("", "i", "ii", ...), the format and the rule
+  // (folded, "%+x" of 5 is "+5"; run while shading, "5").
   int count = 0;
   std::array<int32_t, kMemoInts> ints{};
   while (count < kMemoInts && codes[count] == 'i' && codes[count + 1] != '{') {
@@ -370,8 +493,8 @@ const char* format_interned(RuntimeEnv& env, const char* fmt, const char* codes,
     uint64_t h = uint64_t(uintptr_t(fmt)) * 0x9E3779B97F4A7C15ull;
     for (int k = 0; k < count; ++k) h = (h ^ uint32_t(ints[size_t(k)])) * 0x9E3779B97F4A7C15ull;
     memo = &memos[(h >> 32) % kFormatMemoSlots];
-    if (memo->serial == env.strings.serial() && memo->fmt == fmt && memo->count == count &&
-        memo->ints == ints && memo->fmt_text == fmt)
+    if (memo->serial == env.strings.serial() && memo->fmt == fmt && memo->rule == rule &&
+        memo->count == count && memo->ints == ints && memo->fmt_text == fmt)
       return memo->result;
   }
   text.clear();
@@ -380,6 +503,7 @@ const char* format_interned(RuntimeEnv& env, const char* fmt, const char* codes,
   if (memo) {
     memo->serial = env.strings.serial();
     memo->fmt = fmt;
+    memo->rule = rule;
     memo->fmt_text = fmt;
     memo->count = count;
     memo->ints = ints;
