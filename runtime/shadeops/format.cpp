@@ -220,10 +220,11 @@ enum class Length { None, LoneL, Other };
 // flag pads a string with zeros (on the right after '-'); an int's precision is its least
 // number of digits, as in C, but the 0 flag still pads ("%08.3d" of 5 is "00000005") and
 // "%.0d" of 0 is "0". A spec fmt refuses prints the value as fmt's "{}" (OSL 1.13.12's
-// output, probed flag by flag).
-std::string printf_value(const std::string& head, char conv, Length length, char code,
-                         const void* p) {
+// output, probed flag by flag; a '.' without digits is dropped).
+std::string printf_value(std::string head, char conv, Length length, char code, const void* p) {
   const size_t fe = flags_end(head);
+  // A '.' without digits is no precision at all ("%.f" of 2.5 is 2.500000).
+  if (size_t d = head.find('.', fe); d != std::string::npos && d + 1 == head.size()) head.erase(d);
   const std::string flags = head.substr(1, fe - 1);
   const size_t dot = head.find('.', fe);
   const std::string width =
