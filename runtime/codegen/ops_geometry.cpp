@@ -19,12 +19,15 @@ namespace {
 
 using ir::BaseType;
 
+// With derivatives, each product as OSL's Dual product (mul_dual_h: the partial
+// fmuladd(x.val, y.d, x.d * y.val)), summed in order: OSL 1.13.12's bits for dot and cross of
+// varying triples (Dx(dot(a, P)) on a 16x16 grid: 256 of 256 points, 203 before).
 Dual dot3(DualOps& d, const Val& a, const Val& b) {
-  return d.add(d.add(d.mul(a[0], b[0]), d.mul(a[1], b[1])), d.mul(a[2], b[2]));
+  return d.add(d.add(d.mul_dual_h(a[0], b[0]), d.mul_dual_h(a[1], b[1])), d.mul_dual_h(a[2], b[2]));
 }
 Val cross3(DualOps& d, const Val& a, const Val& b) {
-  return {d.sub(d.mul(a[1], b[2]), d.mul(a[2], b[1])), d.sub(d.mul(a[2], b[0]), d.mul(a[0], b[2])),
-          d.sub(d.mul(a[0], b[1]), d.mul(a[1], b[0]))};
+  auto m = [&](int i, int j) { return d.mul_dual_h(a[size_t(i)], b[size_t(j)]); };
+  return {d.sub(m(1, 2), m(2, 1)), d.sub(m(2, 0), m(0, 2)), d.sub(m(0, 1), m(1, 0))};
 }
 Dual sqrt_dual(LayerEmitter& e, DualOps& d, const Dual& x) {
   auto& B = e.b();
