@@ -39,7 +39,6 @@ std::string Geometry::build(const std::vector<scene::Shape>& shapes) {
                                                                     : RTC_BUILD_QUALITY_HIGH);
   static const scene::Mesh kNoMesh;
   mesh_of_.assign(shapes.size(), &kNoMesh);
-  vertices_.assign(shapes.size(), {});
   quads_.clear();
   for (size_t i = 0; i < shapes.size(); ++i) {
     const scene::Shape& s = shapes[i];
@@ -57,19 +56,10 @@ std::string Geometry::build(const std::vector<scene::Shape>& shapes) {
         mesh_of_[i] = &s.mesh;
       }
       const scene::Mesh& m = *mesh_of_[i];
-      MeshVertices& mv = vertices_[i];
-      mv.normals = !m.normals.empty();
-      mv.uvs = !m.uvs.empty();
-      mv.at.resize(m.positions.size());
-      for (size_t k = 0; k < mv.at.size(); ++k) {
-        Vertex& x = mv.at[k];
-        x.p = m.positions[k];
-        if (mv.normals) x.n = m.normals[k];
-        if (mv.uvs) x.u = m.uvs[2 * k], x.v = m.uvs[2 * k + 1];
-      }
       g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-      rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, mv.at.data(), 0,
-                                 sizeof(Vertex), mv.at.size());
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+          g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, m.positions.size()));
+      std::memcpy(v, m.positions.data(), m.positions.size() * 12);
       auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
           g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, m.indices.size() / 3));
       std::memcpy(idx, m.indices.data(), m.indices.size() * 4);
@@ -182,32 +172,24 @@ void Geometry::surface(int shape, int prim, float bu, float bv, SurfaceHit& hit)
     return;
   }
   const scene::Mesh& m = *mesh_of_[size_t(shape)];
-  const MeshVertices& mv = vertices_[size_t(shape)];
   const uint32_t* tri = &m.indices[3 * size_t(prim)];
-  const Vertex& a = mv.at[tri[0]];
-  const Vertex& b = mv.at[tri[1]];
-  const Vertex& c = mv.at[tri[2]];
+  Vec3 p[3] = {m.positions[tri[0]], m.positions[tri[1]], m.positions[tri[2]]};
   float b0 = 1 - bu - bv;
-  hit.Ng = normalize(cross(b.p - a.p, c.p - a.p));
-  hit.P = a.p * b0 + b.p * bu + c.p * bv;
-  // Without uvs a triangle's corners are (0, 0), (1, 0), (0, 1): uv is the barycentric pair.
+  hit.Ng = normalize(cross(p[1] - p[0], p[2] - p[0]));
+  hit.P = p[0] * b0 + p[1] * bu + p[2] * bv;
   float uv[6] = {0, 0, 1, 0, 0, 1};
-  if (mv.uvs) {
-    uv[0] = a.u, uv[1] = a.v, uv[2] = b.u, uv[3] = b.v, uv[4] = c.u, uv[5] = c.v;
-    hit.u = uv[0] * b0 + uv[2] * bu + uv[4] * bv;
-    hit.v = uv[1] * b0 + uv[3] * bu + uv[5] * bv;
-  } else {
-    hit.u = bu, hit.v = bv;
-  }
-  if (tangents_.empty() || tangents_[size_t(shape)]) {
-    const Vec3 p[3] = {a.p, b.p, c.p};
+  if (!m.uvs.empty())
+    for (int k = 0; k < 3; ++k)
+      uv[2 * k] = m.uvs[2 * tri[k]], uv[2 * k + 1] = m.uvs[2 * tri[k] + 1];
+  hit.u = uv[0] * b0 + uv[2] * bu + uv[4] * bv;
+  hit.v = uv[1] * b0 + uv[3] * bu + uv[5] * bv;
+  if (tangents_.empty() || tangents_[size_t(shape)])
     triangle_tangents(p, uv, hit.Ng, hit.dPdu, hit.dPdv);
-  } else {
+  else
     hit.dPdu = hit.dPdv = Vec3{};
-  }
   hit.N = hit.Ng;
-  if (mv.normals) {
-    Vec3 n = normalize(a.n * b0 + b.n * bu + c.n * bv);
+  if (!m.normals.empty()) {
+    Vec3 n = normalize(m.normals[tri[0]] * b0 + m.normals[tri[1]] * bu + m.normals[tri[2]] * bv);
     // Keep the shading normal on the geometric normal's side (bad normals otherwise leak).
     if (!is_zero(n)) hit.N = dot(n, hit.Ng) < 0 ? -n : n;
   }

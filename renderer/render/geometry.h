@@ -90,24 +90,10 @@ private:
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   const std::vector<scene::Shape>* shapes_ = nullptr;
-  // Per shape: its own mesh (its triangle indices read in place), a quad's
+  // Per shape: its own mesh (read in place: a mesh shape's triangles are not copied), a quad's
   // two triangles (in quads_), or an empty mesh for a sphere.
   std::vector<const scene::Mesh*> mesh_of_;
   std::vector<std::unique_ptr<scene::Mesh>> quads_;
-  // A mesh vertex as surface() reads it: position, shading normal (zero when the mesh has none)
-  // and uv side by side in 32 bytes, so a corner is one cache line where three arrays were up
-  // to three misses (bench/embree_compare's 524k triangles: render about 4% faster). It is
-  // Embree's vertex buffer too (shared, stride 32), in place of a copy of the positions.
-  struct alignas(32) Vertex {
-    Vec3 p, n;
-    float u = 0, v = 0;
-  };
-  static_assert(sizeof(Vertex) == 32);
-  struct MeshVertices {
-    std::vector<Vertex> at;
-    bool normals = false, uvs = false;
-  };
-  std::vector<MeshVertices> vertices_; // per shape (empty for spheres)
   std::vector<int> geom_to_shape_;
   std::vector<char> tangents_;
   Vec3 center_;
