@@ -305,9 +305,20 @@ void LayerEmitter::store_globals() {
   for (size_t i = 0; i < syms.size(); ++i) {
     if (syms[i].kind != SymKind::Global || !written_[i]) continue;
     const GlobalField* g = find_global(syms[i].name);
-    Val v = load(int(i), nullptr, false);
-    for (size_t c = 0; c < v.size(); ++c)
-      b_.CreateStore(v[c].v, b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), sg_, g->offset + 4 * c));
+    // With its derivatives when it carries them (group_build: another layer reads them).
+    bool derivs = syms[i].derivs && g->dx;
+    Val v = load(int(i), nullptr, derivs);
+    auto put = [&](llvm::Value* x, size_t offset, size_t c) {
+      b_.CreateStore(x ? x : fconst(0),
+                     b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), sg_, offset + 4 * c));
+    };
+    for (size_t c = 0; c < v.size(); ++c) {
+      put(v[c].v, g->offset, c);
+      if (derivs) {
+        put(v[c].dx, find_global(g->dx)->offset, c);
+        put(v[c].dy, find_global(g->dy)->offset, c);
+      }
+    }
   }
 }
 
@@ -318,9 +329,18 @@ void LayerEmitter::reload_globals() {
     const GlobalField* g = find_global(syms[i].name);
     llvm::Type* t = global_type(*g);
     Val v = load(int(i)); // with its derivatives, which the store below keeps
-    for (size_t c = 0; c < v.size(); ++c)
-      v[c].v =
-          b_.CreateLoad(t, b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), sg_, g->offset + 4 * c));
+    auto get = [&](size_t offset, size_t c) {
+      return b_.CreateLoad(t, b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), sg_, offset + 4 * c));
+    };
+    // Derivatives too where ShaderGlobals has them (an upstream layer may have written them).
+    bool derivs = syms[i].derivs && g->dx;
+    for (size_t c = 0; c < v.size(); ++c) {
+      v[c].v = get(g->offset, c);
+      if (derivs) {
+        v[c].dx = get(find_global(g->dx)->offset, c);
+        v[c].dy = get(find_global(g->dy)->offset, c);
+      }
+    }
     store(int(i), v);
   }
 }

@@ -860,6 +860,27 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     }
   }
 
+  // A global with derivative fields (P, I, u, v) whose derivatives one layer reads and another
+  // writes: the writer carries them, so that its write reaches ShaderGlobals' derivative fields
+  // too (OSL's layers share P's derivatives: a displacement layer's P = P * 2 doubles Dx(P) and
+  // calculatenormal(P) in the layers after it).
+  std::set<std::string> wanted;
+  for (const auto& sh : out.shaders)
+    for (const ir::Symbol& s : sh->symbols)
+      if (s.kind == SymKind::Global && s.derivs) wanted.insert(s.name);
+  for (auto& sh : out.shaders) {
+    bool grew = false;
+    for (const ir::Op& op : sh->ops)
+      for (size_t a = 0; a < op.args.size(); ++a) {
+        ir::Symbol& s = sh->symbols[size_t(op.args[a])];
+        if (!op.writes(int(a)) || s.kind != SymKind::Global || s.derivs || !wanted.count(s.name))
+          continue;
+        for (const GlobalField& f : kGlobalFields)
+          if (f.dx && s.name == f.name) s.derivs = grew = true;
+      }
+    if (grew) extend_derivatives(*sh);
+  }
+
   // Layout: per layer a ran flag, then each parameter, 8-byte aligned.
   size_t off = 0;
   auto align8 = [](size_t x) { return (x + 7) / 8 * 8; };

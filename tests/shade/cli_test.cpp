@@ -1185,3 +1185,34 @@ TEST(ShadeCli, RendererOutputsKeepTheirConnections) {
                      "null"),
             "Connect U.out to D.x\n\nEntry layers: D(1)\nup ran\ndn: x = 100\n\n");
 }
+
+// A layer's write of P (or I) carries its derivatives to the layers after it and to an upstream
+// layer that runs later, as OSL's layers share them (Dx(P), calculatenormal(P) of a displaced
+// P). Expected: OSL 1.13.12, `testshade -g 2 2 [-O0|-O2] --layer a displace_up --layer b
+// displace_dn --connect a o b i -o o null` (the same at both) and `testshade -g 2 1 [-O0|-O2]
+// --layer x pderiv_up --layer y pderiv_dn --connect x o y i` (at -O2 OSL elides pderiv_up).
+TEST(ShadeCli, GlobalDerivativesWrittenByALayerReachTheOthers) {
+  for (const char* level : {"-O0 ", "-O2 "})
+    EXPECT_EQ(run_here(std::string("-g 2 2 ") + level +
+                       "--layer a displace_up --layer b displace_dn --connect a o b i -o o null"),
+              "Connect a.o to b.i\n"
+              "\n"
+              "i=0 Dx(P)=2 0 0 Dy(P)=0 2 0 Dx(I)=2 0 0 N=0 0 4\n"
+              "i=1 Dx(P)=2 0 0 Dy(P)=0 2 0 Dx(I)=2 0 0 N=0 0 4\n"
+              "i=0 Dx(P)=2 0 0 Dy(P)=0 2 0 Dx(I)=2 0 0 N=0 0 4\n"
+              "i=1 Dx(P)=2 0 0 Dy(P)=0 2 0 Dx(I)=2 0 0 N=0 0 4\n"
+              "\n")
+        << level;
+  EXPECT_EQ(run_here("-g 2 1 -O0 --layer x pderiv_up --layer y pderiv_dn --connect x o y i"),
+            "Connect x.o to y.i\n"
+            "up P=0 1.5 3 Dx(P)=3 0 0\n"
+            "dn k=0 Dx(P)=3 0 0\n"
+            "up P=3 1.5 3 Dx(P)=3 0 0\n"
+            "dn k=1 Dx(P)=3 0 0\n"
+            "\n");
+  EXPECT_EQ(run_here("-g 2 1 -O2 --layer x pderiv_up --layer y pderiv_dn --connect x o y i"),
+            "Connect x.o to y.i\n"
+            "dn k=0 Dx(P)=3 0 0\n"
+            "dn k=1 Dx(P)=3 0 0\n"
+            "\n");
+}
