@@ -233,7 +233,8 @@ int lobe_strhash(const char* s) {
 // split(s, results[n], sep, maxsplit): the pieces of s, as Python's s.split(sep) with at most
 // maxsplit pieces (maxsplit clamped to [0, n]; the last piece is the unsplit rest), written to
 // results[0..count); the rest of the array is left alone. An empty sep splits at runs of
-// whitespace and drops empty pieces; an empty s has no pieces (as in OSL).
+// whitespace (space, tab, newline, carriage return: not C's vertical tab or form feed, as in
+// OSL 1.13.12) and drops empty pieces; an empty s has no pieces (as in OSL).
 int lobe_split(RuntimeEnv* env, const char* s, const char* sep, int maxsplit, const char** results,
                int n) {
   std::string_view str(s ? s : ""), by(sep ? sep : "");
@@ -242,7 +243,10 @@ int lobe_split(RuntimeEnv* env, const char* s, const char* sep, int maxsplit, co
   if (max == 0 || str.empty()) return 0;
   size_t i = 0, len = str.size();
   if (by.empty()) {
-    auto space = [&](size_t k) { return std::isspace((unsigned char)str[k]) != 0; };
+    auto space = [&](size_t k) {
+      char c = str[k];
+      return c == ' ' || c == '\t' || c == '\n' || c == '\r';
+    };
     while (count < max - 1) {
       while (i < len && space(i)) ++i;
       if (i == len) break;
