@@ -42,8 +42,7 @@ inline bool is_common(const char* s) { return is(s, "common") || is(s, "world");
 
 // space -> common; false for an unknown name. The renderer answers first (any name but
 // "common" and "world"). *identity: whether m is the identity because no matrix applied.
-bool space_to_common(const ShaderGlobals* sg, const char* space, float* m, bool* identity,
-                     bool rgb_ok = true) {
+bool space_to_common(const ShaderGlobals* sg, const char* space, float* m, bool* identity) {
   *identity = false;
   if (is_common(space)) {
     mat_identity(m);
@@ -55,7 +54,6 @@ bool space_to_common(const ShaderGlobals* sg, const char* space, float* m, bool*
   mat_identity(m);
   *identity = true;
   bool camera_defaults = !renderer || renderer->camera_spaces_default_to_identity();
-  if (is(space, "rgb")) return rgb_ok; // transform's identity; getmatrix does not know it
   if (camera_defaults &&
       (is(space, "camera") || is(space, "screen") || is(space, "raster") || is(space, "NDC")))
     return true;
@@ -123,18 +121,18 @@ float lobe_mat_det(const float* m) { return lobe::math::mat_det(m); }
 namespace {
 
 // The matrix transforming points from space `from` to space `to`; false on an unknown name
-// (reported), whose half of the product is then the identity. "rgb" names the identity for
-// transform() (rgb_ok), not for getmatrix(), which reports it as OSL 1.13.12 does.
-bool get_matrix(ShaderGlobals* sg, const char* from, const char* to, float* dst, bool rgb_ok) {
+// (reported), whose half of the product is then the identity. "rgb" is no space (a colour
+// space): reported wherever a transformation is asked for, as OSL 1.13.12 does.
+bool get_matrix(ShaderGlobals* sg, const char* from, const char* to, float* dst) {
   float a[16], b[16], binv[16];
   bool a_identity = false, binv_identity = false;
-  bool ok = space_to_common(sg, from, a, &a_identity, rgb_ok);
+  bool ok = space_to_common(sg, from, a, &a_identity);
   if (!ok) unknown_space(sg, from);
   bool ok2 = true;
   const RendererServices* renderer = sg && sg->context ? sg->context->renderer : nullptr;
   if (is_common(to) || !renderer || !renderer->get_inverse_matrix(*sg, to, binv)) {
     bool b_identity = false;
-    ok2 = space_to_common(sg, to, b, &b_identity, rgb_ok);
+    ok2 = space_to_common(sg, to, b, &b_identity);
     if (!ok2) unknown_space(sg, to);
     // To "common" or "world" (or any space that is the identity): the inversion is skipped and
     // the identity used (the float inverse would give it too, but with -0 in the translation
@@ -156,13 +154,13 @@ extern "C" {
 
 // OSL's getmatrix: the matrix from space `from` to space `to`; 0 on an unknown name (reported).
 int lobe_get_matrix(ShaderGlobals* sg, const char* from, const char* to, float* dst) {
-  return get_matrix(sg, from, to, dst, false);
+  return get_matrix(sg, from, to, dst);
 }
 
 // transform(from, to, x) and the spaced triple constructors: as lobe_get_matrix, but an unknown
-// name leaves the value as it is (the identity), as OSL, and "rgb" is the identity.
+// name leaves the value as it is (the identity), as OSL.
 void lobe_get_transform(ShaderGlobals* sg, const char* from, const char* to, float* dst) {
-  if (!get_matrix(sg, from, to, dst, true)) mat_identity(dst);
+  if (!get_matrix(sg, from, to, dst)) mat_identity(dst);
 }
 
 // matrix("space"): space -> common.

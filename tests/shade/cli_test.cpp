@@ -516,10 +516,11 @@ TEST(ShadeCli, GroupTextHints) {
             "f=1 c=0.5 0 0\nf=1 c=0.25 0 0\n\n");
 }
 
-// "rgb" names the identity for transform() and the spaced constructors, silently, but is no
-// space getmatrix() or matrix(from, to) knows: an error and 0, as OSL 1.13.12 gives
-// (`testshade [-O0] -g 1 1 rgbspace`, both levels alike).
-TEST(ShadeCli, RgbIsATransformIdentityOnly) {
+// "rgb" is no space transform(), the spaced constructors, getmatrix() or matrix(from, to)
+// know: one error (repeats are not printed again) and the identity, getmatrix() 0, as OSL
+// 1.13.12 gives (`testshade [-O0] -g 1 1 rgbspace`, both levels alike; `rgbspace_transform`:
+// transform() alone reports it too).
+TEST(ShadeCli, RgbIsNoTransformationSpace) {
   auto dir = scratch_dir("rgbspace.osl",
                          "shader rgbspace()\n{\n    point p = transform(\"rgb\", point(1, 2, 3));\n"
                          "    point q = point(\"rgb\", 4, 5, 6);\n    matrix m;\n"
@@ -531,6 +532,11 @@ TEST(ShadeCli, RgbIsATransformIdentityOnly) {
                                "1 2 3 | 4 5 6 | 0 | 1 | 1 0 0\n\n";
   EXPECT_EQ(run_in(dir, "-g 1 1 rgbspace"), expected);
   EXPECT_EQ(run_in(dir, "-O0 -g 1 1 rgbspace"), expected);
+  auto alone =
+      scratch_dir("rgbspace_transform.osl", "shader rgbspace_transform()\n{\n    printf(\"%g\\n\", "
+                                            "transform(\"rgb\", point(1, 2, 3)));\n}\n");
+  EXPECT_EQ(run_in(alone, "-g 1 1 rgbspace_transform"),
+            "ERROR: Unknown transformation \"rgb\"\n1 2 3\n\n");
 }
 
 // At -O2 OSL folds fmod() of triples with C's fmod, so a zero component of the divisor gives nan
