@@ -419,7 +419,10 @@ void Sema::check_format_args(ast::CallExpr* e) {
     }
     size_t start = i++;
     while (i < f.size() && std::strchr("0123456789.#-+ lhLjztq", f[i])) ++i;
-    if (i >= f.size()) break; // a lone '%' at the end prints as itself
+    if (i >= f.size()) { // a spec the string ends in ("100%") still wants its argument (oslc)
+      ++needed;
+      break;
+    }
     char conv = f[i];
     ++needed;
     if (arg >= e->args.size() || reported) {
