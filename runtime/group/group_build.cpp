@@ -635,14 +635,29 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     const ir::Shader& dst_sh = *sources[size_t(di->second)];
     auto src = resolve(src_sh, c.src_param);
     auto dst = resolve(dst_sh, c.dst_param);
-    // A whole struct's fields carry its type's name (Symbol::struct_name).
-    auto struct_of = [](const ir::Shader& sh, const std::map<std::string, Endpoint>& ends) {
+    // A whole struct's fields carry its top-level type's name (Symbol::struct_name); a member
+    // that is itself a struct ("so.in") has the type its path leads to in the struct types.
+    auto struct_of = [](const ir::Shader& sh, const std::map<std::string, Endpoint>& ends,
+                        const std::string& path) {
       if (ends.empty() || (ends.size() == 1 && ends.count(""))) return std::string();
-      return sh.symbols[size_t(sh.find_symbol(ends.begin()->second.symbol))].struct_name;
+      std::string name =
+          sh.symbols[size_t(sh.find_symbol(ends.begin()->second.symbol))].struct_name;
+      for (size_t dot = path.find('.'); dot != std::string::npos && !name.empty();) {
+        size_t next = path.find('.', dot + 1);
+        std::string field = path.substr(dot + 1, next == std::string::npos ? next : next - dot - 1);
+        const ir::StructType* st = sh.find_struct(name);
+        std::string inner;
+        for (const ir::StructField& f : st ? st->fields : std::vector<ir::StructField>{})
+          if (f.name == field) inner = f.struct_name;
+        name = inner;
+        dot = next;
+      }
+      return name;
     };
-    auto type_of = [&](const ir::Shader& sh, const std::map<std::string, Endpoint>& ends) {
+    auto type_of = [&](const ir::Shader& sh, const std::map<std::string, Endpoint>& ends,
+                       const std::string& path) {
       if (ends.empty()) return std::string("unknown");
-      if (ends.size() > 1 || !ends.count("")) return "struct " + struct_of(sh, ends);
+      if (ends.size() > 1 || !ends.count("")) return "struct " + struct_of(sh, ends, path);
       return osl_type_name(endpoint_type(sh, ends.at("")));
     };
     if (src.empty() || dst.empty()) {
@@ -653,20 +668,21 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
                               "\" is not a parameter or global of layer \"" + layer +
                               "\" (shader \"" + (src_missing ? src_sh : dst_sh).name + "\")",
                           DiagId::connect_param));
-      diags.push_back(err("ConnectShaders: cannot connect a " + type_of(src_sh, src) + " (" +
-                              c.src_param + ") to a " + type_of(dst_sh, dst) + " (" + c.dst_param +
-                              "), invalid connection",
+      diags.push_back(err("ConnectShaders: cannot connect a " + type_of(src_sh, src, c.src_param) +
+                              " (" + c.src_param + ") to a " + type_of(dst_sh, dst, c.dst_param) +
+                              " (" + c.dst_param + "), invalid connection",
                           DiagId::connect_param));
       return false;
     }
     // Structs connect only to the same struct type, as in OSL.
-    bool fits = src.size() == dst.size() && struct_of(src_sh, src) == struct_of(dst_sh, dst);
+    bool fits = src.size() == dst.size() &&
+                struct_of(src_sh, src, c.src_param) == struct_of(dst_sh, dst, c.dst_param);
     if (fits && src.size() == 1 && src.count("") && dst.count(""))
       fits = connectable(endpoint_type(src_sh, src.at("")), endpoint_type(dst_sh, dst.at("")));
     if (!fits) {
-      diags.push_back(err("ConnectShaders: cannot connect a " + type_of(src_sh, src) + " (" +
-                              c.src_param + ") to a " + type_of(dst_sh, dst) + " (" + c.dst_param +
-                              ")",
+      diags.push_back(err("ConnectShaders: cannot connect a " + type_of(src_sh, src, c.src_param) +
+                              " (" + c.src_param + ") to a " + type_of(dst_sh, dst, c.dst_param) +
+                              " (" + c.dst_param + ")",
                           DiagId::connect_type));
       return false;
     }

@@ -1222,3 +1222,16 @@ TEST(ShadeCli, GlobalDerivativesWrittenByALayerReachTheOthers) {
             "dn k=1 Dx(P)=3 0 0\n"
             "\n");
 }
+
+// A struct member that is itself a struct connects to a struct of its type, either way round
+// (Lobe compared the whole parameter's struct type and refused). Expected: OSL 1.13.12,
+// `testshade [-O0] --layer A member_struct_up --layer B member_struct_dn --connect A so.in B i
+// --connect A o B s.in` (the same at both).
+TEST(ShadeCli, StructMembersThatAreStructsConnect) {
+  for (const char* level : {"-O0 ", "-O2 "})
+    EXPECT_EQ(run_here(std::string(level) +
+                       "--layer A member_struct_up --layer B member_struct_dn --connect A so.in B "
+                       "i --connect A o B s.in"),
+              "Connect A.so.in to B.i\nConnect A.o to B.s.in\ni.a=3 s.in.a=6 s.x=-1\n\n")
+        << level;
+}
