@@ -3,19 +3,23 @@
 
 #include "instance_values.h"
 
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 
 namespace lobe::cli {
 namespace {
 
-// The whole text (after optional blanks) is one number of the kind `read` accepts.
+// The whole text, blanks around it aside, is one number of the kind `read` accepts (testshade
+// 1.13.12 reads "2.5 " as the float 2.5).
 template <class F> bool whole(const std::string& t, F read) {
   if (t.empty()) return false;
   const char* s = t.c_str();
   char* end = nullptr;
   read(s, &end);
-  return end != s && *end == '\0';
+  if (end == s) return false;
+  while (std::isspace(static_cast<unsigned char>(*end))) ++end;
+  return *end == '\0';
 }
 
 } // namespace

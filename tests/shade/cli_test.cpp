@@ -1235,3 +1235,13 @@ TEST(ShadeCli, StructMembersThatAreStructsConnect) {
               "Connect A.so.in to B.i\nConnect A.o to B.s.in\ni.a=3 s.in.a=6 s.x=-1\n\n")
         << level;
 }
+
+// An untyped -param value with blanks around its number is that number, as testshade 1.13.12
+// reads it (`testshade -param f "2.5 " -param i " 5 " -param c "0.25 " blanks`; Lobe took
+// "2.5 " for a string and kept the default with a type warning).
+TEST(ShadeCli, UntypedValuesWithBlanksAreNumbers) {
+  auto dir = scratch_dir("blanks.osl", "shader blanks(float f = 0.5, int i = 1, color c = 0)\n{\n"
+                                       "    printf(\"f=%g i=%d c=%g\\n\", f, i, c);\n}\n");
+  EXPECT_EQ(run_in(dir, "-param f \"2.5 \" -param i \" 5 \" -param c \"0.25 \" blanks"),
+            "f=2.5 i=5 c=0.25 0.25 0.25\n\n");
+}
