@@ -108,14 +108,23 @@ const ast::InitListExpr* init_list(const ast::Expr* e) {
   return e->kind == K::InitList ? static_cast<const ast::InitListExpr*>(e) : nullptr;
 }
 
-// Appends one entry per leaf of `t`; `e` is null when the leaves cannot be literal.
-void leaves(const ast::Expr* e, const ast::Type& t, bool in_struct, std::vector<bool>& out) {
+// Appends one entry per leaf of `t`; `e` is null when the leaves cannot be literal. `missing`:
+// a field a struct's shorter list leaves out, which oslc fills with a literal zero (`S s = {1}`
+// of struct S {float a; int b;}: defaults 1 and 0).
+void leaves(const ast::Expr* e, const ast::Type& t, bool in_struct, std::vector<bool>& out,
+            bool missing = false) {
   const ast::InitListExpr* list = init_list(e);
   if (t.base == ast::BaseType::Struct) {
     const auto& fields = t.strct->fields;
-    bool ok = !t.is_array() && list && list->elems.size() == fields.size();
-    for (size_t i = 0; i < fields.size(); ++i)
-      leaves(ok ? list->elems[i].get() : nullptr, fields[i]->type, true, out);
+    bool ok = missing || (!t.is_array() && list && list->elems.size() <= fields.size());
+    for (size_t i = 0; i < fields.size(); ++i) {
+      bool absent = missing || (ok && i >= list->elems.size());
+      leaves(ok && !absent ? list->elems[i].get() : nullptr, fields[i]->type, true, out, absent);
+    }
+    return;
+  }
+  if (missing) {
+    out.push_back(true);
     return;
   }
   if (!t.is_array()) {

@@ -53,8 +53,32 @@ void Lowerer::const_flat(const ast::Expr* e, const ast::Type& t, std::vector<Con
     out.insert(out.end(), flat.begin(), flat.end());
     return;
   }
-  if (parts.size() != t.strct->fields.size()) parts.assign(t.strct->fields.size(), nullptr);
-  for (size_t i = 0; i < parts.size(); ++i) const_flat(parts[i], t.strct->fields[i]->type, out);
+  const auto& fields = t.strct->fields;
+  // A shorter list leaves its last fields zero (oslc's defaults: `S s = {1}` is 1 and 0); a
+  // constructor call must name them all.
+  bool shorter = e && e->kind == ast::ExprKind::InitList && parts.size() < fields.size();
+  if (parts.size() != fields.size() && !shorter) parts.assign(fields.size(), nullptr);
+  for (size_t i = 0; i < fields.size(); ++i) {
+    if (i < parts.size())
+      const_flat(parts[i], fields[i]->type, out);
+    else
+      zero_flat(fields[i]->type, out);
+  }
+}
+
+// Appends a zero default for each leaf of `t` (a field a shorter list leaves out); an array of
+// structs has no such default here (its leaves stay unknown).
+void Lowerer::zero_flat(const ast::Type& t, std::vector<ConstLeaf>& out) {
+  if (t.base == ast::BaseType::Struct) {
+    if (t.is_array()) {
+      out.insert(out.end(), leaf_count(t), ConstLeaf());
+      return;
+    }
+    for (const auto& f : t.strct->fields) zero_flat(f->type, out);
+    return;
+  }
+  ir::Type it = irtype(t, nullptr);
+  out.push_back(std::vector<ir::ConstValue>(size_t(it.components() * std::max(1, it.arraylen))));
 }
 
 // Adds struct `s` (after the structs its fields use) to the shader's struct table.

@@ -91,6 +91,7 @@ public:
   std::vector<int> struct_parts(const ast::Expr* e, const ast::Type& t);
   using ConstLeaf = std::optional<std::vector<ir::ConstValue>>; // a leaf's constant default
   void const_flat(const ast::Expr* e, const ast::Type& t, std::vector<ConstLeaf>& out);
+  void zero_flat(const ast::Type& t, std::vector<ConstLeaf>& out);
   int convert(int sym, const ir::Type& to, const ast::Node* where);
 
   // ---- lower_stmt.cpp
