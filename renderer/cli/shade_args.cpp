@@ -213,8 +213,10 @@ const std::vector<Option>& options() {
       {"param", 2,
        [](Parser& p, const Use& u) {
          InstanceValue v = param_value(u.mod("type"), u.args[0], u.args[1]);
-         v.interpolated = u.mod("interpolated") == "1";
-         if (std::string lg = u.mod("lockgeom"); !lg.empty()) v.lockgeom = lg == "0" ? 0 : 1;
+         // testshade 1.13.12's :interpolated=1 and :lockgeom=0 mark the value interpolated (as
+         // -v prints it) but bind no user data to it, and :lockgeom=1 locks nothing: the
+         // shader's metadata decides (group text's hints do bind, InstanceValue::lockgeom).
+         v.interpolated = u.mod("interpolated") == "1" || u.mod("lockgeom") == "0";
          v.interactive = u.mod("interactive") == "1";
          p.pending.push_back(v);
        }},

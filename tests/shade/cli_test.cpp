@@ -153,16 +153,18 @@ TEST(ShadeCli, GroupTextAndGrid) {
 
 // testshade's renderer: "s"/"t" user data are u/v with derivatives (before the user's own);
 // --userdata adds more, of exactly the type asked; --options lockgeom=0 lets every parameter
-// take user data. -param:lockgeom=1 (Lobe's; testshade ignores the modifier) locks a parameter
-// the shader unlocked.
+// take user data. -param:lockgeom=1 locks nothing and -param:lockgeom=0 unlocks nothing: the
+// shader's metadata decides, as testshade 1.13.12 does (`testshade -g 2 3 -param:lockgeom=1 t
+// 0.25 userdata_print`: t from the user data).
 TEST(ShadeCli, UserDataAndAttributes) {
   EXPECT_EQ(both("-g 2 3 -param:lockgeom=1 t 0.25 userdata_print"),
-            "s 0 ds 1 0 t 0.25 dt 0 0 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 0\n"
-            "s 1 ds 1 0 t 0.25 dt 0 0 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 0\n"
-            "s 0 ds 1 0 t 0.25 dt 0 0 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 0.5\n"
-            "s 1 ds 1 0 t 0.25 dt 0 0 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 0.5\n"
-            "s 0 ds 1 0 t 0.25 dt 0 0 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 1\n"
-            "s 1 ds 1 0 t 0.25 dt 0 0 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 1\n\n");
+            "s 0 ds 1 0 t 0 dt 0 0.5 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 0\n"
+            "s 1 ds 1 0 t 0 dt 0 0.5 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 0\n"
+            "s 0 ds 1 0 t 0.5 dt 0 0.5 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 0.5\n"
+            "s 1 ds 1 0 t 0.5 dt 0 0.5 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 0.5\n"
+            "s 0 ds 1 0 t 1 dt 0 0.5 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 1\n"
+            "s 1 ds 1 0 t 1 dt 0 0.5 tint 1 1 1 label none fixed 3 res 1 2 3 t-attr 1 1\n"
+            "\n");
   EXPECT_EQ(both("--userdata:type=color tint \"0.5 0.25 2\" --userdata:type=string label "
                  "\"two words\" --userdata fixed 9 -param:type=float:lockgeom=0 fixed 4 "
                  "userdata_print"),
@@ -170,6 +172,11 @@ TEST(ShadeCli, UserDataAndAttributes) {
             "t-attr 1 0.5\n\n");
   EXPECT_EQ(both("--userdata s 0.125 userdata_print"),
             "s 0.5 ds 1 0 t 0.5 dt 0 1 tint 1 1 1 label none fixed 3 res 1 1 1 t-attr 1 0.5\n\n");
+  // Group text's `interpolated=1` lets the user data bind (`testshade --userdata:type=float
+  // fixed 9.0 --group "param float fixed 4 [[int interpolated=1]] ; shader userdata_print L ;"`).
+  EXPECT_EQ(both("--userdata:type=float fixed 9.0 --group \"param float fixed 4 [[int "
+                 "interpolated=1]] ; shader userdata_print L ;\""),
+            "s 0.5 ds 1 0 t 0.5 dt 0 1 tint 1 1 1 label none fixed 9 res 1 1 1 t-attr 1 0.5\n\n");
   EXPECT_EQ(both("--userdata:type=float fixed 9.0 -param fixed 4.0 userdata_print"),
             "s 0.5 ds 1 0 t 0.5 dt 0 1 tint 1 1 1 label none fixed 4 res 1 1 1 t-attr 1 0.5\n\n");
   EXPECT_EQ(both("--userdata:type=float fixed 9.0 --options lockgeom=0 userdata_print"),

@@ -57,8 +57,10 @@ using DiagnosticList = std::vector<Diagnostic>;
 // broadcast to every component and element; anything else is an error.
 // `lockgeom`: 0 lets the renderer's user data of the same name and type override the value
 // (OSL's interpolated parameters; renderer_services.h), 1 forbids it, -1 (the default) keeps
-// what the shader's `[[ int lockgeom = 0 ]]` metadata says. `interpolated`: testshade's
-// `:interpolated=1` (isconnected() may report it connected to user data).
+// what the shader's `[[ int lockgeom = 0 ]]` metadata says (group text's `lockgeom = 0` and
+// `interpolated = 1` hints give 0, and its `lockgeom = 1` nothing, as OSL reads them).
+// `interpolated`: testshade's `:interpolated=1` or `:lockgeom=0`, which bind nothing (as -v
+// prints them; isconnected() may report it connected to user data).
 struct InstanceValue {
   std::string type;
   std::string name;
