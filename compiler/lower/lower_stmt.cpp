@@ -251,15 +251,24 @@ int Lowerer::call_arith(const ast::CallExpr* c, int hint) {
 }
 
 // OSL's mod(a, b) is a - b*floor(a/b) (the result has the sign of b), unlike `%` and fmod()
-// (the IR's `mod`, the sign of a), from div/floor/mul/sub. For ints OSL computes a - b*(a/b)
-// with truncating division, which is C's remainder, except that mod(a, 0) = a.
+// (the IR's `mod`, the sign of a), from div/floor/mul/sub. For ints stdosl.h's a - b*(int)
+// floor(a/b) floors the truncating quotient as a float, so a quotient past 2^24 rounds to a
+// float first (mod(2147483647, 3) is -65, as OSL prints it; C's remainder is 1), and
+// mod(a, 0) = a.
 int Lowerer::floor_mod(const ast::CallExpr* c, int hint) {
   ir::Type t = irtype(c->type, c);
   int a = rvalue(c->args[0].get());
   int b = rvalue(c->args[1].get());
   int r = temp(t);
   emit(ir::Opcode::Div, {r, a, b}, 1, c);
-  if (t.base != ir::BaseType::Int) emit(ir::Opcode::Floor, {r, r}, 1, c);
+  if (t.base == ir::BaseType::Int) {
+    int f = temp(ir::Type{ir::BaseType::Float});
+    emit(ir::Opcode::Assign, {f, r}, 1, c);
+    emit(ir::Opcode::Floor, {f, f}, 1, c);
+    emit(ir::Opcode::Assign, {r, f}, 1, c);
+  } else {
+    emit(ir::Opcode::Floor, {r, r}, 1, c);
+  }
   emit(ir::Opcode::Mul, {r, r, b}, 1, c);
   int out = pick(hint, t);
   emit(ir::Opcode::Sub, {out, a, r}, 1, c);
