@@ -27,6 +27,7 @@ public:
   bool run();
 
 private:
+  void run_once();
   bool is_const(int s) const { return sh_.symbols[s].kind == SymKind::Const; }
   bool is_closure(int s) const { return sh_.symbols[s].type == Type{BaseType::Closure}; }
   bool is_null(int s) const {
@@ -57,6 +58,7 @@ private:
   std::unordered_map<int, int> alias_; // symbol -> the symbol it was copied from (algebraic_)
   std::unordered_set<int> null_;       // closure symbols known to hold the null closure
   bool changed_ = false;
+  bool late_ = false; // a run after one that folded nothing: pow(0, x) = 0 may fold (run())
 };
 
 void Folder::substitute(Op& op) {
@@ -168,8 +170,9 @@ bool Folder::fold_algebraic(Op& op) {
   return false;
 }
 
-// More of OSL's runtime optimizer's folds (-O2): pow(0, x) = 0 for any x (OSL 1.13.12 prints 0
-// for pow(0.0, u - 0.5) at -O2, 1 at -O0 as its pow computes), and a dot product with an
+// More of OSL's runtime optimizer's folds (-O2): pow(0, x) = 0 for any x still varying once
+// nothing else folds (OSL 1.13.12 prints 0 for pow(0.0, u - 0.5) at -O2, 1 at -O0 as its pow
+// computes, and 1 for pow(0.0, z) with z = a - a: its z is 0 by then), and a dot product with an
 // all-zero constant is 0 whatever the other vector holds (0 for dot(V, vector(0)) with a varying V
 // holding an inf, where the arithmetic gives nan).
 bool Folder::fold_zero_operand(Op& op) {
@@ -177,7 +180,7 @@ bool Folder::fold_zero_operand(Op& op) {
   const Type& t = sh_.symbols[op.args[0]].type;
   if (t.is_array() || !(t.base == BaseType::Float || t.is_triple())) return false;
   int a = op.args[1], b = op.args[2];
-  bool zero = (op.opcode == Opcode::Pow && all_zero(a) && !is_const(b)) ||
+  bool zero = (op.opcode == Opcode::Pow && late_ && all_zero(a) && !is_const(b)) ||
               (op.opcode == Opcode::Dot && (all_zero(a) || all_zero(b)));
   if (!zero) return false;
   make_assign(op, op.args[0], intern_int(sh_, 0));
@@ -283,7 +286,18 @@ void Folder::once_assigned_constants() {
   }
 }
 
+// Every fold but pow(0, x) = 0; then, if nothing folded, once more with it: applied while an
+// exponent could still become a constant it would answer 0 where pow(0, 0) is 1.
 bool Folder::run() {
+  run_once();
+  if (changed_ || !algebraic_) return changed_;
+  late_ = true;
+  run_once();
+  return changed_;
+}
+
+void Folder::run_once() {
+  known_.clear(), null_.clear(), alias_.clear(), fixed_.clear();
   if (algebraic_) once_assigned_constants();
   std::set<int> starts = {sh_.main_begin};
   for (const Op& op : sh_.ops) starts.insert(op.jumps.begin(), op.jumps.end());
@@ -298,7 +312,6 @@ bool Folder::run() {
     const ir::OpcodeInfo* info = &ir::info(sh_.ops[i].opcode);
     if (info->flags & kJump) clear_block();
   }
-  return changed_;
 }
 
 } // namespace
