@@ -317,7 +317,9 @@ public:
       for (const std::string& r : recent)
         if (r == s.text) return;
       recent.push_back(s.text);
-      if (recent.size() > 32) recent.pop_front();
+      // OSL 1.13.12 remembers the last 25 errors (and 25 warnings): a 26th distinct one since
+      // prints the first again.
+      if (recent.size() > 25) recent.pop_front();
     }
     std::fflush(stdout);
     std::fprintf(stderr, "%s%s\n", error ? "ERROR: " : "WARNING: ", s.text.c_str());

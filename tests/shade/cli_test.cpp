@@ -1252,3 +1252,26 @@ TEST(ShadeCli, UntypedValuesWithBlanksAreNumbers) {
   EXPECT_EQ(run_in(dir, "-param f \"2.5 \" -param i \" 5 \" -param c \"0.25 \" blanks"),
             "f=2.5 i=5 c=0.25 0.25 0.25\n\n");
 }
+
+// Errors and warnings: one identical to one of the last 25 given is not printed again, as OSL
+// 1.13.12's shading system remembers 25 (a shader giving e0, e1, ... eN then e0 again: testshade
+// prints N + 1 errors for N = 25 distinct ones before the repeat, N + 2 for 26).
+TEST(ShadeCli, ARepeatAfterTwentyFiveOthersIsPrintedAgain) {
+  for (int distinct : {25, 26}) {
+    std::string src = "shader repeats()\n{\n";
+    for (int i = 0; i < distinct; ++i) src += "    error(\"e" + std::to_string(i) + "\\n\");\n";
+    src += "    error(\"e0\\n\");\n    warning(\"w0\\n\");\n";
+    for (int i = 1; i < distinct; ++i) src += "    warning(\"w" + std::to_string(i) + "\\n\");\n";
+    src += "    warning(\"w0\\n\");\n}\n";
+    auto dir = scratch_dir("repeats.osl", src);
+    std::string out = run_in(dir, "repeats");
+    size_t errors = 0, warnings = 0;
+    for (size_t at = out.find("ERROR: "); at != std::string::npos; at = out.find("ERROR: ", at + 1))
+      ++errors;
+    for (size_t at = out.find("WARNING: "); at != std::string::npos;
+         at = out.find("WARNING: ", at + 1))
+      ++warnings;
+    EXPECT_EQ(errors, size_t(distinct == 25 ? 25 : 27)) << distinct;
+    EXPECT_EQ(warnings, size_t(distinct == 25 ? 25 : 27)) << distinct;
+  }
+}
