@@ -51,7 +51,12 @@ find_package(embree 3 CONFIG REQUIRED)
 find_package(TBB CONFIG REQUIRED)
 find_package(nlohmann_json CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
-find_package(fmt CONFIG REQUIRED)
+find_package(fmt 9.1 CONFIG REQUIRED)
+# printf formats as OSL's does through fmt 9's parsing of the spec it makes ("%-05d" of 5 is
+# "50000": fmt 9 keeps the 0 fill after an alignment; later fmt versions changed such rules).
+if(fmt_VERSION VERSION_GREATER_EQUAL 10)
+  message(FATAL_ERROR "Lobe's printf needs fmt 9 (OSL 1.13's formatting library), found ${fmt_VERSION}")
+endif()
 find_package(tinyobjloader CONFIG REQUIRED)
 find_package(Threads REQUIRED)
 if(LOBE_BUILD_TESTS)

@@ -116,6 +116,10 @@ void leaves(const ast::Expr* e, const ast::Type& t, bool in_struct, std::vector<
   const ast::InitListExpr* list = init_list(e);
   if (t.base == ast::BaseType::Struct) {
     const auto& fields = t.strct->fields;
+    if (missing && t.is_array()) { // no zero default for it (Lowerer::zero_flat): not literal
+      leaves(nullptr, t, true, out);
+      return;
+    }
     bool ok = missing || (!t.is_array() && list && list->elems.size() <= fields.size());
     for (size_t i = 0; i < fields.size(); ++i) {
       bool absent = missing || (ok && i >= list->elems.size());

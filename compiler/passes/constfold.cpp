@@ -22,12 +22,11 @@ namespace {
 
 class Folder {
 public:
-  Folder(Shader& sh, const EvalOptions& options, bool algebraic)
-      : sh_(sh), options_(options), algebraic_(algebraic) {}
+  Folder(Shader& sh, const EvalOptions& options, bool algebraic, bool late)
+      : sh_(sh), options_(options), algebraic_(algebraic), late_(late) {}
   bool run();
 
 private:
-  void run_once();
   bool is_const(int s) const { return sh_.symbols[s].kind == SymKind::Const; }
   bool is_closure(int s) const { return sh_.symbols[s].type == Type{BaseType::Closure}; }
   bool is_null(int s) const {
@@ -58,7 +57,7 @@ private:
   std::unordered_map<int, int> alias_; // symbol -> the symbol it was copied from (algebraic_)
   std::unordered_set<int> null_;       // closure symbols known to hold the null closure
   bool changed_ = false;
-  bool late_ = false; // a run after one that folded nothing: pow(0, x) = 0 may fold (run())
+  bool late_; // pow(0, x) = 0 may fold (fold_constants' `late`)
 };
 
 void Folder::substitute(Op& op) {
@@ -171,10 +170,10 @@ bool Folder::fold_algebraic(Op& op) {
 }
 
 // More of OSL's runtime optimizer's folds (-O2): pow(0, x) = 0 for any x still varying once
-// nothing else folds (OSL 1.13.12 prints 0 for pow(0.0, u - 0.5) at -O2, 1 at -O0 as its pow
-// computes, and 1 for pow(0.0, z) with z = a - a: its z is 0 by then), and a dot product with an
-// all-zero constant is 0 whatever the other vector holds (0 for dot(V, vector(0)) with a varying V
-// holding an inf, where the arithmetic gives nan).
+// nothing else folds (`late_`: OSL 1.13.12 prints 0 for pow(0.0, u - 0.5) at -O2, 1 at -O0 as
+// its pow computes, and 1 for pow(0.0, z) with z = a - a: its z is 0 by then), and a dot product
+// with an all-zero constant is 0 whatever the other vector holds (0 for dot(V, vector(0)) with a
+// varying V holding an inf, where the arithmetic gives nan).
 bool Folder::fold_zero_operand(Op& op) {
   if (!algebraic_ || op.args.size() != 3) return false;
   const Type& t = sh_.symbols[op.args[0]].type;
@@ -286,18 +285,7 @@ void Folder::once_assigned_constants() {
   }
 }
 
-// Every fold but pow(0, x) = 0; then, if nothing folded, once more with it: applied while an
-// exponent could still become a constant it would answer 0 where pow(0, 0) is 1.
 bool Folder::run() {
-  run_once();
-  if (changed_ || !algebraic_) return changed_;
-  late_ = true;
-  run_once();
-  return changed_;
-}
-
-void Folder::run_once() {
-  known_.clear(), null_.clear(), alias_.clear(), fixed_.clear();
   if (algebraic_) once_assigned_constants();
   std::set<int> starts = {sh_.main_begin};
   for (const Op& op : sh_.ops) starts.insert(op.jumps.begin(), op.jumps.end());
@@ -312,12 +300,13 @@ void Folder::run_once() {
     const ir::OpcodeInfo* info = &ir::info(sh_.ops[i].opcode);
     if (info->flags & kJump) clear_block();
   }
+  return changed_;
 }
 
 } // namespace
 
-bool fold_constants(Shader& shader, const EvalOptions& options, bool algebraic) {
-  return Folder(shader, options, algebraic).run();
+bool fold_constants(Shader& shader, const EvalOptions& options, bool algebraic, bool late) {
+  return Folder(shader, options, algebraic, late).run();
 }
 
 } // namespace lobe::passes

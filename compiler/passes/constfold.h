@@ -20,7 +20,11 @@
 
 namespace lobe::passes {
 
-// Returns whether the shader changed. `options` decide how math builtins fold.
-bool fold_constants(ir::Shader& shader, const EvalOptions& options = {}, bool algebraic = false);
+// Returns whether the shader changed. `options` decide how math builtins fold. `late` (with
+// `algebraic`): also pow(0, x) = 0 for a varying x, which a caller asks for only once folding
+// and dead-code elimination change nothing else (optimize()): applied while the exponent could
+// still become a constant, it would answer 0 where pow(0, 0) is 1.
+bool fold_constants(ir::Shader& shader, const EvalOptions& options = {}, bool algebraic = false,
+                    bool late = false);
 
 } // namespace lobe::passes

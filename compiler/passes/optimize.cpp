@@ -11,6 +11,10 @@ bool optimize(ir::Shader& shader, const OptimizeOptions& options) {
   for (int round = 0; round < options.max_rounds; ++round) {
     bool changed = fold_constants(shader, options.math, options.algebraic);
     changed |= eliminate_dead_code(shader, options.part_stores);
+    if (!changed && options.algebraic) { // nothing else folds: pow(0, x) = 0 (fold_constants)
+      changed = fold_constants(shader, options.math, true, /*late=*/true);
+      changed |= eliminate_dead_code(shader, options.part_stores);
+    }
     any |= changed;
     if (!changed) break;
   }

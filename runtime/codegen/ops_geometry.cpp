@@ -58,7 +58,7 @@ Val load3(LayerEmitter& e, const ir::Op& op, int i) {
 // (Imath's formulas, clang bitcode), whose multiply-adds clang contracts into llvm.fmuladd: fused
 // on the host (FMA) and unfused when LLVM folds constants. The same here: a*b + c*d is
 // fmuladd(a, b, c*d), and a*b - c*d fmuladd(a, b, -(c*d)), as clang forms them from the left.
-// With derivatives OSL's dual arithmetic rounds every product and sum (dot3, cross3).
+// With derivatives: dot3 and cross3 (each product's partials contracted, as OSL's Dual product).
 llvm::Value* fmuladd(LayerEmitter& e, llvm::Value* a, llvm::Value* b, llvm::Value* c) {
   return e.b().CreateIntrinsic(llvm::Intrinsic::fmuladd, {e.b().getFloatTy()}, {a, b, c});
 }

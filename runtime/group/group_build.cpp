@@ -876,10 +876,12 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     }
   }
 
-  // A global with derivative fields (P, I, u, v) whose derivatives one layer reads and another
-  // writes: the writer carries them, so that its write reaches ShaderGlobals' derivative fields
-  // too (OSL's layers share P's derivatives: a displacement layer's P = P * 2 doubles Dx(P) and
-  // calculatenormal(P) in the layers after it).
+  // A global with derivative fields (P or I: the writable ones) whose derivatives one layer
+  // reads and another writes: the writer carries them, so that its write reaches ShaderGlobals'
+  // derivative fields too (OSL's layers share P's derivatives: a displacement layer's P = P * 2
+  // doubles Dx(P) and calculatenormal(P) in the layers after it). Once, after the connections:
+  // as in OSL 1.13.12, an upstream output the write reads does not get derivatives for it (P +=
+  // N * amt with a connected amt = u * 2 leaves Dx(P) 1 0 0).
   std::set<std::string> wanted;
   for (const auto& sh : out.shaders)
     for (const ir::Symbol& s : sh->symbols)

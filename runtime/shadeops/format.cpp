@@ -148,7 +148,7 @@ std::string format_int(const std::string& head, char conv, int32_t v, FormatRule
     h.erase(dot);
   const size_t fe = flags_end(h);
   const std::string flags = h.substr(1, fe - 1);
-  if (conv == 'x' || conv == 'X' || (conv == 'o' && rule != FormatRule::Printf)) {
+  if (conv == 'x' || conv == 'X' || conv == 'o') {
     unsigned u = unsigned(uint32_t(v));
     bool plus = flags.find('+') != std::string::npos, space = flags.find(' ') != std::string::npos;
     if (conv == 'o' || !folded || (!plus && !space)) return printf1(h + conv, u);
@@ -161,23 +161,16 @@ std::string format_int(const std::string& head, char conv, int32_t v, FormatRule
     if (body.size() >= w) return body;
     if (flags.find('-') != std::string::npos) return body.append(w - body.size(), ' ');
     bool zeros = flags.find('0') != std::string::npos && h.find('.') == std::string::npos;
-    return body.insert(zeros ? 1 : 0, w - body.size(), zeros ? '0' : ' ');
-  }
-  if (conv == 'o') {
-    std::string o = "%";
-    for (char c : head)
-      if (c == '#') o += c;
-    unsigned mag = v < 0 ? 0u - unsigned(v) : unsigned(v);
-    std::string body = printf1(o + "o", mag);
-    if (v < 0) body.insert(body.begin(), '-');
-    bool left = head.find('-') != std::string::npos;
-    return pad(head, body, !left, false);
+    // Zeros go after the sign and a 0x prefix ("%+#08x" of 5 is "+0x00005").
+    size_t at = body.compare(1, 2, conv == 'x' ? "0x" : "0X") == 0 ? 3 : 1;
+    return body.insert(zeros ? at : 0, w - body.size(), zeros ? '0' : ' ');
   }
   return printf1(h + 'd', int(v));
 }
 
-// C's %#g, but with a digit after a point that ends the number, as OSL's format() prints it
-// ("%#g" of 100000 is "100000.0", "%#.1g" of 2 is "2.0"; with an exponent C's "1.e+10" stays).
+// C's %#g, but with a digit after a point that ends the number, as OSL's folded format() prints
+// it ("%#g" of 100000 is "100000.0", "%#.1g" of 2 is "2.0"; with an exponent C's "1.e+10" stays);
+// also a %#G that a format string known only while shading gives printf.
 std::string alt_general(const std::string& head, char conv, double v) {
   size_t fe = flags_end(head), dot = head.find('.', fe);
   std::string bare = head.substr(0, fe) + (dot == std::string::npos ? "" : head.substr(dot));
@@ -206,6 +199,8 @@ std::string format_nonfinite(const std::string& head, char conv, double v, Forma
 
 // The length modifiers of a conversion: none, a lone L (which OSL's printf ignores), or any
 // other (l, h, ll, j, z, t, q, ...), after which OSL's printf drops the conversion's type.
+// format() knows only whether there is one (a float through an int conversion after one prints
+// as %g, format_scalar).
 enum class Length { None, LoneL, Other };
 
 // One value through OSL's printf (and warning(), error(), fprintf()), which formats as the fmt

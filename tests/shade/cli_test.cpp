@@ -1223,6 +1223,21 @@ TEST(ShadeCli, GlobalDerivativesWrittenByALayerReachTheOthers) {
             "up P=3 1.5 3 Dx(P)=3 0 0\n"
             "dn k=1 Dx(P)=3 0 0\n"
             "\n");
+  // OSL gives the displacement's connected amount no derivatives for P's sake (`testshade -g 2
+  // 2 [-O0|-O2] --layer t disp_amount --layer d disp_by --layer r displace_dn --connect t amt d
+  // amt --connect d done r i`: Dx(P) 1 0 0 though amt = u * 2).
+  for (const char* level : {"-O0 ", "-O2 "})
+    EXPECT_EQ(run_here(std::string("-g 2 2 ") + level +
+                       "--layer t disp_amount --layer d disp_by --layer r displace_dn --connect t "
+                       "amt d amt --connect d done r i"),
+              "Connect t.amt to d.amt\n"
+              "Connect d.done to r.i\n"
+              "i=1 Dx(P)=1 0 0 Dy(P)=0 1 0 Dx(I)=0 0 0 N=0 0 1\n"
+              "i=1 Dx(P)=1 0 0 Dy(P)=0 1 0 Dx(I)=0 0 0 N=0 0 1\n"
+              "i=1 Dx(P)=1 0 0 Dy(P)=0 1 0 Dx(I)=0 0 0 N=0 0 1\n"
+              "i=1 Dx(P)=1 0 0 Dy(P)=0 1 0 Dx(I)=0 0 0 N=0 0 1\n"
+              "\n")
+        << level;
   EXPECT_EQ(run_here("-g 2 1 -O2 --layer x pderiv_up --layer y pderiv_dn --connect x o y i"),
             "Connect x.o to y.i\n"
             "dn k=0 Dx(P)=3 0 0\n"
@@ -1254,8 +1269,8 @@ TEST(ShadeCli, UntypedValuesWithBlanksAreNumbers) {
 }
 
 // Errors and warnings: one identical to one of the last 25 given is not printed again, as OSL
-// 1.13.12's shading system remembers 25 (a shader giving e0, e1, ... eN then e0 again: testshade
-// prints N + 1 errors for N = 25 distinct ones before the repeat, N + 2 for 26).
+// 1.13.12's shading system remembers 25 (a shader giving e0 ... e24, then e0 again: testshade
+// prints 25 errors; e0 ... e25, then e0: 27, the repeat among them).
 TEST(ShadeCli, ARepeatAfterTwentyFiveOthersIsPrintedAgain) {
   for (int distinct : {25, 26}) {
     std::string src = "shader repeats()\n{\n";
