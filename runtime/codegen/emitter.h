@@ -112,9 +112,11 @@ private:
   void fetch_connection(const ConnectionPlan& c);
   // The group's layers share one ShaderGlobals, as OSL's do: around a call of an upstream layer
   // (and at the exit) this one's written globals go out to it (store_globals) and after the
-  // call every global comes back (reload_globals, values only: derivatives stay as they are).
+  // call every global comes back (reload_globals: values, and the derivatives of P and I when
+  // they carry them, as ShaderGlobals has them; other derivatives stay as they are).
   void store_globals();
   void reload_globals();
+  void read_global(const ir::Symbol& s, const GlobalField& g, Val& v);
   llvm::Type* global_type(const GlobalField& g); // a ShaderGlobals field's scalar type
   void emit_region(int begin, int end, llvm::BasicBlock* after);
   void emit_op(int index);

@@ -73,20 +73,8 @@ void LayerEmitter::init_symbols() {
         error_ = shader().name + ": unknown global '" + s.name + "'";
         return;
       }
-      auto field = [&](size_t off, int comp, llvm::Type* t) {
-        return b_.CreateLoad(
-            t, b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), sg_, off + 4 * size_t(comp)));
-      };
-      int comps = s.type.components();
-      Val v(static_cast<size_t>(comps));
-      llvm::Type* t = global_type(*g);
-      for (int c = 0; c < comps; ++c) {
-        v[size_t(c)].v = field(g->offset, c, t);
-        if (s.derivs && g->dx) {
-          v[size_t(c)].dx = field(find_global(g->dx)->offset, c, t);
-          v[size_t(c)].dy = field(find_global(g->dy)->offset, c, t);
-        }
-      }
+      Val v(static_cast<size_t>(s.type.components()));
+      read_global(s, *g, v);
       store(si, v);
     }
   }
@@ -322,25 +310,29 @@ void LayerEmitter::store_globals() {
   }
 }
 
+// The value of global `s` from ShaderGlobals into `v`, and its derivatives when it carries them
+// and ShaderGlobals has them (other derivatives in `v` stay as they are).
+void LayerEmitter::read_global(const ir::Symbol& s, const GlobalField& g, Val& v) {
+  llvm::Type* t = global_type(g);
+  auto get = [&](size_t offset, size_t c) {
+    return b_.CreateLoad(t, b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), sg_, offset + 4 * c));
+  };
+  bool derivs = s.derivs && g.dx;
+  for (size_t c = 0; c < v.size(); ++c) {
+    v[c].v = get(g.offset, c);
+    if (derivs) {
+      v[c].dx = get(find_global(g.dx)->offset, c);
+      v[c].dy = get(find_global(g.dy)->offset, c);
+    }
+  }
+}
+
 void LayerEmitter::reload_globals() {
   const auto& syms = shader().symbols;
   for (size_t i = 0; i < syms.size(); ++i) {
     if (syms[i].kind != SymKind::Global) continue;
-    const GlobalField* g = find_global(syms[i].name);
-    llvm::Type* t = global_type(*g);
-    Val v = load(int(i)); // with its derivatives, which the store below keeps
-    auto get = [&](size_t offset, size_t c) {
-      return b_.CreateLoad(t, b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), sg_, offset + 4 * c));
-    };
-    // Derivatives too where ShaderGlobals has them (an upstream layer may have written them).
-    bool derivs = syms[i].derivs && g->dx;
-    for (size_t c = 0; c < v.size(); ++c) {
-      v[c].v = get(g->offset, c);
-      if (derivs) {
-        v[c].dx = get(find_global(g->dx)->offset, c);
-        v[c].dy = get(find_global(g->dy)->offset, c);
-      }
-    }
+    Val v = load(int(i)); // with its derivatives: those ShaderGlobals lacks stay as they are
+    read_global(syms[i], *find_global(syms[i].name), v);
     store(int(i), v);
   }
 }
