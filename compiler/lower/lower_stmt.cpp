@@ -275,6 +275,15 @@ int Lowerer::floor_mod(const ast::CallExpr* c, int hint) {
   return out;
 }
 
+// The current value of part of a variable (`r`, an element, component or run of elements) into
+// the temporary `s` that a call writes in its place.
+void Lowerer::copy_in(const LRef& r, int s, const ast::Node* where) {
+  int cur = load(r, where, s);
+  if (cur != s)
+    emit(sh_.symbols[size_t(s)].type.is_array() ? ir::Opcode::ArrayCopy : ir::Opcode::Assign,
+         {s, cur}, 1, where);
+}
+
 // Builtins: `name [result] [outputs...] inputs... ["kw" value]...`: written operands first
 // (the result, then the `output` arguments in call order), then the other arguments in call
 // order, then keyword pairs. Which arguments are outputs comes from the builtin table's
@@ -322,7 +331,13 @@ int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
     }
     LRef r = lvalue(c->args[i].get())[0];
     int s = r.whole() ? r.sym : temp(irtype(c->args[i]->type, c));
-    if (!r.whole()) copy_back.push_back({r, s});
+    if (!r.whole()) {
+      // An element or component: its temporary starts as its value, so a call that writes
+      // nothing (a failed gettextureinfo or getattribute) leaves it as it was, as OSL's
+      // by-reference argument does.
+      copy_in(r, s, c);
+      copy_back.push_back({r, s});
+    }
     args.push_back(s);
   }
   for (size_t i = 0; i < npos; ++i)
@@ -337,7 +352,10 @@ int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
         args.size() < 32) {
       LRef r = lvalue(k.value)[0];
       int s = r.whole() ? r.sym : temp(irtype(k.value->type, c));
-      if (!r.whole()) copy_back.push_back({r, s});
+      if (!r.whole()) {
+        copy_in(r, s, c); // as an output argument's
+        copy_back.push_back({r, s});
+      }
       mask |= 1u << args.size();
       args.push_back(s);
       continue;
