@@ -261,10 +261,9 @@ int Lowerer::floor_mod(const ast::CallExpr* c, int hint) {
   int b = rvalue(c->args[1].get());
   int r = temp(t);
   emit(ir::Opcode::Div, {r, a, b}, 1, c);
-  if (t.base == ir::BaseType::Int) {
+  if (t.base == ir::BaseType::Int) { // through a float and back (its floor is itself)
     int f = temp(ir::Type{ir::BaseType::Float});
     emit(ir::Opcode::Assign, {f, r}, 1, c);
-    emit(ir::Opcode::Floor, {f, f}, 1, c);
     emit(ir::Opcode::Assign, {r, f}, 1, c);
   } else {
     emit(ir::Opcode::Floor, {r, r}, 1, c);
@@ -275,13 +274,21 @@ int Lowerer::floor_mod(const ast::CallExpr* c, int hint) {
   return out;
 }
 
-// The current value of part of a variable (`r`, an element, component or run of elements) into
-// the temporary `s` that a call writes in its place.
-void Lowerer::copy_in(const LRef& r, int s, const ast::Node* where) {
+// The operand a call writes for the lvalue `e`: the variable itself when `e` names it whole,
+// else a temporary (listed in `copy_back`, stored into `e` after the call) that starts as the
+// element's or component's value, so a call that writes nothing (a failed gettextureinfo or
+// getattribute) leaves it as it was, as OSL's by-reference argument does.
+int Lowerer::written_operand(const ast::Expr* e, const ast::Node* where,
+                             std::vector<std::pair<LRef, int>>& copy_back) {
+  LRef r = lvalue(e)[0];
+  if (r.whole()) return r.sym;
+  int s = temp(irtype(e->type, where));
   int cur = load(r, where, s);
   if (cur != s)
     emit(sh_.symbols[size_t(s)].type.is_array() ? ir::Opcode::ArrayCopy : ir::Opcode::Assign,
          {s, cur}, 1, where);
+  copy_back.push_back({r, s});
+  return s;
 }
 
 // Builtins: `name [result] [outputs...] inputs... ["kw" value]...`: written operands first
@@ -329,16 +336,7 @@ int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
       args.push_back(scratch_copy(c->args[i].get(), c));
       continue;
     }
-    LRef r = lvalue(c->args[i].get())[0];
-    int s = r.whole() ? r.sym : temp(irtype(c->args[i]->type, c));
-    if (!r.whole()) {
-      // An element or component: its temporary starts as its value, so a call that writes
-      // nothing (a failed gettextureinfo or getattribute) leaves it as it was, as OSL's
-      // by-reference argument does.
-      copy_in(r, s, c);
-      copy_back.push_back({r, s});
-    }
-    args.push_back(s);
+    args.push_back(written_operand(c->args[i].get(), c, copy_back));
   }
   for (size_t i = 0; i < npos; ++i)
     if (!is_out[i]) args.push_back(rvalue(c->args[i].get()));
@@ -350,14 +348,8 @@ int Lowerer::call_builtin(const ast::CallExpr* c, int hint) {
     args.push_back(ir::intern_string(sh_, k.name));
     if (texture && (k.name == "alpha" || k.name == "errormessage") && k.value->lvalue &&
         args.size() < 32) {
-      LRef r = lvalue(k.value)[0];
-      int s = r.whole() ? r.sym : temp(irtype(k.value->type, c));
-      if (!r.whole()) {
-        copy_in(r, s, c); // as an output argument's
-        copy_back.push_back({r, s});
-      }
       mask |= 1u << args.size();
-      args.push_back(s);
+      args.push_back(written_operand(k.value, c, copy_back));
       continue;
     }
     args.push_back(rvalue(k.value));

@@ -79,7 +79,8 @@ public:
   int int_mul(int a, int k, const ast::Node* where); // a * k for a constant k
   int slice_elem(const LRef& r, int k, const ast::Node* where); // index of element k of a slice
   void store(const LRef& r, int value, const ast::Node* where);
-  void copy_in(const LRef& r, int s, const ast::Node* where);
+  int written_operand(const ast::Expr* e, const ast::Node* where,
+                      std::vector<std::pair<LRef, int>>& copy_back);
   void store_init(const std::vector<LRef>& dst, const ast::Type& t, const ast::Expr* init);
   int pick(int hint, const ir::Type& t);
   int logical(const ast::BinaryExpr* b);

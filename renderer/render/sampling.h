@@ -182,8 +182,9 @@ public:
   // The numbers of groups first, first + 1, ..., first + K - 1, dims[k] (1 to 3) of group k,
   // written to `out` one group after another. Computed together: the groups' hash chains are
   // independent and overlap in the processor, where drawn one group at a time each waits out
-  // its chain's latency (on the 524k-triangle bench scene that wait was about a fifth of the
-  // render). Number d of group g is owen_scramble(point(owen_scramble(index, lo32(h)), d),
+  // its chain's latency (a path's numbers are about 5% of the 524k-triangle bench scene's
+  // render; drawn together it renders 1-2% faster). Number d of group g is
+  // owen_scramble(point(owen_scramble(index, lo32(h)), d),
   // seed_d) with h = mix64(key + g C), seed_0 = hi32(h) and seed_d = hi32(mix64(h + d)) after
   // it; worked in the bit-reversed domain (sobol::point_reversed), one reversal a number.
   template <int K> void groups(uint64_t first, const int (&dims)[K], float* out) const {

@@ -117,6 +117,7 @@ private:
   void store_globals();
   void reload_globals();
   void read_global(const ir::Symbol& s, const GlobalField& g, Val& v);
+  llvm::Value* global_slot(size_t offset, size_t c);
   llvm::Type* global_type(const GlobalField& g); // a ShaderGlobals field's scalar type
   void emit_region(int begin, int end, llvm::BasicBlock* after);
   void emit_op(int index);

@@ -297,8 +297,7 @@ void LayerEmitter::store_globals() {
     bool derivs = syms[i].derivs && g->dx;
     Val v = load(int(i), nullptr, derivs);
     auto put = [&](llvm::Value* x, size_t offset, size_t c) {
-      b_.CreateStore(x ? x : fconst(0),
-                     b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), sg_, offset + 4 * c));
+      b_.CreateStore(x ? x : fconst(0), global_slot(offset, c));
     };
     for (size_t c = 0; c < v.size(); ++c) {
       put(v[c].v, g->offset, c);
@@ -310,13 +309,16 @@ void LayerEmitter::store_globals() {
   }
 }
 
+// The address of component `c` of the ShaderGlobals field at `offset`.
+llvm::Value* LayerEmitter::global_slot(size_t offset, size_t c) {
+  return b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), sg_, offset + 4 * c);
+}
+
 // The value of global `s` from ShaderGlobals into `v`, and its derivatives when it carries them
 // and ShaderGlobals has them (other derivatives in `v` stay as they are).
 void LayerEmitter::read_global(const ir::Symbol& s, const GlobalField& g, Val& v) {
   llvm::Type* t = global_type(g);
-  auto get = [&](size_t offset, size_t c) {
-    return b_.CreateLoad(t, b_.CreateConstInBoundsGEP1_64(b_.getInt8Ty(), sg_, offset + 4 * c));
-  };
+  auto get = [&](size_t offset, size_t c) { return b_.CreateLoad(t, global_slot(offset, c)); };
   bool derivs = s.derivs && g.dx;
   for (size_t c = 0; c < v.size(); ++c) {
     v[c].v = get(g.offset, c);

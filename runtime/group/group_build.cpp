@@ -888,14 +888,12 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       if (s.kind == SymKind::Global && s.derivs) wanted.insert(s.name);
   for (auto& sh : out.shaders) {
     bool grew = false;
-    for (const ir::Op& op : sh->ops)
-      for (size_t a = 0; a < op.args.size(); ++a) {
-        ir::Symbol& s = sh->symbols[size_t(op.args[a])];
-        if (!op.writes(int(a)) || s.kind != SymKind::Global || s.derivs || !wanted.count(s.name))
-          continue;
-        for (const GlobalField& f : kGlobalFields)
-          if (f.dx && s.name == f.name) s.derivs = grew = true;
-      }
+    for (int w : written_symbols(*sh)) {
+      ir::Symbol& s = sh->symbols[size_t(w)];
+      if (s.kind != SymKind::Global || s.derivs || !wanted.count(s.name)) continue;
+      for (const GlobalField& f : kGlobalFields)
+        if (f.dx && s.name == f.name) s.derivs = grew = true;
+    }
     if (grew) extend_derivatives(*sh);
   }
 

@@ -60,12 +60,16 @@ size_t flags_end(const std::string& head) {
   return k;
 }
 
-// Pads `body` to the spec's width: left-aligned unless `right`, with zeros when `zeros`.
-std::string pad(const std::string& head, std::string body, bool right, bool zeros) {
+// Pads `body` to the spec's width: left-aligned unless `right`, with zeros when `zeros`; a
+// right-aligned body's zeros go after its first `sign` characters (a sign, a 0x prefix).
+std::string pad(const std::string& head, std::string body, bool right, bool zeros,
+                size_t sign = 0) {
   size_t w = size_t(std::atoi(head.c_str() + flags_end(head)));
   if (body.size() >= w) return body;
-  std::string fill(w - body.size(), zeros ? '0' : ' ');
-  return right ? fill + body : body + fill;
+  size_t n = w - body.size();
+  char fill = zeros ? '0' : ' ';
+  return right ? body.insert(zeros ? std::min(sign, body.size()) : 0, n, fill)
+               : body.append(n, fill);
 }
 
 // A string through OSL's printf: truncated to the precision and, unlike C, left-aligned in its
@@ -157,13 +161,11 @@ std::string format_int(const std::string& head, char conv, int32_t v, FormatRule
     if (size_t dot = h.find('.'); dot != std::string::npos) rest += h.substr(dot);
     std::string body(1, plus ? '+' : ' ');
     body += printf1(rest + conv, u);
-    size_t w = size_t(std::max(0, std::atoi(h.c_str() + fe)));
-    if (body.size() >= w) return body;
-    if (flags.find('-') != std::string::npos) return body.append(w - body.size(), ' ');
-    bool zeros = flags.find('0') != std::string::npos && h.find('.') == std::string::npos;
+    bool left = flags.find('-') != std::string::npos;
+    bool zeros = !left && flags.find('0') != std::string::npos && h.find('.') == std::string::npos;
     // Zeros go after the sign and a 0x prefix ("%+#08x" of 5 is "+0x00005").
-    size_t at = body.compare(1, 2, conv == 'x' ? "0x" : "0X") == 0 ? 3 : 1;
-    return body.insert(zeros ? at : 0, w - body.size(), zeros ? '0' : ' ');
+    size_t sign = body.compare(1, 2, conv == 'x' ? "0x" : "0X") == 0 ? 3 : 1;
+    return pad(h, body, !left, zeros, sign);
   }
   return printf1(h + 'd', int(v));
 }
@@ -233,17 +235,17 @@ std::string printf_value(std::string head, char conv, Length length, char code, 
       return fmt::format("{}", v);
     }
   };
-  std::string spec;
-  for (char c : flags) spec += c == '-' ? '<' : c;
   if (code == 's') {
     const char* s = *static_cast<const char* const*>(p);
     std::string rest;
     for (char c : flags)
       if (c != '-' && c != '0') rest += c;
-    spec = (zero ? (minus ? "0<" : "0>") : (minus ? "<" : "")) + rest + head.substr(fe);
+    std::string spec = (zero ? (minus ? "0<" : "0>") : (minus ? "<" : "")) + rest + head.substr(fe);
     if (!general) spec += 's';
     return run(spec, s ? s : "");
   }
+  std::string spec;
+  for (char c : flags) spec += c == '-' ? '<' : c;
   if (code == 'i') {
     int32_t v = *static_cast<const int32_t*>(p);
     bool as_unsigned = conv == 'x' || conv == 'X';
@@ -265,15 +267,7 @@ std::string printf_value(std::string head, char conv, Length length, char code, 
       if (conv == 'x' || conv == 'X') prefix += conv == 'x' ? "0x" : "0X";
       if (conv == 'o' && digits[0] != '0') digits.insert(0, 1, '0');
     }
-    std::string body = prefix + digits;
-    size_t w = size_t(std::max(0, std::atoi(width.c_str())));
-    if (body.size() < w) {
-      if (minus)
-        body.append(w - body.size(), zero ? '0' : ' ');
-      else
-        body.insert(zero ? prefix.size() : 0, w - body.size(), zero ? '0' : ' ');
-    }
-    return body;
+    return pad(head, prefix + digits, !minus, zero, prefix.size());
   }
   float v = *static_cast<const float*>(p);
   return run(spec + head.substr(fe) + (general ? std::string() : std::string(1, conv)), v);
