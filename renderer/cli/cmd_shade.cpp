@@ -22,6 +22,7 @@
 #include "shade_args.h"
 #include "shade_services.h"
 #include "shader_source.h"
+#include "threads.h"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -544,7 +545,8 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
   tbb::enumerable_thread_specific<ShadingContext> contexts;
   tbb::enumerable_thread_specific<std::vector<unsigned char>> scratch;
   tbb::enumerable_thread_specific<std::vector<std::pair<size_t, Said>>> said;
-  auto shade_row = [&](int y) {
+  // Points x0 .. x1 - 1 of row y.
+  auto shade_row = [&](int y, int x0, int x1) {
     ShadingContext& ctx = contexts.local();
     std::vector<unsigned char>& bytes = scratch.local();
     std::vector<std::pair<size_t, Said>>& row_said = said.local();
@@ -566,10 +568,11 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
     };
     size_t finished = 0;
     ShaderGlobals sg;
-    for (int x = 0; x < job_.xres; ++x) {
+    for (int x = x0; x < x1; ++x) {
       if (g_cancel.load(std::memory_order_relaxed)) break;
       size_t p = size_t(y) * size_t(job_.xres) + size_t(x);
       key = first + p;
+      ctx.order = key;
       ctx.reset();
       globals.at(x, y, sg);
       m.shade(sg);
@@ -615,8 +618,15 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
     shaded_.fetch_add(finished, std::memory_order_relaxed);
     ctx.report = nullptr; // it refers to this row's locals
   };
-  auto all_rows = [&] { tbb::parallel_for(0, job_.yres, [&](int y) { shade_row(y); }); };
+  // The first point alone, then the rest in parallel: what a run does once, first in time (the
+  // "errormessage" of a texture file that cannot be opened: its words once, then "unknown"),
+  // goes to the first point when every point does it, as on one thread.
+  auto all_rows = [&] {
+    shade_row(0, 0, std::min(job_.xres, 1));
+    tbb::parallel_for(0, job_.yres, [&](int y) { shade_row(y, y == 0 ? 1 : 0, job_.xres); });
+  };
   if (job_.threads > 0) {
+    auto allowed = render::allow_threads(job_.threads);
     tbb::task_arena arena(job_.threads);
     arena.execute(all_rows);
   } else {

@@ -1,11 +1,11 @@
 // Tiled, progressive, deterministic rendering (see renderer.h).
 #include "renderer.h"
+#include "threads.h"
 
 #include "lobe/context.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -119,6 +119,7 @@ image::Image render_image(const RenderScene& scene, int width, int height, const
   std::atomic<uint64_t> done{0};
   std::atomic<bool> halt{false}; // a shade was stopped in a loop
   int threads = opt.threads > 0 ? opt.threads : tbb::this_task_arena::max_concurrency();
+  auto allowed = allow_threads(threads);
   tbb::task_arena arena(threads);
   // Passes of 1, 1, 2, 4, ... 16 samples: early passes give a full (noisy) image quickly.
   for (int s0 = 0, pass = 1; s0 < opt.spp; s0 += pass, pass = std::min(pass * 2, 16)) {
@@ -172,6 +173,7 @@ double raw_traversal_rate(const RenderScene& s, int w, int h, int spp, int threa
         rays.push_back({offset_ray_origin(hit.P, hit.Ng, d), d});
       }
   std::atomic<uint64_t> hits{0};
+  auto allowed = allow_threads(threads);
   tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
   auto t0 = std::chrono::steady_clock::now();
   arena.execute([&] {

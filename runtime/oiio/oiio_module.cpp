@@ -18,7 +18,6 @@
 #include <mutex>
 #include <string>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -42,12 +41,29 @@ struct Textures {
   uint64_t id = 0; // unique over the process: a thread's cached records are matched by it
   std::mutex mutex;
   std::vector<Perthread*> threads; // every record created, under `mutex`
-  // file -> refusal ("" fits), `mutex`. A file that cannot be opened is explained once, by
-  // the first lookup or gettextureinfo that fails on it (as OSL prints it once): its refusal is
-  // then kNoExplanation. `explained`: files whose failure was told, under `mutex`.
-  std::unordered_map<std::string, std::string> verdicts;
-  std::unordered_set<std::string> explained;
+  // file -> verdict, under `mutex`. A file that cannot be opened is explained once (as OSL
+  // prints it once): by the lookup or gettextureinfo of the shade with the smallest order
+  // (ShadingContext::order) that fails on it, of those that ran (a later shade of a smaller
+  // order tells it again, an earlier one of a larger order's report is then superseded), and
+  // among equal orders by the first to fail. `told`: such files, with the smallest order that
+  // told each, under `mutex`.
+  struct Verdict {
+    std::string refusal; // "": fits; kNoExplanation: unopened, OpenImageIO explained it before
+    bool unopened = false;
+  };
+  std::unordered_map<std::string, Verdict> verdicts;
+  std::unordered_map<std::string, uint64_t> told;
 };
+
+// Whether the failure of `file` is told by a shade of order `order` (see Textures::told).
+bool tell(Textures* t, const std::string& file, uint64_t order) {
+  std::lock_guard<std::mutex> lock(t->mutex);
+  auto [it, fresh] = t->told.emplace(file, order);
+  if (fresh) return true;
+  if (order >= it->second) return false;
+  it->second = order;
+  return true;
+}
 
 Textures* textures_of(void* t) { return static_cast<Textures*>(t); }
 
@@ -147,8 +163,9 @@ OIIO::TextureOpt options(const TextureArgs* a) {
   return opt;
 }
 
-// The refusal of the last lookup on this thread that `find` stopped (texture_error reports it).
-thread_local std::string t_refused;
+// The refusal of the last lookup on this thread that `find` stopped, and the file when it could
+// not be opened (texture_error reports it); the file of the last gettextureinfo that failed.
+thread_local std::string t_refused, t_refused_file, t_info_file;
 
 // Bounded memory for textures. OpenImageIO reads a tiled file a tile at a time into its cache
 // (256 MB by default), but an untiled one is a single tile: the whole image is read, in its own
@@ -204,23 +221,24 @@ Lookup find(Textures* t, const char* file, int32_t site) {
   for (const Passed& p : passed)
     if (p.id == t->id && p.ptr == file && p.name == file) return {p.handle, l.info};
   l.handle = t->ts->get_texture_handle(OIIO::ustring(file), l.info);
-  std::string refusal;
+  Textures::Verdict verdict;
   bool known = false;
   {
     std::lock_guard<std::mutex> lock(t->mutex);
     auto it = t->verdicts.find(file);
-    if (it != t->verdicts.end()) known = true, refusal = it->second;
+    if (it != t->verdicts.end()) known = true, verdict = it->second;
   }
   if (!known) { // read the header outside the lock; two threads may both read it
-    bool unopened = false;
-    refusal = texture_verdict(t->ts, l.handle, l.info, file, &unopened);
+    verdict.refusal = texture_verdict(t->ts, l.handle, l.info, file, &verdict.unopened);
     std::lock_guard<std::mutex> lock(t->mutex);
-    if (unopened && refusal != kNoExplanation && !t->explained.insert(file).second)
-      refusal = kNoExplanation; // another lookup or gettextureinfo told it already
-    t->verdicts.emplace(file, unopened ? std::string(kNoExplanation) : refusal);
+    auto [it, fresh] = t->verdicts.emplace(file, verdict);
+    // OpenImageIO explains a file it cannot open to one reader: keep its words.
+    if (!fresh && it->second.refusal == kNoExplanation) it->second = verdict;
+    verdict = it->second;
   }
-  if (!refusal.empty()) {
-    t_refused = std::move(refusal);
+  if (!verdict.refusal.empty()) {
+    t_refused = verdict.refusal;
+    t_refused_file = verdict.unopened ? file : "";
     return {nullptr, l.info};
   }
   if (l.handle) {
@@ -278,14 +296,20 @@ int texture_info(void* tv, const char* file, bool udim, float s, float t, const 
     if (!h) return 0; // no tile at (s, t): not an error, as in OSL
   }
   if (h && ts->get_texture_info(h, info, 0, what, type, val)) return 1;
-  std::lock_guard<std::mutex> lock(x->mutex); // a texture lookup of it later says no more
-  x->explained.insert(name.string());
+  t_info_file = name.string(); // texture_error tells it: lookups of it after say no more
   return -1;
 }
 
-std::string texture_error(void* tv) {
-  if (!t_refused.empty()) return std::exchange(t_refused, std::string());
-  return textures_of(tv)->ts->geterror();
+std::string texture_error(void* tv, uint64_t order) {
+  Textures* t = textures_of(tv);
+  if (!t_refused.empty()) {
+    std::string why = std::exchange(t_refused, std::string());
+    std::string file = std::exchange(t_refused_file, std::string());
+    if (file.empty() || why == kNoExplanation) return why;
+    return tell(t, file, order) ? why : std::string(kNoExplanation);
+  }
+  if (!t_info_file.empty()) tell(t, std::exchange(t_info_file, std::string()), order);
+  return t->ts->geterror();
 }
 
 OIIO::TypeDesc type_of(Pixel p) {

@@ -14,6 +14,7 @@
 // same compiler against the same standard library, and kAbi is checked on load.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -53,10 +54,11 @@ struct Api {
   // is written as a const char* of interned text.
   int (*texture_info)(void* ts, const char* file, bool udim, float s, float t, const char* query,
                       int base, int arraylen, void* val);
-  // Why the last failed lookup on this thread failed; kNoExplanation for a file that could not
-  // be opened and whose failure was explained before (OpenImageIO explains one once, so OSL
-  // prints it once and gives later "errormessage" outputs "unknown").
-  std::string (*texture_error)(void* ts);
+  // Why the last failed lookup or gettextureinfo on this thread failed, for a shade of `order`
+  // (ShadingContext::order); kNoExplanation for a file that could not be opened and whose
+  // failure was told by a shade of a smaller or equal order before (OpenImageIO explains one
+  // once, so OSL prints it once and gives later "errormessage" outputs "unknown").
+  std::string (*texture_error)(void* ts, uint64_t order);
   // Images: "" on success, else "path: why".
   bool (*can_write)(const std::string& path);
   std::string (*write)(const std::string& path, int width, int height,
@@ -65,7 +67,7 @@ struct Api {
   std::string (*read)(const std::string& path, ImageData& out);
 };
 
-constexpr int kAbi = 2; // 2: TextureArgs::site
+constexpr int kAbi = 3; // 2: TextureArgs::site; 3: texture_error's order
 inline constexpr const char* kNoExplanation = "\n";
 
 // The loaded module (loaded once, thread-safe), or null with `why` set.

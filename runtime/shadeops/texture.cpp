@@ -40,6 +40,9 @@ void* texsys(RuntimeEnv* env, const lobe::oiio::Api*& api, std::string& why) {
   return env->texture_system;
 }
 
+// The shade's order, by which a file that cannot be opened is told once (oiio::Api::texture_error).
+uint64_t order_of(const ShaderGlobals* sg) { return sg && sg->context ? sg->context->order : 0; }
+
 // After a failed lookup: the shader's missing colour (no error; an "errormessage" output is
 // ""), or zeros and an error in OSL's words (`[RendererServices::texture] Could not open file
 // "x.exr"`, `kind` naming the lookup: texture, texture3d or environment; nothing for a file
@@ -78,7 +81,7 @@ void lobe_texture(ShaderGlobals* sg, RuntimeEnv* env, const char* file, float s,
   if (ts && api->texture(ts, file, a, s, t, dsdx, dtdx, dsdy, dtdy, n, out, dds, ddt)) {
     found(env, a);
   } else {
-    missing(sg, env, ts ? api->texture_error(ts) : why, a, file, n, out, "texture");
+    missing(sg, env, ts ? api->texture_error(ts, order_of(sg)) : why, a, file, n, out, "texture");
     if (dds) std::fill(dds, dds + n, 0.0f);
     if (ddt) std::fill(ddt, ddt + n, 0.0f);
   }
@@ -94,7 +97,7 @@ void lobe_texture3d(ShaderGlobals* sg, RuntimeEnv* env, const char* file, const 
   if (ts && api->texture3d(ts, file, a, p, dpdx, dpdy, dpdz, n, out))
     found(env, a);
   else
-    missing(sg, env, ts ? api->texture_error(ts) : why, a, file, n, out, "texture3d");
+    missing(sg, env, ts ? api->texture_error(ts, order_of(sg)) : why, a, file, n, out, "texture3d");
 }
 
 // As lobe_texture3d, for a direction r; the third derivative is unused (an environment is a
@@ -108,7 +111,8 @@ void lobe_environment(ShaderGlobals* sg, RuntimeEnv* env, const char* file, cons
   if (ts && api->environment(ts, file, a, r, drdx, drdy, n, out))
     found(env, a);
   else
-    missing(sg, env, ts ? api->texture_error(ts) : why, a, file, n, out, "environment");
+    missing(sg, env, ts ? api->texture_error(ts, order_of(sg)) : why, a, file, n, out,
+            "environment");
 }
 
 // gettextureinfo(file, [s, t,] query, dest): OIIO's get_texture_info ("exists", "resolution",
@@ -131,7 +135,7 @@ int lobe_gettextureinfo(ShaderGlobals* sg, RuntimeEnv* env, const char* shader, 
     int r = ts ? api->texture_info(ts, file, udim != 0, s, t, query, base, code_arraylen(code), val)
                : -1;
     if (r >= 0) return r == 1;
-    std::string err = ts ? api->texture_error(ts) : why;
+    std::string err = ts ? api->texture_error(ts, order_of(sg)) : why;
     if (!err.empty() && sg && sg->context)
       sg->context->error(shader ? "Shader error [" + std::string(shader) + "]: " + err
                                 : "[RendererServices::get_texture_info] " + err);

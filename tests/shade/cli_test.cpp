@@ -1104,6 +1104,18 @@ TEST(ShadeCli, LookupErrorsNameTheirKindAndIntValuesSaturate) {
               "not open file: nosuch.tx: No such file or directory\nok 0 [-1 -1]\n\n");
 }
 
+// A texture file that cannot be opened is told once, at the first point in grid order that meets
+// it, whatever the thread count: its words in the first point's "errormessage" and "unknown"
+// after, and the error of a lookup only the grid's lower half makes printed with that half's
+// first point (before, the first thread to fail told it, and on two threads the message moved
+// between runs). More threads than cores are run as asked, without oneTBB's warning. Expected:
+// OSL 1.13.12, `testshade -t 1 -g 16 16 tex_order` (its multi-threaded runs print the same).
+TEST(ShadeCli, AFileThatCannotBeOpenedIsToldAtTheFirstPointInGridOrder) {
+  const std::string expected = expected_file("tex_order") + "\n";
+  for (const char* threads : {"-t 1", "-t 2", "-t 5", "-t 5", "-t 5"})
+    EXPECT_EQ(run_here(std::string(threads) + " -g 16 16 tex_order"), expected) << threads;
+}
+
 // At -O2 a getmessage of a constant name nothing set before it is 0 without a query (so a later
 // set is no error), as OSL's optimiser folds it; at -O0 the query is made and remembered. OSL
 // numbers layers by instance id in its message errors (testshade's first layer is #2).

@@ -74,6 +74,11 @@ public:
   std::string output;
   int errors = 0;
   int warnings = 0;
+  // This shade's place among a run's shades (`lobe shade`: the grid point's index), for what is
+  // told once a run (a texture file that cannot be opened): the shade of the smallest order that
+  // meets it tells it, so a grid shaded on several threads says it at its first point, whichever
+  // ran first. Equal orders (a renderer's, all 0): the first to meet it.
+  uint64_t order = 0;
   uint64_t closures_dropped = 0;
   uint64_t messages_lost = 0;
 
