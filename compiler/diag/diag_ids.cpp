@@ -157,6 +157,8 @@ const Row kTable[] = {
     ROW(group_empty, Error, "the group has no layers"),
     ROW(nonexistent_param, Warning, "%0"),
     ROW(param_type, Warning, "%0"),
+    ROW(texture_option, Warning, "%0"),
+    ROW(closure_keyword, Warning, "%0"),
     ROW(param_value, Error, "%0"),
     ROW(connect_layer, Error, "%0"),
     ROW(connect_order, Error, "%0"),

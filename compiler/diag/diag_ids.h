@@ -141,6 +141,8 @@ enum class DiagId : uint16_t {
   group_empty,
   nonexistent_param,
   param_type,
+  texture_option,
+  closure_keyword,
   param_value,
   connect_layer,
   connect_order,

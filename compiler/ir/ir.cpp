@@ -9,6 +9,67 @@
 
 namespace lobe::ir {
 
+namespace {
+const TextureOption kTextureOptions[] = {
+    {"blur", BaseType::Float},
+    {"sblur", BaseType::Float},
+    {"tblur", BaseType::Float},
+    {"rblur", BaseType::Float},
+    {"width", BaseType::Float},
+    {"swidth", BaseType::Float},
+    {"twidth", BaseType::Float},
+    {"rwidth", BaseType::Float},
+    {"wrap", BaseType::String},
+    {"swrap", BaseType::String},
+    {"twrap", BaseType::String},
+    {"rwrap", BaseType::String},
+    {"fill", BaseType::Float},
+    {"firstchannel", BaseType::Int},
+    {"subimage", BaseType::Int, false, true},
+    {"interp", BaseType::String},
+    {"missingcolor", BaseType::Color},
+    {"missingalpha", BaseType::Float},
+    {"time", BaseType::Float},
+    {"alpha", BaseType::Float, true},
+    {"errormessage", BaseType::String, true},
+};
+} // namespace
+
+const TextureOption* texture_option(std::string_view name) {
+  for (const TextureOption& o : kTextureOptions)
+    if (name == o.name) return &o;
+  return nullptr;
+}
+
+bool texture_option_fits(const TextureOption& o, const Type& t, bool written) {
+  if (t.is_array()) return false;
+  if (o.output) return written && t.base == o.type;
+  if (o.or_string && t.base == BaseType::String) return true;
+  auto triple = [](BaseType b) {
+    return b == BaseType::Color || b == BaseType::Point || b == BaseType::Vector ||
+           b == BaseType::Normal;
+  };
+  switch (o.type) {
+  case BaseType::Float:
+    return t.base == BaseType::Float || t.base == BaseType::Int;
+  case BaseType::Color: // a triple, or a float or int for all three
+    return triple(t.base) || t.base == BaseType::Float || t.base == BaseType::Int;
+  default:
+    return t.base == o.type;
+  }
+}
+
+size_t first_texture_option(const Shader& sh, const Op& op) {
+  // Operands: result, file, then s t [dsdx dtdx dsdy dtdy] (texture), P [dPdx dPdy dPdz]
+  // (texture3d) or R [dRdx dRdy] (environment); derivatives are given when the operand after
+  // the coordinates is not a keyword string.
+  size_t coords = op.opcode == Opcode::Texture ? 4 : 3;
+  size_t derivs = op.opcode == Opcode::Texture ? 4 : op.opcode == Opcode::Texture3d ? 3 : 2;
+  bool given = op.args.size() >= coords + derivs &&
+               sh.symbols[size_t(op.args[coords])].type.base != BaseType::String;
+  return given ? coords + derivs : coords;
+}
+
 const char* to_string(BaseType t) {
   switch (t) {
   case BaseType::Int:

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -191,6 +192,24 @@ struct Shader {
   int find_symbol(const std::string& name) const;               // -1 if absent
   const StructType* find_struct(const std::string& name) const; // null if absent
 };
+
+// The optional `"keyword", value` arguments of texture(), texture3d() and environment(), with
+// the type each takes (OSL's): a float one takes an int too; `output` ones are written by the
+// lookup (an lvalue of that type); `or_string` ("subimage") takes a name too. Null for a name
+// they do not take. The type checker accepts any pair, as oslc does; the group builder drops a
+// pair that is not one of these or of another type, with OSL's message (texture_option_misfit).
+struct TextureOption {
+  const char* name;
+  BaseType type;
+  bool output = false;
+  bool or_string = false;
+};
+const TextureOption* texture_option(std::string_view name);
+// Whether a value of type `t` (`written`: the op writes that operand) fits option `o`.
+bool texture_option_fits(const TextureOption& o, const Type& t, bool written);
+// The operand index of the first "keyword" of a texture, texture3d or environment op (after the
+// explicit derivatives, when given).
+size_t first_texture_option(const Shader& sh, const Op& op);
 
 // Whether op `at` of the main code lies inside a conditional construct (an if or else branch, a
 // loop's body), as OSL's runtime optimiser counts it: between a `cbr` and the join its branches

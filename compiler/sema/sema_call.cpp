@@ -5,6 +5,7 @@
 
 #include "closure_call.h"
 #include "closure_registry.h"
+#include "ir/ir.h"
 
 #include <algorithm>
 #include <cstring>
@@ -319,37 +320,14 @@ void Sema::add_keyword(ast::CallExpr* e, const std::string& name, int param_inde
 }
 
 namespace {
-// The optional arguments OSL's texture functions and trace() take, with their types. `Float`
-// takes an int too; `Output` ones are written (an lvalue of that type).
+// The optional arguments trace() and noise("gabor") take, with their types (texture's are
+// ir::texture_option's). `Float` takes an int too.
 struct BuiltinKeyword {
-  const char* function; // "texture" also covers texture3d and environment; "noise", pnoise
+  const char* function; // "trace", or "noise" (noise and pnoise)
   const char* name;
   ast::BaseType type;
-  bool output = false;
-  bool or_string = false; // subimage: an index or a name
 };
 const BuiltinKeyword kBuiltinKeywords[] = {
-    {"texture", "blur", ast::BaseType::Float},
-    {"texture", "sblur", ast::BaseType::Float},
-    {"texture", "tblur", ast::BaseType::Float},
-    {"texture", "rblur", ast::BaseType::Float},
-    {"texture", "width", ast::BaseType::Float},
-    {"texture", "swidth", ast::BaseType::Float},
-    {"texture", "twidth", ast::BaseType::Float},
-    {"texture", "rwidth", ast::BaseType::Float},
-    {"texture", "wrap", ast::BaseType::String},
-    {"texture", "swrap", ast::BaseType::String},
-    {"texture", "twrap", ast::BaseType::String},
-    {"texture", "rwrap", ast::BaseType::String},
-    {"texture", "fill", ast::BaseType::Float},
-    {"texture", "firstchannel", ast::BaseType::Int},
-    {"texture", "subimage", ast::BaseType::Int, false, true},
-    {"texture", "interp", ast::BaseType::String},
-    {"texture", "missingcolor", ast::BaseType::Color},
-    {"texture", "missingalpha", ast::BaseType::Float},
-    {"texture", "time", ast::BaseType::Float},
-    {"texture", "alpha", ast::BaseType::Float, true},
-    {"texture", "errormessage", ast::BaseType::String, true},
     {"trace", "mindist", ast::BaseType::Float},
     {"trace", "maxdist", ast::BaseType::Float},
     {"trace", "shade", ast::BaseType::Int},
@@ -361,14 +339,43 @@ const BuiltinKeyword kBuiltinKeywords[] = {
     {"noise", "bandwidth", ast::BaseType::Float},
     {"noise", "impulses", ast::BaseType::Float},
 };
+
+ast::BaseType ast_base(ir::BaseType b) {
+  switch (b) {
+  case ir::BaseType::Int:
+    return ast::BaseType::Int;
+  case ir::BaseType::Float:
+    return ast::BaseType::Float;
+  case ir::BaseType::Color:
+    return ast::BaseType::Color;
+  case ir::BaseType::String:
+    return ast::BaseType::String;
+  default:
+    return ast::BaseType::Error; // no texture option has another type
+  }
+}
 } // namespace
 
 // A builtin's `"keyword", value` pair: a keyword it takes, with a value of the right type
-// (converted to it), as OSL requires; codegen then reads each value as its type.
+// (converted to it), as OSL requires; codegen then reads each value as its type. texture(),
+// texture3d() and environment() take any pair, as oslc does: one they do not take, or of
+// another type, is left for the group builder, which drops it with OSL's message when the
+// shader is set up (ir::texture_option).
 void Sema::check_builtin_keyword(ast::CallExpr* e, const ast::StringLit* name, ExprPtr& value) {
-  std::string fn = e->name == "trace"                          ? "trace"
-                   : e->name == "noise" || e->name == "pnoise" ? "noise"
-                                                               : "texture";
+  if (e->name != "trace" && e->name != "noise" && e->name != "pnoise") {
+    const ir::TextureOption* o = ir::texture_option(name->value);
+    if (!o) return;
+    Type want{ast_base(o->type), 0};
+    if (o->output) {
+      if (value->lvalue && value->type == want)
+        check_writable(value.get(), value->range, /*output_arg=*/true);
+      return;
+    }
+    if (o->or_string && value->type == Type{ast::BaseType::String, 0}) return;
+    if (assignable(want, value->type) && !value->type.is_array()) coerce(value, want);
+    return;
+  }
+  std::string fn = e->name == "trace" ? "trace" : "noise";
   const BuiltinKeyword* k = nullptr;
   for (const BuiltinKeyword& b : kBuiltinKeywords)
     if (fn == b.function && name->value == b.name) k = &b;
@@ -377,19 +384,6 @@ void Sema::check_builtin_keyword(ast::CallExpr* e, const ast::StringLit* name, E
     return;
   }
   Type want{k->type, 0};
-  if (k->or_string && value->type == Type{ast::BaseType::String, 0}) return;
-  if (k->output) {
-    if (!(value->type == want)) {
-      error(DiagId::err_keyword_type, value->range,
-            {name->value, e->name, tname(want), tname(value->type)});
-      return;
-    }
-    if (!value->lvalue)
-      error(DiagId::err_not_assignable, value->range);
-    else
-      check_writable(value.get(), value->range, /*output_arg=*/true);
-    return;
-  }
   if (!assignable(want, value->type) || value->type.is_array()) {
     error(DiagId::err_keyword_type, value->range,
           {name->value, e->name, tname(want), tname(value->type)});
@@ -528,8 +522,9 @@ void Sema::struct_constructor(ast::CallExpr* e, const ast::StructDecl* s) {
 
 // A closure call: the registry's entry of that name it binds to (registry/closure_call.h: the
 // cheapest whose positional arguments convert), its positional arguments converted to the
-// parameter types, then `"keyword", value` pairs; an unknown keyword is an error and the last
-// of duplicated keywords wins.
+// parameter types, then `"keyword", value` pairs; the last of duplicated keywords wins, and an
+// unknown keyword or a value of another type is kept for the group builder (parameter index -1),
+// which drops it with OSL's warning.
 bool Sema::closure_call(ast::CallExpr* e) {
   registry::CallArgs args;
   args.count = e->args.size();
@@ -561,17 +556,15 @@ bool Sema::closure_call(ast::CallExpr* e) {
       continue;
     }
     auto* name = static_cast<ast::StringLit*>(e->args[kw.name_arg].get());
-    if (kw.param == registry::kUnknownKeyword) {
-      error(DiagId::err_unknown_keyword, name->range, {name->value, e->name});
-      continue;
-    }
     ExprPtr& value = e->args[kw.name_arg + 1];
-    Type pt = type_of(best->params[size_t(kw.param)].type);
-    if (!assignable(pt, value->type)) {
-      error(DiagId::err_keyword_type, value->range,
-            {name->value, e->name, tname(pt), tname(value->type)});
+    // A keyword the closure does not take, or a value of another type: kept as written, as oslc
+    // keeps it; the group builder drops it with OSL's warning when the shader is set up.
+    if (kw.param == registry::kUnknownKeyword ||
+        !assignable(type_of(best->params[size_t(kw.param)].type), value->type)) {
+      e->keywords.push_back({name->value, -1, value.get()});
       continue;
     }
+    Type pt = type_of(best->params[size_t(kw.param)].type);
     coerce(value, pt);
     auto it = std::find_if(e->keywords.begin(), e->keywords.end(),
                            [&](const ast::KeywordArg& k) { return k.param_index == kw.param; });

@@ -840,7 +840,8 @@ void op_texture(LayerEmitter& e, const ir::Op& op) {
   int n = d.type.components();
   bool derivs = e.wants_derivs(op.args[0]);
   Dual s = e.load_as(op, 2, BaseType::Float)[0], t = e.load_as(op, 3, BaseType::Float)[0];
-  bool explicit_d = op.args.size() >= 8 && e.arg(op, 4).type.base != BaseType::String;
+  const size_t first = ir::first_texture_option(e.shader(), op);
+  const bool explicit_d = first == 8;
   auto orzero = [&](llvm::Value* v) { return v ? v : e.fconst(0); };
   llvm::Value *dsdx = orzero(s.dx), *dtdx = orzero(t.dx), *dsdy = orzero(s.dy),
               *dtdy = orzero(t.dy);
@@ -850,7 +851,6 @@ void op_texture(LayerEmitter& e, const ir::Op& op) {
     dsdy = e.load_as(op, 6, BaseType::Float, false)[0].v;
     dtdy = e.load_as(op, 7, BaseType::Float, false)[0].v;
   }
-  size_t first = explicit_d ? 8 : 4;
   llvm::Value* args = texture_args(e, op, first);
   // With "alpha", one channel more: the one after the result's.
   int alpha = alpha_operand(e, op, first);
@@ -896,7 +896,8 @@ void op_texture3d(LayerEmitter& e, const ir::Op& op) {
     dy.push_back(c.dy ? c.dy : e.fconst(0));
   }
   size_t nderivs = op.opcode == ir::Opcode::Texture3d ? 3 : 2;
-  bool explicit_d = op.args.size() >= 3 + nderivs && e.arg(op, 3).type.base != BaseType::String;
+  const size_t first = ir::first_texture_option(e.shader(), op);
+  const bool explicit_d = first > 3;
   if (explicit_d) {
     auto comps = [&](int i) {
       std::vector<llvm::Value*> c;
@@ -907,7 +908,6 @@ void op_texture3d(LayerEmitter& e, const ir::Op& op) {
     dy = comps(4);
     if (nderivs == 3) dz = comps(5);
   }
-  size_t first = explicit_d ? 3 + nderivs : 3;
   llvm::Value* args = texture_args(e, op, first);
   int alpha = alpha_operand(e, op, first);
   int nc = n + (alpha >= 0 ? 1 : 0);

@@ -1,6 +1,7 @@
 // build_group (see group_build.h).
 #include "group_build.h"
 
+#include "closure_registry.h"
 #include "env.h"
 #include "ir/edit.h"
 #include "ir/opcodes.h"
@@ -451,6 +452,90 @@ std::string osl_type_name(const ir::Type& t) {
   return s;
 }
 
+// The `"keyword", value` operands [i, i + 1] taken out of `op` (the written bits above them move
+// down with them).
+void erase_pair(ir::Op& op, size_t i) {
+  op.args.erase(op.args.begin() + std::ptrdiff_t(i), op.args.begin() + std::ptrdiff_t(i) + 2);
+  uint32_t low = i >= 32 ? op.written_mask : op.written_mask & ((1u << i) - 1);
+  uint32_t high = i + 2 >= 32 ? 0 : op.written_mask >> (i + 2);
+  op.written_mask = low | (i >= 32 ? 0 : high << i);
+}
+
+// Whether a value of type `t` converts to a closure parameter of type `a` (OSL's assignment:
+// a float takes an int, a triple any triple or a number).
+bool fits_closure_param(registry::ArgType a, const ir::Type& t) {
+  using B = ir::BaseType;
+  if (t.is_array()) return false;
+  bool number = t.base == B::Int || t.base == B::Float;
+  bool triple =
+      t.base == B::Color || t.base == B::Point || t.base == B::Vector || t.base == B::Normal;
+  switch (a) {
+  case registry::ArgType::Int:
+    return t.base == B::Int;
+  case registry::ArgType::Float:
+    return number;
+  case registry::ArgType::Color:
+  case registry::ArgType::Vector:
+    return number || triple;
+  case registry::ArgType::String:
+    return t.base == B::String;
+  default:
+    return t.base == B::Closure;
+  }
+}
+
+// The keyword arguments a texture lookup or closure does not take, or of another type, which the
+// type checker kept as oslc does: dropped, each with OSL's message when it sets the shader up
+// (once per call, whether or not it runs): `Unknown texture optional argument: "foo", <int>
+// (x.osl:3)` (texture3d's name its own), `Unsupported closure keyword arg "foo" for diffuse
+// (x.osl:2)`.
+void drop_misfit_keywords(ir::Shader& sh, DiagnosticList& diags) {
+  auto place = [](const ir::Op& op) { return op.loc.file + ":" + std::to_string(op.loc.line); };
+  for (ir::Op& op : sh.ops) {
+    bool lookup = op.opcode == ir::Opcode::Texture || op.opcode == ir::Opcode::Texture3d ||
+                  op.opcode == ir::Opcode::Environment;
+    if (lookup) {
+      for (size_t i = ir::first_texture_option(sh, op); i + 1 < op.args.size();) {
+        const ir::Symbol& name = sh.symbols[size_t(op.args[i])];
+        const ir::Symbol& value = sh.symbols[size_t(op.args[i + 1])];
+        const std::string* kw = ir::string_value(name);
+        const ir::TextureOption* o = kw ? ir::texture_option(*kw) : nullptr;
+        if (o && ir::texture_option_fits(*o, value.type, i + 1 < 32 && op.writes(int(i + 1)))) {
+          i += 2;
+          continue;
+        }
+        diags.push_back(warn(std::string("Unknown ") +
+                                 (op.opcode == ir::Opcode::Texture3d ? "texture3d" : "texture") +
+                                 " optional argument: \"" + (kw ? *kw : name.name) + "\", <" +
+                                 osl_type_name(value.type) + "> (" + place(op) + ")",
+                             DiagId::texture_option));
+        erase_pair(op, i);
+      }
+    } else if (op.opcode == ir::Opcode::Closure && op.args.size() > 1) {
+      const std::string* key = ir::string_value(sh.symbols[size_t(op.args[1])]);
+      const registry::ClosureEntry* entry = key ? registry::find_by_key(*key) : nullptr;
+      if (!entry) continue;
+      size_t i = 2;
+      for (const registry::ClosureParam& p : entry->params) i += p.keyword ? 0 : 1;
+      while (i + 1 < op.args.size()) {
+        const std::string* kw = ir::string_value(sh.symbols[size_t(op.args[i])]);
+        const ir::Type& t = sh.symbols[size_t(op.args[i + 1])].type;
+        auto p = std::find_if(
+            entry->params.begin(), entry->params.end(),
+            [&](const registry::ClosureParam& q) { return q.keyword && kw && *kw == q.name; });
+        if (p != entry->params.end() && fits_closure_param(p->type, t)) {
+          i += 2;
+          continue;
+        }
+        diags.push_back(warn("Unsupported closure keyword arg \"" + (kw ? *kw : std::string()) +
+                                 "\" for " + std::string(entry->name) + " (" + place(op) + ")",
+                             DiagId::closure_keyword));
+        erase_pair(op, i);
+      }
+    }
+  }
+}
+
 // Whether two instance-value lists give a shader the same parameter values: a parameter given
 // in one only must hold that value as its constant default (a computed default is not known
 // here). Each value compares by its parameter's type, floats by their bits.
@@ -733,6 +818,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
   for (size_t i = 0; i < n; ++i) {
     if (!needed[i]) continue;
     auto sh = std::make_unique<ir::Shader>(*sources[i]);
+    drop_misfit_keywords(*sh, diags);
     std::map<std::string, int> len = lengths[i];
     for (const Link& l : links) { // a whole array connected: the source's (already sized) length
       if (l.dst_layer != int(i) || l.dst.elem >= 0 || l.src.elem >= 0) continue;

@@ -1104,6 +1104,16 @@ TEST(ShadeCli, LookupErrorsNameTheirKindAndIntValuesSaturate) {
               "not open file: nosuch.tx: No such file or directory\nok 0 [-1 -1]\n\n");
 }
 
+// Keyword arguments a texture lookup or a closure does not take, or of another type, compile (as
+// oslc compiles them) and are dropped when the shader is set up, with testshade's messages, also
+// in code that never runs; the lookups and closures go on without them. Expected: OSL 1.13.12,
+// `testshade -O0|-O2 kw_ignored` (the same at both).
+TEST(ShadeCli, KeywordArgumentsNotTakenAreDroppedWithOslsMessages) {
+  const std::string expected = expected_file("kw_ignored") + "\n";
+  EXPECT_EQ(run_here("-O0 kw_ignored"), expected);
+  EXPECT_EQ(run_here("-O2 kw_ignored"), expected);
+}
+
 // A texture file that cannot be opened is told once, at the first point in grid order that meets
 // it, whatever the thread count: its words in the first point's "errormessage" and "unknown"
 // after, and the error of a lookup only the grid's lower half makes printed with that half's
