@@ -776,6 +776,9 @@ llvm::Value* texture_args(LayerEmitter& e, const ir::Op& op, size_t first) {
     B.CreateStore(e.fconst(0), at(offsetof(TextureArgs, missing) + 4 * k));
   B.CreateStore(llvm::ConstantPointerNull::get(B.getPtrTy()),
                 at(offsetof(TextureArgs, errormessage)));
+  B.CreateStore(e.iconst(0), at(offsetof(TextureArgs, subimage)));
+  B.CreateStore(llvm::ConstantPointerNull::get(B.getPtrTy()),
+                at(offsetof(TextureArgs, subimagename)));
   const std::vector<ir::Op>& ops = e.shader().ops;
   int op_index = &op >= ops.data() && &op < ops.data() + ops.size() ? int(&op - ops.data()) : 0;
   B.CreateStore(e.iconst(layer_index(e) * 131 + op_index), at(offsetof(TextureArgs, site)));
@@ -813,9 +816,16 @@ llvm::Value* texture_args(LayerEmitter& e, const ir::Op& op, size_t first) {
       B.CreateStore(e.load_as(op, v, BaseType::Float, false)[0].v,
                     at(offsetof(TextureArgs, missing) + 4 * size_t(std::min(channels, 3))));
       B.CreateStore(e.iconst(1), at(offsetof(TextureArgs, has_missing)));
-    } else if (kw == "errormessage" && v < 32 && op.writes(v)) // the lookup writes it there
+    } else if (kw == "errormessage" && v < 32 && op.writes(v)) { // the lookup writes it there
       B.CreateStore(e.storage_address(op.args[size_t(v)]), at(offsetof(TextureArgs, errormessage)));
-    // "alpha": the lookup's extra channel (alpha_operand); "time", "subimage": ignored
+    } else if (kw == "subimage") { // an index, or a name
+      if (e.arg(op, v).type.base == BaseType::String)
+        B.CreateStore(e.load(op.args[size_t(v)])[0].v, at(offsetof(TextureArgs, subimagename)));
+      else
+        B.CreateStore(e.load_as(op, v, BaseType::Int, false)[0].v,
+                      at(offsetof(TextureArgs, subimage)));
+    }
+    // "alpha": the lookup's extra channel (alpha_operand); "time": ignored (no motion)
   }
   return block;
 }

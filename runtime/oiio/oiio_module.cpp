@@ -149,6 +149,8 @@ OIIO::TextureOpt options(const TextureArgs* a) {
   opt.rwidth = a->width[2];
   opt.fill = a->fill;
   opt.firstchannel = a->firstchannel;
+  opt.subimage = a->subimage;
+  if (a->subimagename) opt.subimagename = OIIO::ustring(a->subimagename);
   // "wrap" names all three with one string: decoded once.
   if (a->wrap[0]) opt.swrap = wrap_mode(a->wrap[0]);
   if (a->wrap[1]) opt.twrap = a->wrap[1] == a->wrap[0] ? opt.swrap : wrap_mode(a->wrap[1]);
@@ -248,11 +250,31 @@ Lookup find(Textures* t, const char* file, int32_t site) {
   return l;
 }
 
+// Whether the subimage `a` asks of `h` by index is one the file has (a name OpenImageIO checks
+// itself: "Unknown subimage "x" in texture "f""). OpenImageIO asserts on an index past them (the
+// process aborts, as OSL's testshade does): refused here, with a message in its words. A UDIM
+// name is checked at its tile for (s, t).
+bool subimage_ok(Textures* x, const Lookup& l, const TextureArgs* a, const char* file, float s = 0,
+                 float t = 0) {
+  if (a->subimage == 0 || (a->subimagename && *a->subimagename)) return true;
+  Handle* h = l.handle;
+  if (x->ts->is_udim(h)) h = x->ts->resolve_udim(h, l.info, s, t);
+  int n = 0;
+  if (!h ||
+      !x->ts->get_texture_info(h, l.info, 0, OIIO::ustring("subimages"), OIIO::TypeDesc::INT, &n))
+    return true; // no tile there, or no file: the lookup says so
+  if (a->subimage >= 0 && a->subimage < n) return true;
+  t_refused = "Unknown subimage " + std::to_string(a->subimage) + " in texture \"" +
+              std::string(file) + "\" (it has " + std::to_string(n) + ")";
+  t_refused_file.clear();
+  return false;
+}
+
 bool texture(void* tv, const char* file, const TextureArgs* a, float s, float t, float dsdx,
              float dtdx, float dsdy, float dtdy, int n, float* out, float* dds, float* ddt) {
   Textures* x = textures_of(tv);
   Lookup l = find(x, file, a->site);
-  if (!l.handle) return false;
+  if (!l.handle || !subimage_ok(x, l, a, file, s, t)) return false;
   OIIO::TextureOpt opt = options(a);
   return x->ts->texture(l.handle, l.info, opt, s, t, dsdx, dtdx, dsdy, dtdy, n, out, dds, ddt);
 }
@@ -263,7 +285,7 @@ bool texture3d(void* tv, const char* file, const TextureArgs* a, const float* p,
                const float* dpdy, const float* dpdz, int n, float* out) {
   Textures* x = textures_of(tv);
   Lookup l = find(x, file, a->site);
-  if (!l.handle) return false;
+  if (!l.handle || !subimage_ok(x, l, a, file)) return false;
   OIIO::TextureOpt opt = options(a);
   return x->ts->texture3d(l.handle, l.info, opt, v3(p), v3(dpdx), v3(dpdy), v3(dpdz), n, out);
 }
@@ -272,7 +294,7 @@ bool environment(void* tv, const char* file, const TextureArgs* a, const float* 
                  const float* drdx, const float* drdy, int n, float* out) {
   Textures* x = textures_of(tv);
   Lookup l = find(x, file, a->site);
-  if (!l.handle) return false;
+  if (!l.handle || !subimage_ok(x, l, a, file)) return false;
   OIIO::TextureOpt opt = options(a);
   return x->ts->environment(l.handle, l.info, opt, v3(r), v3(drdx), v3(drdy), n, out);
 }

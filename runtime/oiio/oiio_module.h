@@ -67,7 +67,7 @@ struct Api {
   std::string (*read)(const std::string& path, ImageData& out);
 };
 
-constexpr int kAbi = 3; // 2: TextureArgs::site; 3: texture_error's order
+constexpr int kAbi = 3; // 2: TextureArgs::site; 3: texture_error's order, TextureArgs::subimage
 inline constexpr const char* kNoExplanation = "\n";
 
 // The loaded module (loaded once, thread-safe), or null with `why` set.

@@ -56,6 +56,9 @@ struct TextureArgs {
   // from one site keep their own, so that a shader reading several places or files in turn does
   // not evict the tile its other lookups read next (results do not depend on it).
   int32_t site = 0;
+  // "subimage": an index, or a name (non-null: the name, which wins)
+  int32_t subimage = 0;
+  const char* subimagename = nullptr;
 };
 
 // Noise kinds for lobe_noise (noise("name", ...) and the named functions).

@@ -1114,6 +1114,26 @@ TEST(ShadeCli, KeywordArgumentsNotTakenAreDroppedWithOslsMessages) {
   EXPECT_EQ(run_here("-O2 kw_ignored"), expected);
 }
 
+// texture()'s "subimage" by index and by name, literal or a parameter's; an unknown name is
+// OpenImageIO's error. Expected: OSL 1.13.12, `testshade -O0|-O2 -g 2 2 subimage` (the same at
+// both). An index the file does not have is an error and zeros (OpenImageIO asserts on it:
+// OSL's testshade aborts there).
+TEST(ShadeCli, TextureSubimagesByIndexAndName) {
+  const std::string expected = expected_file("subimage") + "\n";
+  EXPECT_EQ(run_here("-O0 -g 2 2 subimage"), expected);
+  EXPECT_EQ(run_here("-O2 -g 2 2 subimage"), expected);
+  for (const char* index : {"2", "-1"}) {
+    std::string out = run_here(std::string("-g 1 1 -param index ") + index + " subimage");
+    EXPECT_NE(out.find("ERROR: [RendererServices::texture] Unknown subimage " + std::string(index) +
+                       " in texture \"subimages.exr\" (it has 2)\n"),
+              std::string::npos)
+        << out;
+    EXPECT_NE(out.find("0 1 0 | 0 1 0 | 1 0 0 | 0 0 0 | 0 1 0 | 1 0 0 | 0 0 0\n"),
+              std::string::npos)
+        << out;
+  }
+}
+
 // A texture file that cannot be opened is told once, at the first point in grid order that meets
 // it, whatever the thread count: its words in the first point's "errormessage" and "unknown"
 // after, and the error of a lookup only the grid's lower half makes printed with that half's
