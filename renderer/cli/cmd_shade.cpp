@@ -366,6 +366,7 @@ private:
   std::atomic<bool> stopped_{false};
   std::atomic<size_t> shaded_{0};
   size_t shaded_iterations_ = 0; // shade_grid calls so far
+  bool missing_shader_ = false;  // a layer's shader was not found (left out; exit status 1)
 };
 
 // A layer's shader as IR (for what testshade asks of a layer's parameters): an --expr
@@ -717,7 +718,10 @@ int Shade::run() {
   // A shader named without a path resolves on the search path here, so that one found in the
   // working directory is `x.osl` in diagnostics and __FILE__ (as for lobe compile and OSL).
   std::vector<std::string> named; // as given (x.oso names x), for -v
-  bool missing = false;           // every shader not found is reported, in testshade's words
+  // Every shader not found is reported, in testshade's words, and its layer left out: as
+  // testshade, the others shade (a connection from or into it is then an error), and the exit
+  // status is 1 once they have.
+  std::vector<size_t> missing;
   for (ShaderGroup::Layer& l : g.layers) {
     l.shader = shader_name(l.shader);
     named.push_back(l.shader);
@@ -729,10 +733,13 @@ int Shade::run() {
                    "ERROR: No .oso file could be found for shader \"%s\"\n"
                    "ERROR: Could not find shader \"%s\"\n        group: %s\n",
                    l.shader.c_str(), l.shader.c_str(), g.name.c_str());
-      missing = true;
+      missing.push_back(size_t(&l - g.layers.data()));
     }
   }
-  if (missing) { // testshade goes on with nothing to shade: its closing blank line (status 0)
+  for (size_t k = missing.size(); k-- > 0;)
+    g.layers.erase(g.layers.begin() + std::ptrdiff_t(missing[k]));
+  missing_shader_ = !missing.empty();
+  if (g.layers.empty() && missing_shader_) { // nothing to shade: testshade's closing blank line
     std::fflush(stderr);
     std::fputs("\n", stdout);
     return 1;
@@ -884,7 +891,7 @@ int Shade::run() {
   if (interrupted) return 130;
   if (job_.print_groupdata) std::printf("Groupdata size: %zu\n", mat_->groupdata_bytes());
   if (job_.runstats) print_stats(setup, run, seconds_since(t2));
-  return status;
+  return status ? status : missing_shader_ ? 1 : 0;
 }
 
 int run_shade(int argc, char** argv) {

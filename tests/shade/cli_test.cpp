@@ -610,7 +610,7 @@ TEST(ShadeCli, ColorspaceOption) {
 TEST(ShadeCli, ErrorsAndUsage) {
   // Every shader not found, in testshade's words (OSL 1.13.12: `testshade -g 1 1 -layer a
   // nosuch -layer b nosuch2`; it then goes on with nothing to shade, to its closing blank
-  // line, with exit status 0; Lobe stops there with 1).
+  // line, with exit status 0; Lobe's is 1).
   EXPECT_EQ(run("-layer a no_such_shader -layer b no_such_2 -groupname G"),
             "ERROR: No .oso file could be found for shader \"no_such_shader\"\n"
             "ERROR: Could not find shader \"no_such_shader\"\n        group: G\n"
@@ -625,6 +625,26 @@ TEST(ShadeCli, ErrorsAndUsage) {
             "Did you mistakenly put --param after the shader declaration?\n");
   EXPECT_EQ(run(""), "ERROR: No shader or group was specified.\n\n"
                      "Try `lobe shade --help` for an explanation of all arguments\n");
+}
+
+// A layer whose shader is not found is left out and the other layers shade, as testshade shades
+// them; a connection from or into it is then an error. Expected: OSL 1.13.12, `testshade -g 1 1
+// ARGS` in tests/shade/layers (its exit status 0 where the others shade; Lobe's is 1, as for any
+// file not found).
+TEST(ShadeCli, AMissingShaderIsLeftOutAndTheOtherLayersShade) {
+  const std::string missing = "ERROR: No .oso file could be found for shader \"nosuch\"\n"
+                              "ERROR: Could not find shader \"nosuch\"\n"
+                              "        group: unnamed_group_1\n";
+  auto status = [](const std::string& args) {
+    return run_here("-g 1 1 " + args + " >/dev/null 2>&1; echo $?");
+  };
+  const std::string connected = "-layer A ms_a -layer M nosuch -layer B ms_b -connect A f B x";
+  EXPECT_EQ(run_here("-g 1 1 " + connected), missing + "Connect A.f to B.x\nms_b runs 1\n\n");
+  EXPECT_EQ(status(connected), "1\n");
+  EXPECT_EQ(run_here("-g 1 1 -layer A ms_a -layer M nosuch"), missing + "ms_a runs 1\n\n");
+  EXPECT_EQ(run_here("-g 1 1 -layer A ms_a -layer M nosuch -layer B ms_b -connect M y B x"),
+            missing + "Connect M.y to B.x\nERROR: ConnectShaders: source layer \"M\" not found\n"
+                      "        group: unnamed_group_1\n");
 }
 
 // Probes where Lobe once printed otherwise than OSL (layers/parity_probes.osl says which), at
