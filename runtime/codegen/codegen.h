@@ -82,6 +82,9 @@ struct GroupPlan {
   // layer returns at once (its outputs as they are). max_loop_iterations < 0: no checks.
   int loop_count_offset = -1;
   int64_t max_loop_iterations = 0;
+  // CompileOptions::range_checking: an index out of range is reported (as OSL's "Index [4] out
+  // of range a[0..2]"); off, it is only clamped, silently.
+  bool range_checking = true;
   // CompileOptions::debug_nan: after each op, its float-based results are checked for NaN and
   // Inf (reported as OSL's "Detected inf value in x at f.osl:3 (op mul)").
   bool debug_nan = false;

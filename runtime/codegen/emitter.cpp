@@ -323,6 +323,7 @@ llvm::Value* LayerEmitter::clamped_index(const ir::Op& op, int index_arg, int le
 }
 
 llvm::Value* LayerEmitter::checked_index(const ir::Op& op, int index_arg, int length) {
+  if (!group_.range_checking) return clamped_index(op, index_arg, length);
   const ir::Symbol& is = arg(op, index_arg);
   if (is.kind == SymKind::Const && !is.type.is_array()) {
     int i =

@@ -33,6 +33,7 @@ bool emit_shader_text(const std::string& path, const CompileOptions& options, Em
   b.plan.opt_level = options.opt_level;
   b.plan.userdata_isconnected = options.userdata_isconnected;
   b.plan.max_loop_iterations = options.max_loop_iterations;
+  b.plan.range_checking = options.range_checking;
   b.plan.debug_nan = options.debug_nan;
   b.plan.debug_uninit = options.debug_uninit;
   bool specialize = options.specialize && options.opt_level > 0;

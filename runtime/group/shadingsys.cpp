@@ -206,6 +206,7 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   b.plan.userdata_isconnected = options.userdata_isconnected;
   b.plan.lazy_layers = options.lazy_layers;
   b.plan.max_loop_iterations = options.max_loop_iterations;
+  b.plan.range_checking = options.range_checking;
   b.plan.debug_nan = options.debug_nan;
   b.plan.debug_uninit = options.debug_uninit;
   bool specialize = options.specialize && options.opt_level > 0;

@@ -1154,6 +1154,21 @@ TEST(ShadeCli, TextureSubimagesByIndexAndName) {
   }
 }
 
+// `--options range_checking=0` turns the report of an index out of range off (it was ignored).
+// Expected with checks, at -O0: OSL 1.13.12, `testshade -O0 -g 2 1 range_off`. Without, OSL prints
+// no error either, and its second point reads past the array and the colour (whatever lies
+// there); Lobe clamps the index, as with checks.
+TEST(ShadeCli, RangeCheckingOffReportsNothing) {
+  const std::string where = " (group unnamed_group_1, layer 0 range_off_0, shader range_off)\n";
+  EXPECT_EQ(run_here("-O0 -g 2 1 range_off"),
+            "ok 3 3\nERROR: Index [4] out of range a[0..2]: range_off.osl:5" + where +
+                "ERROR: Index [4] out of range c[0..2]: range_off.osl:7" + where + "ok 3 3\n\n");
+  for (const char* o : {"-O0", "-O2"})
+    EXPECT_EQ(run_here(std::string(o) + " -g 2 1 --options range_checking=0 range_off"),
+              "ok 3 3\nok 3 3\n\n")
+        << o;
+}
+
 // A texture file that cannot be opened is told once, at the first point in grid order that meets
 // it, whatever the thread count: its words in the first point's "errormessage" and "unknown"
 // after, and the error of a lookup only the grid's lower half makes printed with that half's
