@@ -339,8 +339,8 @@ void LayerEmitter::reload_globals() {
   }
 }
 
-// Stores output params (and every param another layer reads) to group data and the written
-// globals back to ShaderGlobals.
+// Stores output params (and every param or global another layer reads) to group data and the
+// written globals back to ShaderGlobals.
 void LayerEmitter::finish_exit_block() {
   b_.SetInsertPoint(exit_block_);
   const auto& syms = shader().symbols;
@@ -355,7 +355,9 @@ void LayerEmitter::finish_exit_block() {
   for (size_t i = 0; i < syms.size(); ++i) {
     const ir::Symbol& s = syms[i];
     bool param = s.kind == SymKind::Param || s.kind == SymKind::OutputParam;
-    if (param && plan().symbol_offset[i] >= 0 && (s.kind == SymKind::OutputParam || is_source[i]))
+    bool global_source = s.kind == SymKind::Global && is_source[i];
+    if ((param || global_source) && plan().symbol_offset[i] >= 0 &&
+        (s.kind == SymKind::OutputParam || is_source[i]))
       b_.CreateMemCpy(groupdata_address(layer_, int(i), 0, 0, 0), llvm::MaybeAlign(4), storage_[i],
                       llvm::MaybeAlign(8), storage_bytes(s));
   }

@@ -983,7 +983,16 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     if (grew) extend_derivatives(*sh);
   }
 
-  // Layout: per layer a ran flag, then each parameter, 8-byte aligned.
+  // Layout: per layer a ran flag, then each parameter, 8-byte aligned, and each global a
+  // connection reads from it (`--connect A P B p`: A's P as A leaves it).
+  std::set<std::pair<int, std::string>> global_sources; // (kept layer, global)
+  for (const Link& l : links) {
+    int src = new_index[size_t(l.src_layer)];
+    if (src < 0 || l.dead) continue;
+    int si = out.shaders[size_t(src)]->find_symbol(l.src.symbol);
+    if (si >= 0 && out.shaders[size_t(src)]->symbols[size_t(si)].kind == SymKind::Global)
+      global_sources.insert({src, l.src.symbol});
+  }
   size_t off = 0;
   auto align8 = [](size_t x) { return (x + 7) / 8 * 8; };
   for (size_t li = 0; li < out.shaders.size(); ++li) {
@@ -995,10 +1004,12 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     off += 8;
     lp.layer_name = out.layer_names[li];
     for (const ir::Symbol& s : sh.symbols) {
-      lp.symbol_offset.push_back(is_param(s) ? int(off) : -1);
+      bool stored =
+          is_param(s) || (s.kind == SymKind::Global && global_sources.count({int(li), s.name}));
+      lp.symbol_offset.push_back(stored ? int(off) : -1);
       lp.run_default.push_back(false);
       lp.userdata.push_back(false);
-      if (is_param(s)) off = align8(off + codegen::storage_bytes(s));
+      if (stored) off = align8(off + codegen::storage_bytes(s));
     }
     out.plan.layers.push_back(lp);
   }

@@ -1169,6 +1169,29 @@ TEST(ShadeCli, RangeCheckingOffReportsNothing) {
         << o;
 }
 
+// A connection from a layer's global carries the global as the layer leaves it (Lobe read the
+// group data at no offset: garbage, and a closure crashed). Expected: OSL 1.13.12, `testshade
+// -O0|-O2 --layer A glob_src --layer B glob_dst --connect A X B y`; for u and Ci (and N at -O2)
+// OSL aborts on freeing after printing the line checked here.
+TEST(ShadeCli, ConnectionsFromGlobalsCarryTheirValues) {
+  auto shade = [](const std::string& o, const std::string& connect) {
+    return run_here(o + " --layer A glob_src --layer B glob_dst --connect A " + connect);
+  };
+  auto head = [](const std::string& from, const std::string& to) {
+    return "Connect A." + from + " to B." + to + "\nglob_src runs\nglob_dst: ";
+  };
+  for (const char* o : {"-O0", "-O2"}) {
+    EXPECT_EQ(shade(o, "P B pp"), head("P", "pp") + "nn=0 0 0 cc= uu=-1 pp=1 1 2 P=1 1 2\n\n") << o;
+    EXPECT_EQ(shade(o, "N B nn"), head("N", "nn") + "nn=0 0 1 cc= uu=-1 pp=0 0 0 P=1 1 2\n\n") << o;
+    EXPECT_EQ(shade(o, "u B uu"), head("u", "uu") + "nn=0 0 0 cc= uu=0.5 pp=0 0 0 P=1 1 2\n\n")
+        << o;
+    EXPECT_EQ(shade(o, "Ci B cc"), head("Ci", "cc") +
+                                       "nn=0 0 0 cc=(3, 3, 3) * emission () uu=-1 pp=0 0 0 "
+                                       "P=1 1 2\n\n")
+        << o;
+  }
+}
+
 // A texture file that cannot be opened is told once, at the first point in grid order that meets
 // it, whatever the thread count: its words in the first point's "errormessage" and "unknown"
 // after, and the error of a lookup only the grid's lower half makes printed with that half's
