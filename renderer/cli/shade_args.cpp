@@ -124,6 +124,12 @@ void apply_options(ShadeJob& job) {
       job.range_checking = to_i(value) != 0;
     } else if (name == "lazylayers") {
       job.compile.lazy_layers = to_i(value) != 0;
+    } else if (name == "lazyglobals") {
+      job.compile.lazy_globals = to_i(value) != 0;
+    } else if (name == "lazyunconnected") {
+      job.compile.lazy_unconnected = to_i(value) != 0;
+    } else if (name == "lazyerror") {
+      job.compile.lazy_error = to_i(value) != 0;
     } else if (name == "opt_merge_instances") {
       job.compile.merge_instances = to_i(value) != 0;
     } else if (name == "userdata_isconnected") {

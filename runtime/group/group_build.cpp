@@ -630,7 +630,7 @@ void merge_identical_layers(
 
 bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
                  bool specialize, GroupBuild& out, DiagnosticList& diags, bool lockgeom_default,
-                 bool elide_known_outputs, bool merge_instances) {
+                 bool elide_known_outputs, bool merge_instances, const EagerLayers& eager) {
   size_t n = group.layers.size();
   std::map<std::string, int> layer_index;
   for (size_t i = 0; i < n; ++i) layer_index[group.layers[i].name] = int(i);
@@ -807,6 +807,22 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
     for (const ir::Symbol& s : sources[i]->symbols)
       if (s.kind == ir::SymKind::OutputParam && renderer_reads(group, group.layers[i].name, s.name))
         needed[i] = entry[i] = true;
+  // Layers OSL's lazyglobals=0, lazyunconnected=0 or lazyerror=0 runs at every shade.
+  for (size_t i = 0; i + 1 < n && group.entry_layers.empty(); ++i) {
+    const ir::Shader& sh = *sources[i];
+    bool run = false;
+    for (const ir::Op& op : sh.ops) {
+      run = run || (eager.error_callers && op.opcode == ir::Opcode::Error);
+      for (size_t a = 0; eager.global_writers && a < op.args.size() && a < 32; ++a)
+        run = run ||
+              (op.writes(int(a)) && sh.symbols[size_t(op.args[a])].kind == ir::SymKind::Global);
+    }
+    if (eager.unconnected && !needed[i] &&
+        std::none_of(links.begin(), links.end(),
+                     [&](const Link& l) { return l.src_layer == int(i); }))
+      run = true;
+    if (run) needed[i] = entry[i] = true;
+  }
   for (size_t i = n; i-- > 0;)
     for (const Link& l : links)
       if (l.dst_layer == int(i) && needed[i]) needed[size_t(l.src_layer)] = true;

@@ -35,10 +35,14 @@ struct GroupBuild {
 // global) is replaced by that value, and an upstream layer no remaining connection reads is
 // not compiled and does not run, its printf output then disappearing as in OSL (docs/language.md).
 // `merge_instances` (OSL's opt_merge_instances, with `specialize`): a layer identical to an
-// earlier one is merged into it.
+// earlier one is merged into it. `eager`: CompileOptions' lazy_globals, lazy_unconnected and
+// lazy_error turned off make the layers they name entry layers (with no --entry given).
+struct EagerLayers {
+  bool global_writers = false, unconnected = false, error_callers = false;
+};
 bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
                  bool specialize, GroupBuild& out, DiagnosticList& diags,
                  bool lockgeom_default = true, bool elide_known_outputs = false,
-                 bool merge_instances = true);
+                 bool merge_instances = true, const EagerLayers& eager = {});
 
 } // namespace lobe::group

@@ -127,6 +127,9 @@ std::string ShadingSystem::Impl::cache_key(const ShaderGroup& g,
   key += options.userdata_isconnected ? "c" : "";
   key += options.range_checking ? "" : "r";
   key += options.lazy_layers ? "" : "e";
+  key += options.lazy_globals ? "" : "g";
+  key += options.lazy_unconnected ? "" : "k";
+  key += options.lazy_error ? "" : "q";
   key += options.merge_instances ? "" : "m";
   key += options.debug_nan ? "N" : "";
   key += options.debug_uninit ? "U" : "";
@@ -210,8 +213,12 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
   b.plan.debug_nan = options.debug_nan;
   b.plan.debug_uninit = options.debug_uninit;
   bool specialize = options.specialize && options.opt_level > 0;
+  group::EagerLayers eager;
+  eager.global_writers = !options.lazy_globals;
+  eager.unconnected = !options.lazy_unconnected;
+  eager.error_callers = !options.lazy_error;
   if (!group::build_group(g, layers, specialize, b, diags, options.lockgeom_default,
-                          options.opt_level >= 2, options.merge_instances))
+                          options.opt_level >= 2, options.merge_instances, eager))
     return nullptr;
   stats.specialize_ms = ms_since(t0);
 

@@ -1192,6 +1192,26 @@ TEST(ShadeCli, ConnectionsFromGlobalsCarryTheirValues) {
   }
 }
 
+// --options lazyglobals=0, lazyunconnected=0 and lazyerror=0 run the unread layers that write a
+// global, that nothing reads, or that call error(), at every shade (they were ignored). Expected:
+// OSL 1.13.12, `testshade -O0|-O2 -g 1 1 [--options X=0] --layer C lazy_ci --layer E lazy_err
+// --layer A lazy_out --layer B ms_b` (the same at both levels).
+TEST(ShadeCli, EagerLayerOptionsRunUnreadLayers) {
+  const std::string layers =
+      " --layer C lazy_ci --layer E lazy_err --layer A lazy_out --layer B ms_b";
+  const std::string err = "ERROR: Shader error [lazy_err]: lazy_err error 0.5\nlazy_err runs\n";
+  const std::pair<const char*, std::string> cases[] = {
+      {"", "ms_b runs 0\n\n"},
+      {"--options lazyglobals=0", "lazy_ci runs\nms_b runs 0\n\n"},
+      {"--options lazyunconnected=0",
+       "lazy_ci runs\n" + err + "lazy_out runs x=5\nms_b runs 0\n\n"},
+      {"--options lazyerror=0", err + "ms_b runs 0\n\n"},
+  };
+  for (const auto& [options, expected] : cases)
+    for (const char* o : {"-O0 ", "-O2 "})
+      EXPECT_EQ(run_here(std::string(o) + "-g 1 1 " + options + layers), expected) << o << options;
+}
+
 // A texture file that cannot be opened is told once, at the first point in grid order that meets
 // it, whatever the thread count: its words in the first point's "errormessage" and "unknown"
 // after, and the error of a lookup only the grid's lower half makes printed with that half's

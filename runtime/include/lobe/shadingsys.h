@@ -121,6 +121,13 @@ struct CompileOptions {
   // output; false runs every layer the group needs, in order, at the start of each shade
   // (testshade's --options lazylayers=0). Part of the material cache key.
   bool lazy_layers = true;
+  // OSL's "lazyglobals", "lazyunconnected" and "lazyerror": false runs at every shade, as the
+  // group's entry layers run, each layer that writes a shader global (Ci, P, ...), that no
+  // connection or renderer output reads, or that calls error(), where otherwise such a layer
+  // runs only when another reads it (or never). Part of the material cache key.
+  bool lazy_globals = true;
+  bool lazy_unconnected = true;
+  bool lazy_error = true;
   // OSL's "opt_merge_instances": at -O1 and -O2 a layer identical to an earlier one (the same
   // shader, parameter values and connections in) is merged into it and runs once
   // (docs/language.md). Part of the material cache key.
