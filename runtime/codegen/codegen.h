@@ -73,6 +73,9 @@ struct GroupPlan {
   bool userdata_isconnected = false; // CompileOptions::userdata_isconnected
   bool lazy_layers = true;           // CompileOptions::lazy_layers
   bool explicit_entries = false;     // the group names its entry layers (ShaderGroup::entry_layers)
+  // The entry layers (indices into `layers`) in the order the group names them, in which they
+  // run (as testshade's --entry order); empty: in layer order.
+  std::vector<int> entry_order;
   // Bounded loops (CompileOptions::max_loop_iterations): with loop_count_offset >= 0, every
   // backward jump (a loop's back edge) counts down a per-layer-run counter of
   // kLoopChunk iterations; when it runs out the layer calls lobe_loop_check, which adds the

@@ -118,6 +118,11 @@ void LayerEmitter::init_params() {
       b_.SetInsertPoint(after);
     }
   }
+  // OSL begins a layer's main code with a `useparam` of its connected output parameters
+  // (LayerPlan::osl_output_useparam): one connected into runs its upstream layer now, before
+  // the layer's own code.
+  for (const ConnectionPlan& c : plan().connections)
+    if (syms[size_t(c.dst_symbol)].kind == SymKind::OutputParam) run_useparam(c.dst_symbol);
   // Without useparam ops (IR written by hand) the connections are fetched here, but only
   // those of params something reads (an op, or a downstream layer through a connection from
   // the param): as OSL, an upstream layer whose value nothing reads does not run.
@@ -438,7 +443,12 @@ std::string emit_group(const GroupPlan& plan, llvm::Module& module, HostSymbols&
   // testshade stays lazy), every layer the group kept, in order.
   bool any_entry = false, eager = !plan.lazy_layers && !plan.explicit_entries;
   for (const LayerPlan& lp : plan.layers) any_entry |= lp.entry;
-  for (size_t i = 0; i < plan.layers.size(); ++i) {
+  std::vector<size_t> order;
+  if (!eager)
+    for (int i : plan.entry_order) order.push_back(size_t(i));
+  for (size_t i = 0; i < plan.layers.size(); ++i)
+    if (std::find(order.begin(), order.end(), i) == order.end()) order.push_back(i);
+  for (size_t i : order) {
     bool runs = eager || (any_entry ? plan.layers[i].entry : i + 1 == plan.layers.size());
     if (!runs) continue;
     llvm::Value* ran = b.CreateLoad(

@@ -633,7 +633,8 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
                  bool elide_known_outputs, bool merge_instances, const EagerLayers& eager) {
   size_t n = group.layers.size();
   std::map<std::string, int> layer_index;
-  for (size_t i = 0; i < n; ++i) layer_index[group.layers[i].name] = int(i);
+  // A name two layers share names the first, as OSL's connections take it.
+  for (size_t i = 0; i < n; ++i) layer_index.emplace(group.layers[i].name, int(i));
 
   // Instance values, parsed against each parameter's declared type.
   std::vector<std::map<std::string, std::vector<ir::ConstValue>>> values(n);
@@ -1038,6 +1039,12 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
   out.groupdata.assign(off, 0);
   out.plan.group_name = group.name;
   out.plan.explicit_entries = !group.entry_layers.empty();
+  for (const std::string& e : group.entry_layers)
+    for (size_t i = 0; i < n; ++i)
+      if (group.layers[i].name == e && needed[i] && new_index[i] >= 0 &&
+          std::find(out.plan.entry_order.begin(), out.plan.entry_order.end(), new_index[i]) ==
+              out.plan.entry_order.end())
+        out.plan.entry_order.push_back(new_index[i]);
   for (size_t i = 0; i < n; ++i) {
     if (!needed[i]) continue;
     size_t li = size_t(new_index[i]);

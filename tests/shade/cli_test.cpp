@@ -1212,6 +1212,29 @@ TEST(ShadeCli, EagerLayerOptionsRunUnreadLayers) {
       EXPECT_EQ(run_here(std::string(o) + "-g 1 1 " + options + layers), expected) << o << options;
 }
 
+// Layer run order as testshade's (OSL 1.13.12, `testshade -O0|-O2 -g 1 1 ARGS`): an output
+// parameter connected into runs its upstream layer as its layer starts (Lobe ran it at the first
+// read); --entry layers run in the order named (Lobe: in layer order); a connection from a name
+// two layers share takes the first (Lobe: the last).
+TEST(ShadeCli, LayersRunInTestshadesOrder) {
+  for (const char* o : {"-O0 ", "-O2 "}) {
+    EXPECT_EQ(
+        run_here(std::string(o) + "-g 1 1 --layer A ms_a --layer B out_into --connect A f B o"),
+        "Connect A.f to B.o\nms_a runs 1\nout_into starts\nout_into: i=0 o=1\n\n")
+        << o;
+    EXPECT_EQ(run_here(std::string(o) +
+                       "-g 1 1 --param:type=string name A --layer A named --param:type=string "
+                       "name B --layer B named --param:type=string name C --layer C named "
+                       "--entry C --entry A"),
+              "Entry layers: C(2) A(0)\nC\nA\n\n")
+        << o;
+  }
+  EXPECT_EQ(run_here("-O0 -g 1 1 --param:type=string name first --layer A named "
+                     "--param:type=string name second --layer A named --layer B ms_b --connect A "
+                     "o B x"),
+            "Connect A.o to B.x\nfirst\nms_b runs 1\n\n");
+}
+
 // A texture file that cannot be opened is told once, at the first point in grid order that meets
 // it, whatever the thread count: its words in the first point's "errormessage" and "unknown"
 // after, and the error of a lookup only the grid's lower half makes printed with that half's
