@@ -157,7 +157,7 @@ const Row kTable[] = {
     ROW(group_empty, Error, "the group has no layers"),
     ROW(nonexistent_param, Warning, "%0"),
     ROW(param_type, Warning, "%0"),
-    ROW(texture_option, Warning, "%0"),
+    ROW(builtin_option, Warning, "%0"),
     ROW(closure_keyword, Warning, "%0"),
     ROW(param_value, Error, "%0"),
     ROW(connect_layer, Error, "%0"),

@@ -141,7 +141,7 @@ enum class DiagId : uint16_t {
   group_empty,
   nonexistent_param,
   param_type,
-  texture_option,
+  builtin_option,
   closure_keyword,
   param_value,
   connect_layer,

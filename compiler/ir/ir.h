@@ -197,7 +197,7 @@ struct Shader {
 // the type each takes (OSL's): a float one takes an int too; `output` ones are written by the
 // lookup (an lvalue of that type); `or_string` ("subimage") takes a name too. Null for a name
 // they do not take. The type checker accepts any pair, as oslc does; the group builder drops a
-// pair that is not one of these or of another type, with OSL's message (texture_option_misfit).
+// pair that is not one of these or of another type, with OSL's message (builtin_option).
 struct TextureOption {
   const char* name;
   BaseType type;

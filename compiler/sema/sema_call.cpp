@@ -379,12 +379,17 @@ void Sema::check_builtin_keyword(ast::CallExpr* e, const ast::StringLit* name, E
   const BuiltinKeyword* k = nullptr;
   for (const BuiltinKeyword& b : kBuiltinKeywords)
     if (fn == b.function && name->value == b.name) k = &b;
+  Type want{k ? k->type : ast::BaseType::Error, 0};
+  bool fits = k && assignable(want, value->type) && !value->type.is_array() &&
+              !(k->type == ast::BaseType::Int && value->type.base != ast::BaseType::Int);
+  // noise()'s options, as texture's: kept as written when they do not fit (oslc keeps them),
+  // for the group builder to drop with OSL's message.
+  if (fn == "noise" && !fits) return;
   if (!k) {
     error(DiagId::err_unknown_keyword, name->range, {name->value, e->name});
     return;
   }
-  Type want{k->type, 0};
-  if (!assignable(want, value->type) || value->type.is_array()) {
+  if (!fits) {
     error(DiagId::err_keyword_type, value->range,
           {name->value, e->name, tname(want), tname(value->type)});
     return;

@@ -169,8 +169,8 @@ void print_diagnostics(const DiagnosticList& diags, bool notes, const std::strin
     // Group-level warnings print as testshade prints them: "WARNING: ...", and so do
     // connection errors (OSL's ConnectShaders words, "ERROR: ...").
     if (d.severity == Diagnostic::Severity::Warning && t.rfind("warning: ", 0) == 0) {
-      // A texture option dropped at set-up: testshade says "ERROR: ", and shades on.
-      t = (d.id == "texture_option" ? "ERROR: " : "WARNING: ") + t.substr(9);
+      // A texture or noise option dropped at set-up: testshade says "ERROR: ", and shades on.
+      t = (d.id == "builtin_option" ? "ERROR: " : "WARNING: ") + t.substr(9);
       // As OSL's shading system, which does not repeat a warning it has just given.
       if (!said.insert(t).second) continue;
     }

@@ -484,11 +484,36 @@ bool fits_closure_param(registry::ArgType a, const ir::Type& t) {
   }
 }
 
+// Where the `"keyword", value` options of a noise op by name (noise("gabor", P, ...)) begin: the
+// first string operand after the name and coordinates; op.args.size() for none (or no name).
+size_t noise_options(const ir::Shader& sh, const ir::Op& op) {
+  bool noise = op.opcode == ir::Opcode::Noise || op.opcode == ir::Opcode::PNoise ||
+               op.opcode == ir::Opcode::SNoise || op.opcode == ir::Opcode::PSNoise;
+  auto is_string = [&](size_t a) {
+    return sh.symbols[size_t(op.args[a])].type.base == ir::BaseType::String;
+  };
+  if (!noise || op.args.size() < 3 || !is_string(1)) return op.args.size();
+  size_t i = 2;
+  while (i < op.args.size() && !is_string(i)) ++i;
+  return i;
+}
+
+// Whether gabor noise takes option `kw` with a value of type `t` (OSL's NoiseParams: ints
+// exactly, floats from ints too, the direction a triple).
+bool gabor_option_fits(const std::string& kw, const ir::Type& t) {
+  using B = ir::BaseType;
+  if (t.is_array()) return false;
+  if (kw == "anisotropic" || kw == "do_filter") return t.base == B::Int;
+  if (kw == "bandwidth" || kw == "impulses") return t.base == B::Float || t.base == B::Int;
+  if (kw == "direction") return t.is_triple();
+  return false;
+}
+
 // The keyword arguments a texture lookup or closure does not take, or of another type, which the
 // type checker kept as oslc does: dropped, each with OSL's message when it sets the shader up
 // (once per call, whether or not it runs): `Unknown texture optional argument: "foo", <int>
-// (x.osl:3)` (texture3d's name its own), `Unsupported closure keyword arg "foo" for diffuse
-// (x.osl:2)`.
+// (x.osl:3)` (texture3d's name its own; gabor noise's `Unknown noise optional argument`),
+// `Unsupported closure keyword arg "foo" for diffuse (x.osl:2)`.
 void drop_misfit_keywords(ir::Shader& sh, DiagnosticList& diags) {
   auto place = [](const ir::Op& op) { return op.loc.file + ":" + std::to_string(op.loc.line); };
   for (ir::Op& op : sh.ops) {
@@ -508,7 +533,24 @@ void drop_misfit_keywords(ir::Shader& sh, DiagnosticList& diags) {
                                  (op.opcode == ir::Opcode::Texture3d ? "texture3d" : "texture") +
                                  " optional argument: \"" + (kw ? *kw : name.name) + "\", <" +
                                  osl_type_name(value.type) + "> (" + place(op) + ")",
-                             DiagId::texture_option));
+                             DiagId::builtin_option));
+        erase_pair(op, i);
+      }
+    } else if (noise_options(sh, op) < op.args.size()) {
+      // The gabor options; other kinds take none and ignore them silently, as OSL does.
+      const std::string* kind = ir::string_value(sh.symbols[size_t(op.args[1])]);
+      for (size_t i = noise_options(sh, op); i + 1 < op.args.size();) {
+        const std::string* kw = ir::string_value(sh.symbols[size_t(op.args[i])]);
+        const ir::Type& t = sh.symbols[size_t(op.args[i + 1])].type;
+        if (kw && gabor_option_fits(*kw, t)) {
+          i += 2;
+          continue;
+        }
+        if (!kind || *kind == "gabor")
+          diags.push_back(warn("Unknown " + std::string(ir::info(op.opcode).name) +
+                                   " optional argument: \"" + (kw ? *kw : std::string()) + "\", <" +
+                                   osl_type_name(t) + "> (" + place(op) + ")",
+                               DiagId::builtin_option));
         erase_pair(op, i);
       }
     } else if (op.opcode == ir::Opcode::Closure && op.args.size() > 1) {

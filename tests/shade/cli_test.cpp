@@ -1124,9 +1124,9 @@ TEST(ShadeCli, LookupErrorsNameTheirKindAndIntValuesSaturate) {
               "not open file: nosuch.tx: No such file or directory\nok 0 [-1 -1]\n\n");
 }
 
-// Keyword arguments a texture lookup or a closure does not take, or of another type, compile (as
-// oslc compiles them) and are dropped when the shader is set up, with testshade's messages, also
-// in code that never runs; the lookups and closures go on without them. Expected: OSL 1.13.12,
+// Keyword arguments a texture lookup, gabor noise or a closure does not take, or of another type,
+// compile (as oslc compiles them) and are dropped when the shader is set up, with testshade's
+// messages, also in code that never runs; the calls go on without them. Expected: OSL 1.13.12,
 // `testshade -O0|-O2 kw_ignored` (the same at both).
 TEST(ShadeCli, KeywordArgumentsNotTakenAreDroppedWithOslsMessages) {
   const std::string expected = expected_file("kw_ignored") + "\n";
