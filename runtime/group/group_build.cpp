@@ -615,8 +615,9 @@ bool same_values(const ir::Shader& sh, const std::map<std::string, std::vector<i
 }
 
 // OSL's merging of identical instances (its opt_merge_instances, on at -O1 and -O2): layer j is
-// merged into an earlier layer i running the same shader with the same parameter values, the
-// same parameters taking user data and the same connections into it: j's connections out then
+// merged into an earlier layer i running the same shader with the same parameter values (and
+// the same of them given with lockgeom=0), the same parameters taking user data and the same
+// connections into it: j's connections out then
 // leave from i, and j, needed by nothing, is not built (a named entry layer still runs, its
 // outputs connected to nothing: isconnected() says 0). Neither the last layer, nor layers the
 // renderer reads outputs of, or layers with an interactive parameter (--reparam may change it
@@ -625,7 +626,8 @@ void merge_identical_layers(
     const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
     const std::vector<std::map<std::string, std::vector<ir::ConstValue>>>& values,
     const std::vector<std::set<std::string>>& interp,
-    const std::vector<std::set<std::string>>& interactive, std::vector<Link>& links) {
+    const std::vector<std::set<std::string>>& interactive,
+    const std::vector<std::set<std::string>>& unlocked, std::vector<Link>& links) {
   const size_t n = group.layers.size();
   // Per layer, once: whether it takes no part, and the connections into it in the order made
   // (pointers: a merge redirects their sources in place).
@@ -652,7 +654,7 @@ void merge_identical_layers(
     for (size_t i = 0; i < j; ++i) {
       if (merged_into[i] >= 0 || pinned[i] || sources[i]->name != sources[j]->name) continue;
       if (sources[i] != sources[j] && shader_text(i) != shader_text(j)) continue;
-      if (interp[i] != interp[j]) continue;
+      if (interp[i] != interp[j] || unlocked[i] != unlocked[j]) continue;
       if (!same_values(*sources[i], values[i], values[j])) continue;
       const std::vector<const Link*>&a = inputs[i], &b = inputs[j];
       bool same_in = a.size() == b.size();
@@ -682,6 +684,8 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
   std::vector<std::map<std::string, std::vector<ir::ConstValue>>> values(n);
   std::vector<std::map<std::string, int>> lengths(n);
   std::vector<std::map<std::string, int>> lockgeom(n); // instance overrides of lockgeom
+  // Values taken with lockgeom=0, per layer: OSL merges no two layers that differ in them.
+  std::vector<std::set<std::string>> unlocked(n);
   for (size_t i = 0; i < n; ++i)
     for (const InstanceValue& v : group.layers[i].values) {
       if (v.lockgeom >= 0) lockgeom[i][v.name] = v.lockgeom;
@@ -722,6 +726,10 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       int len = fit.arraylen;
       values[i][v.name] = cv;
       lengths[i][v.name] = len;
+      if (v.lockgeom == 0 || v.interpolated)
+        unlocked[i].insert(v.name);
+      else
+        unlocked[i].erase(v.name);
     }
 
   // Params that take user data (before connections, which override them), per layer.
@@ -732,11 +740,16 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
       if (interpolated(sym, lg == lockgeom[i].end() ? -1 : lg->second, lockgeom_default))
         interp[i].insert(sym.name);
     }
-  // Interactive params, per layer: never folded (--reparam may change them), never merged.
+  // Interactive params, per layer: never folded (--reparam may change them), never merged. A
+  // value refused (of the wrong type) takes its interactive flag with it, as in OSL: the
+  // parameter's metadata decides.
   std::vector<std::set<std::string>> interactive(n);
-  for (size_t i = 0; i < n; ++i)
+  for (size_t i = 0; i < n; ++i) {
+    ShaderGroup::Layer taken = group.layers[i];
+    std::erase_if(taken.values, [&](const InstanceValue& v) { return !values[i].count(v.name); });
     for (const ir::Symbol& sym : sources[i]->symbols)
-      if (is_param(sym) && interactive_param(group.layers[i], sym)) interactive[i].insert(sym.name);
+      if (is_param(sym) && interactive_param(taken, sym)) interactive[i].insert(sym.name);
+  }
 
   // Connections, by names.
   std::vector<Link> links;
@@ -836,7 +849,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
   // OSL -O1/-O2 (its opt_merge_instances): a layer identical to an earlier one is merged into
   // it, so that the earlier one runs once where both ran (its printf shows once).
   if (specialize && merge_instances)
-    merge_identical_layers(group, sources, values, interp, interactive, links);
+    merge_identical_layers(group, sources, values, interp, interactive, unlocked, links);
 
   // Layers the last one depends on, and layers with a renderer output (which run at every
   // shade) with theirs.

@@ -1235,6 +1235,23 @@ TEST(ShadeCli, LayersRunInTestshadesOrder) {
             "Connect A.o to B.x\nfirst\nms_b runs 1\n\n");
 }
 
+// Merging identical layers (-O2) as OSL: a value given with lockgeom=0 to one of two layers keeps
+// them apart (Lobe merged them), and a value refused for its type takes its interactive flag
+// with it (Lobe kept the flag and did not merge). Expected: OSL 1.13.12, `testshade -O2 PARAM
+// --layer A1 merge_k --layer A2 merge_k --layer B merge_yz --connect A1 x B y --connect A2 x B z`.
+TEST(ShadeCli, MergingFollowsLockgeomAndRefusedValues) {
+  const std::string layers =
+      " --layer A1 merge_k --layer A2 merge_k --layer B merge_yz --connect A1 x B y --connect A2 x "
+      "B z";
+  const std::string connects = "Connect A1.x to B.y\nConnect A2.x to B.z\n";
+  const std::string once = "merge_k(1): x=1.5\n", tail = "merge_yz: y=1.5 z=1.5\n\n";
+  const std::string refused = "WARNING: attempting to set parameter with wrong type: k (expected "
+                              "'float', received 'int')\n";
+  EXPECT_EQ(run_here("-O2 --param:lockgeom=0 k 1.0" + layers), connects + once + once + tail);
+  EXPECT_EQ(run_here("-O2 --param:interactive=1 k 2" + layers), refused + connects + once + tail);
+  EXPECT_EQ(run_here("-O2 --param:lockgeom=0 k 2" + layers), refused + connects + once + tail);
+}
+
 // A texture file that cannot be opened is told once, at the first point in grid order that meets
 // it, whatever the thread count: its words in the first point's "errormessage" and "unknown"
 // after, and the error of a lookup only the grid's lower half makes printed with that half's
