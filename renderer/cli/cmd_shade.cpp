@@ -648,7 +648,8 @@ int Shade::write_outputs() {
             ? job_.dataformat
         : o.type.base == DataType::Base::Int ? "int"
                                              : "float";
-    std::string err = image::write_channels(o.spec.file, o.img, format);
+    std::string err =
+        image::write_channels(o.spec.file, o.img, format, o.type.base == DataType::Base::Int);
     if (!err.empty()) {
       std::fprintf(stderr, "lobe shade: %s\n", err.c_str());
       status = 1;

@@ -160,36 +160,50 @@ std::string write_image(const std::string& path, const Image& img, const WriteOp
                     rgb.data(), oiio::Pixel::UInt8);
 }
 
-std::string write_channels(const std::string& path, const Image& img, const std::string& format) {
+std::string write_channels(const std::string& path, const Image& img, const std::string& format,
+                           bool ints) {
   if (img.width <= 0 || img.height <= 0 || img.channels.empty()) return path + ": empty image";
   std::string ext = lower_extension(path);
   size_t n = img.pixels.size();
   FileSpec f{img.width, img.height, img.channels, oiio::Pixel::Float};
-  if (ext == "png" || ext == "jpg" || ext == "jpeg") {
+  bool eight_bit = ext == "png" || ext == "jpg" || ext == "jpeg";
+  if (ints && format == "int" && ext != "exr" && !eight_bit) {
+    std::vector<int32_t> values(n);
+    for (size_t k = 0; k < n; ++k) values[k] = static_cast<int32_t>(img.pixels[k]);
+    f.file = oiio::Pixel::Int32;
+    return write_with(path, f, values.data(), oiio::Pixel::Int32);
+  }
+  // Int values in a file of another pixel type: as OpenImageIO converts int32 data (INT_MAX is
+  // 1), which is what testshade writes.
+  std::vector<float> scaled;
+  const float* px = img.pixels.data();
+  if (ints) {
+    scaled.resize(n);
+    for (size_t k = 0; k < n; ++k) scaled[k] = float(double(img.pixels[k]) / 2147483647.0);
+    px = scaled.data();
+  }
+  if (eight_bit) {
     std::vector<uint8_t> enc(n);
     for (size_t k = 0; k < n; ++k)
-      enc[k] = static_cast<uint8_t>(std::lround(srgb_encode(img.pixels[k]) * 255.0f));
+      enc[k] = static_cast<uint8_t>(std::lround(srgb_encode(px[k]) * 255.0f));
     f.file = oiio::Pixel::UInt8;
     f.colorspace = "sRGB";
     return write_with(path, f, enc.data(), oiio::Pixel::UInt8);
   }
   if (ext == "exr") f.compression = "zip";
-  if (format == "int" && ext != "exr") {
-    std::vector<int32_t> ints(n);
-    for (size_t k = 0; k < n; ++k) ints[k] = static_cast<int32_t>(img.pixels[k]);
-    f.file = oiio::Pixel::Int32;
-    return write_with(path, f, ints.data(), oiio::Pixel::Int32);
-  }
-  f.file = format == "half" || format == "int" ? oiio::Pixel::Half
-           : format == "uint8"                 ? oiio::Pixel::UInt8
-                                               : oiio::Pixel::Float;
+  // EXR holds no 8-bit pixels: -d uint8 writes half from the values as they are (OpenImageIO's
+  // choice for testshade), not from 8-bit ones.
+  f.file = format == "half" || format == "int" || (format == "uint8" && ext == "exr")
+               ? oiio::Pixel::Half
+           : format == "uint8" ? oiio::Pixel::UInt8
+                               : oiio::Pixel::Float;
   if (f.file == oiio::Pixel::UInt8) { // linear 8 bits, as testshade's -d uint8
     std::vector<uint8_t> q(n);
     for (size_t k = 0; k < n; ++k)
-      q[k] = static_cast<uint8_t>(std::lround(std::clamp(img.pixels[k], 0.0f, 1.0f) * 255.0f));
+      q[k] = static_cast<uint8_t>(std::lround(std::clamp(px[k], 0.0f, 1.0f) * 255.0f));
     return write_with(path, f, q.data(), oiio::Pixel::UInt8);
   }
-  return write_with(path, f, img.pixels.data(), oiio::Pixel::Float);
+  return write_with(path, f, px, oiio::Pixel::Float);
 }
 
 std::string read_image(const std::string& path, Image& out) {

@@ -72,10 +72,12 @@ std::jthread prefetch_image_io();
 std::string write_image(const std::string& path, const Image& img, const WriteOptions& opt = {});
 
 // testshade's output files: every channel as it is, stored as `format` ("float", "half",
-// "uint8", or "int" for integer data, whose values are written as int32), linear, except in
-// PNG and JPEG files, whose 8 bits are sRGB-encoded (0.5 is 188) as testshade writes them.
-// EXR is zip-compressed and keeps ints as half (EXR has no int32 pixels).
-std::string write_channels(const std::string& path, const Image& img, const std::string& format);
+// "uint8", or "int", for `ints`, written as int32), linear, except in PNG and JPEG files, whose
+// 8 bits are sRGB-encoded (0.5 is 188) as testshade writes them. EXR is zip-compressed and holds
+// "int" and "uint8" as half (it has neither pixel type). `ints`: the values are ints, which in a
+// file of another pixel type are scaled by 1/INT_MAX, as OpenImageIO converts int data.
+std::string write_channels(const std::string& path, const Image& img, const std::string& format,
+                           bool ints = false);
 
 // Reads `path` into `out` as linear float, all channels.
 std::string read_image(const std::string& path, Image& out);

@@ -96,3 +96,31 @@ TEST(Image, ErrorsNameTheFile) {
   bad.pixels.resize(1);
   EXPECT_NE(write_image(temp_path("bad.exr"), bad), "");
 }
+
+// testshade's output files (write_channels) as OSL 1.13.12's testshade writes them (`testshade -g
+// 3 1 -d float -o o o.tif i`, `-d uint8 -o f f.exr i`, with o = (int)(u * 10), f = u * 0.5 +
+// 0.25): int values in a file of another pixel type are scaled by 1/INT_MAX (5 is
+// 2.3283064e-09), and -d uint8 in an EXR is half from the values as they are (1.25 stays).
+TEST(Image, TestshadeOutputsConvertAsOpenImageIO) {
+  Image ints(3, 1, {"o"});
+  ints.pixels = {0.0f, 5.0f, 10.0f};
+  std::string tif = temp_path("ints.tif");
+  ASSERT_EQ(write_channels(tif, ints, "float", /*ints=*/true), "");
+  Image back;
+  ASSERT_EQ(read_image(tif, back), "");
+  ASSERT_EQ(back.pixels.size(), 3u);
+  EXPECT_EQ(back.pixels[0], 0.0f);
+  EXPECT_FLOAT_EQ(back.pixels[1], 2.3283064365386963e-09f);
+  EXPECT_FLOAT_EQ(back.pixels[2], 4.6566128730773926e-09f);
+  Image floats(3, 1, {"f"});
+  floats.pixels = {0.25f, 0.75f, 1.25f};
+  std::string exr = temp_path("uint8.exr");
+  ASSERT_EQ(write_channels(exr, floats, "uint8"), "");
+  ASSERT_EQ(read_image(exr, back), "");
+  ASSERT_EQ(back.pixels.size(), 3u);
+  EXPECT_EQ(back.pixels[0], 0.25f);
+  EXPECT_EQ(back.pixels[1], 0.75f);
+  EXPECT_EQ(back.pixels[2], 1.25f);
+  std::remove(tif.c_str());
+  std::remove(exr.c_str());
+}
