@@ -33,6 +33,7 @@ struct Parser {
   ShadeJob& job;
   std::vector<InstanceValue> pending;
   std::string pending_layer;
+  std::vector<std::vector<InstanceValue>> expr_values; // per --expr: the --param before it
   int groups_begun = 0;
   bool group_open = false; // a group from positional shaders or --group is being built
   int status = 0;          // non-zero: stop with this exit status
@@ -272,7 +273,12 @@ const std::vector<Option>& options() {
       {"no-output-placement", 0, none},
       {"shadeimage", 0, none},
       {"noshadeimage", 0, none},
-      {"expr", 1, [](Parser& p, const Use& u) { p.job.expressions.push_back(u.args[0]); }},
+      {"expr", 1,
+       [](Parser& p, const Use& u) { // the parameters given before it are its, as testshade's
+         p.job.expressions.push_back(u.args[0]);
+         p.expr_values.push_back(std::move(p.pending));
+         p.pending.clear();
+       }},
       // testshade 1.13.12 takes --offsetuv and sets nothing with it (its --offsetst offsets):
       // accepted and ignored, so that a command line prints what testshade's prints.
       {"offsetuv", 2, none},
@@ -409,6 +415,11 @@ int parse_shade_args(int argc, char** argv, ShadeJob& job) {
     }
   }
   if (p.status) return p.status;
+  if (job.group.layers.empty() && job.expressions.empty()) {
+    std::fprintf(stderr, "ERROR: No shader or group was specified.\n\n"
+                         "Try `lobe shade --help` for an explanation of all arguments\n");
+    return 1;
+  }
   if (!p.pending.empty()) {
     std::string names;
     for (const InstanceValue& v : p.pending) {
@@ -421,16 +432,11 @@ int parse_shade_args(int argc, char** argv, ShadeJob& job) {
                  names.c_str());
     return 1;
   }
-  if (job.group.layers.empty() && job.expressions.empty()) {
-    std::fprintf(stderr, "ERROR: No shader or group was specified.\n\n"
-                         "Try `lobe shade --help` for an explanation of all arguments\n");
-    return 1;
-  }
   for (size_t k = 0; k < job.expressions.size(); ++k) // --expr layers come after the others,
     job.group.layers.push_back(
         {"expr_" + std::to_string(k), // named as any layer is (expr_0_0)
          "expr_" + std::to_string(k) + "_" + std::to_string(job.group.layers.size()),
-         {}});
+         std::move(p.expr_values[k])});
   for (const Connection& c : job.connects) job.group.connections.push_back(c);
   if (!job.groupname.empty())
     job.group.name = job.groupname;

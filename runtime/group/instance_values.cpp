@@ -134,7 +134,9 @@ ValueFit fit_instance_value(const InstanceValue& v, const ir::Type& param) {
   // length), or a float broadcast to a triple; anything else keeps the default, with OSL's
   // warning.
   bool arrays_fit = param.arraylen == t->arraylen || (param.arraylen < 0 && t->arraylen > 0);
-  if (same_kind(*t, param) && arrays_fit) {
+  if (param.base == ir::BaseType::Closure) { // no value sets a closure: OSL skips it so
+    r.warning = "skipping assignment of closure: " + v.name;
+  } else if (same_kind(*t, param) && arrays_fit) {
     r.ok = true;
     r.values = std::move(vals);
     r.arraylen = t->arraylen;

@@ -1252,6 +1252,20 @@ TEST(ShadeCli, MergingFollowsLockgeomAndRefusedValues) {
   EXPECT_EQ(run_here("-O2 --param:lockgeom=0 k 2" + layers), refused + connects + once + tail);
 }
 
+// Parameters given before --expr are the expression layer's; --param with no shader at all is
+// testshade's "No shader" error; a value for a closure parameter is skipped with testshade's
+// warning. Expected: OSL 1.13.12, `testshade ARGS` in tests/shade/layers.
+TEST(ShadeCli, ParametersOfExpressionsAndClosures) {
+  EXPECT_EQ(run_here("--param alpha 0.5 --expr 'printf(\"%g\\n\", alpha);'"), "0.5\n\n");
+  EXPECT_EQ(run_here("--param k 2 --expr 'printf(\"e\\n\");'"),
+            "WARNING: attempting to set nonexistent parameter: k\ne\n\n");
+  EXPECT_EQ(run_here("--param k 2"), "ERROR: No shader or group was specified.\n\n"
+                                     "Try `lobe shade --help` for an explanation of all "
+                                     "arguments\n");
+  EXPECT_EQ(run_here("--param cl 0.0 closure_param"),
+            "WARNING: skipping assignment of closure: cl\nx\n\n");
+}
+
 // A texture file that cannot be opened is told once, at the first point in grid order that meets
 // it, whatever the thread count: its words in the first point's "errormessage" and "unknown"
 // after, and the error of a lookup only the grid's lower half makes printed with that half's
