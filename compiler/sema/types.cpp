@@ -7,7 +7,8 @@ int conversion_cost(const Type& from, const Type& to, bool zero_literal) {
   if (from.is_error() || to.is_error()) return 0; // already reported: don't cascade
   if (from.is_array() || to.is_array()) {
     if (from.base != to.base || from.strct != to.strct) return kNoConversion;
-    if (to.arraylen == from.arraylen || to.arraylen < 0) return 0;
+    // An unsized array (a parameter's: its length is the instance's) goes where any length does.
+    if (to.arraylen == from.arraylen || to.arraylen < 0 || from.arraylen < 0) return 0;
     return kNoConversion;
   }
   if (from == to) return 0;
@@ -40,7 +41,9 @@ int match_score(const Type& formal, const Type& actual) {
     return 0;
   }
   if (!formal.is_array() || !actual.is_array()) return 0;
-  if (formal.is_unsized_array() && formal.element() == actual.element()) return 44;
+  if ((formal.is_unsized_array() || actual.is_unsized_array()) &&
+      formal.element() == actual.element())
+    return 44;
   if (!formal.is_unsized_array() && formal.arraylen != actual.arraylen) return 0;
   if (is_triple_base(formal.base) && is_triple_base(actual.base))
     return triple_score(formal.base, actual.base, 23);

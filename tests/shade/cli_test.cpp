@@ -1266,6 +1266,19 @@ TEST(ShadeCli, ParametersOfExpressionsAndClosures) {
             "WARNING: skipping assignment of closure: cl\nx\n\n");
 }
 
+// An unsized array parameter goes where a sized array does (assigned, passed), as oslc accepts
+// it (Lobe refused to compile: "array lengths differ"). Expected: OSL 1.13.12, `testshade
+// -O0|-O2 [--param:type=float[4] pa 5,6,7,8] unsized_to_sized`.
+TEST(ShadeCli, UnsizedArrayParametersGoWhereSizedOnesDo) {
+  for (const char* o : {"-O0 ", "-O2 "}) {
+    EXPECT_EQ(run_here(std::string(o) + "unsized_to_sized"), "e=1 2 3 oa=1 2 3 sum3=6 len=3\n\n")
+        << o;
+    EXPECT_EQ(run_here(std::string(o) + "--param:type=float[4] pa 5,6,7,8 unsized_to_sized"),
+              "e=5 6 7 oa=5 6 7 sum3=18 len=4\n\n")
+        << o;
+  }
+}
+
 // A texture file that cannot be opened is told once, at the first point in grid order that meets
 // it, whatever the thread count: its words in the first point's "errormessage" and "unknown"
 // after, and the error of a lookup only the grid's lower half makes printed with that half's
