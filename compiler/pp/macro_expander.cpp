@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
+#include <ctime>
 
 namespace lobe::pp {
 
@@ -27,8 +29,9 @@ void Preprocessor::expand_from_file(Cursor& cur) {
   const PPToken& first = (*cur.toks)[cur.pos++]; // copied only when it starts an expansion
   bool ident = first.kind == PPKind::Ident;
   const Macro* m = ident && !macros_.empty() ? find_macro(first.text) : nullptr;
-  bool builtin =
-      ident && first.text.size() == 8 && (first.text == "__LINE__" || first.text == "__FILE__");
+  bool builtin = ident && first.text.size() == 8 &&
+                 (first.text == "__LINE__" || first.text == "__FILE__" ||
+                  first.text == "__DATE__" || first.text == "__TIME__");
   if (!m && !builtin) {
     emit_file_token(first);
     return;
@@ -79,6 +82,25 @@ bool Preprocessor::next_is_lparen(Input& in) {
 
 bool Preprocessor::try_expand(const PPToken& t, Input& in) {
   if (t.kind != PPKind::Ident) return false;
+  if (t.text == "__DATE__" || t.text == "__TIME__") {
+    // When the preprocessor ran, as C's (and oslc's): "Dec  7 2026", "13:06:11", local time.
+    PPToken r = t;
+    r.kind = PPKind::String;
+    std::time_t now = std::time(nullptr);
+    std::tm tm{};
+    localtime_r(&now, &tm);
+    static constexpr const char* kMonths[12] = {"Jan", "Feb", "Mar", "Apr", "May", "Jun",
+                                                "Jul", "Aug", "Sep", "Oct", "Nov", "Dec"};
+    char buf[32]; // the month's name in English whatever the locale, as C's
+    if (t.text == "__DATE__")
+      std::snprintf(buf, sizeof buf, "\"%s %2d %d\"", kMonths[tm.tm_mon % 12], tm.tm_mday,
+                    tm.tm_year + 1900);
+    else
+      std::snprintf(buf, sizeof buf, "\"%02d:%02d:%02d\"", tm.tm_hour, tm.tm_min, tm.tm_sec);
+    r.text = buf;
+    in.pending.push_back(std::move(r));
+    return true;
+  }
   if (t.text == "__LINE__" || t.text == "__FILE__") {
     PPToken r = t;
     diag::SourceLoc at = t.from_macro ? t.exp_loc : t.loc;

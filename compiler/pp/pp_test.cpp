@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <ctime>
 #include <map>
 #include <set>
 
@@ -290,6 +292,28 @@ TEST(PP, LocationsThroughMacros) {
 // file name, in the GNU form too (OSL 1.13.12 prints 3, 100, 200 other.osl, 300 third.osl for
 // `printf("%d %s\n", __LINE__, __FILE__)` on lines 2, 4, 6, 8 of a shader with `#line 100`,
 // `#line 200 "other.osl"` and `# 300 "third.osl"` before the last three).
+// __DATE__ and __TIME__ are when the preprocessor ran, in C's forms ("Dec  7 2026" with the day
+// padded by a space, "13:06:11"), as oslc expands them (OSL 1.13.12 printed `Dec  7 2026|13:06:11`
+// for `printf("%s|%s\n", __DATE__, __TIME__)`; Lobe's refused them as undeclared).
+TEST(PP, DateAndTimeMacros) {
+  std::time_t before = std::time(nullptr);
+  PPRun r;
+  std::string out = r.run("__DATE__ __TIME__\n");
+  std::time_t after = std::time(nullptr);
+  ASSERT_EQ(out.size(), std::string("\"Dec  7 2026\" \"13:06:11\"").size()) << out;
+  auto expect = [&](std::time_t when) {
+    std::tm tm{};
+    localtime_r(&when, &tm);
+    static const char* kMonths[] = {"Jan", "Feb", "Mar", "Apr", "May", "Jun",
+                                    "Jul", "Aug", "Sep", "Oct", "Nov", "Dec"};
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "\"%s %2d %d\" \"%02d:%02d:%02d\"", kMonths[tm.tm_mon],
+                  tm.tm_mday, tm.tm_year + 1900, tm.tm_hour, tm.tm_min, tm.tm_sec);
+    return std::string(buf);
+  };
+  EXPECT_TRUE(out == expect(before) || out == expect(after)) << out;
+}
+
 TEST(PP, LineAndFileMacros) {
   PPRun r;
   EXPECT_EQ(r.run("\n\n__LINE__ __FILE__\n"), "4 \"main.osl\"");
