@@ -100,6 +100,10 @@ std::shared_ptr<const Material> MaterialBackend::compile(const scene::MaterialDe
           return nullptr;
         }
         ignored.push_back(m.where + ": material '" + m.name + "': " + text + " (ignored)");
+      } else if (d.id == "builtin_option" || d.id == "closure_keyword") {
+        // A keyword argument a texture lookup, noise or closure does not take: dropped, said.
+        std::string text = d.text.substr(d.text.rfind("warning: ", 0) == 0 ? 9 : 0);
+        ignored.push_back(m.where + ": material '" + m.name + "': " + text + " (ignored)");
       }
     std::lock_guard<std::mutex> lock(mu_);
     warnings_.insert(warnings_.end(), ignored.begin(), ignored.end());

@@ -188,6 +188,33 @@ TEST(RenderCli, UnknownParametersAreErrors) {
                        "parameter 'colour' (its parameters: c)\n");
 }
 
+// A keyword argument a texture lookup or a closure does not take compiles (as oslc) and is
+// dropped: the render goes on and says which (the furnace shows the albedo, 0.25 x the missing
+// texture's 0.8 grey, untouched by the dropped arguments).
+TEST(RenderCli, KeywordArgumentsNotTakenAreDroppedWithAWarning) {
+  fs::path d = temp_dir("keywords");
+  write_file(d / "kw.osl",
+             "surface kw() {\n"
+             "  color t = texture(\"nosuch_kw.tx\", u, v, \"foo\", 1, \"missingcolor\", 0.8);\n"
+             "  Ci = 0.25 * t * diffuse(N, \"bar\", 2);\n"
+             "}\n");
+  fs::path scene = d / "s.json";
+  write_file(scene, furnace_json(R"({"shader": "kw"})"));
+  CmdResult r = render(scene.string() + " -o " + (d / "o.exr").string());
+  EXPECT_EQ(r.status, 0) << r.out;
+  const std::string where = "warning: " + scene.string() + ": /materials/m: material 'm': ";
+  const std::string shader = (d / "kw.osl").string();
+  EXPECT_NE(r.out.find(where + "Unknown texture optional argument: \"foo\", <int> (" + shader +
+                       ":2) (ignored)\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find(where + "Unsupported closure keyword arg \"bar\" for diffuse (" + shader +
+                       ":3) (ignored)\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NEAR(mean_channel(d / "o.exr", "R"), 0.2, 0.01);
+}
+
 // The output is checked before rendering: a known extension and a writable folder. .hdr keeps
 // RGB only (AOVs are written to EXR alone).
 TEST(RenderCli, OutputIsCheckedBeforeRendering) {
