@@ -10,7 +10,7 @@
 namespace lobe::ir {
 
 namespace {
-const TextureOption kTextureOptions[] = {
+const KeywordOption kTextureOptions[] = {
     {"blur", BaseType::Float},
     {"sblur", BaseType::Float},
     {"tblur", BaseType::Float},
@@ -33,27 +33,36 @@ const TextureOption kTextureOptions[] = {
     {"alpha", BaseType::Float, true},
     {"errormessage", BaseType::String, true},
 };
-} // namespace
+const KeywordOption kGaborOptions[] = {
+    {"anisotropic", BaseType::Int}, {"do_filter", BaseType::Int},  {"direction", BaseType::Vector},
+    {"bandwidth", BaseType::Float}, {"impulses", BaseType::Float},
+};
 
-const TextureOption* texture_option(std::string_view name) {
-  for (const TextureOption& o : kTextureOptions)
+template <size_t N>
+const KeywordOption* find_option(const KeywordOption (&table)[N], std::string_view name) {
+  for (const KeywordOption& o : table)
     if (name == o.name) return &o;
   return nullptr;
 }
+} // namespace
 
-bool texture_option_fits(const TextureOption& o, const Type& t, bool written) {
+const KeywordOption* texture_option(std::string_view name) {
+  return find_option(kTextureOptions, name);
+}
+const KeywordOption* gabor_option(std::string_view name) {
+  return find_option(kGaborOptions, name);
+}
+
+bool option_fits(const KeywordOption& o, const Type& t, bool written) {
   if (t.is_array()) return false;
   if (o.output) return written && t.base == o.type;
   if (o.or_string && t.base == BaseType::String) return true;
-  auto triple = [](BaseType b) {
-    return b == BaseType::Color || b == BaseType::Point || b == BaseType::Vector ||
-           b == BaseType::Normal;
-  };
   switch (o.type) {
   case BaseType::Float:
     return t.base == BaseType::Float || t.base == BaseType::Int;
-  case BaseType::Color: // a triple, or a float or int for all three
-    return triple(t.base) || t.base == BaseType::Float || t.base == BaseType::Int;
+  case BaseType::Color:
+  case BaseType::Vector:
+    return t.is_triple();
   default:
     return t.base == o.type;
   }

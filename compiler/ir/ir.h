@@ -193,20 +193,22 @@ struct Shader {
   const StructType* find_struct(const std::string& name) const; // null if absent
 };
 
-// The optional `"keyword", value` arguments of texture(), texture3d() and environment(), with
-// the type each takes (OSL's): a float one takes an int too; `output` ones are written by the
+// The optional `"keyword", value` arguments of texture(), texture3d() and environment(), and of
+// noise("gabor", ...) (OSL's NoiseParams), with the type each takes (OSL's): a float one takes
+// an int too, a colour or vector one any triple (no number); `output` ones are written by the
 // lookup (an lvalue of that type); `or_string` ("subimage") takes a name too. Null for a name
-// they do not take. The type checker accepts any pair, as oslc does; the group builder drops a
-// pair that is not one of these or of another type, with OSL's message (builtin_option).
-struct TextureOption {
+// they do not take. The type checker accepts any pair, as oslc does, converting only values
+// that fit; the group builder drops a pair that does not, with OSL's message (builtin_option).
+struct KeywordOption {
   const char* name;
   BaseType type;
   bool output = false;
   bool or_string = false;
 };
-const TextureOption* texture_option(std::string_view name);
+const KeywordOption* texture_option(std::string_view name);
+const KeywordOption* gabor_option(std::string_view name);
 // Whether a value of type `t` (`written`: the op writes that operand) fits option `o`.
-bool texture_option_fits(const TextureOption& o, const Type& t, bool written);
+bool option_fits(const KeywordOption& o, const Type& t, bool written);
 // The operand index of the first "keyword" of a texture, texture3d or environment op (after the
 // explicit derivatives, when given).
 size_t first_texture_option(const Shader& sh, const Op& op);

@@ -25,6 +25,21 @@ PPToken pop(std::vector<PPToken>& stack) {
 }
 } // namespace
 
+std::string date_macro(const std::tm& tm) {
+  static constexpr const char* kMonths[12] = {"Jan", "Feb", "Mar", "Apr", "May", "Jun",
+                                              "Jul", "Aug", "Sep", "Oct", "Nov", "Dec"};
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "\"%s %2d %d\"", kMonths[((tm.tm_mon % 12) + 12) % 12], tm.tm_mday,
+                tm.tm_year + 1900);
+  return buf;
+}
+
+std::string time_macro(const std::tm& tm) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "\"%02d:%02d:%02d\"", tm.tm_hour, tm.tm_min, tm.tm_sec);
+  return buf;
+}
+
 void Preprocessor::expand_from_file(Cursor& cur) {
   const PPToken& first = (*cur.toks)[cur.pos++]; // copied only when it starts an expansion
   bool ident = first.kind == PPKind::Ident;
@@ -89,15 +104,7 @@ bool Preprocessor::try_expand(const PPToken& t, Input& in) {
     std::time_t now = std::time(nullptr);
     std::tm tm{};
     localtime_r(&now, &tm);
-    static constexpr const char* kMonths[12] = {"Jan", "Feb", "Mar", "Apr", "May", "Jun",
-                                                "Jul", "Aug", "Sep", "Oct", "Nov", "Dec"};
-    char buf[32]; // the month's name in English whatever the locale, as C's
-    if (t.text == "__DATE__")
-      std::snprintf(buf, sizeof buf, "\"%s %2d %d\"", kMonths[tm.tm_mon % 12], tm.tm_mday,
-                    tm.tm_year + 1900);
-    else
-      std::snprintf(buf, sizeof buf, "\"%02d:%02d:%02d\"", tm.tm_hour, tm.tm_min, tm.tm_sec);
-    r.text = buf;
+    r.text = t.text == "__DATE__" ? date_macro(tm) : time_macro(tm);
     in.pending.push_back(std::move(r));
     return true;
   }

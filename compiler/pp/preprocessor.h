@@ -15,6 +15,7 @@
 #include "diag/source_manager.h"
 #include "pp/pp_token.h"
 
+#include <ctime>
 #include <functional>
 #include <map>
 #include <memory>
@@ -58,6 +59,11 @@ struct NowarnLines {
     return loc.valid() && lines.count({loc.file, loc.line}) > 0;
   }
 };
+
+// __DATE__ and __TIME__'s tokens for the moment `tm` (local time), quoted, as C spells them
+// whatever the locale: "Dec  7 2026" (the day padded with a space), "13:06:11".
+std::string date_macro(const std::tm& tm);
+std::string time_macro(const std::tm& tm);
 
 class Preprocessor {
 public:

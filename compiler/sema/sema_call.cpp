@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstring>
 #include <map>
+#include <optional>
 
 namespace lobe::sema {
 
@@ -320,25 +321,36 @@ void Sema::add_keyword(ast::CallExpr* e, const std::string& name, int param_inde
 }
 
 namespace {
-// The optional arguments trace() and noise("gabor") take, with their types (texture's are
-// ir::texture_option's). `Float` takes an int too.
-struct BuiltinKeyword {
-  const char* function; // "trace", or "noise" (noise and pnoise)
+// The optional arguments trace() takes, with their types (`Float` takes an int too); texture's
+// and gabor noise's are the IR's (ir::texture_option, ir::gabor_option).
+struct TraceKeyword {
   const char* name;
   ast::BaseType type;
 };
-const BuiltinKeyword kBuiltinKeywords[] = {
-    {"trace", "mindist", ast::BaseType::Float},
-    {"trace", "maxdist", ast::BaseType::Float},
-    {"trace", "shade", ast::BaseType::Int},
-    {"trace", "traceset", ast::BaseType::String},
-    // noise("gabor", ...) / pnoise("gabor", ...) options (OSL's NoiseParams).
-    {"noise", "anisotropic", ast::BaseType::Int},
-    {"noise", "do_filter", ast::BaseType::Int},
-    {"noise", "direction", ast::BaseType::Vector},
-    {"noise", "bandwidth", ast::BaseType::Float},
-    {"noise", "impulses", ast::BaseType::Float},
+const TraceKeyword kTraceKeywords[] = {
+    {"mindist", ast::BaseType::Float},
+    {"maxdist", ast::BaseType::Float},
+    {"shade", ast::BaseType::Int},
+    {"traceset", ast::BaseType::String},
 };
+
+// A value's type as the IR's, for ir::option_fits; none for a struct, void or an error.
+std::optional<ir::Type> ir_type(const Type& t) {
+  static constexpr std::pair<ast::BaseType, ir::BaseType> kBases[] = {
+      {ast::BaseType::Int, ir::BaseType::Int},
+      {ast::BaseType::Float, ir::BaseType::Float},
+      {ast::BaseType::Color, ir::BaseType::Color},
+      {ast::BaseType::Point, ir::BaseType::Point},
+      {ast::BaseType::Vector, ir::BaseType::Vector},
+      {ast::BaseType::Normal, ir::BaseType::Normal},
+      {ast::BaseType::Matrix, ir::BaseType::Matrix},
+      {ast::BaseType::String, ir::BaseType::String},
+      {ast::BaseType::Closure, ir::BaseType::Closure},
+  };
+  for (const auto& [a, i] : kBases)
+    if (t.base == a) return ir::Type{i, t.arraylen};
+  return std::nullopt;
+}
 
 ast::BaseType ast_base(ir::BaseType b) {
   switch (b) {
@@ -348,48 +360,54 @@ ast::BaseType ast_base(ir::BaseType b) {
     return ast::BaseType::Float;
   case ir::BaseType::Color:
     return ast::BaseType::Color;
+  case ir::BaseType::Vector:
+    return ast::BaseType::Vector;
   case ir::BaseType::String:
     return ast::BaseType::String;
   default:
-    return ast::BaseType::Error; // no texture option has another type
+    return ast::BaseType::Error; // no option has another type
   }
 }
 } // namespace
 
-// A builtin's `"keyword", value` pair: a keyword it takes, with a value of the right type
-// (converted to it), as OSL requires; codegen then reads each value as its type. texture(),
-// texture3d() and environment() take any pair, as oslc does: one they do not take, or of
-// another type, is left for the group builder, which drops it with OSL's message when the
-// shader is set up (ir::texture_option).
+// A builtin's `"keyword", value` pair. trace() takes its keywords, each with a value of its
+// type (converted to it), as OSL requires. texture(), texture3d(), environment() and noise()
+// take any pair of a value, as oslc does: one that fits its option is converted to the option's
+// type, and one that does not (an unknown name, another type) is kept as written for the group
+// builder, which drops it with OSL's message when the shader is set up (ir::option_fits).
 void Sema::check_builtin_keyword(ast::CallExpr* e, const ast::StringLit* name, ExprPtr& value) {
-  if (e->name != "trace" && e->name != "noise" && e->name != "pnoise") {
-    const ir::TextureOption* o = ir::texture_option(name->value);
-    if (!o) return;
-    Type want{ast_base(o->type), 0};
-    if (o->output) {
-      if (value->lvalue && value->type == want)
-        check_writable(value.get(), value->range, /*output_arg=*/true);
+  if (e->name != "trace") {
+    std::optional<ir::Type> t = ir_type(value->type);
+    if (!t) { // no value to pass (void), or a struct: not even oslc keeps it
+      if (!value->type.is_error())
+        error(DiagId::err_keyword_type, value->range,
+              {name->value, e->name, "a value", tname(value->type)});
       return;
     }
-    if (o->or_string && value->type == Type{ast::BaseType::String, 0}) return;
-    if (assignable(want, value->type) && !value->type.is_array()) coerce(value, want);
+    bool noise = e->name == "noise" || e->name == "pnoise";
+    const ir::KeywordOption* o =
+        noise ? ir::gabor_option(name->value) : ir::texture_option(name->value);
+    if (o && o->output && !value->lvalue && !t->is_array() &&
+        ast_base(o->type) == value->type.base) {
+      error(DiagId::err_not_assignable, value->range); // written: as oslc, not a constant
+      return;
+    }
+    if (!o || !ir::option_fits(*o, *t, value->lvalue)) return;
+    if (o->output)
+      check_writable(value.get(), value->range, /*output_arg=*/true);
+    else if (!(o->or_string && value->type.base == ast::BaseType::String))
+      coerce(value, Type{ast_base(o->type), 0});
     return;
   }
-  std::string fn = e->name == "trace" ? "trace" : "noise";
-  const BuiltinKeyword* k = nullptr;
-  for (const BuiltinKeyword& b : kBuiltinKeywords)
-    if (fn == b.function && name->value == b.name) k = &b;
-  Type want{k ? k->type : ast::BaseType::Error, 0};
-  bool fits = k && assignable(want, value->type) && !value->type.is_array() &&
-              !(k->type == ast::BaseType::Int && value->type.base != ast::BaseType::Int);
-  // noise()'s options, as texture's: kept as written when they do not fit (oslc keeps them),
-  // for the group builder to drop with OSL's message.
-  if (fn == "noise" && !fits) return;
+  const TraceKeyword* k = nullptr;
+  for (const TraceKeyword& b : kTraceKeywords)
+    if (name->value == b.name) k = &b;
   if (!k) {
     error(DiagId::err_unknown_keyword, name->range, {name->value, e->name});
     return;
   }
-  if (!fits) {
+  Type want{k->type, 0};
+  if (!assignable(want, value->type) || value->type.is_array()) {
     error(DiagId::err_keyword_type, value->range,
           {name->value, e->name, tname(want), tname(value->type)});
     return;
@@ -564,6 +582,12 @@ bool Sema::closure_call(ast::CallExpr* e) {
     ExprPtr& value = e->args[kw.name_arg + 1];
     // A keyword the closure does not take, or a value of another type: kept as written, as oslc
     // keeps it; the group builder drops it with OSL's warning when the shader is set up.
+    if (!ir_type(value->type)) { // no value to pass (void), or a struct
+      if (!value->type.is_error())
+        error(DiagId::err_keyword_type, value->range,
+              {name->value, e->name, "a value", tname(value->type)});
+      continue;
+    }
     if (kw.param == registry::kUnknownKeyword ||
         !assignable(type_of(best->params[size_t(kw.param)].type), value->type)) {
       e->keywords.push_back({name->value, -1, value.get()});

@@ -119,6 +119,11 @@ void Sema::coerce(ExprPtr& e, const Type& to) {
     if (e->type.base == to.base || e->type.is_unsized_array()) return;
     return coerce(e, Type(to.base, e->type.arraylen, to.strct));
   }
+  // An unsized array parameter where a sized array goes: itself, at its instance's length (a
+  // function taking a sized one reads it by reference, its indices checked against that).
+  if (e->type.is_unsized_array() && to.is_array() && e->type.base == to.base &&
+      e->type.strct == to.strct)
+    return;
   if (to.is_closure() && e->kind == ast::ExprKind::FloatLit) { // 0.0: the null closure, as 0
     auto zero = std::make_unique<ast::IntLit>();
     zero->range = e->range;

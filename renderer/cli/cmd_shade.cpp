@@ -624,7 +624,8 @@ void Shade::shade_grid(const Material& m, bool last_iteration) {
   // "errormessage" of a texture file that cannot be opened: its words once, then "unknown"),
   // goes to the first point when every point does it, as on one thread.
   auto all_rows = [&] {
-    shade_row(0, 0, std::min(job_.xres, 1));
+    if (job_.xres <= 0 || job_.yres <= 0) return; // an empty grid shades nothing
+    shade_row(0, 0, 1);
     tbb::parallel_for(0, job_.yres, [&](int y) { shade_row(y, y == 0 ? 1 : 0, job_.xres); });
   };
   if (job_.threads > 0) {
@@ -737,8 +738,10 @@ int Shade::run() {
       missing.push_back(size_t(&l - g.layers.data()));
     }
   }
-  for (size_t k = missing.size(); k-- > 0;)
+  for (size_t k = missing.size(); k-- > 0;) {
     g.layers.erase(g.layers.begin() + std::ptrdiff_t(missing[k]));
+    named.erase(named.begin() + std::ptrdiff_t(missing[k]));
+  }
   missing_shader_ = !missing.empty();
   if (g.layers.empty() && missing_shader_) { // nothing to shade: testshade's closing blank line
     std::fflush(stderr);

@@ -163,6 +163,7 @@ std::string write_image(const std::string& path, const Image& img, const WriteOp
 std::string write_channels(const std::string& path, const Image& img, const std::string& format,
                            bool ints) {
   if (img.width <= 0 || img.height <= 0 || img.channels.empty()) return path + ": empty image";
+  ints = ints || format == "int"; // "int" is for int values
   std::string ext = lower_extension(path);
   size_t n = img.pixels.size();
   FileSpec f{img.width, img.height, img.channels, oiio::Pixel::Float};

@@ -75,7 +75,8 @@ std::string write_image(const std::string& path, const Image& img, const WriteOp
 // "uint8", or "int", for `ints`, written as int32), linear, except in PNG and JPEG files, whose
 // 8 bits are sRGB-encoded (0.5 is 188) as testshade writes them. EXR is zip-compressed and holds
 // "int" and "uint8" as half (it has neither pixel type). `ints`: the values are ints, which in a
-// file of another pixel type are scaled by 1/INT_MAX, as OpenImageIO converts int data.
+// file of another pixel type are scaled by 1/INT_MAX, as OpenImageIO converts int data ("int"
+// implies it).
 std::string write_channels(const std::string& path, const Image& img, const std::string& format,
                            bool ints = false);
 

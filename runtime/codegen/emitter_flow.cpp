@@ -443,9 +443,7 @@ std::string emit_group(const GroupPlan& plan, llvm::Module& module, HostSymbols&
   // testshade stays lazy), every layer the group kept, in order.
   bool any_entry = false, eager = !plan.lazy_layers && !plan.explicit_entries;
   for (const LayerPlan& lp : plan.layers) any_entry |= lp.entry;
-  std::vector<size_t> order;
-  if (!eager)
-    for (int i : plan.entry_order) order.push_back(size_t(i));
+  std::vector<size_t> order(plan.entry_order.begin(), plan.entry_order.end()); // none if eager
   for (size_t i = 0; i < plan.layers.size(); ++i)
     if (std::find(order.begin(), order.end(), i) == order.end()) order.push_back(i);
   for (size_t i : order) {

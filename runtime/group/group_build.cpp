@@ -1,11 +1,11 @@
 // build_group (see group_build.h).
 #include "group_build.h"
 
-#include "closure_registry.h"
 #include "env.h"
+#include "group_links.h"
 #include "ir/edit.h"
 #include "ir/opcodes.h"
-#include "ir/printer.h"
+#include "keyword_args.h"
 #include "lobe/memory.h"
 #include "lobe/shading.h"
 #include "passes/derivs.h"
@@ -13,7 +13,6 @@
 #include "public_diag.h"
 
 #include <algorithm>
-#include <bit>
 #include <cstring>
 #include <map>
 #include <set>
@@ -32,12 +31,6 @@ Diagnostic err(const std::string& msg, DiagId id) {
 Diagnostic warn(const std::string& msg, DiagId id) {
   return runtime_diag(id, msg, diag::Severity::Warning);
 }
-
-// One resolved end of a connection: a symbol name and an optional element/component.
-struct Endpoint {
-  std::string symbol;
-  int elem = -1, comp = -1;
-};
 
 // "c[1]", "a[2][0]", "s.a", or a whole struct "s" (one endpoint per field, keyed by the
 // field's suffix). Empty result: not found — also for an index that is not a number in range
@@ -78,26 +71,6 @@ std::map<std::string, Endpoint> resolve(const ir::Shader& sh, const std::string&
         sym.name.rfind(base + ".", 0) == 0)
       out[sym.name.substr(base.size())] = Endpoint{sym.name};
   return out;
-}
-
-struct Link { // a resolved connection, by names
-  int src_layer, dst_layer;
-  Endpoint src, dst;
-  bool dead = false; // replaced by the source's known value (elide_known_outputs)
-};
-
-// Whether one of the group's renderer outputs ("var", or "layer.var") names `var` of `layer`.
-bool renderer_reads(const ShaderGroup& group, const std::string& layer, const std::string& var) {
-  for (const std::string& ro : group.renderer_outputs) {
-    size_t dot = ro.find('.');
-    if (dot == std::string::npos) {
-      if (ro == var) return true;
-    } else if ((dot == 0 || ro.compare(0, dot, layer) == 0) &&
-               ro.compare(dot + 1, std::string::npos, var) == 0) {
-      return true;
-    }
-  }
-  return false;
 }
 
 bool is_param(const ir::Symbol& s) {
@@ -443,7 +416,8 @@ void resolve_isconnected(ir::Shader& sh, int layer, const std::vector<Link>& lin
   }
 }
 
-// A type as OSL's messages name it: a closure is a "closure color" ("closure color[2]").
+} // namespace
+
 std::string osl_type_name(const ir::Type& t) {
   std::string s = ir::to_string(t);
   if (t.base == ir::BaseType::Closure && s.rfind("closure", 0) == 0 &&
@@ -451,226 +425,6 @@ std::string osl_type_name(const ir::Type& t) {
     s.insert(7, " color");
   return s;
 }
-
-// The `"keyword", value` operands [i, i + 1] taken out of `op` (the written bits above them move
-// down with them).
-void erase_pair(ir::Op& op, size_t i) {
-  op.args.erase(op.args.begin() + std::ptrdiff_t(i), op.args.begin() + std::ptrdiff_t(i) + 2);
-  uint32_t low = i >= 32 ? op.written_mask : op.written_mask & ((1u << i) - 1);
-  uint32_t high = i + 2 >= 32 ? 0 : op.written_mask >> (i + 2);
-  op.written_mask = low | (i >= 32 ? 0 : high << i);
-}
-
-// Whether a value of type `t` converts to a closure parameter of type `a` (OSL's assignment:
-// a float takes an int, a triple any triple or a number).
-bool fits_closure_param(registry::ArgType a, const ir::Type& t) {
-  using B = ir::BaseType;
-  if (t.is_array()) return false;
-  bool number = t.base == B::Int || t.base == B::Float;
-  bool triple =
-      t.base == B::Color || t.base == B::Point || t.base == B::Vector || t.base == B::Normal;
-  switch (a) {
-  case registry::ArgType::Int:
-    return t.base == B::Int;
-  case registry::ArgType::Float:
-    return number;
-  case registry::ArgType::Color:
-  case registry::ArgType::Vector:
-    return number || triple;
-  case registry::ArgType::String:
-    return t.base == B::String;
-  default:
-    return t.base == B::Closure;
-  }
-}
-
-// Where the `"keyword", value` options of a noise op by name (noise("gabor", P, ...)) begin: the
-// first string operand after the name and coordinates; op.args.size() for none (or no name).
-size_t noise_options(const ir::Shader& sh, const ir::Op& op) {
-  bool noise = op.opcode == ir::Opcode::Noise || op.opcode == ir::Opcode::PNoise ||
-               op.opcode == ir::Opcode::SNoise || op.opcode == ir::Opcode::PSNoise;
-  auto is_string = [&](size_t a) {
-    return sh.symbols[size_t(op.args[a])].type.base == ir::BaseType::String;
-  };
-  if (!noise || op.args.size() < 3 || !is_string(1)) return op.args.size();
-  size_t i = 2;
-  while (i < op.args.size() && !is_string(i)) ++i;
-  return i;
-}
-
-// Whether gabor noise takes option `kw` with a value of type `t` (OSL's NoiseParams: ints
-// exactly, floats from ints too, the direction a triple).
-bool gabor_option_fits(const std::string& kw, const ir::Type& t) {
-  using B = ir::BaseType;
-  if (t.is_array()) return false;
-  if (kw == "anisotropic" || kw == "do_filter") return t.base == B::Int;
-  if (kw == "bandwidth" || kw == "impulses") return t.base == B::Float || t.base == B::Int;
-  if (kw == "direction") return t.is_triple();
-  return false;
-}
-
-// The keyword arguments a texture lookup or closure does not take, or of another type, which the
-// type checker kept as oslc does: dropped, each with OSL's message when it sets the shader up
-// (once per call, whether or not it runs): `Unknown texture optional argument: "foo", <int>
-// (x.osl:3)` (texture3d's name its own; gabor noise's `Unknown noise optional argument`),
-// `Unsupported closure keyword arg "foo" for diffuse (x.osl:2)`.
-void drop_misfit_keywords(ir::Shader& sh, DiagnosticList& diags) {
-  auto place = [](const ir::Op& op) { return op.loc.file + ":" + std::to_string(op.loc.line); };
-  for (ir::Op& op : sh.ops) {
-    bool lookup = op.opcode == ir::Opcode::Texture || op.opcode == ir::Opcode::Texture3d ||
-                  op.opcode == ir::Opcode::Environment;
-    if (lookup) {
-      for (size_t i = ir::first_texture_option(sh, op); i + 1 < op.args.size();) {
-        const ir::Symbol& name = sh.symbols[size_t(op.args[i])];
-        const ir::Symbol& value = sh.symbols[size_t(op.args[i + 1])];
-        const std::string* kw = ir::string_value(name);
-        const ir::TextureOption* o = kw ? ir::texture_option(*kw) : nullptr;
-        if (o && ir::texture_option_fits(*o, value.type, i + 1 < 32 && op.writes(int(i + 1)))) {
-          i += 2;
-          continue;
-        }
-        diags.push_back(warn(std::string("Unknown ") +
-                                 (op.opcode == ir::Opcode::Texture3d ? "texture3d" : "texture") +
-                                 " optional argument: \"" + (kw ? *kw : name.name) + "\", <" +
-                                 osl_type_name(value.type) + "> (" + place(op) + ")",
-                             DiagId::builtin_option));
-        erase_pair(op, i);
-      }
-    } else if (noise_options(sh, op) < op.args.size()) {
-      // The gabor options; other kinds take none and ignore them silently, as OSL does.
-      const std::string* kind = ir::string_value(sh.symbols[size_t(op.args[1])]);
-      for (size_t i = noise_options(sh, op); i + 1 < op.args.size();) {
-        const std::string* kw = ir::string_value(sh.symbols[size_t(op.args[i])]);
-        const ir::Type& t = sh.symbols[size_t(op.args[i + 1])].type;
-        if (kw && gabor_option_fits(*kw, t)) {
-          i += 2;
-          continue;
-        }
-        if (!kind || *kind == "gabor")
-          diags.push_back(warn("Unknown " + std::string(ir::info(op.opcode).name) +
-                                   " optional argument: \"" + (kw ? *kw : std::string()) + "\", <" +
-                                   osl_type_name(t) + "> (" + place(op) + ")",
-                               DiagId::builtin_option));
-        erase_pair(op, i);
-      }
-    } else if (op.opcode == ir::Opcode::Closure && op.args.size() > 1) {
-      const std::string* key = ir::string_value(sh.symbols[size_t(op.args[1])]);
-      const registry::ClosureEntry* entry = key ? registry::find_by_key(*key) : nullptr;
-      if (!entry) continue;
-      size_t i = 2;
-      for (const registry::ClosureParam& p : entry->params) i += p.keyword ? 0 : 1;
-      while (i + 1 < op.args.size()) {
-        const std::string* kw = ir::string_value(sh.symbols[size_t(op.args[i])]);
-        const ir::Type& t = sh.symbols[size_t(op.args[i + 1])].type;
-        auto p = std::find_if(
-            entry->params.begin(), entry->params.end(),
-            [&](const registry::ClosureParam& q) { return q.keyword && kw && *kw == q.name; });
-        if (p != entry->params.end() && fits_closure_param(p->type, t)) {
-          i += 2;
-          continue;
-        }
-        diags.push_back(warn("Unsupported closure keyword arg \"" + (kw ? *kw : std::string()) +
-                                 "\" for " + std::string(entry->name) + " (" + place(op) + ")",
-                             DiagId::closure_keyword));
-        erase_pair(op, i);
-      }
-    }
-  }
-}
-
-// Whether two instance-value lists give a shader the same parameter values: a parameter given
-// in one only must hold that value as its constant default (a computed default is not known
-// here). Each value compares by its parameter's type, floats by their bits.
-bool same_values(const ir::Shader& sh, const std::map<std::string, std::vector<ir::ConstValue>>& a,
-                 const std::map<std::string, std::vector<ir::ConstValue>>& b) {
-  auto same = [](const ir::Type& t, const std::vector<ir::ConstValue>& x,
-                 const std::vector<ir::ConstValue>& y) {
-    if (x.size() != y.size()) return false;
-    for (size_t k = 0; k < x.size(); ++k) {
-      bool eq = t.base == ir::BaseType::String ? x[k].s == y[k].s
-                : t.base == ir::BaseType::Int
-                    ? x[k].i == y[k].i
-                    : std::bit_cast<uint32_t>(x[k].f) == std::bit_cast<uint32_t>(y[k].f);
-      if (!eq) return false;
-    }
-    return true;
-  };
-  auto param = [&](const std::string& name) -> const ir::Symbol* {
-    int si = sh.find_symbol(name);
-    return si < 0 ? nullptr : &sh.symbols[size_t(si)];
-  };
-  auto given_only = [&](const std::string& name, const std::vector<ir::ConstValue>& v) {
-    const ir::Symbol* sym = param(name);
-    return sym && sym->init_begin < 0 && same(sym->type, sym->init, v);
-  };
-  for (const auto& [name, v] : a) {
-    auto it = b.find(name);
-    const ir::Symbol* sym = param(name);
-    if (!sym) return false;
-    if (it == b.end() ? !given_only(name, v) : !same(sym->type, v, it->second)) return false;
-  }
-  for (const auto& [name, v] : b)
-    if (!a.count(name) && !given_only(name, v)) return false;
-  return true;
-}
-
-// OSL's merging of identical instances (its opt_merge_instances, on at -O1 and -O2): layer j is
-// merged into an earlier layer i running the same shader with the same parameter values (and
-// the same of them given with lockgeom=0), the same parameters taking user data and the same
-// connections into it: j's connections out then
-// leave from i, and j, needed by nothing, is not built (a named entry layer still runs, its
-// outputs connected to nothing: isconnected() says 0). Neither the last layer, nor layers the
-// renderer reads outputs of, or layers with an interactive parameter (--reparam may change it
-// later) take part. As OSL 1.13.12 does all this.
-void merge_identical_layers(
-    const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
-    const std::vector<std::map<std::string, std::vector<ir::ConstValue>>>& values,
-    const std::vector<std::set<std::string>>& interp,
-    const std::vector<std::set<std::string>>& interactive,
-    const std::vector<std::set<std::string>>& unlocked, std::vector<Link>& links) {
-  const size_t n = group.layers.size();
-  // Per layer, once: whether it takes no part, and the connections into it in the order made
-  // (pointers: a merge redirects their sources in place).
-  std::vector<bool> pinned(n, false);
-  std::vector<std::vector<const Link*>> inputs(n);
-  for (size_t l = 0; l < n; ++l) {
-    pinned[l] = l + 1 == n || !interactive[l].empty();
-    for (const ir::Symbol& s : sources[l]->symbols)
-      pinned[l] = pinned[l] || (s.kind == SymKind::OutputParam &&
-                                renderer_reads(group, group.layers[l].name, s.name));
-  }
-  for (const Link& k : links) inputs[size_t(k.dst_layer)].push_back(&k);
-  auto same_endpoint = [](const Endpoint& a, const Endpoint& b) {
-    return a.symbol == b.symbol && a.elem == b.elem && a.comp == b.comp;
-  };
-  std::vector<std::string> text(n); // each layer's shader printed, when first compared
-  auto shader_text = [&](size_t l) -> const std::string& {
-    if (text[l].empty()) text[l] = ir::print(*sources[l]);
-    return text[l];
-  };
-  std::vector<int> merged_into(n, -1);
-  for (size_t j = 1; j < n; ++j) {
-    if (pinned[j]) continue;
-    for (size_t i = 0; i < j; ++i) {
-      if (merged_into[i] >= 0 || pinned[i] || sources[i]->name != sources[j]->name) continue;
-      if (sources[i] != sources[j] && shader_text(i) != shader_text(j)) continue;
-      if (interp[i] != interp[j] || unlocked[i] != unlocked[j]) continue;
-      if (!same_values(*sources[i], values[i], values[j])) continue;
-      const std::vector<const Link*>&a = inputs[i], &b = inputs[j];
-      bool same_in = a.size() == b.size();
-      for (size_t k = 0; same_in && k < a.size(); ++k)
-        same_in = a[k]->src_layer == b[k]->src_layer && same_endpoint(a[k]->src, b[k]->src) &&
-                  same_endpoint(a[k]->dst, b[k]->dst);
-      if (!same_in) continue;
-      merged_into[j] = int(i);
-      for (Link& k : links)
-        if (k.src_layer == int(j)) k.src_layer = int(i);
-      break;
-    }
-  }
-}
-
-} // namespace
 
 bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
                  bool specialize, GroupBuild& out, DiagnosticList& diags, bool lockgeom_default,
@@ -848,23 +602,31 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
 
   // OSL -O1/-O2 (its opt_merge_instances): a layer identical to an earlier one is merged into
   // it, so that the earlier one runs once where both ran (its printf shows once).
+  std::vector<int> merged_into(n, -1); // per layer: the earlier one it was merged into
   if (specialize && merge_instances)
-    merge_identical_layers(group, sources, values, interp, interactive, unlocked, links);
+    merged_into =
+        merge_identical_layers(group, sources, values, interp, interactive, unlocked, links);
 
   // Layers the last one depends on, and layers with a renderer output (which run at every
   // shade) with theirs.
   std::vector<bool> needed(n, false), entry(n, false);
   needed[n - 1] = true;
   entry[n - 1] = group.entry_layers.empty();
-  for (size_t i = 0; i < n; ++i)
-    for (const std::string& e : group.entry_layers)
-      if (e == group.layers[i].name) needed[i] = entry[i] = true;
+  // An entry layer's name names the first layer of that name, as OSL's layer look-up.
+  auto first_named = [&](const std::string& name) {
+    auto it = layer_index.find(name);
+    return it == layer_index.end() ? -1 : it->second;
+  };
+  for (const std::string& e : group.entry_layers)
+    if (int i = first_named(e); i >= 0) needed[size_t(i)] = entry[size_t(i)] = true;
   for (size_t i = 0; i + 1 < n && group.entry_layers.empty(); ++i)
     for (const ir::Symbol& s : sources[i]->symbols)
       if (s.kind == ir::SymKind::OutputParam && renderer_reads(group, group.layers[i].name, s.name))
         needed[i] = entry[i] = true;
-  // Layers OSL's lazyglobals=0, lazyunconnected=0 or lazyerror=0 runs at every shade.
+  // Layers OSL's lazyglobals=0, lazyunconnected=0 or lazyerror=0 runs at every shade (not one
+  // merged into another: that one stands for it).
   for (size_t i = 0; i + 1 < n && group.entry_layers.empty(); ++i) {
+    if (merged_into[i] >= 0) continue;
     const ir::Shader& sh = *sources[i];
     bool run = false;
     for (const ir::Op& op : sh.ops) {
@@ -1094,12 +856,13 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
   out.groupdata.assign(off, 0);
   out.plan.group_name = group.name;
   out.plan.explicit_entries = !group.entry_layers.empty();
-  for (const std::string& e : group.entry_layers)
-    for (size_t i = 0; i < n; ++i)
-      if (group.layers[i].name == e && needed[i] && new_index[i] >= 0 &&
-          std::find(out.plan.entry_order.begin(), out.plan.entry_order.end(), new_index[i]) ==
-              out.plan.entry_order.end())
-        out.plan.entry_order.push_back(new_index[i]);
+  for (const std::string& e : group.entry_layers) {
+    int i = first_named(e);
+    if (i >= 0 && needed[size_t(i)] && new_index[size_t(i)] >= 0 &&
+        std::find(out.plan.entry_order.begin(), out.plan.entry_order.end(), new_index[size_t(i)]) ==
+            out.plan.entry_order.end())
+      out.plan.entry_order.push_back(new_index[size_t(i)]);
+  }
   for (size_t i = 0; i < n; ++i) {
     if (!needed[i]) continue;
     size_t li = size_t(new_index[i]);

@@ -40,6 +40,9 @@ struct GroupBuild {
 struct EagerLayers {
   bool global_writers = false, unconnected = false, error_callers = false;
 };
+// A type as OSL's messages name it: a closure is a "closure color" ("closure color[2]").
+std::string osl_type_name(const ir::Type& t);
+
 bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>& sources,
                  bool specialize, GroupBuild& out, DiagnosticList& diags,
                  bool lockgeom_default = true, bool elide_known_outputs = false,

@@ -42,11 +42,12 @@ struct Textures {
   std::mutex mutex;
   std::vector<Perthread*> threads; // every record created, under `mutex`
   // file -> verdict, under `mutex`. A file that cannot be opened is explained once (as OSL
-  // prints it once): by the lookup or gettextureinfo of the shade with the smallest order
-  // (ShadingContext::order) that fails on it, of those that ran (a later shade of a smaller
-  // order tells it again, an earlier one of a larger order's report is then superseded), and
-  // among equal orders by the first to fail. `told`: such files, with the smallest order that
-  // told each, under `mutex`.
+  // prints it once), by the first lookup or gettextureinfo to fail on it; a lookup of a shade
+  // of a smaller order (ShadingContext::order) that fails after it explains it again, so that
+  // the shade of the smallest order always has the explanation (lobe shade prints messages in
+  // point order and drops a repeated one, so the grid's first point says it, whichever ran
+  // first; an "errormessage" output of a larger order that ran earlier keeps its words).
+  // `told`: such files, with the smallest order that explained each, under `mutex`.
   struct Verdict {
     std::string refusal; // "": fits; kNoExplanation: unopened, OpenImageIO explained it before
     bool unopened = false;
@@ -252,8 +253,8 @@ Lookup find(Textures* t, const char* file, int32_t site) {
 
 // Whether the subimage `a` asks of `h` by index is one the file has (a name OpenImageIO checks
 // itself: "Unknown subimage "x" in texture "f""). OpenImageIO asserts on an index past them (the
-// process aborts, as OSL's testshade does): refused here, with a message in its words. A UDIM
-// name is checked at its tile for (s, t).
+// process aborts, as OSL's testshade does): refused here, in the words OpenImageIO uses for a
+// name, with the count (Lobe's). A UDIM name is checked at its tile for (s, t).
 bool subimage_ok(Textures* x, const Lookup& l, const TextureArgs* a, const char* file, float s = 0,
                  float t = 0) {
   if (a->subimage == 0 || (a->subimagename && *a->subimagename)) return true;
@@ -327,7 +328,14 @@ std::string texture_error(void* tv, uint64_t order) {
   if (!t_refused.empty()) {
     std::string why = std::exchange(t_refused, std::string());
     std::string file = std::exchange(t_refused_file, std::string());
-    if (file.empty() || why == kNoExplanation) return why;
+    if (file.empty()) return why;
+    {
+      // The file's words as they are now: OpenImageIO gives them to one reader, whose verdict
+      // may have been stored after this lookup read its own.
+      std::lock_guard<std::mutex> lock(t->mutex);
+      why = t->verdicts[file].refusal;
+    }
+    if (why == kNoExplanation) return why;
     return tell(t, file, order) ? why : std::string(kNoExplanation);
   }
   if (!t_info_file.empty()) tell(t, std::exchange(t_info_file, std::string()), order);

@@ -54,10 +54,11 @@ struct Api {
   // is written as a const char* of interned text.
   int (*texture_info)(void* ts, const char* file, bool udim, float s, float t, const char* query,
                       int base, int arraylen, void* val);
-  // Why the last failed lookup or gettextureinfo on this thread failed, for a shade of `order`
+  // Why the last failed lookup on this thread failed, for a shade of `order`
   // (ShadingContext::order); kNoExplanation for a file that could not be opened and whose
-  // failure was told by a shade of a smaller or equal order before (OpenImageIO explains one
-  // once, so OSL prints it once and gives later "errormessage" outputs "unknown").
+  // failure was explained by a shade of a smaller or equal order before (OpenImageIO explains
+  // one once, so OSL prints it once and gives later "errormessage" outputs "unknown"). After a
+  // failed gettextureinfo: OpenImageIO's error, and the file counts as explained for lookups.
   std::string (*texture_error)(void* ts, uint64_t order);
   // Images: "" on success, else "path: why".
   bool (*can_write)(const std::string& path);

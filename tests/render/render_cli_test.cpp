@@ -195,7 +195,7 @@ TEST(RenderCli, KeywordArgumentsNotTakenAreDroppedWithAWarning) {
   fs::path d = temp_dir("keywords");
   write_file(d / "kw.osl",
              "surface kw() {\n"
-             "  color t = texture(\"nosuch_kw.tx\", u, v, \"foo\", 1, \"missingcolor\", 0.8);\n"
+             "  color t = texture(\"nosuch_kw.tx\", u, v, \"foo\", 1, \"missingcolor\", color(0.8));\n"
              "  Ci = 0.25 * t * diffuse(N, \"bar\", 2);\n"
              "}\n");
   fs::path scene = d / "s.json";

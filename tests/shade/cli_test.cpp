@@ -642,6 +642,10 @@ TEST(ShadeCli, AMissingShaderIsLeftOutAndTheOtherLayersShade) {
   EXPECT_EQ(run_here("-g 1 1 " + connected), missing + "Connect A.f to B.x\nms_b runs 1\n\n");
   EXPECT_EQ(status(connected), "1\n");
   EXPECT_EQ(run_here("-g 1 1 -layer A ms_a -layer M nosuch"), missing + "ms_a runs 1\n\n");
+  EXPECT_EQ(run_here("-g 1 1 -v " + connected),
+            missing + "Connect A.f to B.x\nShader group:\n---\nshader ms_a A ;\nshader ms_b B ;\n"
+                      "connect A.f B.x ;\n\n---\n\nShader group \"unnamed_group_1\" layers are:\n"
+                      "    A\n    B\n\nms_b runs 1\n\n");
   EXPECT_EQ(run_here("-g 1 1 -layer A ms_a -layer M nosuch -layer B ms_b -connect M y B x"),
             missing + "Connect M.y to B.x\nERROR: ConnectShaders: source layer \"M\" not found\n"
                       "        group: unnamed_group_1\n");
@@ -1210,6 +1214,11 @@ TEST(ShadeCli, EagerLayerOptionsRunUnreadLayers) {
   for (const auto& [options, expected] : cases)
     for (const char* o : {"-O0 ", "-O2 "})
       EXPECT_EQ(run_here(std::string(o) + "-g 1 1 " + options + layers), expected) << o << options;
+  // Of two identical layers merged at -O2, only the first runs.
+  const std::string twins =
+      "-g 1 1 --options lazyunconnected=0 --layer A1 lazy_out --layer A2 lazy_out --layer B ms_b";
+  EXPECT_EQ(run_here("-O0 " + twins), "lazy_out runs x=5\nlazy_out runs x=5\nms_b runs 0\n\n");
+  EXPECT_EQ(run_here("-O2 " + twins), "lazy_out runs x=5\nms_b runs 0\n\n");
 }
 
 // Layer run order as testshade's (OSL 1.13.12, `testshade -O0|-O2 -g 1 1 ARGS`): an output
@@ -1277,6 +1286,12 @@ TEST(ShadeCli, UnsizedArrayParametersGoWhereSizedOnesDo) {
               "e=5 6 7 oa=5 6 7 sum3=18 len=4\n\n")
         << o;
   }
+  // Shorter than the function's array: read by reference, the index past it is reported and
+  // clamped (at -O2 OSL names the array $newconst0).
+  EXPECT_EQ(run_here("-O0 --param:type=float[2] pa 5,6 unsized_to_sized"),
+            "ERROR: Index [2] out of range pa[0..1]: unsized_to_sized.osl:5 (group "
+            "unnamed_group_1, layer 0 unsized_to_sized_0, shader unsized_to_sized)\n"
+            "e=5 6 9 oa=5 6 0 sum3=17 len=2\n\n");
 }
 
 // A texture file that cannot be opened is told once, at the first point in grid order that meets

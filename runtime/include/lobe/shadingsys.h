@@ -124,7 +124,8 @@ struct CompileOptions {
   // OSL's "lazyglobals", "lazyunconnected" and "lazyerror": false runs at every shade, as the
   // group's entry layers run, each layer that writes a shader global (Ci, P, ...), that no
   // connection or renderer output reads, or that calls error(), where otherwise such a layer
-  // runs only when another reads it (or never). Part of the material cache key.
+  // runs only when another reads it (or never); not when the group names its entry layers.
+  // Part of the material cache key.
   bool lazy_globals = true;
   bool lazy_unconnected = true;
   bool lazy_error = true;
