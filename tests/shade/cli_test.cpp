@@ -642,6 +642,10 @@ TEST(ShadeCli, AMissingShaderIsLeftOutAndTheOtherLayersShade) {
   EXPECT_EQ(run_here("-g 1 1 " + connected), missing + "Connect A.f to B.x\nms_b runs 1\n\n");
   EXPECT_EQ(status(connected), "1\n");
   EXPECT_EQ(run_here("-g 1 1 -layer A ms_a -layer M nosuch"), missing + "ms_a runs 1\n\n");
+  // An empty grid shades nothing (OSL 1.13.12: `testshade -g 4 0 ms_a`, `-g 0 3 --print -o f
+  // null ms_a`).
+  EXPECT_EQ(run_here("-g 4 0 ms_a"), "\n");
+  EXPECT_EQ(run_here("-g 0 3 --print -o f null ms_a"), "\n\n");
   EXPECT_EQ(run_here("-g 1 1 -v " + connected),
             missing + "Connect A.f to B.x\nShader group:\n---\nshader ms_a A ;\nshader ms_b B ;\n"
                       "connect A.f B.x ;\n\n---\n\nShader group \"unnamed_group_1\" layers are:\n"
