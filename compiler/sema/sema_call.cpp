@@ -334,39 +334,26 @@ const TraceKeyword kTraceKeywords[] = {
     {"traceset", ast::BaseType::String},
 };
 
+// The base types the AST and the IR share.
+constexpr std::pair<ast::BaseType, ir::BaseType> kBases[] = {
+    {ast::BaseType::Int, ir::BaseType::Int},         {ast::BaseType::Float, ir::BaseType::Float},
+    {ast::BaseType::Color, ir::BaseType::Color},     {ast::BaseType::Point, ir::BaseType::Point},
+    {ast::BaseType::Vector, ir::BaseType::Vector},   {ast::BaseType::Normal, ir::BaseType::Normal},
+    {ast::BaseType::Matrix, ir::BaseType::Matrix},   {ast::BaseType::String, ir::BaseType::String},
+    {ast::BaseType::Closure, ir::BaseType::Closure},
+};
+
 // A value's type as the IR's, for ir::option_fits; none for a struct, void or an error.
 std::optional<ir::Type> ir_type(const Type& t) {
-  static constexpr std::pair<ast::BaseType, ir::BaseType> kBases[] = {
-      {ast::BaseType::Int, ir::BaseType::Int},
-      {ast::BaseType::Float, ir::BaseType::Float},
-      {ast::BaseType::Color, ir::BaseType::Color},
-      {ast::BaseType::Point, ir::BaseType::Point},
-      {ast::BaseType::Vector, ir::BaseType::Vector},
-      {ast::BaseType::Normal, ir::BaseType::Normal},
-      {ast::BaseType::Matrix, ir::BaseType::Matrix},
-      {ast::BaseType::String, ir::BaseType::String},
-      {ast::BaseType::Closure, ir::BaseType::Closure},
-  };
   for (const auto& [a, i] : kBases)
     if (t.base == a) return ir::Type{i, t.arraylen};
   return std::nullopt;
 }
 
 ast::BaseType ast_base(ir::BaseType b) {
-  switch (b) {
-  case ir::BaseType::Int:
-    return ast::BaseType::Int;
-  case ir::BaseType::Float:
-    return ast::BaseType::Float;
-  case ir::BaseType::Color:
-    return ast::BaseType::Color;
-  case ir::BaseType::Vector:
-    return ast::BaseType::Vector;
-  case ir::BaseType::String:
-    return ast::BaseType::String;
-  default:
-    return ast::BaseType::Error; // no option has another type
-  }
+  for (const auto& [a, i] : kBases)
+    if (b == i) return a;
+  return ast::BaseType::Error;
 }
 } // namespace
 
