@@ -10,6 +10,8 @@
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
@@ -210,6 +212,17 @@ struct Lookup {
   Perthread* info = nullptr;
 };
 
+// Whether `file` names something that is neither a file nor a folder (a device such as
+// /dev/zero, a pipe): OpenImageIO would wait on it, or read it, for ever.
+bool special_file(const char* file) {
+  struct stat st;
+  return file && ::stat(file, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode);
+}
+
+std::string not_a_file(const char* file) {
+  return "Could not open file: " + std::string(file) + ": not a regular file";
+}
+
 Lookup find(Textures* t, const char* file, int32_t site) {
   struct Passed {
     uint64_t id = 0;
@@ -223,6 +236,15 @@ Lookup find(Textures* t, const char* file, int32_t site) {
   l.info = thread_info(t, site);
   for (const Passed& p : passed)
     if (p.id == t->id && p.ptr == file && p.name == file) return {p.handle, l.info};
+  if (special_file(file)) { // told once, as a file that cannot be opened
+    {
+      std::lock_guard<std::mutex> lock(t->mutex);
+      t->verdicts.try_emplace(file, Textures::Verdict{not_a_file(file), true});
+    }
+    t_refused = not_a_file(file);
+    t_refused_file = file;
+    return {nullptr, l.info};
+  }
   l.handle = t->ts->get_texture_handle(OIIO::ustring(file), l.info);
   Textures::Verdict verdict;
   bool known = false;
@@ -310,6 +332,11 @@ int texture_info(void* tv, const char* file, bool udim, float s, float t, const 
   OIIO::TypeDesc type = kTypes[base];
   if (arraylen > 0) type.arraylen = arraylen;
   Textures* x = textures_of(tv);
+  if (special_file(file)) {
+    t_refused = not_a_file(file);
+    t_refused_file.clear();
+    return -1;
+  }
   OIIO::TextureSystem* ts = x->ts;
   Perthread* info = thread_info(x);
   OIIO::ustring name(file ? file : ""), what(query ? query : "");

@@ -1298,6 +1298,15 @@ TEST(ShadeCli, UnsizedArrayParametersGoWhereSizedOnesDo) {
             "e=5 6 9 oa=5 6 0 sum3=17 len=2\n\n");
 }
 
+// A texture or gettextureinfo of a device (/dev/zero, /dev/urandom) is an error: OpenImageIO read
+// it for ever (the shade hung).
+TEST(ShadeCli, TexturesOfDevicesAreErrors) {
+  EXPECT_EQ(run_here("-g 1 1 dev_texture"),
+            "ERROR: [RendererServices::texture] Could not open file: /dev/zero: not a regular "
+            "file\nERROR: Shader error [dev_texture]: Could not open file: /dev/zero: not a "
+            "regular file\n0 0 0 | 0 -1 -1\n\n");
+}
+
 // A texture file that cannot be opened is told once, at the first point in grid order that meets
 // it, whatever the thread count: its words in the first point's "errormessage" and "unknown"
 // after, and the error of a lookup only the grid's lower half makes printed with that half's
