@@ -325,6 +325,9 @@ int run_render(int argc, char** argv) {
   lobe::image::WriteOptions wo;
   wo.exposure = st.exposure;
   wo.tonemap = lobe::image::ToneMap::Filmic;
+  // Strings past their memory: the image is written (nothing finished is lost) but may be wrong.
+  std::string strings_error = backend.strings_error();
+  if (!strings_error.empty()) std::fprintf(stderr, "lobe render: %s\n", strings_error.c_str());
   if (std::string e = lobe::image::write_image(out, img, wo); !e.empty()) {
     std::fprintf(stderr, "lobe render: %s\n", e.c_str());
     return 1;
@@ -361,7 +364,7 @@ int run_render(int argc, char** argv) {
                  stats.seconds > 0 ? double(rays) / stats.seconds / 1e6 : 0.0);
   }
   if (a.stats) print_stats(scene, desc, load_s, setup_s, stats, st, a.threads);
-  return stats.cancelled ? 130 : 0;
+  return stats.cancelled ? 130 : strings_error.empty() ? 0 : 1;
 }
 
 } // namespace

@@ -876,6 +876,11 @@ int Shade::run() {
                  "lobe shade: %llu more shader messages not shown: the grid's messages passed "
                  "the %s of memory kept for them (a quarter of what was available)\n",
                  (unsigned long long)n, format_bytes(double(said_budget_)).c_str());
+  if (ss_.strings_exhausted())
+    std::fprintf(stderr,
+                 "lobe shade: the shaders' strings passed the %s of memory kept for them (a "
+                 "quarter of what was available): a string that did not fit was made empty\n",
+                 format_bytes(double(ss_.strings_budget_bytes())).c_str());
   if (job_.outputs.size() == 1 && job_.outputs[0].file == "null") std::printf("\n");
   size_t total = size_t(job_.xres) * size_t(job_.yres) * size_t(std::max(1, job_.iters));
   std::fflush(stdout);
@@ -895,7 +900,7 @@ int Shade::run() {
   if (interrupted) return 130;
   if (job_.print_groupdata) std::printf("Groupdata size: %zu\n", mat_->groupdata_bytes());
   if (job_.runstats) print_stats(setup, run, seconds_since(t2));
-  return status ? status : missing_shader_ ? 1 : 0;
+  return status ? status : missing_shader_ || ss_.strings_exhausted() ? 1 : 0;
 }
 
 int run_shade(int argc, char** argv) {

@@ -1,6 +1,8 @@
 // Material backend selection (see material_backend.h).
 #include "material_backend.h"
 
+#include "lobe/memory.h"
+
 #ifdef LOBE_HAVE_JIT
 #include "lobe/install.h"
 #include "lobe/shadingsys.h"
@@ -129,6 +131,17 @@ std::string MaterialBackend::name() const {
   std::lock_guard<std::mutex> lock(mu_);
   if (used_jit_ && used_native_) return "jit+native";
   return used_jit_ ? "jit" : "native";
+}
+
+std::string MaterialBackend::strings_error() const {
+#ifdef LOBE_HAVE_JIT
+  if (jit_ && jit_->ss.strings_exhausted())
+    return "the shaders' strings passed the " +
+           format_bytes(double(jit_->ss.strings_budget_bytes())) +
+           " of memory kept for them (a quarter of what was available): a string that did not "
+           "fit was made empty";
+#endif
+  return "";
 }
 
 std::vector<std::string> MaterialBackend::warnings() const {

@@ -24,6 +24,9 @@ public:
   MaterialCompiler compiler();
   std::string name() const; // "jit", "native" or "jit+native"
   std::vector<std::string> warnings() const;
+  // "" unless the strings JIT materials made passed their memory (ShadingSystem::
+  // strings_exhausted): then why, naming the budget (a string past it was made empty).
+  std::string strings_error() const;
   static bool jit_available();
   // The RGB space of JIT materials' colours (CompileOptions::colorspace: transformc, luminance,
   // blackbody...); set before the first compile. Native materials are Rec709. Returns OSL's

@@ -271,6 +271,9 @@ ShadingSystem::Impl::build(const ShaderGroup& g, const std::vector<const ir::Sha
                                                std::move(closure_ids));
 }
 
+bool ShadingSystem::strings_exhausted() const { return impl_->env->strings.exhausted(); }
+uint64_t ShadingSystem::strings_budget_bytes() const { return impl_->env->strings.budget(); }
+
 std::shared_ptr<const Material> ShadingSystem::compile(const ShaderGroup& group,
                                                        DiagnosticList& diags) {
   Impl& m = *impl_;

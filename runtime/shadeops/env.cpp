@@ -1,7 +1,10 @@
 // StringTable: interning behind a mutex, with each thread's recent strings in front of it.
 #include "env.h"
 
+#include "lobe/memory.h"
+
 #include <array>
+#include <new>
 
 namespace lobe::shadeops {
 
@@ -18,7 +21,18 @@ struct Recent {
 };
 } // namespace
 
-StringTable::StringTable() : serial_(next_table_serial.fetch_add(1, std::memory_order_relaxed)) {}
+// Bytes a string of `size` characters costs in the table, about (its node and heap block).
+constexpr uint64_t kNodeBytes = 64;
+
+StringTable::StringTable()
+    : serial_(next_table_serial.fetch_add(1, std::memory_order_relaxed)),
+      empty_(strings_.emplace().first->c_str()), budget_(available_memory_bytes() / 4) {}
+
+bool StringTable::room(size_t bytes) {
+  if (bytes_.load(std::memory_order_relaxed) + bytes + kNodeBytes <= budget_) return true;
+  exhausted_.store(true, std::memory_order_relaxed);
+  return false;
+}
 
 const char* StringTable::intern(std::string_view s) {
   thread_local std::array<Recent, kRecentSlots> recent;
@@ -28,7 +42,16 @@ const char* StringTable::intern(std::string_view s) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = strings_.find(s);
-    if (it == strings_.end()) it = strings_.emplace(s).first;
+    if (it == strings_.end()) {
+      if (!room(s.size())) return empty_;
+      try {
+        it = strings_.emplace(s).first;
+      } catch (const std::bad_alloc&) { // never through the shader's frames
+        exhausted_.store(true, std::memory_order_relaxed);
+        return empty_;
+      }
+      bytes_.fetch_add(s.size() + kNodeBytes, std::memory_order_relaxed);
+    }
     text = it->c_str();
   }
   r = {serial_, text, s.size()};

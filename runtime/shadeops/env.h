@@ -27,10 +27,21 @@ inline constexpr const char* kUninitializedString = "!!!uninitialized!!!";
 // Shaders intern at every point that builds a string (format, concat, substr), mostly the same
 // few strings: each thread remembers the strings it interned last, one per slot of a small table
 // indexed by hash, so that interning one of them again takes no lock and allocates nothing.
+//
+// Bounded memory: the strings are kept for the table's life, within a quarter of the memory
+// available when it was made (lobe/memory.h); a string past that is interned as "" instead and
+// the table says so (exhausted(): the commands report it), so that a shader that grows a string
+// without end (`s = concat(s, s)` in a loop) is stopped short of the process's memory.
 class StringTable {
 public:
   StringTable();
   const char* intern(std::string_view s);
+  // Whether a string of `bytes` more fits in the budget; false (and exhausted() from then on)
+  // when not: a builder asks before it makes a long string, and makes "" instead.
+  bool room(size_t bytes);
+  const char* empty() const { return empty_; }
+  bool exhausted() const { return exhausted_.load(std::memory_order_relaxed); }
+  uint64_t budget() const { return budget_; }
   // Unique among all tables ever made: names this table in per-thread caches of its strings.
   uint64_t serial() const { return serial_; }
 
@@ -41,6 +52,10 @@ private:
   std::mutex mutex_;
   // Node-based: element addresses are stable.
   std::unordered_set<std::string, TextHash, std::equal_to<>> strings_;
+  const char* empty_ = nullptr; // the interned ""
+  uint64_t budget_ = 0;
+  std::atomic<uint64_t> bytes_{0}; // the strings' bytes and their nodes, about
+  std::atomic<bool> exhausted_{false};
 };
 
 // Descriptions of shader-declared closures (lobe/shading.h), one per distinct name and argument

@@ -182,6 +182,7 @@ void lobe_uninit_check(ShaderGlobals* sg, RuntimeEnv* env, void* vals, int kind,
 
 const char* lobe_concat(RuntimeEnv* env, const char* a, const char* b) {
   thread_local std::string text; // keeps its capacity
+  if (!env->strings.room(std::strlen(a) + std::strlen(b))) return env->strings.empty();
   text.assign(a).append(b);
   return env->strings.intern(text);
 }

@@ -187,6 +187,24 @@ TEST(ReliabilityShade, HugeGridIsRefusedWithTheFigure) {
   EXPECT_NE(r.out.find("lobe shade: "), std::string::npos) << r.out;
 }
 
+// Strings a shader makes are kept within a quarter of the memory available: under a 3 GB
+// address-space limit, a string doubled 40 times (a terabyte) passes it; the string that does
+// not fit is made "" (so its length ends at 0, and "a" + "b" still fits), the run ends and
+// says so, with exit status 1. Before, the doubling aborted on an uncaught std::bad_alloc (exit
+// 134), or without a limit grew until the kernel killed the process (137).
+TEST(ReliabilityShade, StringsPastTheMemoryAreAnErrorNotAnAbort) {
+  if (kAddressSanitizer) GTEST_SKIP() << "cannot start under ulimit -v (see above)";
+  fs::path d = temp_dir("shade_strings");
+  write_file(d / "grow.osl", "shader grow() {\n  string s = \"x\";\n"
+                             "  for (int i = 0; i < 40; i++) s = concat(s, s);\n"
+                             "  printf(\"%d %s\\n\", strlen(s), concat(\"a\", \"b\"));\n}\n");
+  CmdResult r = run_cmd("cd '" + d.string() + "' && { ulimit -v 3000000 && " + exe() +
+                        " shade grow 2>&1; echo \"status $?\"; }");
+  EXPECT_NE(r.out.find("0 ab\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("lobe shade: the shaders' strings passed the "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("status 1\n"), std::string::npos) << r.out;
+}
+
 // Messages are kept until the grid is shaded (testshade prints them in point order), within a
 // quarter of the memory available: under a 2 GB address-space limit, 10^6 points printing
 // 512 bytes each (512 MB) pass it; the rest are counted and reported, and the run ends
@@ -309,6 +327,29 @@ TEST(ReliabilityRender, EndlessLoopWhileRenderingIsAnError) {
       std::string::npos)
       << r.out;
   EXPECT_FALSE(fs::exists(d / "o.png"));
+}
+
+// A material whose strings pass their memory (a quarter of what is available: under a 4 GB
+// address-space limit, a string doubled 40 times) renders with the string that did not fit made
+// "" (the sphere's albedo 0.5 where it fits would give 0.25), writes the image and says so,
+// with exit status 1.
+TEST(ReliabilityRender, StringsPastTheMemoryAreAnError) {
+  if (kAddressSanitizer) GTEST_SKIP() << "cannot start under ulimit -v (see above)";
+  fs::path d = temp_dir("render_strings");
+  write_file(d / "grow.osl", "surface grow() {\n  string s = \"x\";\n"
+                             "  for (int i = 0; i < 40; i++) s = concat(s, s);\n"
+                             "  Ci = (strlen(s) == 0 ? 0.5 : 0.25) * diffuse(N);\n}\n");
+  write_file(d / "s.json", R"({"camera": {"eye": [0, 0, 4], "look_at": [0, 0, 0], "fov": 12},
+  "settings": {"resolution": [4, 4], "spp": 1},
+  "materials": {"m": {"shader": "grow"}},
+  "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}],
+  "environment": {"type": "constant", "color": 1}})");
+  CmdResult r = run_cmd("cd '" + d.string() + "' && { ulimit -v 4000000 && " + exe() +
+                        " render -q s.json -o o.exr; }");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("lobe render: the shaders' strings passed the "), std::string::npos)
+      << r.out;
+  EXPECT_TRUE(fs::exists(d / "o.exr"));
 }
 
 // Ctrl-C while shaders loop without a limit: rendering stops, the finished samples are written.

@@ -262,6 +262,13 @@ public:
   // Compiles (or fetches from the in-process cache) a group. Thread-safe. Null on error.
   std::shared_ptr<const Material> compile(const ShaderGroup& group, DiagnosticList& diags);
 
+  // The strings shaders make (concat, format, ...) are kept for the shading system's life,
+  // within a quarter of the memory available when it was made; past that a call that makes
+  // one gives "" instead. True once that has happened: the results since are wrong, and a
+  // command says so (with the budget, strings_budget_bytes()).
+  bool strings_exhausted() const;
+  uint64_t strings_budget_bytes() const;
+
 private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
