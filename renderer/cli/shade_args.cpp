@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -191,7 +192,17 @@ const std::vector<Option>& options() {
        }},
       {"g", 2,
        [](Parser& p, const Use& u) {
-         // A negative size shades nothing, as in testshade.
+         // A negative size shades nothing, as in testshade; one past int's range is refused
+         // (read as an int it wrapped round: 4294967297 was 1).
+         for (const std::string& a : u.args) {
+           long long v = std::atoll(a.c_str());
+           if (v > std::numeric_limits<int>::max()) {
+             std::fprintf(stderr, "lobe shade: error: -g %s %s: %s is too large a grid size\n",
+                          u.args[0].c_str(), u.args[1].c_str(), a.c_str());
+             p.status = 1;
+             return;
+           }
+         }
          p.job.xres = std::max(0, to_i(u.args[0]));
          p.job.yres = std::max(0, to_i(u.args[1]));
        }},

@@ -620,6 +620,9 @@ TEST(ShadeCli, ErrorsAndUsage) {
   EXPECT_EQ(run("--bogus unsized_array"),
             "lobe shade: error: Invalid option \"--bogus\" (lobe shade --help lists them)\n");
   EXPECT_EQ(run("-g 2"), "lobe shade: error: Missing parameter 2 from option \"-g\"\n");
+  // A size past int's range (read as an int it wrapped round to 1).
+  EXPECT_EQ(run("-g 4294967297 1 unsized_array"),
+            "lobe shade: error: -g 4294967297 1: 4294967297 is too large a grid size\n");
   EXPECT_EQ(run("unsized_array -param a 1.0"),
             "ERROR: Pending parameters without a shader: a\n"
             "Did you mistakenly put --param after the shader declaration?\n");
