@@ -56,6 +56,14 @@ std::string read_file(const fs::path& p) {
 
 std::string exe() { return LOBE_EXE; }
 
+// Shader `grow` of kind `kind` that doubles a string 40 times (a terabyte), then runs `last`.
+void write_growing_string(const fs::path& file, const std::string& kind, const std::string& last) {
+  write_file(file, kind +
+                       " grow() {\n  string s = \"x\";\n"
+                       "  for (int i = 0; i < 40; i++) s = concat(s, s);\n  " +
+                       last + "\n}\n");
+}
+
 // Runs `lobe ARGS` in `cwd` with stdout and stderr to `log`, waits until the shader has written
 // `started` (it does so just before its endless loop), sends SIGINT and returns the exit status
 // (-1 if it did not exit by itself).
@@ -195,9 +203,8 @@ TEST(ReliabilityShade, HugeGridIsRefusedWithTheFigure) {
 TEST(ReliabilityShade, StringsPastTheMemoryAreAnErrorNotAnAbort) {
   if (kAddressSanitizer) GTEST_SKIP() << "cannot start under ulimit -v (see above)";
   fs::path d = temp_dir("shade_strings");
-  write_file(d / "grow.osl", "shader grow() {\n  string s = \"x\";\n"
-                             "  for (int i = 0; i < 40; i++) s = concat(s, s);\n"
-                             "  printf(\"%d %s\\n\", strlen(s), concat(\"a\", \"b\"));\n}\n");
+  write_growing_string(d / "grow.osl", "shader",
+                       "printf(\"%d %s\\n\", strlen(s), concat(\"a\", \"b\"));");
   CmdResult r = run_cmd("cd '" + d.string() + "' && { ulimit -v 3000000 && " + exe() +
                         " shade grow 2>&1; echo \"status $?\"; }");
   EXPECT_NE(r.out.find("0 ab\n"), std::string::npos) << r.out;
@@ -336,9 +343,8 @@ TEST(ReliabilityRender, EndlessLoopWhileRenderingIsAnError) {
 TEST(ReliabilityRender, StringsPastTheMemoryAreAnError) {
   if (kAddressSanitizer) GTEST_SKIP() << "cannot start under ulimit -v (see above)";
   fs::path d = temp_dir("render_strings");
-  write_file(d / "grow.osl", "surface grow() {\n  string s = \"x\";\n"
-                             "  for (int i = 0; i < 40; i++) s = concat(s, s);\n"
-                             "  Ci = (strlen(s) == 0 ? 0.5 : 0.25) * diffuse(N);\n}\n");
+  write_growing_string(d / "grow.osl", "surface",
+                       "Ci = (strlen(s) == 0 ? 0.5 : 0.25) * diffuse(N);");
   write_file(d / "s.json", R"({"camera": {"eye": [0, 0, 4], "look_at": [0, 0, 0], "fov": 12},
   "settings": {"resolution": [4, 4], "spp": 1},
   "materials": {"m": {"shader": "grow"}},
