@@ -625,21 +625,21 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         needed[i] = entry[i] = true;
   // Layers OSL's lazyglobals=0, lazyunconnected=0 or lazyerror=0 runs at every shade (not one
   // merged into another: that one stands for it).
-  for (size_t i = 0; i + 1 < n && group.entry_layers.empty(); ++i) {
+  const bool any_eager = eager.global_writers || eager.unconnected || eager.error_callers;
+  for (size_t i = 0; any_eager && i + 1 < n && group.entry_layers.empty(); ++i) {
     if (merged_into[i] >= 0) continue;
     const ir::Shader& sh = *sources[i];
-    bool run = false;
-    for (const ir::Op& op : sh.ops) {
-      run = run || (eager.error_callers && op.opcode == ir::Opcode::Error);
+    auto eager_op = [&](const ir::Op& op) {
+      if (eager.error_callers && op.opcode == ir::Opcode::Error) return true;
       for (size_t a = 0; eager.global_writers && a < op.args.size() && a < 32; ++a)
-        run = run ||
-              (op.writes(int(a)) && sh.symbols[size_t(op.args[a])].kind == ir::SymKind::Global);
-    }
-    if (eager.unconnected && !needed[i] &&
-        std::none_of(links.begin(), links.end(),
-                     [&](const Link& l) { return l.src_layer == int(i); }))
-      run = true;
-    if (run) needed[i] = entry[i] = true;
+        if (op.writes(int(a)) && sh.symbols[size_t(op.args[a])].kind == SymKind::Global)
+          return true;
+      return false;
+    };
+    bool unread = eager.unconnected && !needed[i] &&
+                  std::none_of(links.begin(), links.end(),
+                               [&](const Link& l) { return l.src_layer == int(i); });
+    if (unread || std::any_of(sh.ops.begin(), sh.ops.end(), eager_op)) needed[i] = entry[i] = true;
   }
   for (size_t i = n; i-- > 0;)
     for (const Link& l : links)

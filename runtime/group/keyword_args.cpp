@@ -90,10 +90,11 @@ size_t noise_options(const ir::Shader& sh, const ir::Op& op) {
   return i;
 }
 
-void drop_noise_options(ir::Shader& sh, ir::Op& op, DiagnosticList& diags) {
+// The options from operand `first` on (noise_options).
+void drop_noise_options(ir::Shader& sh, ir::Op& op, size_t first, DiagnosticList& diags) {
   // A constant name other than "gabor" takes no options: OSL ignores them without a word.
   const std::string* kind = ir::string_value(sh.symbols[size_t(op.args[1])]);
-  for (size_t i = noise_options(sh, op); i + 1 < op.args.size();) {
+  for (size_t i = first; i + 1 < op.args.size();) {
     std::string kw = keyword(sh, op, i);
     const ir::Type& t = sh.symbols[size_t(op.args[i + 1])].type;
     const ir::KeywordOption* o = ir::gabor_option(kw);
@@ -140,8 +141,8 @@ void drop_misfit_keywords(ir::Shader& sh, DiagnosticList& diags) {
     if (op.opcode == ir::Opcode::Texture || op.opcode == ir::Opcode::Texture3d ||
         op.opcode == ir::Opcode::Environment)
       drop_texture_options(sh, op, diags);
-    else if (noise_options(sh, op) < op.args.size())
-      drop_noise_options(sh, op, diags);
+    else if (size_t first = noise_options(sh, op); first < op.args.size())
+      drop_noise_options(sh, op, first, diags);
     else if (op.opcode == ir::Opcode::Closure && op.args.size() > 1)
       drop_closure_keywords(sh, op, diags);
   }

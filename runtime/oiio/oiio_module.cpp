@@ -236,16 +236,6 @@ Lookup find(Textures* t, const char* file, int32_t site) {
   l.info = thread_info(t, site);
   for (const Passed& p : passed)
     if (p.id == t->id && p.ptr == file && p.name == file) return {p.handle, l.info};
-  if (special_file(file)) { // told once, as a file that cannot be opened
-    {
-      std::lock_guard<std::mutex> lock(t->mutex);
-      t->verdicts.try_emplace(file, Textures::Verdict{not_a_file(file), true});
-    }
-    t_refused = not_a_file(file);
-    t_refused_file = file;
-    return {nullptr, l.info};
-  }
-  l.handle = t->ts->get_texture_handle(OIIO::ustring(file), l.info);
   Textures::Verdict verdict;
   bool known = false;
   {
@@ -253,8 +243,13 @@ Lookup find(Textures* t, const char* file, int32_t site) {
     auto it = t->verdicts.find(file);
     if (it != t->verdicts.end()) known = true, verdict = it->second;
   }
-  if (!known) { // read the header outside the lock; two threads may both read it
-    verdict.refusal = texture_verdict(t->ts, l.handle, l.info, file, &verdict.unopened);
+  if (!known) {               // read the header outside the lock; two threads may both read it
+    if (special_file(file)) { // not asked of OpenImageIO: told as a file that cannot be opened
+      verdict = {not_a_file(file), true};
+    } else {
+      l.handle = t->ts->get_texture_handle(OIIO::ustring(file), l.info);
+      verdict.refusal = texture_verdict(t->ts, l.handle, l.info, file, &verdict.unopened);
+    }
     std::lock_guard<std::mutex> lock(t->mutex);
     auto [it, fresh] = t->verdicts.emplace(file, verdict);
     // OpenImageIO explains a file it cannot open to one reader: keep its words.
@@ -266,6 +261,7 @@ Lookup find(Textures* t, const char* file, int32_t site) {
     t_refused_file = verdict.unopened ? file : "";
     return {nullptr, l.info};
   }
+  if (!l.handle) l.handle = t->ts->get_texture_handle(OIIO::ustring(file), l.info);
   if (l.handle) {
     passed[next] = Passed{t->id, file, file, l.handle};
     next = (next + 1) % std::size(passed);

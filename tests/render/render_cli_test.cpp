@@ -193,11 +193,12 @@ TEST(RenderCli, UnknownParametersAreErrors) {
 // texture's 0.8 grey, untouched by the dropped arguments).
 TEST(RenderCli, KeywordArgumentsNotTakenAreDroppedWithAWarning) {
   fs::path d = temp_dir("keywords");
-  write_file(d / "kw.osl",
-             "surface kw() {\n"
-             "  color t = texture(\"nosuch_kw.tx\", u, v, \"foo\", 1, \"missingcolor\", color(0.8));\n"
-             "  Ci = 0.25 * t * diffuse(N, \"bar\", 2);\n"
-             "}\n");
+  write_file(
+      d / "kw.osl",
+      "surface kw() {\n"
+      "  color t = texture(\"nosuch_kw.tx\", u, v, \"foo\", 1, \"missingcolor\", color(0.8));\n"
+      "  Ci = 0.25 * t * diffuse(N, \"bar\", 2);\n"
+      "}\n");
   fs::path scene = d / "s.json";
   write_file(scene, furnace_json(R"({"shader": "kw"})"));
   CmdResult r = render(scene.string() + " -o " + (d / "o.exr").string());
