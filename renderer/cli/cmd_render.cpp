@@ -82,7 +82,7 @@ struct Args {
   int spp = 0, threads = 0, max_depth = 0;
   long long seed = -1;
   long long max_loop_iterations = 100000000;
-  float exposure = 0, clamp = -1;
+  float exposure = 0, clamp = -1, light_paths = 0.25f;
   bool quiet = false, stats = false, no_aovs = false;
   std::string progress = "auto";
 };
@@ -167,6 +167,11 @@ int run_render(int argc, char** argv) {
       ->check(CLI::IsMember({"jit", "jit-setup", "native"}));
   app.add_option("--strategy", a.strategy, "light transport: mis, bsdf or light")
       ->check(CLI::IsMember({"mis", "bsdf", "light"}));
+  app.add_option("--light-paths", a.light_paths,
+                 "light paths from the environment per camera sample, for caustics seen through "
+                 "glass and mirrors (0: none; only with an environment, a pinhole camera and "
+                 "mis; docs/renderer.md)")
+      ->check(CLI::Range(0.0f, 64.0f));
   app.add_option("--colorspace", a.colorspace,
                  "RGB space of shader colours (Rec709, sRGB, NTSC, EBU, PAL, SECAM, SMPTE, HDTV, "
                  "CIE, AdobeRGB, ACEScg, ACES2065-1, XYZ): transformc, luminance, blackbody, "
@@ -285,6 +290,7 @@ int run_render(int argc, char** argv) {
   opt.seed = st.seed;
   opt.threads = a.threads;
   opt.strategy = parse_strategy(a.strategy);
+  opt.light_paths = a.light_paths;
   // AOV channels only where they are kept, and not when declined.
   opt.aovs = lobe::image::keeps_all_channels(out) && !a.no_aovs;
   opt.profile = a.stats;

@@ -41,6 +41,17 @@ public:
   bool has_lens() const { return lens_ > 0; }
   // World-space width of one pixel at distance 1 along the view axis (ray differentials).
   float pixel_spread() const { return 2 * tan_half_ / float(h_); }
+  // The film position (fx, fy), in generate()'s pixels, of the pinhole's ray through world
+  // point `p`, and the cosine of that ray with the view axis; false for a point not in front.
+  bool project(const Vec3& p, float& fx, float& fy, float& cos_axis) const {
+    Vec3 d = p - eye_;
+    float z = dot(d, fwd_), len = length(d);
+    if (!(z > 1e-7f * len)) return false;
+    fx = (dot(d, right_) / (z * tan_half_ * aspect_) + 1) * 0.5f * float(w_);
+    fy = (1 - dot(d, up_) / (z * tan_half_)) * 0.5f * float(h_);
+    cos_axis = z / len;
+    return std::isfinite(fx) && std::isfinite(fy);
+  }
   const Vec3& position() const { return eye_; }
   const Vec3& right() const { return right_; }
   const Vec3& up() const { return up_; }

@@ -4,7 +4,9 @@
 #include "lobe/bsdf.h"
 #include "lobe/context.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #if defined(__x86_64__) || defined(__i386__)
 #include <x86intrin.h>
 #endif
@@ -66,6 +68,32 @@ Color3 clamped(const Color3& c, float cap) {
   return l > cap ? c * (cap / l) : c;
 }
 
+// The density, over area across the line, of a light path's first ray along the line through
+// `p` in direction `d` (PathTracer::trace_light): the shares over the disk areas of the
+// caustic targets whose spheres the line crosses.
+float line_density(const RenderScene& scene, const Vec3& p, const Vec3& d) {
+  float pdf = 0;
+  for (const RenderScene::CausticTarget& o : scene.caustic_targets()) {
+    Vec3 q = o.center - p;
+    Vec3 off = q - d * dot(q, d);
+    if (dot(off, off) < o.radius * o.radius) pdf += o.select / (kPi * o.radius * o.radius);
+  }
+  return pdf;
+}
+
+// The area density, on the surface at `p` (geometric normal `ng`), of the camera's rays per
+// unit of film area: |ng.wo| / (dist^2 * pixel area at distance 1 * cos^3 of the ray with the
+// view axis); 0 for a point the pinhole does not see in front.
+float film_to_area(const Camera& cam, const Vec3& p, const Vec3& ng) {
+  float fx, fy, cos_axis;
+  if (!cam.project(p, fx, fy, cos_axis)) return 0;
+  Vec3 to_eye = cam.position() - p;
+  float dist2 = dot(to_eye, to_eye), spread = cam.pixel_spread();
+  if (!(dist2 > 0)) return 0;
+  float cos_out = std::abs(dot(ng, to_eye)) / std::sqrt(dist2);
+  return cos_out / (dist2 * spread * spread * cos_axis * cos_axis * cos_axis);
+}
+
 } // namespace
 
 // Shades `hit` seen along `dir` and flattens its closure into `bsdf`.
@@ -99,7 +127,8 @@ static void shade_into(const RenderScene& scene, const SurfaceHit& hit, const Ve
 }
 
 PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, ShadingContext& ctx,
-                             ShadingContext& light_ctx, TraceCounters& c, bool timed) const {
+                             ShadingContext& light_ctx, TraceCounters& c, bool timed,
+                             float film_density) const {
   Laps lap(timed ? &c.phases : nullptr);
   using P = PhaseTicks;
   const LightSet& lights = scene_.lights();
@@ -116,6 +145,16 @@ PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, Shad
   // at beta * eta_scale, so a path inside glass (beta / eta^2 until it leaves) is not culled
   // for a drop that leaving undoes (a survivor's beta / q would come out eta^2 too high).
   float eta_scale = 1;
+  // A caustic of the environment so far (integrator.h): the first vertex (caustic 1), or the
+  // first two (caustic 2), scattered by a non-delta lobe and every later one by a delta lobe of
+  // an opaque caustic target. The environment such a path reaches is weighed against the
+  // light paths' finding it; the densities of the two, over the same variables, but for the
+  // factors they share and those known only at the end: caustic_camera (the film's
+  // film_density * film_to_area times the BSDF pdfs at the non-delta vertices), caustic_light
+  // (|Ng.wi| at the first vertex, times, for two, the light path's cosine density of its
+  // bounce at the second and |Ng.wi| there).
+  int caustic = 0, caustic_deltas = 0;
+  float caustic_camera = 0, caustic_light = 0;
   Vertex v;
   for (int depth = 0;; ++depth) {
     ++c.rays;
@@ -124,6 +163,12 @@ PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, Shad
     bool found = geo.traverse(ray, raw);
     lap(&P::traverse);
     if (!found) {
+      float w = 1; // MIS weight against the light paths (a caustic of the environment)
+      if (caustic && caustic_deltas >= 1 && lights.environment()) {
+        float light = light_share_ * lights.environment()->pdf(ray.dir) *
+                      line_density(scene_, ray.org, ray.dir) * caustic_light;
+        w = power_heuristic(caustic_camera, light);
+      }
       if (after_delta && scene_.has_background_shader()) {
         // Seen by the camera or through specular bounces (no light sample competes: weight
         // 1): the background shader itself, not its table (as testrender shades camera rays).
@@ -132,12 +177,12 @@ PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, Shad
         if (ctx.stopped && ctx.errors && c.stopped.empty())
           c.stopped = scene_.stop_reason(ctx, scene_.desc().environment.material, "rendering");
         lap(&P::shade);
-        Color3 col = beta * Le;
+        Color3 col = beta * Le * w;
         out.L += depth >= 2 ? clamped(col, clamp_) : col;
       } else if (lights.environment()) {
         float lp;
         Color3 Le = lights.environment_hit(ray.dir, prev_n, lp);
-        Color3 contrib = beta * Le * weight_bsdf_hit(strategy_, after_delta, prev_pdf, lp);
+        Color3 contrib = beta * Le * (weight_bsdf_hit(strategy_, after_delta, prev_pdf, lp) * w);
         out.L += depth >= 2 ? clamped(contrib, clamp_) : contrib;
       }
       lap(&P::lights);
@@ -184,6 +229,7 @@ PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, Shad
         // Shadow rays treat transparent surfaces as opaque: light reached through one is
         // found by this path alone, so it counts with weight 1.
         after_delta = true;
+        caustic = 0;
         if (is_zero(beta)) break;
         continue;
       }
@@ -250,6 +296,26 @@ PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, Shad
     beta *= s->weight;
     if (is_zero(beta) || !is_finite(beta)) break;
     after_delta = (s->flags & kLobeSpecular) != 0;
+    if (caustics_) {
+      const float cos_out = std::abs(dot(v.hit.Ng, s->wi));
+      if (depth == 0) {
+        caustic = after_delta ? 0 : 1;
+        caustic_deltas = 0;
+        caustic_camera = film_density * film_to_area(scene_.camera(), v.hit.P, v.hit.Ng) * s->pdf;
+        caustic_light = cos_out;
+      } else if (caustic && after_delta && is_zero(v.bsdf.transparency) &&
+                 scene_.is_caustic_target(v.hit.shape)) {
+        ++caustic_deltas;
+      } else if (caustic == 1 && caustic_deltas == 0 && !after_delta &&
+                 !(scene_.globals_read(v.hit.shape) & raytype_bit_)) {
+        // The light path bounces on the side its light arrives from (bounce_to_camera).
+        caustic = 2;
+        caustic_camera *= s->pdf;
+        caustic_light *= dot(v.hit.Ng, s->wi) * dot(v.hit.Ng, wo) > 0 ? cos_out / kPi : 0;
+      } else {
+        caustic = 0;
+      }
+    }
     prev_pdf = s->pdf;
     prev_p = v.hit.P;
     prev_n = n_lit;
@@ -266,6 +332,209 @@ PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, Shad
   lap(&P::other);
   if (timed) ++c.phases.paths;
   return out;
+}
+
+bool PathTracer::caustics_possible(const RenderScene& scene) {
+  return !scene.caustic_targets().empty() && scene.lights().environment() &&
+         !scene.camera().has_lens();
+}
+
+void PathTracer::trace_light(RandomStream& rng, ShadingContext& ctx, TraceCounters& c,
+                             LightFilm& film) const {
+  const EnvironmentLight* env = scene_.lights().environment();
+  const auto& targets = scene_.caustic_targets();
+  if (!caustics_ || !env) return;
+  ++c.light_paths;
+  const Geometry& geo = scene_.geometry();
+  // A target by its share, a direction towards the environment by its table, and a point on
+  // the disk that is the target's sphere seen along it, moved back out of the scene.
+  float us = rng.next();
+  size_t t = 0;
+  while (t + 1 < targets.size() && us >= targets[t].select) us -= targets[t++].select;
+  const RenderScene::CausticTarget& target = targets[t];
+  float u1 = rng.next(), u2 = rng.next(), pdf_dir = 0;
+  const Vec3 w = env->sample(u1, u2, pdf_dir); // towards the environment
+  if (!(pdf_dir > 0) || !std::isfinite(pdf_dir)) return;
+  const Vec3 d = -w; // the way the light travels
+  Frame frame(d);
+  float dx, dy;
+  concentric_disk(rng.next(), rng.next(), dx, dy);
+  Vec3 on_disk = target.center + (frame.t * dx + frame.b * dy) * target.radius;
+  float back = length(target.center - geo.center()) + geo.radius() * 1.01f + target.radius;
+  Ray ray{on_disk - d * back, d};
+  // The density of this line over the area across it: every target whose disk it crosses.
+  const float pdf_line = line_density(scene_, ray.org, d);
+  if (!(pdf_line > 0)) return;
+  Color3 beta; // flux of the path: set at its first vertex, where the ray type is known
+  Vertex v;
+  Laps untimed(nullptr);
+  for (int deltas = 0;;) {
+    Geometry::RawHit raw;
+    ++c.rays;
+    if (!geo.traverse(ray, raw)) return;
+    geo.complete(ray, raw, v.hit);
+    if (deltas >= 1) {
+      // Seen by the camera (its path's first vertex). The radiance towards the camera is
+      // f * beta / |Ng.wi| (beta counts area across the ray, the surface's is |Ng.wi| of it).
+      // The densities, both over the first vertex's area and the direction there: the
+      // camera's film_to_area * pdf, the light's its first ray's times |Ng.wi|.
+      const Vec3 wi = -ray.dir;
+      const float cos_in = std::abs(dot(v.hit.Ng, wi));
+      CameraLink link;
+      if (cos_in > 1e-7f && link_camera(v.hit, wi, ctx, c, link))
+        splat(link, link.f.value * beta / cos_in, link.to_area * link.f.pdf,
+              light_share_ * pdf_dir * pdf_line * cos_in, c, film);
+      // Seen after one more bounce (the camera's path's second vertex).
+      if (deltas <= max_depth_ - 2 && !(scene_.globals_read(v.hit.shape) & raytype_bit_))
+        bounce_to_camera(v.hit, ray.dir, beta, pdf_dir * pdf_line, rng, ctx, c, film);
+    }
+    // The camera's path has at most max_depth - 1 delta vertices after its first.
+    if (deltas >= max_depth_ - 1 || !scene_.is_caustic_target(v.hit.shape)) return;
+    shade_into(scene_, v.hit, ray.dir, kRayRefraction, ctx, v.bsdf, c, false, untimed);
+    if (!c.stopped.empty() || !is_zero(v.bsdf.transparency)) return;
+    bool has_delta = false;
+    for (int i = 0; i < v.bsdf.lobe_count(); ++i)
+      has_delta |= (v.bsdf.lobe(i).flags & kLobeSpecular) != 0;
+    if (!has_delta) return;
+    float ub[3] = {rng.next(), rng.next(), rng.next()};
+    auto s = v.bsdf.sample(-ray.dir, {ub[0], ub[1], ub[2]}, Transport::Importance);
+    if (!s || !(s->flags & kLobeSpecular)) return;
+    if (deltas == 0) {
+      // What the camera's path would find leaving here along w: the background shader for a
+      // ray of this lobe's type (as trace() after a delta lobe), else the table.
+      int raytype = s->flags & kLobeTransmit ? kRayRefraction : kRayReflection;
+      Color3 Le = scene_.has_background_shader()
+                      ? scene_.shade_background(w, raytype, ctx, c.messages)
+                      : env->eval(w);
+      beta = Le / (pdf_dir * pdf_line);
+    }
+    beta *= s->weight;
+    if (is_zero(beta) || !is_finite(beta)) return;
+    ++deltas;
+    ray = Ray{offset_ray_origin(v.hit.P, v.hit.Ng, s->wi), s->wi};
+  }
+}
+
+// A light path at `y` (arrived along `d`, flux `beta`) scatters once more, in a
+// cosine-distributed direction on the side the light came from, and the point it reaches is
+// connected to the camera: the caustic seen in a second surface (on the floor, in a glossy
+// sphere). `y` is then the camera's path's second vertex, and is shaded as that path shades
+// it (from the side of the first, whose BSDF also gives the camera's density).
+void PathTracer::bounce_to_camera(const SurfaceHit& y, const Vec3& d, const Color3& beta,
+                                  float light_pdf, RandomStream& rng, ShadingContext& ctx,
+                                  TraceCounters& c, LightFilm& film) const {
+  const Vec3 w2 = -d; // from y towards the light
+  const Vec3 n = dot(y.Ng, w2) > 0 ? y.Ng : -y.Ng;
+  const float cos2 = dot(n, w2);
+  if (!(cos2 > 1e-7f)) return;
+  Frame frame(n);
+  float u1 = rng.next(), u2 = rng.next();
+  Vec3 local = sample_cosine_hemisphere(u1, u2);
+  Vec3 wout = normalize(frame.to_world(local)); // from y towards the camera's first vertex
+  if (!(dot(n, wout) > 0)) return;
+  Ray ray{offset_ray_origin(y.P, y.Ng, wout), wout};
+  Geometry::RawHit raw;
+  ++c.rays;
+  if (!scene_.geometry().traverse(ray, raw)) return;
+  SurfaceHit x1;
+  scene_.geometry().complete(ray, raw, x1);
+  const Vec3 w1 = -wout; // at x1, towards y
+  const float cos1 = std::abs(dot(x1.Ng, w1));
+  CameraLink link;
+  if (!(cos1 > 1e-7f) || !link_camera(x1, w1, ctx, c, link)) return;
+  // y as the camera's path shades it: seen from x1, after the camera's distance and this ray's.
+  Bsdf b;
+  Laps untimed(nullptr);
+  shade_into(scene_, y, -wout, kRayDiffuse, ctx, b, c, false, untimed, link.dist + raw.t);
+  BsdfEval f2 = b.eval(wout, w2);
+  if (is_zero(f2.value)) return;
+  // Flux leaving y towards x1: beta * f2 / |Ng.w2| * |Ng.wout| / pdf, pdf = |Ng.wout| / pi.
+  Color3 beta1 = beta * f2.value * (kPi / std::abs(dot(y.Ng, w2)));
+  // Densities over x1's area and direction, y's area and direction (the |Ng_y.w1| / dist^2
+  // both share dropped): the camera's film_to_area * pdf at x1 * pdf at y; the light's its
+  // first ray's * |Ng_y.w2| * |Ng_y.w1| / pi * |Ng_x1.w1| (with the |Ng_y.w1| dropped).
+  splat(link, link.f.value * beta1 / cos1, link.to_area * link.f.pdf * f2.pdf,
+        light_share_ * light_pdf * std::abs(dot(y.Ng, w2)) * cos1 / kPi, c, film);
+}
+
+// What the camera sees of `hit` lit from direction `wi`: where on the film, the BSDF there
+// towards the camera (shaded as the camera's path shades its first vertex), and film_to_area;
+// false when the camera does not see the point (behind, outside the view or occluded).
+bool PathTracer::link_camera(const SurfaceHit& hit, const Vec3& wi, ShadingContext& ctx,
+                             TraceCounters& c, CameraLink& out) const {
+  const Camera& cam = scene_.camera();
+  float cos_axis;
+  if (!cam.project(hit.P, out.fx, out.fy, cos_axis)) return false;
+  Vec3 to_eye = cam.position() - hit.P;
+  float dist = length(to_eye);
+  Vec3 wo = to_eye / dist;
+  out.to_area = film_to_area(cam, hit.P, hit.Ng);
+  if (!(out.to_area > 0) || !std::isfinite(out.to_area)) return false;
+  ++c.shadow_rays;
+  if (scene_.geometry().occluded(offset_ray_origin(hit.P, hit.Ng, wo), wo, dist * (1 - 1e-4f)))
+    return false;
+  Bsdf b;
+  Laps untimed(nullptr);
+  shade_into(scene_, hit, -wo, kRayCamera, ctx, b, c, false, untimed, dist);
+  out.f = b.eval(wo, wi);
+  out.dist = dist;
+  return !is_zero(out.f.value);
+}
+
+// A light path's connection to the camera: radiance `radiance` towards it per unit area of
+// the surface, weighed against the camera's paths by the power heuristic pixel by pixel (their
+// density holds the pixel filter's): the film takes the ratio of the light paths' density
+// `light` to the camera's, `camera` at filter weight 1 (0: the camera's paths cannot make it).
+void PathTracer::splat(const CameraLink& link, const Color3& radiance, float camera, float light,
+                       TraceCounters& c, LightFilm& film) const {
+  Color3 value = radiance * link.to_area;
+  if (!is_finite(value) || is_zero(value)) return;
+  ++c.splats;
+  film.splat(link.fx, link.fy, value, camera > 0 ? light / camera : INFINITY);
+}
+
+namespace {
+constexpr double kFilmScale = 1048576.0; // 2^20: LightFilm's fixed point
+constexpr double kFilmMax = 8e18;        // below INT64_MAX
+} // namespace
+
+void LightFilm::add(int x, int y, float w, const Color3& v) {
+  if (x < 0 || y < 0 || x >= w_ || y >= h_ || !(w > 0)) return;
+  std::atomic<int64_t>* px = &sum_[(size_t(y) * w_ + x) * 3];
+  for (int k = 0; k < 3; ++k) {
+    double q = double(v[k]) * double(w) * kFilmScale;
+    if (!(q > 0)) continue;
+    px[k].fetch_add(int64_t(std::min(q, kFilmMax) + 0.5), std::memory_order_relaxed);
+  }
+}
+
+// Power heuristic weight of the light path at filter weight h: (r/h)^2 / (1 + (r/h)^2).
+static float light_weight(float ratio, float h) {
+  if (!(h > 0)) return 0;
+  if (std::isinf(ratio)) return 1;
+  float q = ratio / h;
+  return q * q / (1 + q * q);
+}
+
+void LightFilm::splat(float fx, float fy, const Color3& v, float ratio) {
+  if (filter_ == scene::PixelFilter::Box) {
+    add(int(std::floor(fx)), int(std::floor(fy)), light_weight(ratio, 1), v);
+    return;
+  }
+  // The tent of radius one pixel round each pixel's centre (x + 0.5, y + 0.5).
+  int x0 = int(std::floor(fx - 0.5f)), y0 = int(std::floor(fy - 0.5f));
+  for (int y = y0; y <= y0 + 1; ++y)
+    for (int x = x0; x <= x0 + 1; ++x) {
+      float wx = 1 - std::abs(fx - (float(x) + 0.5f)), wy = 1 - std::abs(fy - (float(y) + 0.5f));
+      float h = wx * wy;
+      add(x, y, h * light_weight(ratio, h), v);
+    }
+}
+
+Color3 LightFilm::sum(size_t p) const {
+  const std::atomic<int64_t>* px = &sum_[p * 3];
+  return {float(double(px[0].load()) / kFilmScale), float(double(px[1].load()) / kFilmScale),
+          float(double(px[2].load()) / kFilmScale)};
 }
 
 } // namespace lobe::render

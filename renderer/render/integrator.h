@@ -7,12 +7,28 @@
 // scattering in proportion to transparency and albedo. Strategy::BsdfOnly and Strategy::LightOnly
 // switch one technique off (for the benchmark's comparison): BsdfOnly cannot see point and spot
 // lights.
+//
+// Caustics of the environment (set_caustics): light reaching a surface seen by the camera
+// through delta lobes alone (a floor lit through a glass sphere) is found by a path only when
+// its BSDF sample happens to leave through the sphere towards a bright part of the
+// environment: rare samples of great weight (fireflies). Those paths are traced from the
+// other end instead: trace_light() starts a ray in the environment, importance-sampled by its
+// table, aimed at a sphere round a caustic target (RenderScene::caustic_targets), follows it
+// through delta lobes and, at each surface it reaches, connects to the camera and splats what
+// the camera sees there into a LightFilm. The paths are split between the two, each counted
+// once: the camera's path drops the environment it reaches when its first vertex scattered by
+// a non-delta lobe and every later one by a delta lobe of an opaque caustic target, and the
+// light path counts exactly those (at most max_depth - 1 delta vertices, as the camera's).
+// The light path shades a target from the light's side, so a target's shader is taken to be
+// reciprocal (glass and mirrors written as OSL's are); one that reads raytype is not a target.
 #pragma once
 
 #include "sampling.h"
 #include "scene_setup.h"
 
+#include <atomic>
 #include <cstdint>
+#include <vector>
 
 namespace lobe::render {
 
@@ -54,6 +70,30 @@ struct TraceCounters {
   // The first shade stopped in a loop (ShadingContext::stopped) past max_loop_iterations:
   // RenderScene::stop_reason's text; the renderer then stops.
   std::string stopped;
+  uint64_t light_paths = 0; // light paths traced (trace_light), splats they made
+  uint64_t splats = 0;
+};
+
+// What light paths add to the image: per pixel, the sum of their splats, filtered as the
+// camera's samples are (a box over the pixel, or testrender's tent two pixels wide). Sums are
+// kept in fixed point (2^-20), so that they come out the same whatever order threads add
+// them in: the image depends on the seed alone, as the camera's samples do.
+class LightFilm {
+public:
+  LightFilm(int width, int height, scene::PixelFilter filter)
+      : w_(width), h_(height), filter_(filter), sum_(size_t(width) * height * 3) {}
+  // Adds `v` (per unit of film area, in pixels) at film position (fx, fy), to each pixel by
+  // its filter weight h times the light path's MIS weight there: the power heuristic of
+  // `ratio`, the light paths' density over the camera's at h = 1 (the camera's scales with h).
+  void splat(float fx, float fy, const Color3& v, float ratio = INFINITY);
+  // The sum of the splats of pixel p (divide by the number of light paths).
+  Color3 sum(size_t p) const;
+
+private:
+  void add(int x, int y, float w, const Color3& v);
+  int w_, h_;
+  scene::PixelFilter filter_;
+  std::vector<std::atomic<int64_t>> sum_;
 };
 
 // The Sampler groups of a path: the camera's (its pixel position, then its lens position), then
@@ -85,17 +125,53 @@ public:
   void set_clamp(float c) { clamp_ = c; }
   // First-hit AOVs (PathResult::albedo, normal, depth): computed only when wanted.
   void set_aovs(bool on) { aovs_ = on; }
+  // Caustics of the environment by light paths (top of this file): on only where the scene
+  // allows them (caustics_possible); the caller then traces light paths with trace_light.
+  // `light_paths`: light paths per camera sample, `pixels` the image's: the two techniques'
+  // sample counts, in their MIS weights.
+  void set_caustics(bool on, float light_paths = 1, uint64_t pixels = 1) {
+    caustics_ = on && caustics_possible(scene_);
+    light_share_ = light_paths * float(pixels);
+    raytype_bit_ = global_bit("raytype");
+  }
+  bool caustics() const { return caustics_; }
+  // An environment, caustic targets and a pinhole camera.
+  static bool caustics_possible(const RenderScene& scene);
 
+  // `film_density`: the pixel filter's density at the camera ray's film position (the tent's
+  // (1 - |dx|)(1 - |dy|), a box's 1), for the MIS weights of caustics.
   PathResult trace(const Ray& camera_ray, const Sampler& sampler, ShadingContext& ctx,
-                   ShadingContext& light_ctx, TraceCounters& counters, bool timed = false) const;
+                   ShadingContext& light_ctx, TraceCounters& counters, bool timed = false,
+                   float film_density = 1) const;
+  // One light path from the environment (numbers from `rng`), its camera connections splatted
+  // into `film`; the image adds film.sum(p) / (light paths traced). Needs caustics().
+  void trace_light(RandomStream& rng, ShadingContext& ctx, TraceCounters& counters,
+                   LightFilm& film) const;
 
 private:
+  struct CameraLink {
+    float fx = 0, fy = 0; // film position
+    float to_area = 0;    // film_to_area (integrator.cpp)
+    float dist = 0;       // to the camera
+    BsdfEval f;           // towards the camera, light from wi
+  };
+  bool link_camera(const SurfaceHit& hit, const Vec3& wi, ShadingContext& ctx,
+                   TraceCounters& counters, CameraLink& out) const;
+  void splat(const CameraLink& link, const Color3& radiance, float camera, float light,
+             TraceCounters& counters, LightFilm& film) const;
+  void bounce_to_camera(const SurfaceHit& y, const Vec3& d, const Color3& beta, float light_pdf,
+                        RandomStream& rng, ShadingContext& ctx, TraceCounters& counters,
+                        LightFilm& film) const;
+
   const RenderScene& scene_;
   int max_depth_;
   Strategy strategy_;
   bool time_;
   float clamp_ = 0;
   bool aovs_ = true;
+  bool caustics_ = false;
+  float light_share_ = 1;    // light paths per camera sample of a pixel (set_caustics)
+  uint64_t raytype_bit_ = 0; // of Material::globals_read
 };
 
 } // namespace lobe::render

@@ -39,9 +39,24 @@ inline float tent_warp(float u) {
 }
 
 // Renders samples [s0, s1) of every pixel in tile `t`.
+// Light paths after sample `s` of `pixel` (PathTracer::trace_light): opt.light_paths a sample
+// on average, at fixed indices, each with numbers of its own; so the count and the paths
+// depend on the image size, sample count and seed alone.
+void trace_light_paths(const PathTracer& pt, uint64_t pixel, uint64_t pixels, int s,
+                       const RenderOptions& opt, LightFilm& film, ThreadState& ts) {
+  uint64_t idx = uint64_t(s) * pixels + pixel;
+  double rate = opt.light_paths;
+  auto n = uint64_t(std::floor(double(idx + 1) * rate) - std::floor(double(idx) * rate));
+  for (uint64_t j = 0; j < n; ++j) {
+    RandomStream rng(idx, j, opt.seed ^ 0x6c69676874ull);
+    pt.trace_light(rng, ts.ctx, ts.counters, film);
+  }
+}
+
 void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int height, int t,
                  int s0, int s1, const RenderOptions& opt, const std::atomic<bool>* cancel,
-                 std::atomic<bool>& halt, std::vector<Accum>& acc, ThreadState& ts) {
+                 std::atomic<bool>& halt, std::vector<Accum>& acc, LightFilm* film,
+                 ThreadState& ts) {
   ts.ctx.cancel = ts.light_ctx.cancel = cancel; // Ctrl-C reaches shaders in their loops
   int tiles_x = (width + kTile - 1) / kTile;
   int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
@@ -61,13 +76,17 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
         else // a pinhole draws no lens numbers
           sampler.groups<1>(path_groups::kPixel, {2}, u);
         float jx = u[0], jy = u[1], l1 = u[2], l2 = u[3];
+        float film_density = 1; // the filter's density at (jx, jy)
         if (opt.pixel_filter == scene::PixelFilter::Tent) {
-          jx = 0.5f + tent_warp(jx);
-          jy = 0.5f + tent_warp(jy);
+          float tx = tent_warp(jx), ty = tent_warp(jy);
+          film_density = (1 - std::abs(tx)) * (1 - std::abs(ty));
+          jx = 0.5f + tx;
+          jy = 0.5f + ty;
         }
         Ray ray = scene.camera().generate(x + jx, y + jy, l1, l2);
         bool timed = opt.profile && (pixel + uint64_t(s)) % kProfileEvery == 0;
-        PathResult r = pt.trace(ray, sampler, ts.ctx, ts.light_ctx, ts.counters, timed);
+        PathResult r =
+            pt.trace(ray, sampler, ts.ctx, ts.light_ctx, ts.counters, timed, film_density);
         if (!ts.counters.stopped.empty()) { // a runaway shader: the render stops (not counted)
           halt.store(true);
           return;
@@ -81,12 +100,21 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
         a.normal += r.normal;
         a.depth += r.depth;
         ++a.n;
+        if (film) {
+          trace_light_paths(pt, pixel, uint64_t(width) * height, s, opt, *film, ts);
+          if (!ts.counters.stopped.empty()) {
+            halt.store(true);
+            return;
+          }
+        }
       }
     }
   }
 }
 
-image::Image resolve(const std::vector<Accum>& acc, int width, int height, bool aovs) {
+// The camera's samples averaged, plus the light paths' splats over their number.
+image::Image resolve(const std::vector<Accum>& acc, int width, int height, bool aovs,
+                     const LightFilm* film, uint64_t light_paths) {
   std::vector<std::string> ch = {"R", "G", "B"};
   if (aovs) ch.insert(ch.end(), {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z"});
   image::Image img(width, height, ch);
@@ -96,6 +124,7 @@ image::Image resolve(const std::vector<Accum>& acc, int width, int height, bool 
     float inv = 1.0f / float(a.n);
     float* px = img.pixels.data() + p * ch.size();
     Color3 v[3] = {a.L * inv, a.albedo * inv, a.normal * inv};
+    if (film && light_paths) v[0] += film->sum(p) * float(1.0 / double(light_paths));
     for (int k = 0; k < (aovs ? 3 : 1); ++k)
       for (int c = 0; c < 3; ++c) px[3 * k + c] = v[k][c];
     if (aovs) px[9] = a.depth * inv;
@@ -112,6 +141,13 @@ image::Image render_image(const RenderScene& scene, int width, int height, const
   PathTracer pt(scene, opt.max_depth, opt.strategy, opt.time_shading);
   pt.set_clamp(opt.clamp);
   pt.set_aovs(opt.aovs);
+  // Light paths for the environment's caustics: not with a clamp (it would cap the two halves
+  // of those paths differently) nor with one technique switched off (the comparisons' pure
+  // path tracers).
+  pt.set_caustics(opt.light_paths > 0 && !(opt.clamp > 0) && opt.strategy == Strategy::Mis,
+                  opt.light_paths, uint64_t(width) * height);
+  std::unique_ptr<LightFilm> film;
+  if (pt.caustics()) film = std::make_unique<LightFilm>(width, height, opt.pixel_filter);
   std::vector<Accum> acc(size_t(width) * height);
   tbb::enumerable_thread_specific<ThreadState> states;
   int tiles = ((width + kTile - 1) / kTile) * ((height + kTile - 1) / kTile);
@@ -127,7 +163,8 @@ image::Image render_image(const RenderScene& scene, int width, int height, const
     int s1 = std::min(opt.spp, s0 + pass);
     arena.execute([&] {
       tbb::parallel_for(0, tiles, [&](int t) {
-        render_tile(scene, pt, width, height, t, s0, s1, opt, cancel, halt, acc, states.local());
+        render_tile(scene, pt, width, height, t, s0, s1, opt, cancel, halt, acc, film.get(),
+                    states.local());
         int tw = std::min(kTile, width - (t % ((width + kTile - 1) / kTile)) * kTile);
         int th = std::min(kTile, height - (t / ((width + kTile - 1) / kTile)) * kTile);
         uint64_t d = done.fetch_add(uint64_t(tw) * th * (s1 - s0)) + uint64_t(tw) * th * (s1 - s0);
@@ -145,13 +182,17 @@ image::Image render_image(const RenderScene& scene, int width, int height, const
       stats->counters.shadow_rays += ts.counters.shadow_rays;
       stats->counters.shades += ts.counters.shades;
       stats->counters.shade_seconds += ts.counters.shade_seconds;
+      stats->counters.light_paths += ts.counters.light_paths;
+      stats->counters.splats += ts.counters.splats;
       stats->counters.phases.add(ts.counters.phases);
       merge_messages(ts.counters.messages, stats->counters.messages);
       if (stats->stopped.empty()) stats->stopped = ts.counters.stopped;
     }
     stats->cancelled = cancel && cancel->load();
   }
-  return resolve(acc, width, height, opt.aovs);
+  uint64_t light_paths = 0;
+  for (const ThreadState& ts : states) light_paths += ts.counters.light_paths;
+  return resolve(acc, width, height, opt.aovs, film.get(), light_paths);
 }
 
 // Embree alone: camera rays, then one cosine-distributed bounce from each first hit.

@@ -29,6 +29,9 @@ struct RenderOptions {
   bool profile = false;
   float clamp = 0; // Settings::clamp: luminance cap on indirect contributions (0: none; biased)
   scene::PixelFilter pixel_filter = scene::PixelFilter::Box; // Settings::pixel_filter
+  // Light paths traced per camera sample for the environment's caustics (integrator.h; where
+  // the scene has them: PathTracer::caustics_possible); 0: none, the camera's paths find them.
+  float light_paths = 0.25f;
 };
 
 constexpr int kProfileEvery = 8;

@@ -356,7 +356,7 @@ Color3 RenderScene::shade_background(const Vec3& d, int raytype, ShadingContext&
 // An emitter is a shape whose material emits at a probe point; its power estimate
 // (pi * area * luminance of the probe's emission) decides how often it is sampled.
 std::string RenderScene::find_emitters(std::vector<LightSet::Emitter>& out,
-                                       ShaderMessages& messages) const {
+                                       std::vector<int>& specular, ShaderMessages& messages) const {
   ShadingContext ctx;
   ctx.renderer = &services_;
   ctx.cancel = cancel_;
@@ -384,8 +384,52 @@ std::string RenderScene::find_emitters(std::vector<LightSet::Emitter>& out,
     // is_light (testrender XML): sampled as a light even if the probe point does not emit.
     if (!(lum > 0) && s.is_light) lum = 1;
     if (lum > 0) out.push_back({int(i), kPi * area * lum});
+    for (int k = 0; k < b.lobe_count(); ++k)
+      if (b.lobe(k).flags & kLobeSpecular) {
+        specular.push_back(int(i));
+        break;
+      }
   }
   return "";
+}
+
+void RenderScene::find_caustic_targets(const std::vector<int>& specular) {
+  shape_caustic_.assign(desc_.shapes.size(), 0);
+  caustic_targets_.clear();
+  const uint64_t raytype = global_bit("raytype");
+  float total = 0;
+  for (int i : specular) {
+    if (shape_reads_[size_t(i)] & raytype) continue;
+    const scene::Shape& s = desc_.shapes[size_t(i)];
+    CausticTarget t;
+    t.shape = i;
+    if (s.kind == scene::Shape::Kind::Sphere) {
+      t.center = s.center;
+      t.radius = s.radius;
+    } else {
+      // The centre of the bounding box and the farthest vertex from it.
+      std::vector<Vec3> corners;
+      const std::vector<Vec3>& pts =
+          s.kind == scene::Shape::Kind::Quad
+              ? (corners = {s.corner, s.corner + s.edge_x, s.corner + s.edge_y,
+                            s.corner + s.edge_x + s.edge_y})
+              : s.mesh.positions;
+      if (pts.empty()) continue;
+      Vec3 lo = pts[0], hi = pts[0];
+      for (const Vec3& p : pts)
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+      t.center = (lo + hi) * 0.5f;
+      for (const Vec3& p : pts) t.radius = std::max(t.radius, length(p - t.center));
+    }
+    // Room for hit points a little off the surface (Embree's, the sphere's re-projection).
+    t.radius = t.radius * 1.001f + 1e-6f * (1 + length(t.center));
+    if (!(t.radius > 0) || !std::isfinite(t.radius)) continue;
+    t.select = t.radius * t.radius;
+    total += t.select;
+    caustic_targets_.push_back(t);
+    shape_caustic_[size_t(i)] = 1;
+  }
+  for (CausticTarget& t : caustic_targets_) t.select /= total;
 }
 
 // Embree traces in single precision and asserts that ray origins lie within about 1.8e18; far
@@ -506,7 +550,9 @@ std::string RenderScene::setup(const scene::SceneDesc& desc, const MaterialCompi
   if (cancelled()) return "interrupted (Ctrl-C) after tabulating the background";
   t0 = clock::now();
   std::vector<LightSet::Emitter> emitters;
-  if (std::string e = find_emitters(emitters, stats_.messages); !e.empty()) return e;
+  std::vector<int> specular;
+  if (std::string e = find_emitters(emitters, specular, stats_.messages); !e.empty()) return e;
+  find_caustic_targets(specular);
   stats_.emitters = static_cast<int>(emitters.size());
   lights_.build(geo_, desc_.lights, emitters, env_.valid() ? &env_ : nullptr);
   stats_.lights_seconds = since(t0);

@@ -132,6 +132,19 @@ public:
   const ClosureKernels* closure_kernels(int shape) const {
     return shape_kernels_[size_t(shape)].load(std::memory_order_acquire);
   }
+  // Shapes a light path may cross by a delta lobe (light tracing of caustics, integrator.h):
+  // a probe point of their material gives a perfect mirror or refraction lobe, and the
+  // material does not read raytype (a light path shades a surface from the light's side, with
+  // no ray type of the camera's path). Each with a sphere that holds it and its share of the
+  // light paths (by cross-section, the shares sum to 1).
+  struct CausticTarget {
+    int shape = -1;
+    Vec3 center;
+    float radius = 0;
+    float select = 0;
+  };
+  const std::vector<CausticTarget>& caustic_targets() const { return caustic_targets_; }
+  bool is_caustic_target(int shape) const { return shape_caustic_[size_t(shape)] != 0; }
   const SetupStats& stats() const { return stats_; }
   // Scene material of a shape (-1: the default grey matte).
   int material_index(int shape) const { return desc_.shapes[size_t(shape)].material; }
@@ -161,7 +174,10 @@ private:
   bool compile_kernels(const std::atomic<bool>* stop, KernelStats& out);
   void merge(const KernelStats& k);
   std::string build_environment();
-  std::string find_emitters(std::vector<LightSet::Emitter>& out, ShaderMessages& messages) const;
+  // Emitters, and in `specular` the shapes whose probe point gives a delta lobe.
+  std::string find_emitters(std::vector<LightSet::Emitter>& out, std::vector<int>& specular,
+                            ShaderMessages& messages) const;
+  void find_caustic_targets(const std::vector<int>& specular);
   bool cancelled() const { return cancel_ && cancel_->load(); }
 
   scene::SceneDesc desc_;
@@ -174,6 +190,8 @@ private:
   std::vector<const Material*> shape_material_;
   std::vector<uint64_t> shape_reads_;
   std::vector<float> shape_area_;
+  std::vector<CausticTarget> caustic_targets_;
+  std::vector<char> shape_caustic_; // per shape: a caustic target
   std::unique_ptr<std::atomic<const ClosureKernels*>[]> shape_kernels_; // per shape
   KernelMode kernel_mode_ = KernelMode::Background;
   std::thread kernel_thread_;
