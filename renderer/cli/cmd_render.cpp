@@ -127,6 +127,13 @@ void print_stats(const lobe::render::RenderScene& scene, const lobe::scene::Scen
         (unsigned long long)stats.counters.rays, (unsigned long long)stats.counters.shadow_rays,
         (unsigned long long)stats.counters.shades, trav_s > 0 ? double(rays) / trav_s / 1e6 : 0.0);
   }
+  if (stats.counters.light_paths)
+    std::fprintf(
+        stderr,
+        "stats: %llu light paths for caustics of the environment (%llu camera "
+        "connections), %.0f%% of the render's thread time\n",
+        (unsigned long long)stats.counters.light_paths, (unsigned long long)stats.counters.splats,
+        stats.seconds > 0 ? 100.0 * stats.counters.light_seconds / (stats.seconds * threads) : 0.0);
   uint64_t raw_rays = 0;
   double raw = lobe::render::raw_traversal_rate(scene, st.width, st.height, std::min(st.spp, 4),
                                                 threads_opt, raw_rays);

@@ -76,3 +76,25 @@ TEST(Camera, CircleOfConfusionFollowsSimilarTriangles) {
 }
 
 } // namespace
+
+// project() is generate()'s inverse for the pinhole: the film position of a point along the ray
+// through (fx, fy) is (fx, fy), and the cosine is the ray's with the view axis; a point behind
+// the camera has none.
+TEST(Camera, ProjectFindsTheFilmPositionOfAPoint) {
+  scene::Camera c = looking_down_minus_z(0, 0);
+  c.fov = 40;
+  c.eye = {1, 2, 3};
+  c.look_at = {0.5f, 1, -4};
+  Camera cam(c, 64, 48);
+  const float spots[][2] = {{0.5f, 0.5f}, {32, 24}, {63.25f, 1.75f}, {10.5f, 47.5f}};
+  for (const auto& s : spots) {
+    Ray r = cam.generate(s[0], s[1], 0.5f, 0.5f);
+    float fx = -1, fy = -1, cos_axis = -1;
+    ASSERT_TRUE(cam.project(r.org + r.dir * 7.5f, fx, fy, cos_axis));
+    EXPECT_NEAR(fx, s[0], 2e-3f);
+    EXPECT_NEAR(fy, s[1], 2e-3f);
+    Vec3 axis = normalize(c.look_at - c.eye);
+    EXPECT_NEAR(cos_axis, dot(r.dir, axis), 1e-5f);
+    EXPECT_FALSE(cam.project(r.org - r.dir * 2.0f, fx, fy, cos_axis));
+  }
+}

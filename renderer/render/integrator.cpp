@@ -165,9 +165,9 @@ PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, Shad
     if (!found) {
       float w = 1; // MIS weight against the light paths (a caustic of the environment)
       if (caustic && caustic_deltas >= 1 && lights.environment()) {
-        float light = light_share_ * lights.environment()->pdf(ray.dir) *
-                      line_density(scene_, ray.org, ray.dir) * caustic_light;
-        w = power_heuristic(caustic_camera, light);
+        float light = lights.environment()->pdf(ray.dir) * line_density(scene_, ray.org, ray.dir) *
+                      caustic_light;
+        w = power_heuristic(caustic_camera, light > 0 ? light_share_ * light : 0.0f);
       }
       if (after_delta && scene_.has_background_shader()) {
         // Seen by the camera or through specular bounces (no light sample competes: weight
@@ -517,6 +517,8 @@ static float light_weight(float ratio, float h) {
 }
 
 void LightFilm::splat(float fx, float fy, const Color3& v, float ratio) {
+  // Off the film (or not a number): no pixel's filter reaches it.
+  if (!(fx > -2 && fx < float(w_) + 2 && fy > -2 && fy < float(h_) + 2)) return;
   if (filter_ == scene::PixelFilter::Box) {
     add(int(std::floor(fx)), int(std::floor(fy)), light_weight(ratio, 1), v);
     return;

@@ -72,6 +72,7 @@ struct TraceCounters {
   std::string stopped;
   uint64_t light_paths = 0; // light paths traced (trace_light), splats they made
   uint64_t splats = 0;
+  double light_seconds = 0; // thread time in light paths (RenderOptions::profile)
 };
 
 // What light paths add to the image: per pixel, the sum of their splats, filtered as the
@@ -128,7 +129,8 @@ public:
   // Caustics of the environment by light paths (top of this file): on only where the scene
   // allows them (caustics_possible); the caller then traces light paths with trace_light.
   // `light_paths`: light paths per camera sample, `pixels` the image's: the two techniques'
-  // sample counts, in their MIS weights.
+  // sample counts, in their MIS weights (infinite: the light paths take every caustic path
+  // they can make, with weight 1).
   void set_caustics(bool on, float light_paths = 1, uint64_t pixels = 1) {
     caustics_ = on && caustics_possible(scene_);
     light_share_ = light_paths * float(pixels);

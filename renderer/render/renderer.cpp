@@ -101,7 +101,12 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
         a.depth += r.depth;
         ++a.n;
         if (film) {
+          auto l0 = opt.profile ? std::chrono::steady_clock::now()
+                                : std::chrono::steady_clock::time_point{};
           trace_light_paths(pt, pixel, uint64_t(width) * height, s, opt, *film, ts);
+          if (opt.profile)
+            ts.counters.light_seconds +=
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - l0).count();
           if (!ts.counters.stopped.empty()) {
             halt.store(true);
             return;
@@ -145,7 +150,7 @@ image::Image render_image(const RenderScene& scene, int width, int height, const
   // of those paths differently) nor with one technique switched off (the comparisons' pure
   // path tracers).
   pt.set_caustics(opt.light_paths > 0 && !(opt.clamp > 0) && opt.strategy == Strategy::Mis,
-                  opt.light_paths, uint64_t(width) * height);
+                  opt.light_paths_only ? INFINITY : opt.light_paths, uint64_t(width) * height);
   std::unique_ptr<LightFilm> film;
   if (pt.caustics()) film = std::make_unique<LightFilm>(width, height, opt.pixel_filter);
   std::vector<Accum> acc(size_t(width) * height);
@@ -184,6 +189,7 @@ image::Image render_image(const RenderScene& scene, int width, int height, const
       stats->counters.shade_seconds += ts.counters.shade_seconds;
       stats->counters.light_paths += ts.counters.light_paths;
       stats->counters.splats += ts.counters.splats;
+      stats->counters.light_seconds += ts.counters.light_seconds;
       stats->counters.phases.add(ts.counters.phases);
       merge_messages(ts.counters.messages, stats->counters.messages);
       if (stats->stopped.empty()) stats->stopped = ts.counters.stopped;

@@ -32,6 +32,9 @@ struct RenderOptions {
   // Light paths traced per camera sample for the environment's caustics (integrator.h; where
   // the scene has them: PathTracer::caustics_possible); 0: none, the camera's paths find them.
   float light_paths = 0.25f;
+  // The caustic paths both the light paths and the camera's can make go to the light paths
+  // alone, unweighed (their estimator by itself: for tests and measurement).
+  bool light_paths_only = false;
 };
 
 constexpr int kProfileEvery = 8;
