@@ -245,10 +245,12 @@ int run_render(int argc, char** argv) {
   }
 
   // The image's cost, checked before anything is allocated: per pixel the accumulator (44
-  // bytes), the resolved image and the writer's copy (4 bytes a channel each).
+  // bytes), the light paths' film (24, when they may run), the resolved image and the writer's
+  // copy (4 bytes a channel each).
   {
     double channels = lobe::image::keeps_all_channels(out) ? 10 : 3;
-    double bytes = double(st.width) * double(st.height) * (44 + 2 * 4 * channels);
+    double film = a.light_paths > 0 ? 24 : 0;
+    double bytes = double(st.width) * double(st.height) * (44 + film + 2 * 4 * channels);
     std::string setting = (a.res.size() == 2 ? "--res " : "resolution ") +
                           std::to_string(st.width) + " " + std::to_string(st.height);
     if (std::string e = lobe::check_memory(setting, bytes, "the image and its samples");

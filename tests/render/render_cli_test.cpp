@@ -364,3 +364,29 @@ TEST(RenderCli, NonFiniteEnvironmentTexelsAreWarnedOfAndReadAsZero) {
   ASSERT_EQ(lobe::image::read_image((d / "zero_out.exr").string(), b), "");
   EXPECT_EQ(a.pixels, b.pixels);
 }
+
+// --light-paths: light paths run for a glass sphere in an environment (the --stats line says
+// how many: 0.5 a camera sample of 8 x 8 pixels at 4 samples), none with 0; a negative rate is
+// refused.
+TEST(RenderCli, LightPathsOptionSetsTheCausticPaths) {
+  fs::path d = temp_dir("light_paths");
+  write_file(d / "s.json", R"({"camera": {"eye": [0, 2, 3], "look_at": [0, 0, 0], "fov": 40},
+  "settings": {"resolution": [8, 8], "spp": 4},
+  "materials": {"g": {"shader": "glass"}, "f": {"shader": "matte"}},
+  "shapes": [{"type": "sphere", "center": [0, 0.6, 0], "radius": 0.5, "material": "g"},
+             {"type": "quad", "corner": [-2, 0, 2], "edge_x": [4, 0, 0], "edge_y": [0, 0, -4],
+              "material": "f"}],
+  "environment": {"type": "sky", "resolution": 32}})");
+  std::string scene = (d / "s.json").string(), out = " -o " + (d / "a.exr").string();
+  CmdResult on = render("--stats --light-paths 0.5 " + scene + out);
+  ASSERT_EQ(on.status, 0) << on.out;
+  EXPECT_NE(on.out.find("stats: 128 light paths for caustics of the environment"),
+            std::string::npos)
+      << on.out;
+  CmdResult off = render("--stats --light-paths 0 " + scene + out);
+  ASSERT_EQ(off.status, 0) << off.out;
+  EXPECT_EQ(off.out.find("light paths"), std::string::npos) << off.out;
+  CmdResult bad = render("--light-paths -1 " + scene + out);
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.out.find("--light-paths"), std::string::npos) << bad.out;
+}
