@@ -430,6 +430,21 @@ void RenderScene::find_caustic_targets(const std::vector<int>& specular) {
     shape_caustic_[size_t(i)] = 1;
   }
   for (CausticTarget& t : caustic_targets_) t.select /= total;
+  // Many targets (a field of glass beads): one sphere round them all, so that a line's density
+  // (the light paths' and the camera's, per environment hit) is one test, not one per target.
+  if (caustic_targets_.size() > kMaxCausticSpheres) {
+    Vec3 lo = caustic_targets_[0].center, hi = lo;
+    for (const CausticTarget& t : caustic_targets_)
+      for (int k = 0; k < 3; ++k)
+        lo[k] = std::min(lo[k], t.center[k] - t.radius),
+        hi[k] = std::max(hi[k], t.center[k] + t.radius);
+    CausticTarget all;
+    all.center = (lo + hi) * 0.5f;
+    for (const CausticTarget& t : caustic_targets_)
+      all.radius = std::max(all.radius, length(t.center - all.center) + t.radius);
+    all.select = 1;
+    caustic_targets_ = {all};
+  }
 }
 
 // Embree traces in single precision and asserts that ray origins lie within about 1.8e18; far

@@ -136,7 +136,9 @@ public:
   // a probe point of their material gives a perfect mirror or refraction lobe, and the
   // material does not read raytype (a light path shades a surface from the light's side, with
   // no ray type of the camera's path). Each with a sphere that holds it and its share of the
-  // light paths (by cross-section, the shares sum to 1).
+  // light paths (by cross-section, the shares sum to 1). Past kMaxCausticSpheres targets, one
+  // sphere holds them all (its shape -1); is_caustic_target still tells them apart.
+  static constexpr size_t kMaxCausticSpheres = 64;
   struct CausticTarget {
     int shape = -1;
     Vec3 center;

@@ -268,3 +268,24 @@ TEST(Caustics, LightFilmSharesASplatByFilterAndWeight) {
   weighed.splat(-3, 40, {1, 1, 1});
   weighed.splat(NAN, 1, {1, 1, 1});
 }
+
+// Past 64 targets one sphere holds them all (a line's density is then one test): 80 glass
+// beads in a row, the sphere round them from the first bead's far side to the last's.
+TEST(Caustics, ManyTargetsShareOneSphere) {
+  std::string shapes;
+  for (int i = 0; i < 80; ++i)
+    shapes += R"({"type": "sphere", "center": [)" + std::to_string(-4 + 0.1 * i) +
+              R"(, 0.05, 0], "radius": 0.05, "material": "g"},)";
+  auto s = test::setup_scene(R"({"camera": {"eye": [0, 2, 3], "look_at": [0, 0, 0], "fov": 40},
+    "materials": {"g": {"shader": "glass"}},
+    "shapes": [)" + shapes.substr(0, shapes.size() - 1) +
+                                 R"(], "environment": {"type": "sky", "resolution": 32}})",
+                             kW, kH);
+  ASSERT_TRUE(s);
+  ASSERT_EQ(s->caustic_targets().size(), 1u);
+  EXPECT_EQ(s->caustic_targets()[0].shape, -1);
+  EXPECT_NEAR(s->caustic_targets()[0].radius, 0.1 * 80 / 2, 0.01);
+  EXPECT_NEAR(s->caustic_targets()[0].center.x, -4 - 0.05 + 0.1 * 80 / 2, 0.01);
+  EXPECT_TRUE(s->is_caustic_target(0));
+  EXPECT_TRUE(s->is_caustic_target(79));
+}
