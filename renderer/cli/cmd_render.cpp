@@ -82,7 +82,7 @@ struct Args {
   int spp = 0, threads = 0, max_depth = 0;
   long long seed = -1;
   long long max_loop_iterations = 100000000;
-  float exposure = 0, clamp = -1, light_paths = 0.25f;
+  float exposure = 0, clamp = -1, light_paths = 0.1f;
   bool quiet = false, stats = false, no_aovs = false;
   std::string progress = "auto";
 };
@@ -177,7 +177,7 @@ int run_render(int argc, char** argv) {
   app.add_option("--light-paths", a.light_paths,
                  "light paths from the environment per camera sample, for caustics seen through "
                  "glass and mirrors (0: none; only with an environment, a pinhole camera and "
-                 "mis; docs/renderer.md)")
+                 "mis; not clamped by --clamp; docs/renderer.md)")
       ->check(CLI::Range(0.0f, 64.0f));
   app.add_option("--colorspace", a.colorspace,
                  "RGB space of shader colours (Rec709, sRGB, NTSC, EBU, PAL, SECAM, SMPTE, HDTV, "

@@ -146,10 +146,11 @@ image::Image render_image(const RenderScene& scene, int width, int height, const
   PathTracer pt(scene, opt.max_depth, opt.strategy, opt.time_shading);
   pt.set_clamp(opt.clamp);
   pt.set_aovs(opt.aovs);
-  // Light paths for the environment's caustics: not with a clamp (it would cap the two halves
-  // of those paths differently) nor with one technique switched off (the comparisons' pure
-  // path tracers).
-  pt.set_caustics(opt.light_paths > 0 && !(opt.clamp > 0) && opt.strategy == Strategy::Mis,
+  // Light paths for the environment's caustics: not with one technique switched off (the
+  // comparisons' pure path tracers). With a clamp they run, unclamped: the clamp caps the
+  // camera's paths' weighted share of the caustics, which the light paths make up (a clamp
+  // alone removes the caustics of glass from the built-in preview).
+  pt.set_caustics(opt.light_paths > 0 && opt.strategy == Strategy::Mis,
                   opt.light_paths_only ? INFINITY : opt.light_paths, uint64_t(width) * height);
   std::unique_ptr<LightFilm> film;
   if (pt.caustics()) film = std::make_unique<LightFilm>(width, height, opt.pixel_filter);

@@ -31,7 +31,7 @@ struct RenderOptions {
   scene::PixelFilter pixel_filter = scene::PixelFilter::Box; // Settings::pixel_filter
   // Light paths traced per camera sample for the environment's caustics (integrator.h; where
   // the scene has them: PathTracer::caustics_possible); 0: none, the camera's paths find them.
-  float light_paths = 0.25f;
+  float light_paths = 0.1f;
   // The caustic paths both the light paths and the camera's can make go to the light paths
   // alone, unweighed (their estimator by itself: for tests and measurement).
   bool light_paths_only = false;
