@@ -4,6 +4,7 @@
     export $(bash ../shared/osl-reference/setup.sh)
     python3 bench/testrender_compare/run.py --lobe build/lobe [--reps 3] [--out DIR]
         [--res 320 240] [--threads 2] [--ref-aa 24] [--curve-aa 1,2,4,8] [--probe FILE]
+        [--scene OTHER.xml]
 
 Scene (scene.xml and its shaders, copied into DIR and compiled there with OSL's oslc for
 testrender): an angular light probe through a texture() background shader with a
@@ -95,15 +96,28 @@ def main():
     ap.add_argument("--ref-aa", type=int, default=24)
     ap.add_argument("--curve-aa", default="1,2,4,8")
     ap.add_argument("--probe", default=DEFAULT_PROBE)
+    ap.add_argument("--scene", default=None,
+                    help="another testrender XML scene (its folder's .osl files are its shaders; "
+                         "an <Option aa=...> is dropped so that -aa and --spp set the samples)")
     a = ap.parse_args()
     if not os.environ.get("OSL_BIN"):
         sys.exit("OSL_BIN is not set: export $(bash ../shared/osl-reference/setup.sh)")
     a.lobe = os.path.abspath(a.lobe)
     d = os.path.abspath(a.out)
     os.makedirs(d, exist_ok=True)
-    shutil.copy(os.path.join(HERE, "scene.xml"), d)
-    for s in SHADERS:
-        shutil.copy(os.path.join(HERE, s + ".osl"), d)
+    if a.scene:
+        with open(a.scene) as fh:
+            xml = re.sub(r'\s+aa="[^"]*"', "", fh.read())
+        with open(os.path.join(d, "scene.xml"), "w") as fh:
+            fh.write(xml)
+        folder = os.path.dirname(os.path.abspath(a.scene))
+        shaders = [f[:-4] for f in sorted(os.listdir(folder)) if f.endswith(".osl")]
+        src = folder
+    else:
+        shutil.copy(os.path.join(HERE, "scene.xml"), d)
+        shaders, src = SHADERS, HERE
+    for s in shaders:
+        shutil.copy(os.path.join(src, s + ".osl"), d)
         subprocess.run([os.path.join(os.environ["OSL_BIN"], "oslc"), "-q", s + ".osl"], cwd=d,
                        check=True, stdout=subprocess.DEVNULL)
     probe = os.path.join(d, "probe.hdr")
@@ -197,7 +211,8 @@ def main():
                 [(pts["testrender"], "^--", "OSL testrender"), (pts["lobe"], "o-", "Lobe")],
                 "whole-process time (s), %d threads" % a.threads,
                 "relMSE against own independent %d-spp image" % (a.ref_aa ** 2),
-                "testrender envmap scene, %dx%d" % tuple(a.res))
+                "testrender %s, %dx%d" % ((os.path.basename(a.scene) if a.scene else
+                                           "envmap scene",) + tuple(a.res)))
     print("wrote %s/testrender_compare.csv and %s/testrender_compare.png" % (d, d))
 
 

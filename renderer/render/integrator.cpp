@@ -81,6 +81,16 @@ float line_density(const RenderScene& scene, const Vec3& p, const Vec3& d) {
   return pdf;
 }
 
+// The camera's paths' MIS weight (power heuristic) against the light paths', from the two
+// densities (the camera's with its filter weight): 1 / (1 + (light / camera)^2), in that form
+// so that no square overflows (the light paths' weight, LightFilm::splat, is its complement).
+float camera_weight(float camera, float light) {
+  if (!(light > 0)) return 1;
+  if (std::isinf(light) || !(camera > 0)) return 0;
+  float r = light / camera;
+  return 1 / (1 + r * r);
+}
+
 // The area density, on the surface at `p` (geometric normal `ng`), of the camera's rays per
 // unit of film area: |ng.wo| / (dist^2 * pixel area at distance 1 * cos^3 of the ray with the
 // view axis); 0 for a point the pinhole does not see in front.
@@ -151,8 +161,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, Shad
   // light paths' finding it; the densities of the two, over the same variables, but for the
   // factors they share and those known only at the end: caustic_camera (the film's
   // film_density * film_to_area times the BSDF pdfs at the non-delta vertices), caustic_light
-  // (|Ng.wi| at the first vertex, times, for two, the light path's cosine density of its
-  // bounce at the second and |Ng.wi| there).
+  // (|Ng.wi| at the first vertex, times, for two, |Ng.wi| / pi at the second: the light
+  // path's cosine bounce there, its density |Ng.wo| / pi with the |Ng.wo| both share dropped).
   int caustic = 0, caustic_deltas = 0;
   float caustic_camera = 0, caustic_light = 0;
   Vertex v;
@@ -167,7 +177,7 @@ PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, Shad
       if (caustic && caustic_deltas >= 1 && lights.environment()) {
         float light = lights.environment()->pdf(ray.dir) * line_density(scene_, ray.org, ray.dir) *
                       caustic_light;
-        w = power_heuristic(caustic_camera, light > 0 ? light_share_ * light : 0.0f);
+        w = camera_weight(caustic_camera, light > 0 ? light_share_ * light : 0.0f);
       }
       if (after_delta && scene_.has_background_shader()) {
         // Seen by the camera or through specular bounces (no light sample competes: weight
@@ -339,8 +349,8 @@ bool PathTracer::caustics_possible(const RenderScene& scene) {
          !scene.camera().has_lens();
 }
 
-void PathTracer::trace_light(RandomStream& rng, ShadingContext& ctx, TraceCounters& c,
-                             LightFilm& film) const {
+void PathTracer::trace_light(RandomStream& rng, ShadingContext& ctx, ShadingContext& link_ctx,
+                             TraceCounters& c, LightFilm& film) const {
   const EnvironmentLight* env = scene_.lights().environment();
   const auto& targets = scene_.caustic_targets();
   if (!caustics_ || !env) return;
@@ -365,6 +375,9 @@ void PathTracer::trace_light(RandomStream& rng, ShadingContext& ctx, TraceCounte
   // The density of this line over the area across it: every target whose disk it crosses.
   const float pdf_line = line_density(scene_, ray.org, d);
   if (!(pdf_line > 0)) return;
+  // The MIS weights take the direction's density from pdf(w), as the camera's paths do (the
+  // flux below divides by the density sample() drew it with; the two agree but for rounding).
+  const float light_pdf = env->pdf(w) * pdf_line;
   Color3 beta; // flux of the path: set at its first vertex, where the ray type is known
   Vertex v;
   Laps untimed(nullptr);
@@ -373,7 +386,21 @@ void PathTracer::trace_light(RandomStream& rng, ShadingContext& ctx, TraceCounte
     ++c.rays;
     if (!geo.traverse(ray, raw)) return;
     geo.complete(ray, raw, v.hit);
-    if (deltas >= 1) {
+    // The camera's path has at most max_depth - 1 delta vertices after its first.
+    const bool go_on = deltas < max_depth_ - 1 && scene_.is_caustic_target(v.hit.shape);
+    bool has_delta = false, has_other = true;
+    if (go_on) {
+      // The target from the light's side (in ctx: its closure stays while the camera's
+      // connections shade in link_ctx).
+      shade_into(scene_, v.hit, ray.dir, kRayRefraction, ctx, v.bsdf, c, false, untimed);
+      if (ctx.stopped) return;
+      has_other = v.bsdf.has_non_delta();
+      for (int i = 0; i < v.bsdf.lobe_count(); ++i)
+        has_delta |= (v.bsdf.lobe(i).flags & kLobeSpecular) != 0;
+    }
+    // A target with delta lobes alone (the inside of a glass sphere) is no one's first or
+    // second vertex: nothing to connect.
+    if (deltas >= 1 && has_other) {
       // Seen by the camera (its path's first vertex). The radiance towards the camera is
       // f * beta / |Ng.wi| (beta counts area across the ray, the surface's is |Ng.wi| of it).
       // The densities, both over the first vertex's area and the direction there: the
@@ -381,21 +408,15 @@ void PathTracer::trace_light(RandomStream& rng, ShadingContext& ctx, TraceCounte
       const Vec3 wi = -ray.dir;
       const float cos_in = std::abs(dot(v.hit.Ng, wi));
       CameraLink link;
-      if (cos_in > 1e-7f && link_camera(v.hit, wi, ctx, c, link))
+      if (cos_in > 1e-7f && link_camera(v.hit, wi, link_ctx, c, link))
         splat(link, link.f.value * beta / cos_in, link.to_area * link.f.pdf,
-              light_share_ * pdf_dir * pdf_line * cos_in, c, film);
+              light_share_ * light_pdf * cos_in, c, film);
       // Seen after one more bounce (the camera's path's second vertex).
       if (deltas <= max_depth_ - 2 && !(scene_.globals_read(v.hit.shape) & raytype_bit_))
-        bounce_to_camera(v.hit, ray.dir, beta, pdf_dir * pdf_line, rng, ctx, c, film);
+        bounce_to_camera(v.hit, ray.dir, beta, light_pdf, rng, link_ctx, c, film);
+      if (link_ctx.stopped) return;
     }
-    // The camera's path has at most max_depth - 1 delta vertices after its first.
-    if (deltas >= max_depth_ - 1 || !scene_.is_caustic_target(v.hit.shape)) return;
-    shade_into(scene_, v.hit, ray.dir, kRayRefraction, ctx, v.bsdf, c, false, untimed);
-    if (!c.stopped.empty() || !is_zero(v.bsdf.transparency)) return;
-    bool has_delta = false;
-    for (int i = 0; i < v.bsdf.lobe_count(); ++i)
-      has_delta |= (v.bsdf.lobe(i).flags & kLobeSpecular) != 0;
-    if (!has_delta) return;
+    if (!go_on || !is_zero(v.bsdf.transparency) || !has_delta) return;
     float ub[3] = {rng.next(), rng.next(), rng.next()};
     auto s = v.bsdf.sample(-ray.dir, {ub[0], ub[1], ub[2]}, Transport::Importance);
     if (!s || !(s->flags & kLobeSpecular)) return;
@@ -406,6 +427,7 @@ void PathTracer::trace_light(RandomStream& rng, ShadingContext& ctx, TraceCounte
       Color3 Le = scene_.has_background_shader()
                       ? scene_.shade_background(w, raytype, ctx, c.messages)
                       : env->eval(w);
+      if (ctx.stopped) return;
       beta = Le / (pdf_dir * pdf_line);
     }
     beta *= s->weight;
@@ -446,6 +468,7 @@ void PathTracer::bounce_to_camera(const SurfaceHit& y, const Vec3& d, const Colo
   Bsdf b;
   Laps untimed(nullptr);
   shade_into(scene_, y, -wout, kRayDiffuse, ctx, b, c, false, untimed, link.dist + raw.t);
+  if (ctx.stopped) return;
   BsdfEval f2 = b.eval(wout, w2);
   if (is_zero(f2.value)) return;
   // Flux leaving y towards x1: beta * f2 / |Ng.w2| * |Ng.wout| / pdf, pdf = |Ng.wout| / pi.
@@ -476,6 +499,7 @@ bool PathTracer::link_camera(const SurfaceHit& hit, const Vec3& wi, ShadingConte
   Bsdf b;
   Laps untimed(nullptr);
   shade_into(scene_, hit, -wo, kRayCamera, ctx, b, c, false, untimed, dist);
+  if (ctx.stopped) return false;
   out.f = b.eval(wo, wi);
   out.dist = dist;
   return !is_zero(out.f.value);
@@ -502,18 +526,25 @@ void LightFilm::add(int x, int y, float w, const Color3& v) {
   if (x < 0 || y < 0 || x >= w_ || y >= h_ || !(w > 0)) return;
   std::atomic<int64_t>* px = &sum_[(size_t(y) * w_ + x) * 3];
   for (int k = 0; k < 3; ++k) {
+    // Negative radiance (a background shader may give it) is not splatted.
     double q = double(v[k]) * double(w) * kFilmScale;
     if (!(q > 0)) continue;
-    px[k].fetch_add(int64_t(std::min(q, kFilmMax) + 0.5), std::memory_order_relaxed);
+    const int64_t add = int64_t(std::min(q, kFilmMax) + 0.5), top = int64_t(kFilmMax);
+    // Saturating, so that no sum wraps round (and the order of adds still does not matter).
+    int64_t cur = px[k].load(std::memory_order_relaxed);
+    while (!px[k].compare_exchange_weak(cur, cur > top - add ? top : cur + add,
+                                        std::memory_order_relaxed)) {
+    }
   }
 }
 
-// Power heuristic weight of the light path at filter weight h: (r/h)^2 / (1 + (r/h)^2).
+// The light path's weight at filter weight h, camera_weight's complement for the camera's
+// density h * camera: 1 / (1 + (h / ratio)^2), ratio = light / camera (no square overflows).
 static float light_weight(float ratio, float h) {
-  if (!(h > 0)) return 0;
+  if (!(h > 0) || !(ratio > 0)) return 0;
   if (std::isinf(ratio)) return 1;
-  float q = ratio / h;
-  return q * q / (1 + q * q);
+  float q = h / ratio;
+  return 1 / (1 + q * q);
 }
 
 void LightFilm::splat(float fx, float fy, const Color3& v, float ratio) {

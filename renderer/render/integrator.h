@@ -12,15 +12,18 @@
 // through delta lobes alone (a floor lit through a glass sphere) is found by a path only when
 // its BSDF sample happens to leave through the sphere towards a bright part of the
 // environment: rare samples of great weight (fireflies). Those paths are traced from the
-// other end instead: trace_light() starts a ray in the environment, importance-sampled by its
+// other end as well: trace_light() starts a ray in the environment, importance-sampled by its
 // table, aimed at a sphere round a caustic target (RenderScene::caustic_targets), follows it
-// through delta lobes and, at each surface it reaches, connects to the camera and splats what
-// the camera sees there into a LightFilm. The paths are split between the two, each counted
-// once: the camera's path drops the environment it reaches when its first vertex scattered by
-// a non-delta lobe and every later one by a delta lobe of an opaque caustic target, and the
-// light path counts exactly those (at most max_depth - 1 delta vertices, as the camera's).
-// The light path shades a target from the light's side, so a target's shader is taken to be
-// reciprocal (glass and mirrors written as OSL's are); one that reads raytype is not a target.
+// through delta lobes of targets and, at each surface it reaches, connects to the camera (the
+// camera's path's first vertex) and bounces once more, cosine-distributed, to connect the
+// point it reaches (its second vertex), splatting into a LightFilm. A camera path whose first
+// one or two vertices scattered by non-delta lobes and every later one by a delta lobe of an
+// opaque target, and which then reaches the environment, is one both make (with at most
+// max_depth - 1 delta vertices after its first vertex, max_depth - 2 after its second, as the
+// camera's paths allow): the two weigh it by the power heuristic, pixel by pixel, so the
+// weights sum to one and the image is unbiased. The light path shades a target from the
+// light's side, so a target's shader is taken to be reciprocal (glass and mirrors written as
+// OSL's are); one that reads raytype is not a target, nor a second vertex.
 #pragma once
 
 #include "sampling.h"
@@ -147,8 +150,9 @@ public:
                    float film_density = 1) const;
   // One light path from the environment (numbers from `rng`), its camera connections splatted
   // into `film`; the image adds film.sum(p) / (light paths traced). Needs caustics().
-  void trace_light(RandomStream& rng, ShadingContext& ctx, TraceCounters& counters,
-                   LightFilm& film) const;
+  // `ctx` holds the target being crossed, `link_ctx` shades the camera's connections.
+  void trace_light(RandomStream& rng, ShadingContext& ctx, ShadingContext& link_ctx,
+                   TraceCounters& counters, LightFilm& film) const;
 
 private:
   struct CameraLink {

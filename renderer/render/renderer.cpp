@@ -38,7 +38,6 @@ inline float tent_warp(float u) {
   return t < 1 ? std::sqrt(t) - 1 : 1 - std::sqrt(2 - t);
 }
 
-// Renders samples [s0, s1) of every pixel in tile `t`.
 // Light paths after sample `s` of `pixel` (PathTracer::trace_light): opt.light_paths a sample
 // on average, at fixed indices, each with numbers of its own; so the count and the paths
 // depend on the image size, sample count and seed alone.
@@ -49,10 +48,12 @@ void trace_light_paths(const PathTracer& pt, uint64_t pixel, uint64_t pixels, in
   auto n = uint64_t(std::floor(double(idx + 1) * rate) - std::floor(double(idx) * rate));
   for (uint64_t j = 0; j < n; ++j) {
     RandomStream rng(idx, j, opt.seed ^ 0x6c69676874ull);
-    pt.trace_light(rng, ts.ctx, ts.counters, film);
+    if (ts.ctx.cancel && ts.ctx.cancel->load(std::memory_order_relaxed)) return; // Ctrl-C
+    pt.trace_light(rng, ts.ctx, ts.light_ctx, ts.counters, film);
   }
 }
 
+// Renders samples [s0, s1) of every pixel in tile `t`.
 void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int height, int t,
                  int s0, int s1, const RenderOptions& opt, const std::atomic<bool>* cancel,
                  std::atomic<bool>& halt, std::vector<Accum>& acc, LightFilm* film,
@@ -150,8 +151,13 @@ image::Image render_image(const RenderScene& scene, int width, int height, const
   // comparisons' pure path tracers). With a clamp they run, unclamped: the clamp caps the
   // camera's paths' weighted share of the caustics, which the light paths make up (a clamp
   // alone removes the caustics of glass from the built-in preview).
-  pt.set_caustics(opt.light_paths > 0 && opt.strategy == Strategy::Mis,
-                  opt.light_paths_only ? INFINITY : opt.light_paths, uint64_t(width) * height);
+  // The MIS weights take the light paths' count as it will be (trace_light_paths: the floor of
+  // rate x samples x pixels), none when that is 0.
+  const double pixels = double(width) * height,
+               expected_paths = std::floor(double(opt.light_paths) * opt.spp * pixels);
+  pt.set_caustics(expected_paths >= 1 && opt.strategy == Strategy::Mis,
+                  opt.light_paths_only ? INFINITY : float(expected_paths / (opt.spp * pixels)),
+                  uint64_t(pixels));
   std::unique_ptr<LightFilm> film;
   if (pt.caustics()) film = std::make_unique<LightFilm>(width, height, opt.pixel_filter);
   std::vector<Accum> acc(size_t(width) * height);

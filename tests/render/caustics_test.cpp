@@ -173,6 +173,18 @@ TEST(Caustics, LightPathsRunOnlyWhereTheSceneHasCausticsAndTheOptionsAllow) {
   opt.clamp = 0;
   opt.strategy = Strategy::BsdfOnly;
   EXPECT_EQ(test::render(*s, kW, kH, opt).stats.counters.light_paths, 0u);
+  // Fewer than one light path in all (0.1 a sample of 2 x 2 pixels at 1 sample): none, and
+  // the camera's paths keep the caustics whole (the image is theirs, bit for bit).
+  auto tiny = test::setup_scene(caustic_scene(), 2, 2);
+  ASSERT_TRUE(tiny);
+  opt.spp = 1;
+  opt.light_paths = 0.1f;
+  auto some = test::render(*tiny, 2, 2, opt);
+  EXPECT_EQ(some.stats.counters.light_paths, 0u);
+  opt.light_paths = 0;
+  auto none = test::render(*tiny, 2, 2, opt);
+  EXPECT_EQ(some.img.pixels, none.img.pixels);
+  opt.spp = 2;
   // No delta lobes anywhere: no targets, no light paths.
   auto matte = test::setup_scene(caustic_scene(false), kW, kH);
   ASSERT_TRUE(matte);
@@ -268,6 +280,15 @@ TEST(Caustics, LightFilmSharesASplatByFilterAndWeight) {
   // Off the film: nothing, and no fault.
   weighed.splat(-3, 40, {1, 1, 1});
   weighed.splat(NAN, 1, {1, 1, 1});
+  // Densities far apart: weights 0 and 1, never NaN; sums saturate, never wrap round.
+  LightFilm far(1, 1, scene::PixelFilter::Box);
+  far.splat(0.5f, 0.5f, {1, 1, 1}, 1e-30f);
+  EXPECT_EQ(far.sum(0).x, 0);
+  far.splat(0.5f, 0.5f, {1, 1, 1}, 1e30f);
+  EXPECT_NEAR(far.sum(0).x, 1, 1e-6);
+  for (int i = 0; i < 4; ++i) far.splat(0.5f, 0.5f, {1e30f, 1e30f, 1e30f});
+  EXPECT_GT(far.sum(0).x, 1e12f);
+  EXPECT_TRUE(std::isfinite(far.sum(0).x));
 }
 
 // Past 64 targets one sphere holds them all (a line's density is then one test): 80 glass
