@@ -36,6 +36,17 @@ inline Rendered render(const RenderScene& s, int w, int h, RenderOptions opt) {
   return r;
 }
 
+// Renders `opt` on 1 thread, then on 2, and expects the same bits; returns the first render.
+inline Rendered expect_same_bits_on_1_and_2_threads(const RenderScene& s, int w, int h,
+                                                    RenderOptions opt) {
+  opt.threads = 1;
+  Rendered a = render(s, w, h, opt);
+  opt.threads = 2;
+  Rendered b = render(s, w, h, opt);
+  EXPECT_EQ(a.img.pixels, b.img.pixels) << "1 and 2 threads";
+  return a;
+}
+
 // Mean and standard error of the mean of channel c over all pixels.
 inline void mean_and_error(const image::Image& img, int c, double& mean, double& err) {
   double s = 0, s2 = 0;
