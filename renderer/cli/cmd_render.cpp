@@ -177,7 +177,8 @@ int run_render(int argc, char** argv) {
   app.add_option("--light-paths", a.light_paths,
                  "light paths from the environment per camera sample, for caustics seen through "
                  "glass and mirrors (0: none; only with an environment, a pinhole camera and "
-                 "mis; not clamped by --clamp; docs/renderer.md)")
+                 "mis; not clamped by --clamp; default: the scene's settings.light_paths, "
+                 "else 0.1; docs/renderer.md)")
       ->check(CLI::Range(0.0f, 64.0f));
   app.add_option("--colorspace", a.colorspace,
                  "RGB space of shader colours (Rec709, sRGB, NTSC, EBU, PAL, SECAM, SMPTE, HDTV, "
@@ -231,6 +232,7 @@ int run_render(int argc, char** argv) {
   if (a.seed >= 0) st.seed = uint64_t(a.seed);
   if (app.count("--exposure")) st.exposure = a.exposure;
   if (app.count("--clamp")) st.clamp = a.clamp;
+  if (app.count("--light-paths")) st.light_paths = a.light_paths;
   if (!a.filter.empty()) lobe::scene::pixel_filter_named(a.filter, st.pixel_filter); // CLI-checked
   std::string out = !a.output.empty() ? a.output : (!st.output.empty() ? st.output : "lobe.png");
   // A bad output path is found now, not after a long render. The format of a common extension
@@ -249,7 +251,7 @@ int run_render(int argc, char** argv) {
   // copy (4 bytes a channel each).
   {
     double channels = lobe::image::keeps_all_channels(out) ? 10 : 3;
-    double film = a.light_paths > 0 ? 24 : 0;
+    double film = st.light_paths > 0 ? 24 : 0;
     double bytes = double(st.width) * double(st.height) * (44 + film + 2 * 4 * channels);
     std::string setting = (a.res.size() == 2 ? "--res " : "resolution ") +
                           std::to_string(st.width) + " " + std::to_string(st.height);
@@ -299,7 +301,7 @@ int run_render(int argc, char** argv) {
   opt.seed = st.seed;
   opt.threads = a.threads;
   opt.strategy = parse_strategy(a.strategy);
-  opt.light_paths = a.light_paths;
+  opt.light_paths = st.light_paths;
   // AOV channels only where they are kept, and not when declined.
   opt.aovs = lobe::image::keeps_all_channels(out) && !a.no_aovs;
   opt.profile = a.stats;
@@ -360,6 +362,9 @@ int run_render(int argc, char** argv) {
     if (st.clamp > 0) // biased: always said
       std::snprintf(spp + std::strlen(spp), sizeof spp - std::strlen(spp),
                     ", indirect light clamped at %g", st.clamp);
+    if (stats.counters.light_paths)
+      std::snprintf(spp + std::strlen(spp), sizeof spp - std::strlen(spp),
+                    ", %g light paths a sample for caustics", st.light_paths);
     // When the kernels came into use: "" (at set-up or not at all), else after how long.
     char ready[96] = "";
     double rs = scene.stats().kernels_ready_seconds;

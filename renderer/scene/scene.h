@@ -115,6 +115,9 @@ struct Settings {
   // bounce; 0: none). Biased: removes fireflies from caustic paths (e.g. a diffuse surface
   // seeing the sun in a glossy metal) at the cost of energy; direct light is never clamped.
   float clamp = 0;
+  // Light paths from the environment per camera sample, for caustics of glass and mirrors
+  // (RenderOptions::light_paths, `lobe render --light-paths`); 0: none.
+  float light_paths = 0.1f;
   PixelFilter pixel_filter = PixelFilter::Box; // XML scenes (testrender's): Tent
   std::string output;
 };

@@ -73,9 +73,9 @@ private:
   Settings settings(const json& j) {
     const std::string p = "/settings";
     r_.object(j, p);
-    r_.check_keys(
-        j, p,
-        {"resolution", "spp", "max_depth", "seed", "exposure", "clamp", "pixel_filter", "output"});
+    r_.check_keys(j, p,
+                  {"resolution", "spp", "max_depth", "seed", "exposure", "clamp", "light_paths",
+                   "pixel_filter", "output"});
     Settings s;
     if (j.contains("resolution")) {
       const json& res = j.at("resolution");
@@ -97,6 +97,9 @@ private:
     r_.opt(j, p, "clamp", s.clamp, &JsonReader::number);
     if (!(s.clamp >= 0) || !std::isfinite(s.clamp))
       r_.fail(p + "/clamp", "expected a finite number >= 0 (0: no clamp)");
+    r_.opt(j, p, "light_paths", s.light_paths, &JsonReader::number);
+    if (!(s.light_paths >= 0 && s.light_paths <= 64))
+      r_.fail(p + "/light_paths", "expected a number in [0, 64] (0: none)");
     std::string filter = "box";
     r_.opt(j, p, "pixel_filter", filter, &JsonReader::string);
     if (!pixel_filter_named(filter, s.pixel_filter))

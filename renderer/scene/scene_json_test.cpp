@@ -48,6 +48,7 @@ TEST(SceneJson, FullSceneLoads) {
   EXPECT_EQ(s.settings.spp, 8);
   EXPECT_EQ(s.settings.seed, 7u);
   EXPECT_EQ(s.settings.pixel_filter, PixelFilter::Box); // the default
+  EXPECT_FLOAT_EQ(s.settings.light_paths, 0.1f);        // the default
   EXPECT_FLOAT_EQ(s.camera.aperture, 0.05f);
   ASSERT_EQ(s.materials.size(), 2u);
   const auto& layer = s.materials[0].group.layers.at(0);
@@ -103,6 +104,10 @@ TEST(SceneJson, ErrorsNamePointerAndExpectation) {
       std::string::npos);
   EXPECT_EQ(error_of(R"({"settings": {"clamp": -1}})"),
             "t.json: /settings/clamp: expected a finite number >= 0 (0: no clamp)");
+  EXPECT_EQ(error_of(R"({"settings": {"light_paths": -0.5}})"),
+            "t.json: /settings/light_paths: expected a number in [0, 64] (0: none)");
+  EXPECT_EQ(error_of(R"({"settings": {"light_paths": 1e9}})"),
+            "t.json: /settings/light_paths: expected a number in [0, 64] (0: none)");
   EXPECT_EQ(error_of(R"({"settings": {"pixel_filter": "gauss"}})"),
             "t.json: /settings/pixel_filter: expected \"box\" or \"tent\" (testrender's)");
   EXPECT_NE(error_of(R"({"camera": {"fvo": 3}})").find("/camera/fvo: unknown key"),

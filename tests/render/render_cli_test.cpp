@@ -370,13 +370,14 @@ TEST(RenderCli, NonFiniteEnvironmentTexelsAreWarnedOfAndReadAsZero) {
 // refused.
 TEST(RenderCli, LightPathsOptionSetsTheCausticPaths) {
   fs::path d = temp_dir("light_paths");
-  write_file(d / "s.json", R"({"camera": {"eye": [0, 2, 3], "look_at": [0, 0, 0], "fov": 40},
+  const std::string json = R"({"camera": {"eye": [0, 2, 3], "look_at": [0, 0, 0], "fov": 40},
   "settings": {"resolution": [8, 8], "spp": 4},
   "materials": {"g": {"shader": "glass"}, "f": {"shader": "matte"}},
   "shapes": [{"type": "sphere", "center": [0, 0.6, 0], "radius": 0.5, "material": "g"},
              {"type": "quad", "corner": [-2, 0, 2], "edge_x": [4, 0, 0], "edge_y": [0, 0, -4],
               "material": "f"}],
-  "environment": {"type": "sky", "resolution": 32}})");
+  "environment": {"type": "sky", "resolution": 32}})";
+  write_file(d / "s.json", json);
   std::string scene = (d / "s.json").string(), out = " -o " + (d / "a.exr").string();
   CmdResult on = render("--stats --light-paths 0.5 " + scene + out);
   ASSERT_EQ(on.status, 0) << on.out;
@@ -386,6 +387,16 @@ TEST(RenderCli, LightPathsOptionSetsTheCausticPaths) {
   CmdResult off = render("--stats --light-paths 0 " + scene + out);
   ASSERT_EQ(off.status, 0) << off.out;
   EXPECT_EQ(off.out.find("light paths"), std::string::npos) << off.out;
+  // The scene's settings.light_paths when the flag is not given; the summary says the rate.
+  std::string text = json;
+  text.replace(text.find(R"("spp": 4)"), 8, R"("spp": 4, "light_paths": 0.25)");
+  write_file(d / "t.json", text);
+  CmdResult from_scene =
+      run_cmd(std::string(LOBE_EXE) + " render --stats " + (d / "t.json").string() + out);
+  ASSERT_EQ(from_scene.status, 0) << from_scene.out;
+  EXPECT_NE(from_scene.out.find("stats: 64 light paths"), std::string::npos) << from_scene.out;
+  EXPECT_NE(from_scene.out.find("4 spp, 0.25 light paths a sample for caustics"), std::string::npos)
+      << from_scene.out;
   CmdResult bad = render("--light-paths -1 " + scene + out);
   EXPECT_NE(bad.status, 0);
   EXPECT_NE(bad.out.find("--light-paths"), std::string::npos) << bad.out;
