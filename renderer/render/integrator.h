@@ -137,7 +137,7 @@ public:
   void set_caustics(bool on, float light_paths = 1, uint64_t pixels = 1) {
     caustics_ = on && caustics_possible(scene_);
     light_share_ = light_paths * float(pixels);
-    raytype_bit_ = global_bit("raytype");
+    raytype_bit_ = Material::kReadsRaytype;
   }
   bool caustics() const { return caustics_; }
   // An environment, caustic targets and a pinhole camera.

@@ -396,7 +396,7 @@ std::string RenderScene::find_emitters(std::vector<LightSet::Emitter>& out,
 void RenderScene::find_caustic_targets(const std::vector<int>& specular) {
   shape_caustic_.assign(desc_.shapes.size(), 0);
   caustic_targets_.clear();
-  const uint64_t raytype = global_bit("raytype");
+  const uint64_t raytype = Material::kReadsRaytype;
   float total = 0;
   for (int i : specular) {
     if (shape_reads_[size_t(i)] & raytype) continue;

@@ -8,6 +8,7 @@
 #include "keyword_args.h"
 #include "lobe/memory.h"
 #include "lobe/shading.h"
+#include "lobe/shadingsys.h"
 #include "passes/derivs.h"
 #include "passes/optimize.h"
 #include "public_diag.h"
@@ -233,7 +234,10 @@ uint64_t globals_mask(const ir::Shader& sh) {
       if (name && !std::strcmp(name, kGlobalFields[g].name)) mask |= uint64_t(1) << g;
   };
   std::set<int> used;
-  for (const ir::Op& op : sh.ops) used.insert(op.args.begin(), op.args.end());
+  for (const ir::Op& op : sh.ops) {
+    used.insert(op.args.begin(), op.args.end());
+    if (op.opcode == ir::Opcode::RayType) mask |= Material::kReadsRaytype;
+  }
   for (int i : used) {
     const ir::Symbol& s = sh.symbols[size_t(i)];
     if (s.kind != SymKind::Global) continue;

@@ -366,6 +366,22 @@ end
   EXPECT_EQ(bit("dudx"), 1u); // Dx(u) reads u's derivatives
   EXPECT_EQ(bit("N"), 0u);
   EXPECT_EQ(bit("P"), 0u);
+  EXPECT_EQ(m & Material::kReadsRaytype, 0u);
+}
+
+// A group that calls raytype() says so (Material::kReadsRaytype: its closure may differ by the
+// ray that hit, so a renderer that shades a point as another ray would, light paths, must not).
+TEST(GroupGlobals, RaytypeCallsAreNoted) {
+  ShadingSystem ss;
+  DiagnosticList d;
+  ASSERT_TRUE(ss.add_shader_source(
+      "rt", "surface rt() { Ci = raytype(\"camera\") ? diffuse(N) : 0.5 * diffuse(N); }", "rt.osl",
+      d))
+      << (d.empty() ? "" : d[0].text);
+  auto grp = ss.parse_group("shader rt l ;", "t", d);
+  auto mat = ss.compile(*grp, d);
+  ASSERT_TRUE(mat);
+  EXPECT_NE(mat->globals_read() & Material::kReadsRaytype, 0u);
 }
 
 // String compares of constants fold by content when the group is specialised (constant

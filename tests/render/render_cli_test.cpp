@@ -397,6 +397,16 @@ TEST(RenderCli, LightPathsOptionSetsTheCausticPaths) {
   EXPECT_NE(from_scene.out.find("stats: 64 light paths"), std::string::npos) << from_scene.out;
   EXPECT_NE(from_scene.out.find("4 spp, 0.25 light paths a sample for caustics"), std::string::npos)
       << from_scene.out;
+  // Glass whose shader calls raytype() is no target (a light path shades it from the light's
+  // side, with no ray type of the camera's path): no light paths.
+  write_file(d / "rtglass.osl", "surface rtglass() { Ci = raytype(\"camera\") ? "
+                                "refraction(N, 1.5) : reflection(N, 1.5); }\n");
+  std::string rt = json;
+  rt.replace(rt.find(R"("shader": "glass")"), 17, R"("shader": "rtglass")");
+  write_file(d / "rt.json", rt);
+  CmdResult by_raytype = render("--stats --materials jit " + (d / "rt.json").string() + out);
+  ASSERT_EQ(by_raytype.status, 0) << by_raytype.out;
+  EXPECT_EQ(by_raytype.out.find("light paths"), std::string::npos) << by_raytype.out;
   CmdResult bad = render("--light-paths -1 " + scene + out);
   EXPECT_NE(bad.status, 0);
   EXPECT_NE(bad.out.find("--light-paths"), std::string::npos) << bad.out;

@@ -176,8 +176,10 @@ public:
   virtual ~Material() = default;
   // Runs the group at one point; on return sg.Ci holds the closure (null: black).
   virtual void shade(ShaderGlobals& sg) const = 0;
-  // Bit i set: the group reads kGlobalFields[i] (so a renderer can skip computing the rest).
+  // Bit i set: the group reads kGlobalFields[i] (so a renderer can skip computing the rest);
+  // kReadsRaytype set: it calls raytype() (its result may differ by the ray that hit).
   virtual uint64_t globals_read() const = 0;
+  static constexpr uint64_t kReadsRaytype = uint64_t(1) << 63;
   // Reads an output parameter of a layer (for testshade-style `-o`) as the most recent
   // shade() that used `ctx` left it: each thread reads its own context's results. If `ctx`
   // has shaded another material since (or never shaded this one), the value is the one
