@@ -93,15 +93,19 @@ float camera_weight(float camera, float light) {
 
 // The area density, on the surface at `p` (geometric normal `ng`), of the camera's rays per
 // unit of film area: |ng.wo| / (dist^2 * pixel area at distance 1 * cos^3 of the ray with the
-// view axis); 0 for a point the pinhole does not see in front.
-float film_to_area(const Camera& cam, const Vec3& p, const Vec3& ng) {
-  float fx, fy, cos_axis;
-  if (!cam.project(p, fx, fy, cos_axis)) return 0;
+// view axis, `cos_axis` from Camera::project).
+float film_to_area(const Camera& cam, const Vec3& p, const Vec3& ng, float cos_axis) {
   Vec3 to_eye = cam.position() - p;
   float dist2 = dot(to_eye, to_eye), spread = cam.pixel_spread();
   if (!(dist2 > 0)) return 0;
   float cos_out = std::abs(dot(ng, to_eye)) / std::sqrt(dist2);
   return cos_out / (dist2 * spread * spread * cos_axis * cos_axis * cos_axis);
+}
+
+// The same for a point the pinhole may not see in front (0 then).
+float film_to_area(const Camera& cam, const Vec3& p, const Vec3& ng) {
+  float fx, fy, cos_axis;
+  return cam.project(p, fx, fy, cos_axis) ? film_to_area(cam, p, ng, cos_axis) : 0;
 }
 
 } // namespace
@@ -160,11 +164,13 @@ PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, Shad
   // an opaque caustic target. The environment such a path reaches is weighed against the
   // light paths' finding it; the densities of the two, over the same variables, but for the
   // factors they share and those known only at the end: caustic_camera (the film's
-  // film_density * film_to_area times the BSDF pdfs at the non-delta vertices), caustic_light
+  // film_density times the BSDF pdfs at the non-delta vertices; film_to_area at the first
+  // vertex, caustic_p and caustic_ng, joins it only if the environment is reached), caustic_light
   // (|Ng.wi| at the first vertex, times, for two, |Ng.wi| / pi at the second: the light
   // path's cosine bounce there, its density |Ng.wo| / pi with the |Ng.wo| both share dropped).
   int caustic = 0, caustic_deltas = 0;
   float caustic_camera = 0, caustic_light = 0;
+  Vec3 caustic_p, caustic_ng;
   Vertex v;
   for (int depth = 0;; ++depth) {
     ++c.rays;
@@ -177,7 +183,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, Shad
       if (caustic && caustic_deltas >= 1 && lights.environment()) {
         float light = lights.environment()->pdf(ray.dir) * line_density(scene_, ray.org, ray.dir) *
                       caustic_light;
-        w = camera_weight(caustic_camera, light > 0 ? light_share_ * light : 0.0f);
+        w = camera_weight(caustic_camera * film_to_area(scene_.camera(), caustic_p, caustic_ng),
+                          light > 0 ? light_share_ * light : 0.0f);
       }
       if (after_delta && scene_.has_background_shader()) {
         // Seen by the camera or through specular bounces (no light sample competes: weight
@@ -311,13 +318,14 @@ PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, Shad
       if (depth == 0) {
         caustic = after_delta ? 0 : 1;
         caustic_deltas = 0;
-        caustic_camera = film_density * film_to_area(scene_.camera(), v.hit.P, v.hit.Ng) * s->pdf;
+        caustic_camera = film_density * s->pdf;
+        caustic_p = v.hit.P, caustic_ng = v.hit.Ng;
         caustic_light = cos_out;
       } else if (caustic && after_delta && is_zero(v.bsdf.transparency) &&
                  scene_.is_caustic_target(v.hit.shape)) {
         ++caustic_deltas;
       } else if (caustic == 1 && caustic_deltas == 0 && !after_delta &&
-                 !(scene_.globals_read(v.hit.shape) & raytype_bit_)) {
+                 !(scene_.globals_read(v.hit.shape) & Material::kReadsRaytype)) {
         // The light path bounces on the side its light arrives from (bounce_to_camera).
         caustic = 2;
         caustic_camera *= s->pdf;
@@ -395,8 +403,7 @@ void PathTracer::trace_light(RandomStream& rng, ShadingContext& ctx, ShadingCont
       shade_into(scene_, v.hit, ray.dir, kRayRefraction, ctx, v.bsdf, c, false, untimed);
       if (ctx.stopped) return;
       has_other = v.bsdf.has_non_delta();
-      for (int i = 0; i < v.bsdf.lobe_count(); ++i)
-        has_delta |= (v.bsdf.lobe(i).flags & kLobeSpecular) != 0;
+      has_delta = v.bsdf.has_delta();
     }
     // A target with delta lobes alone (the inside of a glass sphere) is no one's first or
     // second vertex: nothing to connect.
@@ -412,7 +419,7 @@ void PathTracer::trace_light(RandomStream& rng, ShadingContext& ctx, ShadingCont
         splat(link, link.f.value * beta / cos_in, link.to_area * link.f.pdf,
               light_share_ * light_pdf * cos_in, c, film);
       // Seen after one more bounce (the camera's path's second vertex).
-      if (deltas <= max_depth_ - 2 && !(scene_.globals_read(v.hit.shape) & raytype_bit_))
+      if (deltas <= max_depth_ - 2 && !(scene_.globals_read(v.hit.shape) & Material::kReadsRaytype))
         bounce_to_camera(v.hit, ray.dir, beta, light_pdf, rng, link_ctx, c, film);
       if (link_ctx.stopped) return;
     }
@@ -491,7 +498,7 @@ bool PathTracer::link_camera(const SurfaceHit& hit, const Vec3& wi, ShadingConte
   Vec3 to_eye = cam.position() - hit.P;
   float dist = length(to_eye);
   Vec3 wo = to_eye / dist;
-  out.to_area = film_to_area(cam, hit.P, hit.Ng);
+  out.to_area = film_to_area(cam, hit.P, hit.Ng, cos_axis);
   if (!(out.to_area > 0) || !std::isfinite(out.to_area)) return false;
   ++c.shadow_rays;
   if (scene_.geometry().occluded(offset_ray_origin(hit.P, hit.Ng, wo), wo, dist * (1 - 1e-4f)))

@@ -137,7 +137,6 @@ public:
   void set_caustics(bool on, float light_paths = 1, uint64_t pixels = 1) {
     caustics_ = on && caustics_possible(scene_);
     light_share_ = light_paths * float(pixels);
-    raytype_bit_ = Material::kReadsRaytype;
   }
   bool caustics() const { return caustics_; }
   // An environment, caustic targets and a pinhole camera.
@@ -176,8 +175,7 @@ private:
   float clamp_ = 0;
   bool aovs_ = true;
   bool caustics_ = false;
-  float light_share_ = 1;    // light paths per camera sample of a pixel (set_caustics)
-  uint64_t raytype_bit_ = 0; // of Material::globals_read
+  float light_share_ = 1; // light paths per camera sample of a pixel (set_caustics)
 };
 
 } // namespace lobe::render

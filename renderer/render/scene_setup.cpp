@@ -384,11 +384,7 @@ std::string RenderScene::find_emitters(std::vector<LightSet::Emitter>& out,
     // is_light (testrender XML): sampled as a light even if the probe point does not emit.
     if (!(lum > 0) && s.is_light) lum = 1;
     if (lum > 0) out.push_back({int(i), kPi * area * lum});
-    for (int k = 0; k < b.lobe_count(); ++k)
-      if (b.lobe(k).flags & kLobeSpecular) {
-        specular.push_back(int(i));
-        break;
-      }
+    if (b.has_delta()) specular.push_back(int(i));
   }
   return "";
 }

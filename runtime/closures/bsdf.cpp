@@ -207,6 +207,12 @@ bool Bsdf::has_non_delta() const {
   return false;
 }
 
+bool Bsdf::has_delta() const {
+  for (int i = 0; i < n_lobes_; ++i)
+    if (lobes_[i].flags & kLobeSpecular) return true;
+  return false;
+}
+
 BsdfEval Bsdf::eval(const Vec3& wo, const Vec3& wi, Transport mode) const {
   BsdfEval r;
   if (!(total_select_ > 0.0f)) return r;

@@ -95,6 +95,7 @@ public:
   int lobe_count() const { return n_lobes_; }
   const Lobe& lobe(int i) const { return lobes_[i]; }
   bool has_non_delta() const;
+  bool has_delta() const; // a perfect mirror or refraction lobe
 
   Color3 emission;     // radiance emitted towards wo
   Color3 transparency; // pass-through weight (transparent closures)
