@@ -287,12 +287,22 @@ PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, Shad
             Le = eb.emission;
           }
           Vec3 org = offset_ray_origin(v.hit.P, v.hit.Ng, ls.wi);
+          Vec3 shadow_dir = ls.wi;
           float tmax = ls.kind == LightSample::Kind::Environment ? 1e30f : ls.dist * (1 - 1e-4f);
+          if (ls.kind == LightSample::Kind::Area) {
+            // From offset point to offset point: aimed from the shading point itself, a ray
+            // that grazes the light (the ceiling beside a panel just under it) meets the
+            // light's plane short of the sampled point by the origin's offset over the slope,
+            // and the light would shadow itself.
+            Vec3 d = offset_ray_origin(ls.surface.P, ls.surface.Ng, -ls.wi) - org;
+            float len = length(d);
+            if (len > 0) shadow_dir = d / len, tmax = len * (1 - 1e-4f);
+          }
           ++c.shadow_rays;
           bool visible = false;
           if (!is_zero(Le)) {
             lap(&P::other);
-            visible = !geo.occluded(org, ls.wi, tmax);
+            visible = !geo.occluded(org, shadow_dir, tmax);
             lap(&P::traverse);
           }
           if (visible) {

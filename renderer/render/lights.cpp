@@ -4,6 +4,7 @@
 #include "light_kinds.h"
 
 #include "sampling.h"
+#include "spherical_triangle.h"
 
 #include <algorithm>
 #include <cmath>
@@ -37,6 +38,11 @@ void LightSet::build(const Geometry& geo, const std::vector<scene::Light>& light
         a.total_area += areas[t];
       }
       a.triangles = Distribution1D(areas);
+      if (areas.size() <= size_t(kSolidAngleTriangles))
+        for (size_t t = 0; t < areas.size(); ++t) {
+          const uint32_t* i = &m.indices[3 * t];
+          a.corners.push_back({m.positions[i[0]], m.positions[i[1]], m.positions[i[2]]});
+        }
     }
     if (!(a.total_area > 0)) continue;
     shape_to_area_[e.shape] = static_cast<int>(areas_.size());
@@ -92,6 +98,7 @@ bool LightSet::sample_area(const Area& a, const Vec3& p, float u1, float u2,
   const scene::Shape& s = geo_->shapes()[a.shape];
   out.kind = LightSample::Kind::Area;
   SurfaceHit& h = out.surface;
+  double solid_pdf = 0; // by solid angle: its density, known here
   if (s.kind == scene::Shape::Kind::Sphere) {
     Vec3 dc = s.center - p;
     float d2 = dot(dc, dc), r2 = s.radius * s.radius;
@@ -105,6 +112,36 @@ bool LightSet::sample_area(const Area& a, const Vec3& p, float u1, float u2,
       h.P = p + w * (b - std::sqrt(disc));
     }
     geo_->surface(a.shape, 0, 0, 0, h);
+  } else if (double omega[kSolidAngleTriangles], total = solid_angles(a, p, omega); total > 0) {
+    // A triangle by its share of the solid angle (u1 re-used within the chosen share), a
+    // direction uniform in it, and the point where that direction meets its plane.
+    int t = 0, n = int(a.corners.size());
+    double x = double(u1) * total;
+    while (t < n - 1 && (x >= omega[t] || omega[t] == 0)) x -= omega[t++];
+    float ur = omega[t] > 0 ? float(std::clamp(x / omega[t], 0.0, 1.0)) : 0.5f;
+    const std::array<Vec3, 3>& v = a.corners[size_t(t)];
+    Vec3 w;
+    if (!sample_spherical_triangle(v[0] - p, v[1] - p, v[2] - p, std::min(ur, 0x1.fffffep-1f), u2,
+                                   w))
+      return false;
+    Vec3 e1 = v[1] - v[0], e2 = v[2] - v[0], ng = cross(e1, e2);
+    float along = dot(ng, w);
+    if (along == 0) return false;
+    float dist = dot(ng, v[0] - p) / along;
+    if (!(dist > 0)) return false;
+    // Barycentric coordinates of the point, kept inside the triangle (rounding).
+    Vec3 d = p + w * dist - v[0];
+    float d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2);
+    float d20 = dot(d, e1), d21 = dot(d, e2), den = d00 * d11 - d01 * d01;
+    if (!(den > 0)) return false;
+    float b1 = std::max(0.0f, (d11 * d20 - d01 * d21) / den);
+    float b2 = std::max(0.0f, (d00 * d21 - d01 * d20) / den);
+    if (b1 + b2 > 1) {
+      float s = 1 / (b1 + b2);
+      b1 *= s, b2 *= s;
+    }
+    geo_->surface(a.shape, t, b1, b2, h);
+    solid_pdf = 1 / total;
   } else {
     // Triangle by area, then a uniform point in it (u1 re-used within the chosen cell).
     float prob, ur;
@@ -117,7 +154,7 @@ bool LightSet::sample_area(const Area& a, const Vec3& p, float u1, float u2,
   if (!(d2 > 0)) return false;
   out.dist = std::sqrt(d2);
   out.wi = d / out.dist;
-  out.pdf = area_density(a, p, h);
+  out.pdf = solid_pdf > 0 ? float(solid_pdf) : area_density(a, p, h);
   return out.pdf > 0 && std::isfinite(out.pdf);
 }
 
@@ -133,10 +170,23 @@ float LightSet::area_density(const Area& a, const Vec3& p, const SurfaceHit& h) 
       float cos_max = std::sqrt(std::max(0.0f, 1 - r2 / c2));
       return 1.0f / (2 * kPi * std::max(1 - cos_max, 1e-7f));
     }
+  } else if (double omega[kSolidAngleTriangles], total = solid_angles(a, p, omega); total > 0) {
+    return float(1 / total);
   }
   float cos_l = std::abs(dot(h.Ng, d)) / std::sqrt(d2);
   if (!(cos_l > 1e-7f)) return 0;
   return d2 / (cos_l * a.total_area);
+}
+
+double LightSet::solid_angles(const Area& a, const Vec3& p, double* omega) {
+  if (a.corners.empty()) return 0;
+  double total = 0;
+  for (size_t t = 0; t < a.corners.size(); ++t) {
+    const std::array<Vec3, 3>& v = a.corners[t];
+    omega[t] = triangle_solid_angle(v[0] - p, v[1] - p, v[2] - p);
+    total += omega[t];
+  }
+  return total >= kMinSolidAngle ? total : 0;
 }
 
 float LightSet::pdf_area(const Vec3& p, const SurfaceHit& hit) const {

@@ -1,6 +1,10 @@
 // Every light of a scene behind one interface for next-event estimation and MIS:
-// point and spot lights (delta positions), emissive shapes (area lights: triangles sampled by
-// area, spheres by the solid angle they subtend), and the environment.
+// point and spot lights (delta positions), emissive shapes (area lights), and the environment.
+// A sphere is sampled by the cone it subtends; a shape of at most kSolidAngleTriangles
+// triangles (a quad is two) by the solid angle its triangles subtend, each triangle picked by
+// its share and a direction uniform in it (spherical_triangle.h), unless that solid angle is
+// below kMinSolidAngle (far away or edge-on: there the two are alike and area is cheaper);
+// a larger mesh picks a triangle by area and a point uniform in it.
 //
 // One light is picked per shading point with probability proportional to an estimate of its
 // power (point: 4 pi I, spot: its cone's solid angle times I, area: pi A L, environment:
@@ -14,6 +18,7 @@
 #include "environment.h"
 #include "geometry.h"
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -55,11 +60,18 @@ public:
   const EnvironmentLight* environment() const { return env_; }
 
 private:
+  static constexpr int kSolidAngleTriangles = 8;
+  static constexpr double kMinSolidAngle = 1e-4; // steradians
+
   struct Area {
     int shape;
     float total_area = 0;
-    Distribution1D triangles; // by area (meshes and quads)
+    Distribution1D triangles;                 // by area (meshes and quads)
+    std::vector<std::array<Vec3, 3>> corners; // small meshes: their triangles, for solid angles
   };
+  // A small mesh's triangles' solid angles from `p` into `omega` (kSolidAngleTriangles of
+  // them) and their sum; 0 when the shape is sampled by area from `p`.
+  static double solid_angles(const Area& a, const Vec3& p, double* omega);
   bool sample_area(const Area& a, const Vec3& p, float u1, float u2, LightSample& out) const;
   float area_density(const Area& a, const Vec3& p, const SurfaceHit& hit) const;
 

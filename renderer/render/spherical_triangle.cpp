@@ -1,0 +1,72 @@
+// Solid angles of triangles and uniform directions over them (see spherical_triangle.h).
+#include "spherical_triangle.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace lobe::render {
+namespace {
+
+struct D3 {
+  double x, y, z;
+};
+D3 d3(const Vec3& v) { return {v.x, v.y, v.z}; }
+D3 operator-(const D3& a, const D3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+D3 operator+(const D3& a, const D3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+D3 operator*(const D3& a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+double dot(const D3& a, const D3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+D3 cross(const D3& a, const D3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+double length(const D3& a) { return std::sqrt(dot(a, a)); }
+// Unit copy; zero for a zero vector.
+D3 unit(const D3& a) {
+  double l = length(a);
+  return l > 0 ? a * (1 / l) : D3{0, 0, 0};
+}
+// The angle between two vectors of any length, accurate near 0 and pi alike.
+double angle(const D3& a, const D3& b) { return std::atan2(length(cross(a, b)), dot(a, b)); }
+
+} // namespace
+
+double triangle_solid_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  D3 A = d3(a), B = d3(b), C = d3(c);
+  double la = length(A), lb = length(B), lc = length(C);
+  double num = std::abs(dot(A, cross(B, C)));
+  double den = la * lb * lc + dot(A, B) * lc + dot(A, C) * lb + dot(B, C) * la;
+  if (!(num > 0)) return 0; // edge-on, degenerate, or NaN
+  double omega = 2 * std::atan2(num, den);
+  return std::isfinite(omega) ? omega : 0;
+}
+
+bool sample_spherical_triangle(const Vec3& a, const Vec3& b, const Vec3& c, float u1, float u2,
+                               Vec3& dir) {
+  D3 A = unit(d3(a)), B = unit(d3(b)), C = unit(d3(c));
+  // The interior angles at the three corners: between the great circles through them.
+  double alpha = angle(cross(A, B), cross(A, C));
+  double beta = angle(cross(B, C), cross(B, A));
+  double gamma = angle(cross(C, A), cross(C, B));
+  double area = alpha + beta + gamma - std::numbers::pi;
+  if (!(area > 0) || !std::isfinite(area)) return false;
+  // The sub-triangle (A, B, C') of area u1 * area: C' on the arc from A to C, at the cosine q
+  // from A that Arvo's equation gives.
+  double area_sub = double(u1) * area;
+  double s = std::sin(area_sub - alpha), t = std::cos(area_sub - alpha);
+  double ca = std::cos(alpha), sa = std::sin(alpha);
+  double u = t - ca, v = s + sa * dot(A, B);
+  double den = (v * s + u * t) * sa;
+  double q = den != 0 ? ((v * t - u * s) * ca - v) / den : 1.0;
+  q = std::clamp(std::isfinite(q) ? q : 1.0, -1.0, 1.0);
+  D3 c_perp = unit(C - A * dot(C, A));
+  D3 c2 = A * q + c_perp * std::sqrt(std::max(0.0, 1 - q * q));
+  // A point on the arc from B to C' with its cosine from B uniform.
+  double z = 1 - double(u2) * (1 - dot(c2, B));
+  D3 b_perp = unit(c2 - B * dot(c2, B));
+  D3 w = B * z + b_perp * std::sqrt(std::max(0.0, 1 - z * z));
+  dir = Vec3{float(w.x), float(w.y), float(w.z)};
+  dir = normalize(dir);
+  return !is_zero(dir);
+}
+
+} // namespace lobe::render
