@@ -38,6 +38,10 @@ void LightSet::build(const Geometry& geo, const std::vector<scene::Light>& light
         a.total_area += areas[t];
       }
       a.triangles = Distribution1D(areas);
+      float ex = length(s.edge_x), ey = length(s.edge_y);
+      a.rectangle = s.kind == scene::Shape::Kind::Quad &&
+                    std::abs(dot(s.edge_x, s.edge_y)) <= 1e-5f * ex * ey && ex * ey > 0;
+      a.corner = s.corner, a.edge_x = s.edge_x, a.edge_y = s.edge_y;
       if (areas.size() <= size_t(kSolidAngleTriangles))
         for (size_t t = 0; t < areas.size(); ++t) {
           const uint32_t* i = &m.indices[3 * t];
@@ -112,6 +116,16 @@ bool LightSet::sample_area(const Area& a, const Vec3& p, float u1, float u2,
       h.P = p + w * (b - std::sqrt(disc));
     }
     geo_->surface(a.shape, 0, 0, 0, h);
+  } else if (SphericalRectangle r = rectangle(a, p); r.solid_angle > 0) {
+    // A point uniform over the rectangle's solid angle, on the quad mesh's triangles
+    // (geometry.cpp's quad_mesh: 0 is corner, +ex, +ex+ey; 1 is corner, +ex+ey, +ey).
+    float sp, tp;
+    r.sample(u1, u2, sp, tp);
+    if (sp >= tp)
+      geo_->surface(a.shape, 0, sp - tp, tp, h);
+    else
+      geo_->surface(a.shape, 1, sp, tp - sp, h);
+    solid_pdf = 1 / double(r.solid_angle);
   } else if (double omega[kSolidAngleTriangles], total = solid_angles(a, p, omega); total > 0) {
     // A triangle by its share of the solid angle (u1 re-used within the chosen share), a
     // direction uniform in it, and the point where that direction meets its plane.
@@ -170,12 +184,21 @@ float LightSet::area_density(const Area& a, const Vec3& p, const SurfaceHit& h) 
       float cos_max = std::sqrt(std::max(0.0f, 1 - r2 / c2));
       return 1.0f / (2 * kPi * std::max(1 - cos_max, 1e-7f));
     }
+  } else if (SphericalRectangle r = rectangle(a, p); r.solid_angle > 0) {
+    return 1 / r.solid_angle;
   } else if (double omega[kSolidAngleTriangles], total = solid_angles(a, p, omega); total > 0) {
     return float(1 / total);
   }
   float cos_l = std::abs(dot(h.Ng, d)) / std::sqrt(d2);
   if (!(cos_l > 1e-7f)) return 0;
   return d2 / (cos_l * a.total_area);
+}
+
+SphericalRectangle LightSet::rectangle(const Area& a, const Vec3& p) {
+  if (!a.rectangle) return SphericalRectangle({}, {}, {}, {});
+  SphericalRectangle r(p, a.corner, a.edge_x, a.edge_y);
+  if (r.solid_angle < kMinRectangleSolidAngle) r.solid_angle = 0;
+  return r;
 }
 
 double LightSet::solid_angles(const Area& a, const Vec3& p, double* omega) {

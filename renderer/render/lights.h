@@ -1,10 +1,12 @@
 // Every light of a scene behind one interface for next-event estimation and MIS:
 // point and spot lights (delta positions), emissive shapes (area lights), and the environment.
-// A sphere is sampled by the cone it subtends; a shape of at most kSolidAngleTriangles
-// triangles (a quad is two) by the solid angle its triangles subtend, each triangle picked by
-// its share and a direction uniform in it (spherical_triangle.h), unless that solid angle is
-// below kMinSolidAngle (far away or edge-on: there the two are alike and area is cheaper);
-// a larger mesh picks a triangle by area and a point uniform in it.
+// A sphere is sampled by the cone it subtends; a rectangle (a quad with edges at right angles)
+// by its solid angle (SphericalRectangle), unless that is below kMinRectangleSolidAngle; any
+// other shape of at most kSolidAngleTriangles triangles by the solid angle its triangles
+// subtend, each triangle picked by its share and a direction uniform in it
+// (sample_spherical_triangle), unless that is below kMinSolidAngle. Far away or edge-on the
+// two densities are alike and area is cheaper: there, and for larger meshes, a triangle is
+// picked by area and a point uniform in it.
 //
 // One light is picked per shading point with probability proportional to an estimate of its
 // power (point: 4 pi I, spot: its cone's solid angle times I, area: pi A L, environment:
@@ -17,6 +19,7 @@
 #include "distribution.h"
 #include "environment.h"
 #include "geometry.h"
+#include "spherical_triangle.h"
 
 #include <array>
 #include <memory>
@@ -61,14 +64,20 @@ public:
 
 private:
   static constexpr int kSolidAngleTriangles = 8;
-  static constexpr double kMinSolidAngle = 1e-4; // steradians
+  static constexpr double kMinSolidAngle = 1e-4;           // steradians
+  static constexpr float kMinRectangleSolidAngle = 1e-3f; // float: a few 1e-7 sr of error
 
   struct Area {
     int shape;
     float total_area = 0;
     Distribution1D triangles;                 // by area (meshes and quads)
     std::vector<std::array<Vec3, 3>> corners; // small meshes: their triangles, for solid angles
+    bool rectangle = false;                   // a quad with edges at right angles
+    Vec3 corner, edge_x, edge_y;
   };
+  // A rectangle's solid angle from `p` (SphericalRectangle), its solid_angle 0 when `a` is no
+  // rectangle or subtends less than kMinRectangleSolidAngle from `p`.
+  static SphericalRectangle rectangle(const Area& a, const Vec3& p);
   // A small mesh's triangles' solid angles from `p` into `omega` (kSolidAngleTriangles of
   // them) and their sum; 0 when the shape is sampled by area from `p`.
   static double solid_angles(const Area& a, const Vec3& p, double* omega);

@@ -69,4 +69,47 @@ bool sample_spherical_triangle(const Vec3& a, const Vec3& b, const Vec3& c, floa
   return !is_zero(dir);
 }
 
+namespace {
+// The angle between two vectors of any length (float).
+float angle_f(const Vec3& a, const Vec3& b) { return std::atan2(length(cross(a, b)), dot(a, b)); }
+} // namespace
+
+SphericalRectangle::SphericalRectangle(const Vec3& o, const Vec3& corner, const Vec3& ex,
+                                       const Vec3& ey) {
+  ex_len = length(ex), ey_len = length(ey);
+  if (!(ex_len > 0) || !(ey_len > 0)) return;
+  // The rectangle's frame: x, y along its edges, z towards the viewer's side (z0 < 0).
+  Vec3 x = ex / ex_len, y = ey / ey_len, z = cross(x, y), d = corner - o;
+  z0 = dot(d, z);
+  if (z0 > 0) z0 = -z0;
+  if (!(z0 < 0)) return;
+  x0 = dot(d, x), y0 = dot(d, y), x1 = x0 + ex_len, y1 = y0 + ey_len;
+  // Normals of the planes through the viewer and each edge, in the rectangle's frame (the
+  // cross products of consecutive corners (x0|x1, y0|y1, z0), lengths dropped).
+  Vec3 n0{0, z0, -y0}, n1{-z0, 0, x1}, n2{0, -z0, y1}, n3{z0, 0, -x0};
+  float g0 = angle_f(-n0, n1), g1 = angle_f(-n1, n2), g2 = angle_f(-n2, n3),
+        g3 = angle_f(-n3, n0);
+  b0 = n0.z / length(n0), b1 = n2.z / length(n2);
+  k = 2 * std::numbers::pi_v<float> - g2 - g3;
+  float omega = g0 + g1 - k;
+  solid_angle = omega > 0 && std::isfinite(omega) ? omega : 0;
+}
+
+void SphericalRectangle::sample(float u, float v, float& s, float& t) const {
+  // x: where the solid angle to its left is u of the whole.
+  float au = u * solid_angle + k;
+  float fu = (std::cos(au) * b0 - b1) / std::sin(au);
+  float cu = std::clamp(std::copysign(1.0f, fu) / std::sqrt(fu * fu + b0 * b0), -1.0f, 1.0f);
+  float xu = -(cu * z0) / std::max(std::sqrt(1 - cu * cu), 1e-12f);
+  xu = std::clamp(std::isfinite(xu) ? xu : x1, x0, x1);
+  // y: the height along that line with the cosine-like h uniform between its ends.
+  float dd = std::sqrt(xu * xu + z0 * z0);
+  float h0 = y0 / std::sqrt(dd * dd + y0 * y0), h1 = y1 / std::sqrt(dd * dd + y1 * y1);
+  float hv = h0 + v * (h1 - h0), hv2 = hv * hv;
+  float yv = hv2 < 1 - 1e-6f ? hv * dd / std::sqrt(1 - hv2) : y1;
+  yv = std::clamp(yv, y0, y1);
+  s = std::clamp((xu - x0) / ex_len, 0.0f, 1.0f);
+  t = std::clamp((yv - y0) / ey_len, 0.0f, 1.0f);
+}
+
 } // namespace lobe::render

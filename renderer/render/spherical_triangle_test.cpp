@@ -124,3 +124,64 @@ TEST(SphericalTriangle, DegenerateTrianglesGiveNoDirection) {
       EXPECT_GE(w.y, -1e-6f);
     }
 }
+
+namespace {
+
+// Solid angle of the part [s0, s1] x [t0, t1] of the rectangle corner + s ex + t ey from o,
+// as two triangles in double (triangle_solid_angle, tested above against closed forms).
+double part_solid_angle(const Vec3& o, const Vec3& c, const Vec3& ex, const Vec3& ey, float s0,
+                        float s1, float t0, float t1) {
+  Vec3 p00 = c + ex * s0 + ey * t0 - o, p10 = c + ex * s1 + ey * t0 - o;
+  Vec3 p11 = c + ex * s1 + ey * t1 - o, p01 = c + ex * s0 + ey * t1 - o;
+  return triangle_solid_angle(p00, p10, p11) + triangle_solid_angle(p00, p11, p01);
+}
+
+} // namespace
+
+TEST(SphericalRectangle, SolidAngleIsTheClosedForm) {
+  // Above a corner: the closed form; elsewhere (beside, behind, grazing, far): two triangles.
+  for (double h : {0.01, 0.3, 1.0, 20.0}) {
+    SphericalRectangle r({0, 0, float(-h)}, {0, 0, 0}, {2, 0, 0}, {0, 1, 0});
+    double expected = corner_rectangle_solid_angle(2, 1, h);
+    EXPECT_NEAR(r.solid_angle, expected, 2e-6 + 1e-5 * expected) << h;
+  }
+  const Vec3 c{-0.25f, 0.99f, -0.25f}, ex{0.5f, 0, 0}, ey{0, 0, 0.5f};
+  for (Vec3 o : {Vec3{0, 1, 0}, Vec3{0.6f, 1, 0.1f}, Vec3{0.3f, 0.9f, -0.4f}, Vec3{0, -1, 0},
+                 Vec3{-2, 0.98f, 1}, Vec3{0.1f, 0.991f, 0.05f}}) {
+    SphericalRectangle r(o, c, ex, ey);
+    double expected = part_solid_angle(o, c, ex, ey, 0, 1, 0, 1);
+    EXPECT_NEAR(r.solid_angle, expected, 2e-6 + 1e-5 * expected) << o.x << "," << o.y;
+  }
+  // In its plane: nothing.
+  EXPECT_EQ(SphericalRectangle({1, 0.99f, 0}, c, ex, ey).solid_angle, 0);
+}
+
+TEST(SphericalRectangle, PointsAreUniformOverTheSolidAngle) {
+  // Seen from close above, from the side at a grazing angle, and from far: the samples in
+  // each quarter of the rectangle match its share of the solid angle (4.5 standard
+  // deviations), and (s, t) stay inside.
+  const Vec3 c{-0.25f, 0.99f, -0.25f}, ex{0.5f, 0, 0}, ey{0, 0, 0.7f};
+  RandomStream rng(23, 0, 2);
+  for (Vec3 o : {Vec3{0.05f, 1.0f, 0.1f}, Vec3{0.6f, 1.002f, 0}, Vec3{0.1f, -3, 0.4f}}) {
+    SphericalRectangle r(o, c, ex, ey);
+    ASSERT_GT(r.solid_angle, 1e-3f);
+    const int n = 40000;
+    int count[4] = {0, 0, 0, 0};
+    for (int i = 0; i < n; ++i) {
+      float s, t;
+      r.sample(rng.next(), rng.next(), s, t);
+      ASSERT_GE(s, 0);
+      ASSERT_LE(s, 1);
+      ASSERT_GE(t, 0);
+      ASSERT_LE(t, 1);
+      ++count[(s >= 0.5f) + 2 * (t >= 0.5f)];
+    }
+    double total = part_solid_angle(o, c, ex, ey, 0, 1, 0, 1);
+    for (int k = 0; k < 4; ++k) {
+      float s0 = k & 1 ? 0.5f : 0, t0 = k & 2 ? 0.5f : 0;
+      double share = part_solid_angle(o, c, ex, ey, s0, s0 + 0.5f, t0, t0 + 0.5f) / total;
+      double sd = std::sqrt(n * share * (1 - share));
+      EXPECT_NEAR(count[k], n * share, 4.5 * sd + 1) << "quarter " << k << " from " << o.x;
+    }
+  }
+}
