@@ -69,11 +69,6 @@ bool sample_spherical_triangle(const Vec3& a, const Vec3& b, const Vec3& c, floa
   return !is_zero(dir);
 }
 
-namespace {
-// The angle between two vectors of any length (float).
-float angle_f(const Vec3& a, const Vec3& b) { return std::atan2(length(cross(a, b)), dot(a, b)); }
-} // namespace
-
 SphericalRectangle::SphericalRectangle(const Vec3& o, const Vec3& corner, const Vec3& ex,
                                        const Vec3& ey) {
   ex_len = length(ex), ey_len = length(ey);
@@ -84,14 +79,29 @@ SphericalRectangle::SphericalRectangle(const Vec3& o, const Vec3& corner, const 
   if (z0 > 0) z0 = -z0;
   if (!(z0 < 0)) return;
   x0 = dot(d, x), y0 = dot(d, y), x1 = x0 + ex_len, y1 = y0 + ey_len;
-  // Normals of the planes through the viewer and each edge, in the rectangle's frame (the
-  // cross products of consecutive corners (x0|x1, y0|y1, z0), lengths dropped).
-  Vec3 n0{0, z0, -y0}, n1{-z0, 0, x1}, n2{0, -z0, y1}, n3{z0, 0, -x0};
-  float g0 = angle_f(-n0, n1), g1 = angle_f(-n1, n2), g2 = angle_f(-n2, n3),
-        g3 = angle_f(-n3, n0);
-  b0 = n0.z / length(n0), b1 = n2.z / length(n2);
-  k = 2 * std::numbers::pi_v<float> - g2 - g3;
-  float omega = g0 + g1 - k;
+  // The interior angles g0..g3 at the corners (x1, y0), (x1, y1), (x0, y1), (x0, y0): each
+  // between the planes through the viewer and the two edges meeting there, whose normals in
+  // this frame are (0, z0, -y0), (-z0, 0, x1), (0, -z0, y1), (z0, 0, -x0) (the cross products
+  // of consecutive corners, lengths dropped). The angle between -n_i and n_i+1 is the
+  // argument of (-n_i . n_i+1) + i |n_i x n_i+1|, which works out to the corner's two
+  // coordinates' product and |z0| times its distance; only the sums g0 + g1 and g2 + g3 are
+  // needed, so each is the argument of a product of two such numbers (in double, against
+  // overflow; arguments are unchanged by the factors' lengths): two atan2 instead of four.
+  const double az = std::abs(z0);
+  auto dist = [&](float a, float b) { return std::sqrt(double(a) * a + double(b) * b + az * az); };
+  auto pair_angle = [](double re1, double im1, double re2, double im2) {
+    double re = re1 * re2 - im1 * im2, im = re1 * im2 + im1 * re2;
+    double m = std::max(std::abs(re), std::abs(im));
+    if (!(m > 0)) return 0.0f;
+    // Each angle is in (0, pi), so the sum is in (0, 2 pi): unwrap a negative argument.
+    float a = std::atan2(float(im / m), float(re / m));
+    return a < 0 ? a + 2 * std::numbers::pi_v<float> : a;
+  };
+  float g01 = pair_angle(double(y0) * x1, az * dist(x1, y0), -double(x1) * y1, az * dist(x1, y1));
+  float g23 = pair_angle(double(x0) * y1, az * dist(x0, y1), -double(x0) * y0, az * dist(x0, y0));
+  b0 = -y0 / std::sqrt(z0 * z0 + y0 * y0), b1 = y1 / std::sqrt(z0 * z0 + y1 * y1);
+  k = 2 * std::numbers::pi_v<float> - g23;
+  float omega = g01 - k;
   solid_angle = omega > 0 && std::isfinite(omega) ? omega : 0;
 }
 
