@@ -298,7 +298,8 @@ ShadeFn make_shader(const std::string& name, const ParamValues& p) {
 }
 
 uint64_t reads_of(const std::string& name) {
-  if (name == "emitter" || name == "constant_background") return 0;
+  // Closures of constant weights: the same everywhere (Material::kUniform).
+  if (name == "emitter" || name == "constant_background") return Material::kUniform;
   if (name == "matte" || name == "mirror") return global_bit("N");
   return global_bit("N") | global_bit("dPdu");
 }

@@ -279,12 +279,16 @@ PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, Shad
           Color3 Le = ls.L;
           bool delta = ls.kind == LightSample::Kind::Point;
           if (ls.kind == LightSample::Kind::Area) {
-            Bsdf eb;
-            // Not `ctx`: shading resets the arena, which holds the closure (and lobe
-            // parameters) of the vertex being lit, still needed for the BSDF sample below.
-            lap(&P::other);
-            shade_into(scene_, ls.surface, ls.wi, kRayShadow, light_ctx, eb, c, time_, lap);
-            Le = eb.emission;
+            if (const Color3* e = scene_.uniform_emission(ls.surface.shape)) {
+              Le = *e; // the same at every point: shaded once, at set-up
+            } else {
+              Bsdf eb;
+              // Not `ctx`: shading resets the arena, which holds the closure (and lobe
+              // parameters) of the vertex being lit, still needed for the BSDF sample below.
+              lap(&P::other);
+              shade_into(scene_, ls.surface, ls.wi, kRayShadow, light_ctx, eb, c, time_, lap);
+              Le = eb.emission;
+            }
           }
           Vec3 org = offset_ray_origin(v.hit.P, v.hit.Ng, ls.wi);
           Vec3 shadow_dir = ls.wi;

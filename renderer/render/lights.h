@@ -64,7 +64,7 @@ public:
 
 private:
   static constexpr int kSolidAngleTriangles = 8;
-  static constexpr double kMinSolidAngle = 1e-4;           // steradians
+  static constexpr double kMinSolidAngle = 1e-4;          // steradians
   static constexpr float kMinRectangleSolidAngle = 1e-3f; // float: a few 1e-7 sr of error
 
   struct Area {

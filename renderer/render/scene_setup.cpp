@@ -356,7 +356,9 @@ Color3 RenderScene::shade_background(const Vec3& d, int raytype, ShadingContext&
 // An emitter is a shape whose material emits at a probe point; its power estimate
 // (pi * area * luminance of the probe's emission) decides how often it is sampled.
 std::string RenderScene::find_emitters(std::vector<LightSet::Emitter>& out,
-                                       std::vector<int>& specular, ShaderMessages& messages) const {
+                                       std::vector<int>& specular, ShaderMessages& messages) {
+  shape_uniform_.assign(desc_.shapes.size(), 0);
+  shape_emission_.assign(desc_.shapes.size(), Color3{});
   ShadingContext ctx;
   ctx.renderer = &services_;
   ctx.cancel = cancel_;
@@ -385,6 +387,11 @@ std::string RenderScene::find_emitters(std::vector<LightSet::Emitter>& out,
     if (!(lum > 0) && s.is_light) lum = 1;
     if (lum > 0) out.push_back({int(i), kPi * area * lum});
     if (b.has_delta()) specular.push_back(int(i));
+    if ((globals_read(int(i)) & Material::kUniform) && !b.has_delta() && !b.has_non_delta() &&
+        is_zero(b.transparency) && ctx.output.empty()) {
+      shape_uniform_[i] = 1;
+      shape_emission_[i] = b.emission;
+    }
   }
   return "";
 }

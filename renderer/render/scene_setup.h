@@ -128,6 +128,12 @@ public:
   float surface_area(int shape) const { return shape_area_[size_t(shape)]; }
   // What the shape's material reads (Material::globals_read bits, kGlobalFields order).
   uint64_t globals_read(int shape) const { return shape_reads_[shape]; }
+  // The emission of an emitter whose material is the same everywhere (Material::kUniform) and
+  // gives no lobe (so no layer can tint its emission by direction), from the probe at set-up;
+  // null otherwise. Light samples on it take this instead of shading the emitter again.
+  const Color3* uniform_emission(int shape) const {
+    return shape_uniform_[size_t(shape)] ? &shape_emission_[size_t(shape)] : nullptr;
+  }
   // The closure kernels of a shape's material (null: the native closure library).
   const ClosureKernels* closure_kernels(int shape) const {
     return shape_kernels_[size_t(shape)].load(std::memory_order_acquire);
@@ -176,9 +182,10 @@ private:
   bool compile_kernels(const std::atomic<bool>* stop, KernelStats& out);
   void merge(const KernelStats& k);
   std::string build_environment();
-  // Emitters, and in `specular` the shapes whose probe point gives a delta lobe.
+  // Emitters, and in `specular` the shapes whose probe point gives a delta lobe; notes the
+  // uniform emitters' emission (uniform_emission).
   std::string find_emitters(std::vector<LightSet::Emitter>& out, std::vector<int>& specular,
-                            ShaderMessages& messages) const;
+                            ShaderMessages& messages);
   void find_caustic_targets(const std::vector<int>& specular);
   bool cancelled() const { return cancel_ && cancel_->load(); }
 
@@ -194,6 +201,8 @@ private:
   std::vector<float> shape_area_;
   std::vector<CausticTarget> caustic_targets_;
   std::vector<char> shape_caustic_; // per shape: a caustic target
+  std::vector<char> shape_uniform_; // per shape: shape_emission_ holds its uniform emission
+  std::vector<Color3> shape_emission_;
   std::unique_ptr<std::atomic<const ClosureKernels*>[]> shape_kernels_; // per shape
   KernelMode kernel_mode_ = KernelMode::Background;
   std::thread kernel_thread_;

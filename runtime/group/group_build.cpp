@@ -227,6 +227,29 @@ void extend_derivatives(ir::Shader& sh) {
   }
 }
 
+// Whether a layer's result is the same at every point of a shape and for every ray: it reads
+// no global but Ci (which it writes), and each of its operations is pure (a function of its
+// operands), control flow, surfacearea() (one value per shape) or useparam (the layers it
+// runs are checked themselves). Anything else (texture
+// lookups, attributes, messages, printf, raytype(), backfacing(), derivatives) may vary or
+// have an effect, and rules it out.
+bool uniform_layer(const ir::Shader& sh, uint64_t globals) {
+  uint64_t ci = 0;
+  for (size_t g = 0; g < std::size(kGlobalFields); ++g)
+    if (!std::strcmp(kGlobalFields[g].name, "Ci")) ci = uint64_t(1) << g;
+  if (globals & ~ci) return false;
+  for (const ir::Op& op : sh.ops) {
+    const ir::OpcodeInfo& info = ir::info(op.opcode);
+    if ((info.flags & (ir::kPure | ir::kJump)) && !(info.flags & ir::kEffect)) continue;
+    // useparam runs upstream layers, which are checked in their turn.
+    if (op.opcode == ir::Opcode::SurfaceArea || op.opcode == ir::Opcode::UseParam ||
+        op.opcode == ir::Opcode::Nop)
+      continue;
+    return false;
+  }
+  return true;
+}
+
 uint64_t globals_mask(const ir::Shader& sh) {
   uint64_t mask = 0;
   auto set = [&](const char* name) {
@@ -867,6 +890,7 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
             out.plan.entry_order.end())
       out.plan.entry_order.push_back(new_index[size_t(i)]);
   }
+  bool uniform = true; // every layer run is uniform (uniform_layer), none takes user data
   for (size_t i = 0; i < n; ++i) {
     if (!needed[i]) continue;
     size_t li = size_t(new_index[i]);
@@ -908,8 +932,12 @@ bool build_group(const ShaderGroup& group, const std::vector<const ir::Shader*>&
         lp.osl_output_useparam |= read_down;
       }
     }
-    out.globals_read |= globals_mask(sh);
+    const uint64_t layer_globals = globals_mask(sh);
+    out.globals_read |= layer_globals;
+    uniform = uniform && uniform_layer(sh, layer_globals & ~Material::kReadsRaytype) &&
+              std::none_of(lp.userdata.begin(), lp.userdata.end(), [](auto u) { return bool(u); });
   }
+  if (uniform) out.globals_read |= Material::kUniform;
   return true;
 }
 

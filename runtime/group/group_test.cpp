@@ -384,6 +384,59 @@ TEST(GroupGlobals, RaytypeCallsAreNoted) {
   EXPECT_NE(mat->globals_read() & Material::kReadsRaytype, 0u);
 }
 
+// Material::kUniform: set for a group whose result is the same at every point of a shape and
+// for every ray (a constant emitter, even one that divides by surfacearea(), even across
+// layers), unset as soon as anything may vary or has an effect.
+TEST(GroupGlobals, UniformGroupsAreNoted) {
+  struct Case {
+    const char* name;
+    const char* source;
+    bool uniform;
+  } cases[] = {
+      {"k_const",
+       "surface k_const(float power = 2, color Cs = 1) {"
+       " Ci = power / (M_PI * surfacearea()) * Cs * emission(); }",
+       true},
+      {"k_branch", "surface k_branch(int on = 1) { if (on > 0) Ci = emission(); else Ci = 0; }",
+       true},
+      {"k_P", "surface k_P() { Ci = P[0] * emission(); }", false},
+      {"k_N", "surface k_N() { Ci = diffuse(N); }", false},
+      {"k_back", "surface k_back() { Ci = backfacing() ? 0 : emission(); }", false},
+      {"k_ray", "surface k_ray() { Ci = raytype(\"camera\") ? emission() : 0; }", false},
+      {"k_print", "surface k_print() { printf(\"x\\n\"); Ci = emission(); }", false},
+      {"k_tex", "surface k_tex() { Ci = texture(\"nosuch.exr\", 0.5, 0.5) * emission(); }", false},
+      {"k_attr", "surface k_attr() { float a = 1; getattribute(\"a\", a); Ci = a * emission(); }",
+       false},
+      {"k_user", "surface k_user(float k = 1 [[ int lockgeom = 0 ]]) { Ci = k * emission(); }",
+       false},
+  };
+  for (const Case& c : cases) {
+    ShadingSystem ss;
+    DiagnosticList d;
+    ASSERT_TRUE(ss.add_shader_source(c.name, c.source, std::string(c.name) + ".osl", d))
+        << c.name << ": " << (d.empty() ? "" : d[0].text);
+    auto grp = ss.parse_group(std::string("shader ") + c.name + " l ;", "t", d);
+    auto mat = ss.compile(*grp, d);
+    ASSERT_TRUE(mat) << c.name;
+    EXPECT_EQ((mat->globals_read() & Material::kUniform) != 0, c.uniform) << c.name;
+  }
+  // Two layers: uniform only if the upstream one is too.
+  for (bool up_uniform : {true, false}) {
+    ShadingSystem ss;
+    DiagnosticList d;
+    ASSERT_TRUE(ss.add_shader_source("up",
+                                     up_uniform ? "shader up(output float k = 0) { k = 3; }"
+                                                : "shader up(output float k = 0) { k = u; }",
+                                     "up.osl", d));
+    ASSERT_TRUE(ss.add_shader_source("down", "surface down(float k = 1) { Ci = k * emission(); }",
+                                     "down.osl", d));
+    auto grp = ss.parse_group("shader up a ; shader down b ; connect a.k b.k ;", "t", d);
+    auto mat = ss.compile(*grp, d);
+    ASSERT_TRUE(mat);
+    EXPECT_EQ((mat->globals_read() & Material::kUniform) != 0, up_uniform);
+  }
+}
+
 // String compares of constants fold by content when the group is specialised (constant
 // folding compares strings, so no op is hidden from it), and give OSL's results. OSL 1.13.12:
 //   surface strcmp(string mode = "plain", output int same = 0, output int differ = 0,

@@ -119,56 +119,76 @@ TEST(JitMaterials, ManyMaterialsCompileConcurrently) {
 // was shaded in a context of its own, MIS came out about 3% dark here.)
 TEST(JitMaterials, AreaLightShadingLeavesTheLitClosureIntact) {
   if (!MaterialBackend::jit_available()) GTEST_SKIP() << "this build has no JIT";
-  const std::string json = R"({
+  // Two lamps: the stdlib emitter, the same everywhere (Material::kUniform), whose emission
+  // the light samples take from set-up; and one that tests P, so that each light sample
+  // shades it (the case this test was written for). Both emit power * Cs.
+  std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("lobe_lamp_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::string varying = (dir / "p_lamp.osl").string();
+  std::ofstream(varying) << R"(
+surface p_lamp(color Cs = 1, float power = 1) {
+  Ci = (P[1] > -100 ? power : 0) * Cs * emission();
+}
+)";
+  for (const std::string lamp : {std::string("emitter"), varying}) {
+    const bool uniform = lamp == "emitter";
+    const std::string json = R"({
     "camera": {"eye": [0, 3, 6], "look_at": [0, 0, 0], "fov": 40},
     "materials": {"floor": {"shader": "matte", "params": {"Cs": 0.5}},
-                  "lamp": {"shader": "emitter", "params": {"Cs": 1, "power": 20}}},
+                  "lamp": {"shader": ")" +
+                             lamp +
+                             R"(", "params": {"Cs": 1, "power": 20}}},
     "shapes": [{"type": "quad", "corner": [-4, 0, 4], "edge_x": [8, 0, 0], "edge_y": [0, 0, -8],
                 "material": "floor"},
                {"type": "sphere", "center": [0, 1.5, 0], "radius": 0.3, "material": "lamp"}],
     "environment": {"type": "constant", "color": 0.2}
   })";
-  MaterialBackend jit("jit");
-  auto image_of = [&](const MaterialCompiler& compile, Strategy st) {
-    std::string e;
-    auto desc = scene::parse_json_scene(json, "lamp.json", e);
-    EXPECT_TRUE(desc) << e;
-    RenderScene s;
-    EXPECT_EQ(s.setup(*desc, compile, 32, 32), "");
-    RenderOptions opt;
-    opt.spp = 64;
-    opt.max_depth = 4;
-    opt.strategy = st;
-    return test::render(s, 32, 32, opt).img;
-  };
-  // Mean of the per-pixel difference of two images (red) and its standard error: the image's
-  // own structure cancels, the sampling noise remains.
-  auto difference = [](const image::Image& a, const image::Image& b, double& err) {
-    double s = 0, s2 = 0;
-    size_t n = size_t(a.width) * a.height;
-    for (size_t p = 0; p < n; ++p) {
-      double d = double(a.pixels[p * a.nchannels()]) - b.pixels[p * b.nchannels()];
-      s += d, s2 += d * d;
-    }
-    double m = s / double(n);
-    err = std::sqrt(std::max(0.0, s2 / double(n) - m * m) / double(n));
-    return m;
-  };
-  image::Image mis = image_of(jit.compiler(), Strategy::Mis);
-  image::Image light = image_of(jit.compiler(), Strategy::LightOnly);
-  image::Image bsdf = image_of(jit.compiler(), Strategy::BsdfOnly);
-  image::Image native = image_of(native_compiler(), Strategy::Mis);
-  double mean, err, e1, e2, e3;
-  test::mean_and_error(mis, 0, mean, err);
-  double d_light = difference(mis, light, e1), d_bsdf = difference(mis, bsdf, e2);
-  double d_native = difference(mis, native, e3);
-  EXPECT_LT(std::fabs(d_light), 4 * e1 + 1e-4) << "MIS vs light sampling";
-  EXPECT_LT(std::fabs(d_bsdf), 4 * e2 + 1e-4) << "MIS vs BSDF sampling";
-  // Same seed, same closures (the kernels are bit-identical to the native library): the two
-  // backends differ only by float rounding in the shaders.
-  EXPECT_LT(std::fabs(d_native), 1e-3 * mean) << "JIT vs native";
-  std::printf("mean %.5f; MIS - light %.5f +- %.5f, MIS - BSDF %.5f +- %.5f, JIT - native %.2g\n",
-              mean, d_light, e1, d_bsdf, e2, d_native);
+    MaterialBackend jit("jit");
+    auto image_of = [&](const MaterialCompiler& compile, Strategy st, bool native = false) {
+      std::string e;
+      auto desc = scene::parse_json_scene(json, "lamp.json", e);
+      EXPECT_TRUE(desc) << e;
+      RenderScene s;
+      EXPECT_EQ(s.setup(*desc, compile, 32, 32), "");
+      EXPECT_EQ(s.uniform_emission(1) != nullptr, uniform) << lamp << (native ? ", native" : "");
+      RenderOptions opt;
+      opt.spp = 64;
+      opt.max_depth = 4;
+      opt.strategy = st;
+      return test::render(s, 32, 32, opt).img;
+    };
+    // Mean of the per-pixel difference of two images (red) and its standard error: the
+    // image's own structure cancels, the sampling noise remains.
+    auto difference = [](const image::Image& a, const image::Image& b, double& err) {
+      double s = 0, s2 = 0;
+      size_t n = size_t(a.width) * a.height;
+      for (size_t p = 0; p < n; ++p) {
+        double d = double(a.pixels[p * a.nchannels()]) - b.pixels[p * b.nchannels()];
+        s += d, s2 += d * d;
+      }
+      double m = s / double(n);
+      err = std::sqrt(std::max(0.0, s2 / double(n) - m * m) / double(n));
+      return m;
+    };
+    image::Image mis = image_of(jit.compiler(), Strategy::Mis);
+    image::Image light = image_of(jit.compiler(), Strategy::LightOnly);
+    image::Image bsdf = image_of(jit.compiler(), Strategy::BsdfOnly);
+    double mean, err, e1, e2, e3, d_native = 0;
+    test::mean_and_error(mis, 0, mean, err);
+    double d_light = difference(mis, light, e1), d_bsdf = difference(mis, bsdf, e2);
+    if (uniform) // the native library has no twin of the varying lamp
+      d_native = difference(mis, image_of(native_compiler(), Strategy::Mis, true), e3);
+    EXPECT_LT(std::fabs(d_light), 4 * e1 + 1e-4) << "MIS vs light sampling, " << lamp;
+    EXPECT_LT(std::fabs(d_bsdf), 4 * e2 + 1e-4) << "MIS vs BSDF sampling, " << lamp;
+    // Same seed, same closures (the kernels are bit-identical to the native library): the
+    // two backends differ only by float rounding in the shaders.
+    EXPECT_LT(std::fabs(d_native), 1e-3 * mean) << "JIT vs native, " << lamp;
+    std::printf("%s: mean %.5f; MIS - light %.5f +- %.5f, MIS - BSDF %.5f +- %.5f, JIT - native "
+                "%.2g\n",
+                uniform ? "uniform lamp" : "varying lamp", mean, d_light, e1, d_bsdf, e2, d_native);
+  }
+  std::filesystem::remove_all(dir);
 }
 
 // A shape's "userdata" reaches `lockgeom = 0` parameters of its material, and getattribute

@@ -180,6 +180,11 @@ public:
   // kReadsRaytype set: it calls raytype() (its result may differ by the ray that hit).
   virtual uint64_t globals_read() const = 0;
   static constexpr uint64_t kReadsRaytype = uint64_t(1) << 63;
+  // kUniform set: the group's result is the same at every point of a shape and for every ray
+  // and side: it reads no global (but writes Ci), takes no user data, and calls only pure
+  // operations and surfacearea(). A renderer may shade such a material once per shape (the
+  // emission of an area light at each light sample, say); unset promises nothing.
+  static constexpr uint64_t kUniform = uint64_t(1) << 62;
   // Reads an output parameter of a layer (for testshade-style `-o`) as the most recent
   // shade() that used `ctx` left it: each thread reads its own context's results. If `ctx`
   // has shaded another material since (or never shaded this one), the value is the one
