@@ -14,6 +14,8 @@ Geometry::~Geometry() {
   if (device_) rtcReleaseDevice(device_);
 }
 
+// LightSet::sample_area (lights.cpp) maps a point (s, t) of a rectangle onto these two
+// triangles: keep their order and corners.
 static scene::Mesh quad_mesh(const scene::Shape& s) {
   scene::Mesh m;
   m.positions = {s.corner, s.corner + s.edge_x, s.corner + s.edge_x + s.edge_y,

@@ -230,9 +230,8 @@ void extend_derivatives(ir::Shader& sh) {
 // Whether a layer's result is the same at every point of a shape and for every ray: it reads
 // no global but Ci (which it writes), and each of its operations is pure (a function of its
 // operands), control flow, surfacearea() (one value per shape) or useparam (the layers it
-// runs are checked themselves). Anything else (texture
-// lookups, attributes, messages, printf, raytype(), backfacing(), derivatives) may vary or
-// have an effect, and rules it out.
+// runs are checked themselves). Anything else (texture lookups, attributes, messages,
+// printf, raytype(), backfacing(), derivatives) may vary or have an effect, and rules it out.
 bool uniform_layer(const ir::Shader& sh, uint64_t globals) {
   uint64_t ci = 0;
   for (size_t g = 0; g < std::size(kGlobalFields); ++g)
