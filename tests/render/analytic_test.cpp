@@ -260,45 +260,65 @@ TEST(AreaLightSampling, WeightsStayBelowTheSolidAngleCloseToALight) {
   }
 }
 
-class QuadLight : public ::testing::TestWithParam<Strategy> {};
+namespace {
 
-// A square emitter (radiance Le, side 1) 0.3 above the plane, close enough that sampling it
-// by area would spread its weights over three orders of magnitude: L = rho Le F, F the
-// view factor's closed form.
-TEST_P(QuadLight, LambertPlaneUnderSquareEmitter) {
+// A matte plane (rho 0.5, y = 0) lit only by a square emitter of radiance Le = 4, the square
+// [-half, half]^2 at `height`, seen by `camera` (JSON), direct light only, `spp` samples by
+// `strategy`. Every pixel whose footprint lies on the plane and passes no nearer than `clear`
+// to the emitter's centre must match L = rho Le F (F: square_view_factor) within 10%, 4
+// standard deviations of L over the pixel and `floor` (BSDF sampling alone: the sum only);
+// the checked pixels' sum within `sum_tol`.
+void check_square_light(const std::string& camera, float half, float height, float clear, int spp,
+                        Strategy strategy, double floor, double sum_tol) {
   const double rho = 0.5, Le = 4;
-  const std::string json = R"({
-    "camera": {"eye": [0, 2.5, 4], "look_at": [0, 0, 0], "fov": 45},
+  const std::string json = R"({"camera": )" + camera + R"(,
     "materials": {"m": {"shader": "matte", "params": {"Cs": 0.5}},
                   "e": {"shader": "emitter", "params": {"power": 4}}},
     "shapes": [{"type": "quad", "corner": [-50, 0, 50], "edge_x": [100, 0, 0],
                 "edge_y": [0, 0, -100], "material": "m"},
-               {"type": "quad", "corner": [-0.5, 0.3, -0.5], "edge_x": [1, 0, 0],
-                "edge_y": [0, 0, 1], "material": "e"}]
+               {"type": "quad", "corner": [)" +
+                           std::to_string(-half) + ", " + std::to_string(height) + ", " +
+                           std::to_string(-half) + R"(], "edge_x": [)" + std::to_string(2 * half) +
+                           R"(, 0, 0],
+                "edge_y": [0, 0, )" +
+                           std::to_string(2 * half) +
+                           R"(], "material": "e"}]
   })";
   auto s = test::setup_scene(json, kW, kH);
   ASSERT_TRUE(s);
   RenderOptions opt;
-  opt.spp = GetParam() == Strategy::BsdfOnly ? 1024 : 128;
+  opt.spp = spp;
   opt.max_depth = 1;
-  opt.strategy = GetParam();
+  opt.strategy = strategy;
   auto r = test::render(*s, kW, kH, opt);
-  auto f = [&](const Vec3& p) { return rho * Le * square_view_factor(0.5, p.x, p.z, 0.3); };
+  auto f = [&](const Vec3& p) { return rho * Le * square_view_factor(half, p.x, p.z, height); };
   double sum_e = 0, sum_r = 0;
   int checked = 0;
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) {
-      double expected;
-      if (!pixel_expectation(s->camera(), x, y, f, expected, {0, 0.3f, 0}, 0.75)) continue;
+      double expected, sd;
+      if (!pixel_expectation(s->camera(), x, y, f, expected, {0, height, 0}, clear, &sd)) continue;
       ++checked;
       sum_e += expected;
       sum_r += r.img.pixel(x, y)[1];
-      if (GetParam() != Strategy::BsdfOnly) {
-        EXPECT_NEAR(r.img.pixel(x, y)[1], expected, 0.1 * expected + 0.005) << x << "," << y;
-      }
+      double tol = 0.1 * expected + 4 * sd / std::sqrt(double(spp)) + floor;
+      if (strategy != Strategy::BsdfOnly)
+        EXPECT_NEAR(r.img.pixel(x, y)[1], expected, tol) << x << "," << y;
     }
   ASSERT_GT(checked, kW * kH / 2);
-  EXPECT_NEAR(sum_r / sum_e, 1.0, GetParam() == Strategy::BsdfOnly ? 0.03 : 0.01);
+  EXPECT_NEAR(sum_r / sum_e, 1.0, sum_tol);
+}
+
+} // namespace
+
+class QuadLight : public ::testing::TestWithParam<Strategy> {};
+
+// A square emitter (side 1) 0.3 above the plane, close enough that sampling it by area would
+// spread its weights over three orders of magnitude.
+TEST_P(QuadLight, LambertPlaneUnderSquareEmitter) {
+  bool bsdf = GetParam() == Strategy::BsdfOnly;
+  check_square_light(R"({"eye": [0, 2.5, 4], "look_at": [0, 0, 0], "fov": 45})", 0.5f, 0.3f, 0.75f,
+                     bsdf ? 1024 : 128, GetParam(), 0.005, bsdf ? 0.03 : 0.01);
 }
 
 // The floor beside a light panel a centimetre above it, seen from above: lit through the
@@ -310,38 +330,8 @@ TEST_P(QuadLight, LambertPlaneUnderSquareEmitter) {
 class GrazingQuadLight : public ::testing::TestWithParam<Strategy> {};
 
 TEST_P(GrazingQuadLight, FloorBesideAPanelJustAboveIt) {
-  const double rho = 0.5, Le = 4, h = 0.01;
-  const std::string json = R"({
-    "camera": {"eye": [0, 3, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "fov": 40},
-    "materials": {"m": {"shader": "matte", "params": {"Cs": 0.5}},
-                  "e": {"shader": "emitter", "params": {"power": 4}}},
-    "shapes": [{"type": "quad", "corner": [-50, 0, 50], "edge_x": [100, 0, 0],
-                "edge_y": [0, 0, -100], "material": "m"},
-               {"type": "quad", "corner": [-0.25, 0.01, -0.25], "edge_x": [0.5, 0, 0],
-                "edge_y": [0, 0, 0.5], "material": "e"}]
-  })";
-  auto s = test::setup_scene(json, kW, kH);
-  ASSERT_TRUE(s);
-  RenderOptions opt;
-  opt.spp = 256;
-  opt.max_depth = 1;
-  opt.strategy = GetParam();
-  auto r = test::render(*s, kW, kH, opt);
-  auto f = [&](const Vec3& p) { return rho * Le * square_view_factor(0.25, p.x, p.z, h); };
-  double sum_e = 0, sum_r = 0;
-  int checked = 0;
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x) {
-      double expected, sd;
-      if (!pixel_expectation(s->camera(), x, y, f, expected, {0, 0.01f, 0}, 0.36, &sd)) continue;
-      ++checked;
-      sum_e += expected;
-      sum_r += r.img.pixel(x, y)[1];
-      double tol = 0.1 * expected + 4 * sd / std::sqrt(double(opt.spp)) + 1e-4;
-      EXPECT_NEAR(r.img.pixel(x, y)[1], expected, tol) << x << "," << y;
-    }
-  ASSERT_GT(checked, kW * kH / 2);
-  EXPECT_NEAR(sum_r / sum_e, 1.0, 0.02);
+  check_square_light(R"({"eye": [0, 3, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "fov": 40})",
+                     0.25f, 0.01f, 0.36f, 256, GetParam(), 1e-4, 0.02);
 }
 
 INSTANTIATE_TEST_SUITE_P(Strategies, QuadLight,
