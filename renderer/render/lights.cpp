@@ -41,7 +41,6 @@ void LightSet::build(const Geometry& geo, const std::vector<scene::Light>& light
       float ex = length(s.edge_x), ey = length(s.edge_y);
       a.rectangle = s.kind == scene::Shape::Kind::Quad &&
                     std::abs(dot(s.edge_x, s.edge_y)) <= 1e-5f * ex * ey && ex * ey > 0;
-      a.corner = s.corner, a.edge_x = s.edge_x, a.edge_y = s.edge_y;
       if (areas.size() <= size_t(kSolidAngleTriangles))
         for (size_t t = 0; t < areas.size(); ++t) {
           const uint32_t* i = &m.indices[3 * t];
@@ -194,9 +193,10 @@ float LightSet::area_density(const Area& a, const Vec3& p, const SurfaceHit& h) 
   return d2 / (cos_l * a.total_area);
 }
 
-SphericalRectangle LightSet::rectangle(const Area& a, const Vec3& p) {
+SphericalRectangle LightSet::rectangle(const Area& a, const Vec3& p) const {
   if (!a.rectangle) return SphericalRectangle({}, {}, {}, {});
-  SphericalRectangle r(p, a.corner, a.edge_x, a.edge_y);
+  const scene::Shape& s = geo_->shapes()[a.shape];
+  SphericalRectangle r(p, s.corner, s.edge_x, s.edge_y);
   if (r.solid_angle < kMinRectangleSolidAngle) r.solid_angle = 0;
   return r;
 }

@@ -1,9 +1,9 @@
 // Every light of a scene behind one interface for next-event estimation and MIS:
 // point and spot lights (delta positions), emissive shapes (area lights), and the environment.
 // A sphere is sampled by the cone it subtends; a rectangle (a quad with edges at right angles)
-// by its solid angle (SphericalRectangle), unless that is below kMinRectangleSolidAngle; any
-// other shape of at most kSolidAngleTriangles triangles by the solid angle its triangles
-// subtend, each triangle picked by its share and a direction uniform in it
+// by its solid angle (SphericalRectangle) unless that is below kMinRectangleSolidAngle; below
+// it, and any other shape of at most kSolidAngleTriangles triangles, by the solid angle its
+// triangles subtend, each triangle picked by its share and a direction uniform in it
 // (sample_spherical_triangle), unless that is below kMinSolidAngle. Far away or edge-on the
 // two densities are alike and area is cheaper: there, and for larger meshes, a triangle is
 // picked by area and a point uniform in it.
@@ -73,11 +73,10 @@ private:
     Distribution1D triangles;                 // by area (meshes and quads)
     std::vector<std::array<Vec3, 3>> corners; // small meshes: their triangles, for solid angles
     bool rectangle = false;                   // a quad with edges at right angles
-    Vec3 corner, edge_x, edge_y;
   };
   // A rectangle's solid angle from `p` (SphericalRectangle), its solid_angle 0 when `a` is no
   // rectangle or subtends less than kMinRectangleSolidAngle from `p`.
-  static SphericalRectangle rectangle(const Area& a, const Vec3& p);
+  SphericalRectangle rectangle(const Area& a, const Vec3& p) const;
   // A small mesh's triangles' solid angles from `p` into `omega` (kSolidAngleTriangles of
   // them) and their sum; 0 when the shape is sampled by area from `p`.
   static double solid_angles(const Area& a, const Vec3& p, double* omega);

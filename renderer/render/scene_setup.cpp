@@ -410,13 +410,9 @@ void RenderScene::find_caustic_targets(const std::vector<int>& specular) {
       t.center = s.center;
       t.radius = s.radius;
     } else {
-      // The centre of the bounding box and the farthest vertex from it.
-      std::vector<Vec3> corners;
-      const std::vector<Vec3>& pts =
-          s.kind == scene::Shape::Kind::Quad
-              ? (corners = {s.corner, s.corner + s.edge_x, s.corner + s.edge_y,
-                            s.corner + s.edge_x + s.edge_y})
-              : s.mesh.positions;
+      // The centre of the bounding box and the farthest vertex from it (a quad's mesh is
+      // Geometry's).
+      const std::vector<Vec3>& pts = geo_.mesh(i).positions;
       if (pts.empty()) continue;
       Vec3 lo = pts[0], hi = pts[0];
       for (const Vec3& p : pts)

@@ -233,9 +233,11 @@ void extend_derivatives(ir::Shader& sh) {
 // runs are checked themselves). Anything else (texture lookups, attributes, messages,
 // printf, raytype(), backfacing(), derivatives) may vary or have an effect, and rules it out.
 bool uniform_layer(const ir::Shader& sh, uint64_t globals) {
-  uint64_t ci = 0;
-  for (size_t g = 0; g < std::size(kGlobalFields); ++g)
-    if (!std::strcmp(kGlobalFields[g].name, "Ci")) ci = uint64_t(1) << g;
+  static const uint64_t ci = [] {
+    for (size_t g = 0; g < std::size(kGlobalFields); ++g)
+      if (!std::strcmp(kGlobalFields[g].name, "Ci")) return uint64_t(1) << g;
+    return uint64_t(0);
+  }();
   if (globals & ~ci) return false;
   for (const ir::Op& op : sh.ops) {
     const ir::OpcodeInfo& info = ir::info(op.opcode);
