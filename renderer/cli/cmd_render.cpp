@@ -207,7 +207,14 @@ int run_render(int argc, char** argv) {
 
   // OpenImageIO, needed to write the image (and by textures), loads on a thread of its own
   // meanwhile, from here on: reading a scene (a large mesh is parsed on one core) leaves the
-  // other core free for it. Joined on every return.
+  // other core free for it. Joined on every return. Its dlopen holds the loader's lock for
+  // about half a second, so what this thread loads itself is loaded first: oneTBB's allocator
+  // and thread server, which its first arena dlopens (Embree's device, later, would otherwise
+  // wait for the lock; the JIT needs none, jit.cpp).
+  {
+    tbb::task_arena first;
+    first.initialize();
+  }
   std::jthread image_io = lobe::image::prefetch_image_io();
 
   std::string err;
@@ -280,7 +287,7 @@ int run_render(int argc, char** argv) {
   // Ctrl-C from here on stops at the next stage (or loop check) and says where.
   std::signal(SIGINT, on_sigint);
   auto t0 = std::chrono::steady_clock::now();
-  if (std::string e = scene.setup(desc, backend.compiler(), st.width, st.height); !e.empty()) {
+  if (std::string e = scene.setup(std::move(desc), backend.compiler(), st.width, st.height); !e.empty()) {
     std::signal(SIGINT, SIG_DFL);
     std::fprintf(stderr, "lobe render: %s\n", e.c_str());
     return g_cancel.load() ? 130 : 1;
@@ -383,7 +390,7 @@ int run_render(int argc, char** argv) {
                  scene.stats().closure_kernels_cached, setup_s, stats.seconds,
                  stats.seconds > 0 ? double(rays) / stats.seconds / 1e6 : 0.0);
   }
-  if (a.stats) print_stats(scene, desc, load_s, setup_s, stats, st, a.threads);
+  if (a.stats) print_stats(scene, scene.desc(), load_s, setup_s, stats, st, a.threads);
   return stats.cancelled ? 130 : strings_error.empty() ? 0 : 1;
 }
 

@@ -484,8 +484,14 @@ std::string check_scene_extent(const scene::SceneDesc& d) {
       if (e.empty()) e = check_point(s.edge_y, w, "edge");
       break;
     case scene::Shape::Kind::Mesh:
-      for (size_t i = 0; i < s.mesh.positions.size() && e.empty(); ++i)
-        e = check_point(s.mesh.positions[i], w, ("vertex " + std::to_string(i)).c_str());
+      for (size_t i = 0; i < s.mesh.positions.size(); ++i) {
+        const Vec3& p = s.mesh.positions[i];
+        if (std::isfinite(p.x + p.y + p.z) && std::max({std::fabs(p.x), std::fabs(p.y),
+                                                        std::fabs(p.z)}) <= kMaxCoordinate)
+          continue; // the common case, without building the vertex's name
+        e = check_point(p, w, ("vertex " + std::to_string(i)).c_str());
+        if (!e.empty()) break;
+      }
       break;
     }
     if (!e.empty()) return e;
@@ -528,10 +534,10 @@ std::string check_geometry_memory(const scene::SceneDesc& d) {
 }
 } // namespace
 
-std::string RenderScene::setup(const scene::SceneDesc& desc, const MaterialCompiler& compile,
-                               int width, int height) {
+std::string RenderScene::setup(scene::SceneDesc desc, const MaterialCompiler& compile, int width,
+                               int height) {
   if (std::string e = check_scene_extent(desc); !e.empty()) return e;
-  desc_ = desc;
+  desc_ = std::move(desc);
   camera_ = Camera(desc_.camera, width, height);
   services_ = SceneServices(desc_.camera, width, height, &geo_);
   using clock = std::chrono::steady_clock;

@@ -98,8 +98,9 @@ public:
   // "" on success, else an error naming the scene element.
   // A shader stopped in a loop at setup (CompileOptions::max_loop_iterations) is an error
   // naming the material, the shader and the loop.
-  std::string setup(const scene::SceneDesc& desc, const MaterialCompiler& compile, int width,
-                    int height);
+  // The scene keeps its own description: pass it by rvalue to move it in (a large mesh's
+  // arrays are not copied then).
+  std::string setup(scene::SceneDesc desc, const MaterialCompiler& compile, int width, int height);
   // "<material's place>: material 'name'" (-1: "<scene>: the default material").
   std::string material_place(int material) const;
   // Why a shade stopped (ctx.stopped): the loop error with the material's place, or the stage

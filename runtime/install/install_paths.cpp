@@ -31,16 +31,21 @@ std::vector<fs::path> private_folders() {
 
 } // namespace
 
+// Found once: dladdr takes the loader's lock, which a dlopen on another thread (the image
+// library, loaded in the background while a scene loads: half a second) holds throughout.
 fs::path own_folder() {
-  Dl_info info{};
-  if (dladdr(reinterpret_cast<void*>(&own_folder), &info) && info.dli_fname) {
+  static const fs::path folder = [] {
+    Dl_info info{};
+    if (dladdr(reinterpret_cast<void*>(&own_folder), &info) && info.dli_fname) {
+      std::error_code ec;
+      fs::path p = fs::canonical(info.dli_fname, ec);
+      if (!ec) return p.parent_path();
+    }
     std::error_code ec;
-    fs::path p = fs::canonical(info.dli_fname, ec);
-    if (!ec) return p.parent_path();
-  }
-  std::error_code ec;
-  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? fs::path() : exe.parent_path();
+    fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? fs::path() : exe.parent_path();
+  }();
+  return folder;
 }
 
 std::vector<std::string> oiio_module_candidates() {

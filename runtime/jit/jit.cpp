@@ -37,6 +37,7 @@
 #include <llvm/Transforms/Scalar/SimplifyCFG.h>
 #include <llvm/Transforms/Vectorize/SLPVectorizer.h>
 
+#include <dlfcn.h>
 #include <elf.h>
 #include <link.h>
 
@@ -60,6 +61,32 @@ struct Jit::State {
 };
 
 namespace {
+// What the runtime library does not define (a libc function LLVM emits a call to), looked up
+// in the process with dlsym when first needed. Not LLJIT's process-symbols dylib: that one
+// opens the process handle at start-up and sits first in every group's link order, so every
+// symbol a group links would go through dlsym, whose loader lock a concurrent dlopen (the
+// image library, loaded in the background while a scene loads) holds for a third of a second.
+class ProcessFallback : public llvm::orc::DefinitionGenerator {
+public:
+  llvm::Error tryToGenerate(llvm::orc::LookupState&, llvm::orc::LookupKind, llvm::orc::JITDylib& jd,
+                            llvm::orc::JITDylibLookupFlags,
+                            const llvm::orc::SymbolLookupSet& symbols) override {
+    llvm::orc::SymbolMap found;
+    for (const auto& [name, flags] : symbols) {
+      if (void* address = dlsym(RTLD_DEFAULT, (*name).str().c_str()))
+        found[name] = llvm::orc::ExecutorSymbolDef(llvm::orc::ExecutorAddr::fromPtr(address),
+                                                   llvm::JITSymbolFlags::Exported);
+    }
+    if (found.empty()) return llvm::Error::success();
+    return jd.define(llvm::orc::absoluteSymbols(std::move(found)));
+  }
+};
+
+// What went wrong while linking on this thread (ORC reports "Symbols not found: [...]" to the
+// session's error reporter and returns only "Failed to materialize symbols" to the lookup):
+// Jit::load puts it in front of the lookup's error. Lookups materialise on the calling thread.
+thread_local std::string t_session_error;
+
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -103,6 +130,12 @@ std::unique_ptr<Jit> Jit::create(std::string& error) {
   auto lljit =
       llvm::orc::LLJITBuilder()
           .setJITTargetMachineBuilder(*jtmb)
+          .setProcessSymbolsJITDylibSetup(
+              [](llvm::orc::LLJIT& j) -> llvm::Expected<llvm::orc::JITDylibSP> {
+                llvm::orc::JITDylib& rt = j.getExecutionSession().createBareJITDylib("lobe_runtime");
+                rt.addGenerator(std::make_unique<ProcessFallback>());
+                return &rt;
+              })
           .setCompileFunctionCreator(
               [](llvm::orc::JITTargetMachineBuilder j)
                   -> llvm::Expected<std::unique_ptr<llvm::orc::IRCompileLayer::IRCompiler>> {
@@ -118,8 +151,7 @@ std::unique_ptr<Jit> Jit::create(std::string& error) {
   jit->s_->lljit = std::move(*lljit);
   jit->s_->tm = std::move(*tm);
   jit->s_->jtmb = std::make_unique<llvm::orc::JITTargetMachineBuilder>(*jtmb);
-  auto& es = jit->s_->lljit->getExecutionSession();
-  llvm::orc::JITDylib& rt = es.createBareJITDylib("lobe_runtime");
+  llvm::orc::JITDylib& rt = *jit->s_->lljit->getProcessSymbolsJITDylib();
   llvm::orc::SymbolMap symbols;
   for (const auto& s : shadeops::shadeop_symbols())
     symbols[jit->s_->lljit->mangleAndIntern(s.name)] = llvm::orc::ExecutorSymbolDef(
@@ -138,6 +170,10 @@ std::unique_ptr<Jit> Jit::create(std::string& error) {
     return nullptr;
   }
   jit->s_->runtime = &rt;
+  jit->s_->lljit->getExecutionSession().setErrorReporter([](llvm::Error err) {
+    if (!t_session_error.empty()) t_session_error += "; ";
+    t_session_error += llvm::toString(std::move(err));
+  });
   return jit;
 }
 
@@ -294,9 +330,11 @@ bool Jit::load(const std::function<llvm::Error(llvm::orc::JITDylib&)>& fill,
     error = llvm::toString(jd.takeError());
     return false;
   }
-  jd->addToLinkOrder(*s_->runtime);
+  t_session_error.clear();
   auto fail = [&](llvm::Error err) {
     error = llvm::toString(std::move(err));
+    if (!t_session_error.empty()) error = t_session_error + " (" + error + ")";
+    t_session_error.clear();
     llvm::consumeError(lljit.getExecutionSession().removeJITDylib(*jd));
     return false;
   };

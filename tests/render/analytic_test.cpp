@@ -302,8 +302,9 @@ void check_square_light(const std::string& camera, float half, float height, flo
       sum_e += expected;
       sum_r += r.img.pixel(x, y)[1];
       double tol = 0.1 * expected + 4 * sd / std::sqrt(double(spp)) + floor;
-      if (strategy != Strategy::BsdfOnly)
+      if (strategy != Strategy::BsdfOnly) {
         EXPECT_NEAR(r.img.pixel(x, y)[1], expected, tol) << x << "," << y;
+      }
     }
   ASSERT_GT(checked, kW * kH / 2);
   EXPECT_NEAR(sum_r / sum_e, 1.0, sum_tol);

@@ -131,7 +131,7 @@ surface p_lamp(color Cs = 1, float power = 1) {
   Ci = (P[1] > -100 ? power : 0) * Cs * emission();
 }
 )";
-  for (const std::string lamp : {std::string("emitter"), varying}) {
+  for (const std::string& lamp : {std::string("emitter"), varying}) {
     const bool uniform = lamp == "emitter";
     const std::string json = R"({
     "camera": {"eye": [0, 3, 6], "look_at": [0, 0, 0], "fov": 40},
