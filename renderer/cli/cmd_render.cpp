@@ -287,7 +287,8 @@ int run_render(int argc, char** argv) {
   // Ctrl-C from here on stops at the next stage (or loop check) and says where.
   std::signal(SIGINT, on_sigint);
   auto t0 = std::chrono::steady_clock::now();
-  if (std::string e = scene.setup(std::move(desc), backend.compiler(), st.width, st.height); !e.empty()) {
+  if (std::string e = scene.setup(std::move(desc), backend.compiler(), st.width, st.height);
+      !e.empty()) {
     std::signal(SIGINT, SIG_DFL);
     std::fprintf(stderr, "lobe render: %s\n", e.c_str());
     return g_cancel.load() ? 130 : 1;

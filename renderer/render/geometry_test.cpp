@@ -94,3 +94,50 @@ TEST(Geometry, OffsetOriginsAvoidSelfIntersection) {
   EXPECT_EQ(self_hits, 0);
   EXPECT_EQ(leaks, 0);
 }
+
+// A packet finds what single rays find, for every packet size and with rays that miss, start
+// inside the sphere or stop short (tmax): the sphere hit from (0, 1, 5) towards -z at t = 4,
+// the quad's at |y| / dy, nothing upwards.
+TEST(Geometry, PacketsFindTheHitsOfSingleRays) {
+  auto shapes = two_shapes();
+  Geometry g;
+  ASSERT_EQ(g.build(shapes), "");
+  RandomStream rng(11, 0, 0);
+  std::vector<Ray> rays;
+  rays.push_back({{0, 1, 5}, {0, 0, -1}});               // the sphere at t = 4
+  rays.push_back({{3, 2, 0}, {0, -1, 0}});               // the quad at t = 2
+  rays.push_back({{0, 3, 0}, {0, 1, 0}});                // nothing
+  rays.push_back({{0, 1, 5}, {0, 0, -1}, 3.5f});         // stops short of the sphere
+  rays.push_back({{0, 1, 0}, normalize(Vec3{1, 1, 0})}); // from inside the sphere
+  for (int i = 0; i < 43; ++i) {
+    Vec3 org{rng.next() * 6 - 3, rng.next() * 3 + 0.5f, 6};
+    Vec3 dir = normalize(Vec3{rng.next() - 0.5f, rng.next() - 0.8f, -1});
+    rays.push_back({org, dir});
+  }
+  int hits = 0, misses = 0;
+  for (int n = 1; n <= Geometry::kPacket; ++n)
+    for (size_t first = 0; first + size_t(n) <= rays.size(); first += size_t(n)) {
+      Geometry::RawHit packet[Geometry::kPacket];
+      g.traverse_packet(&rays[first], n, packet);
+      for (int i = 0; i < n; ++i) {
+        Geometry::RawHit single;
+        bool found = g.traverse(rays[first + size_t(i)], single);
+        ASSERT_EQ(packet[i].geom != RTC_INVALID_GEOMETRY_ID, found) << first + size_t(i);
+        (found ? hits : misses)++;
+        if (!found) continue;
+        EXPECT_EQ(packet[i].geom, single.geom);
+        EXPECT_EQ(packet[i].prim, single.prim);
+        EXPECT_NEAR(packet[i].t, single.t, 1e-5f * single.t);
+        EXPECT_NEAR(packet[i].u, single.u, 1e-5f);
+        EXPECT_NEAR(packet[i].v, single.v, 1e-5f);
+      }
+    }
+  EXPECT_GT(hits, 100);
+  EXPECT_GT(misses, 50);
+  Geometry::RawHit four[4];
+  g.traverse_packet(rays.data(), 4, four);
+  EXPECT_NEAR(four[0].t, 4.0f, 1e-5f);
+  EXPECT_NEAR(four[1].t, 2.0f, 1e-5f);
+  EXPECT_EQ(four[2].geom, RTC_INVALID_GEOMETRY_ID);
+  EXPECT_EQ(four[3].geom, RTC_INVALID_GEOMETRY_ID);
+}

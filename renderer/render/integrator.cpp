@@ -142,7 +142,7 @@ static void shade_into(const RenderScene& scene, const SurfaceHit& hit, const Ve
 
 PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, ShadingContext& ctx,
                              ShadingContext& light_ctx, TraceCounters& c, bool timed,
-                             float film_density) const {
+                             float film_density, const Geometry::RawHit* first) const {
   Laps lap(timed ? &c.phases : nullptr);
   using P = PhaseTicks;
   const LightSet& lights = scene_.lights();
@@ -176,7 +176,13 @@ PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, Shad
     ++c.rays;
     Geometry::RawHit raw;
     lap(&P::other);
-    bool found = geo.traverse(ray, raw);
+    bool found;
+    if (depth == 0 && first) {
+      raw = *first;
+      found = raw.geom != RTC_INVALID_GEOMETRY_ID;
+    } else {
+      found = geo.traverse(ray, raw);
+    }
     lap(&P::traverse);
     if (!found) {
       float w = 1; // MIS weight against the light paths (a caustic of the environment)

@@ -144,9 +144,10 @@ public:
 
   // `film_density`: the pixel filter's density at the camera ray's film position (the tent's
   // (1 - |dx|)(1 - |dy|), a box's 1), for the MIS weights of caustics.
+  // `first`: the camera ray's hit when already traced (Geometry::traverse_packet), else null.
   PathResult trace(const Ray& camera_ray, const Sampler& sampler, ShadingContext& ctx,
                    ShadingContext& light_ctx, TraceCounters& counters, bool timed = false,
-                   float film_density = 1) const;
+                   float film_density = 1, const Geometry::RawHit* first = nullptr) const;
   // One light path from the environment (numbers from `rng`), its camera connections splatted
   // into `film`; the image adds film.sum(p) / (light paths traced). Needs caustics().
   // `ctx` holds the target being crossed, `link_ctx` shades the camera's connections.

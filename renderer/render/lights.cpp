@@ -150,8 +150,8 @@ bool LightSet::sample_area(const Area& a, const Vec3& p, float u1, float u2,
     float b1 = std::max(0.0f, (d11 * d20 - d01 * d21) / den);
     float b2 = std::max(0.0f, (d00 * d21 - d01 * d20) / den);
     if (b1 + b2 > 1) {
-      float s = 1 / (b1 + b2);
-      b1 *= s, b2 *= s;
+      float scale = 1 / (b1 + b2);
+      b1 *= scale, b2 *= scale;
     }
     geo_->surface(a.shape, t, b1, b2, h);
     solid_pdf = 1 / total;

@@ -53,6 +53,27 @@ void trace_light_paths(const PathTracer& pt, uint64_t pixel, uint64_t pixels, in
   }
 }
 
+// The camera ray of a sample of pixel (x, y), and the pixel filter's density at its film
+// position (`density`).
+Ray camera_ray(const RenderScene& scene, const RenderOptions& opt, bool lens, int x, int y,
+               const Sampler& sampler, float& density) {
+  float u[4] = {0, 0, 0.5f, 0.5f}; // pixel position, lens position
+  static_assert(path_groups::kLens == path_groups::kPixel + 1);
+  if (lens)
+    sampler.groups<2>(path_groups::kPixel, {2, 2}, u);
+  else // a pinhole draws no lens numbers
+    sampler.groups<1>(path_groups::kPixel, {2}, u);
+  float jx = u[0], jy = u[1], l1 = u[2], l2 = u[3];
+  density = 1;
+  if (opt.pixel_filter == scene::PixelFilter::Tent) {
+    float tx = tent_warp(jx), ty = tent_warp(jy);
+    density = (1 - std::abs(tx)) * (1 - std::abs(ty));
+    jx = 0.5f + tx;
+    jy = 0.5f + ty;
+  }
+  return scene.camera().generate(x + jx, y + jy, l1, l2);
+}
+
 // Renders samples [s0, s1) of every pixel in tile `t`.
 void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int height, int t,
                  int s0, int s1, const RenderOptions& opt, const std::atomic<bool>* cancel,
@@ -68,26 +89,27 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
       if (halt.load(std::memory_order_relaxed)) return;
       uint64_t pixel = uint64_t(y) * width + x;
       Accum& a = acc[pixel];
+      // The pixel's camera rays a packet at a time (Geometry::traverse_packet), then their
+      // paths one by one in sample order.
+      constexpr int kPacket = Geometry::kPacket;
+      Ray rays[kPacket];
+      float densities[kPacket];
+      Geometry::RawHit firsts[kPacket];
       for (int s = s0; s < s1; ++s) {
-        Sampler sampler(pixel, uint64_t(s), opt.seed);
-        float u[4] = {0, 0, 0.5f, 0.5f}; // pixel position, lens position
-        static_assert(path_groups::kLens == path_groups::kPixel + 1);
-        if (lens)
-          sampler.groups<2>(path_groups::kPixel, {2, 2}, u);
-        else // a pinhole draws no lens numbers
-          sampler.groups<1>(path_groups::kPixel, {2}, u);
-        float jx = u[0], jy = u[1], l1 = u[2], l2 = u[3];
-        float film_density = 1; // the filter's density at (jx, jy)
-        if (opt.pixel_filter == scene::PixelFilter::Tent) {
-          float tx = tent_warp(jx), ty = tent_warp(jy);
-          film_density = (1 - std::abs(tx)) * (1 - std::abs(ty));
-          jx = 0.5f + tx;
-          jy = 0.5f + ty;
+        const int k = (s - s0) % kPacket;
+        if (k == 0) {
+          const int n = std::min(kPacket, s1 - s);
+          for (int i = 0; i < n; ++i)
+            rays[i] = camera_ray(scene, opt, lens, x, y, Sampler(pixel, uint64_t(s + i), opt.seed),
+                                 densities[i]);
+          scene.geometry().traverse_packet(rays, n, firsts);
         }
-        Ray ray = scene.camera().generate(x + jx, y + jy, l1, l2);
+        Sampler sampler(pixel, uint64_t(s), opt.seed);
+        const Ray& ray = rays[k];
+        const float film_density = densities[k];
         bool timed = opt.profile && (pixel + uint64_t(s)) % kProfileEvery == 0;
-        PathResult r =
-            pt.trace(ray, sampler, ts.ctx, ts.light_ctx, ts.counters, timed, film_density);
+        PathResult r = pt.trace(ray, sampler, ts.ctx, ts.light_ctx, ts.counters, timed,
+                                film_density, &firsts[k]);
         if (!ts.counters.stopped.empty()) { // a runaway shader: the render stops (not counted)
           halt.store(true);
           return;

@@ -486,8 +486,8 @@ std::string check_scene_extent(const scene::SceneDesc& d) {
     case scene::Shape::Kind::Mesh:
       for (size_t i = 0; i < s.mesh.positions.size(); ++i) {
         const Vec3& p = s.mesh.positions[i];
-        if (std::isfinite(p.x + p.y + p.z) && std::max({std::fabs(p.x), std::fabs(p.y),
-                                                        std::fabs(p.z)}) <= kMaxCoordinate)
+        if (std::isfinite(p.x + p.y + p.z) &&
+            std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}) <= kMaxCoordinate)
           continue; // the common case, without building the vertex's name
         e = check_point(p, w, ("vertex " + std::to_string(i)).c_str());
         if (!e.empty()) break;

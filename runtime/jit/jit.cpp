@@ -132,7 +132,8 @@ std::unique_ptr<Jit> Jit::create(std::string& error) {
           .setJITTargetMachineBuilder(*jtmb)
           .setProcessSymbolsJITDylibSetup(
               [](llvm::orc::LLJIT& j) -> llvm::Expected<llvm::orc::JITDylibSP> {
-                llvm::orc::JITDylib& rt = j.getExecutionSession().createBareJITDylib("lobe_runtime");
+                llvm::orc::JITDylib& rt =
+                    j.getExecutionSession().createBareJITDylib("lobe_runtime");
                 rt.addGenerator(std::make_unique<ProcessFallback>());
                 return &rt;
               })

@@ -22,8 +22,8 @@ using namespace lobe;
 
 // Compiles `ir` at -O0 and returns the addresses of `entries` (empty, with `err` set, if the
 // module does not link).
-std::vector<void*> compile(jit::Jit& j, const std::string& ir, const std::vector<std::string>& entries,
-                           std::string& err) {
+std::vector<void*> compile(jit::Jit& j, const std::string& ir,
+                           const std::vector<std::string>& entries, std::string& err) {
   auto ctx = std::make_unique<llvm::LLVMContext>();
   llvm::SMDiagnostic diag;
   auto mod = llvm::parseAssemblyString(ir, diag, *ctx);
@@ -47,7 +47,9 @@ TEST(JitLink, ShadeopsComeFromTheRuntimeTableAndLibcFromTheProcess) {
   const shadeops::ShadeOpSymbol& op = shadeops::shadeop_symbols().front();
   const std::string ir = std::string("declare void @") + op.name + "()\n" +
                          "declare i64 @strlen(ptr)\n"
-                         "define ptr @op() {\n  ret ptr @" + op.name + "\n}\n"
+                         "define ptr @op() {\n  ret ptr @" +
+                         op.name +
+                         "\n}\n"
                          "define i64 @len(ptr %s) {\n"
                          "  %n = call i64 @strlen(ptr %s)\n  ret i64 %n\n}\n";
   std::vector<void*> addr = compile(*j, ir, {"op", "len"}, err);
@@ -60,9 +62,10 @@ TEST(JitLink, ANameFoundNowhereIsAnErrorNamingIt) {
   std::string err;
   auto j = jit::Jit::create(err);
   ASSERT_TRUE(j) << err;
-  const std::string ir = "declare i32 @lobe_no_such_function_anywhere(i32)\n"
-                         "define i32 @f(i32 %x) {\n"
-                         "  %y = call i32 @lobe_no_such_function_anywhere(i32 %x)\n  ret i32 %y\n}\n";
+  const std::string ir =
+      "declare i32 @lobe_no_such_function_anywhere(i32)\n"
+      "define i32 @f(i32 %x) {\n"
+      "  %y = call i32 @lobe_no_such_function_anywhere(i32 %x)\n  ret i32 %y\n}\n";
   EXPECT_TRUE(compile(*j, ir, {"f"}, err).empty());
   EXPECT_NE(err.find("lobe_no_such_function_anywhere"), std::string::npos) << err;
 }
