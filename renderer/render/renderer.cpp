@@ -83,57 +83,60 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
   int tiles_x = (width + kTile - 1) / kTile;
   int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
   const bool lens = scene.camera().has_lens();
-  for (int y = y0; y < std::min(y0 + kTile, height); ++y) {
-    for (int x = x0; x < std::min(x0 + kTile, width); ++x) {
+  const int tw = std::min(x0 + kTile, width) - x0, th = std::min(y0 + kTile, height) - y0;
+  const int per_pixel = s1 - s0, total = tw * th * per_pixel;
+  // The tile's camera rays, pixel by pixel and a pixel's samples in order, a packet at a time
+  // (Geometry::traverse_packet: the same pixel's or its neighbours'), then their paths one by
+  // one in that order.
+  constexpr int kPacket = Geometry::kPacket;
+  Ray rays[kPacket];
+  float densities[kPacket];
+  Geometry::RawHit firsts[kPacket];
+  uint64_t pixels[kPacket];
+  int samples[kPacket];
+  for (int base = 0; base < total; base += kPacket) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) return;
+    if (halt.load(std::memory_order_relaxed)) return;
+    const int n = std::min(kPacket, total - base);
+    for (int i = 0; i < n; ++i) {
+      const int at = (base + i) / per_pixel, x = x0 + at % tw, y = y0 + at / tw;
+      pixels[i] = uint64_t(y) * width + x;
+      samples[i] = s0 + (base + i) % per_pixel;
+      rays[i] = camera_ray(scene, opt, lens, x, y,
+                           Sampler(pixels[i], uint64_t(samples[i]), opt.seed), densities[i]);
+    }
+    scene.geometry().traverse_packet(rays, n, firsts);
+    for (int i = 0; i < n; ++i) {
+      const uint64_t pixel = pixels[i];
+      const int s = samples[i];
+      Sampler sampler(pixel, uint64_t(s), opt.seed);
+      bool timed = opt.profile && (pixel + uint64_t(s)) % kProfileEvery == 0;
+      PathResult r = pt.trace(rays[i], sampler, ts.ctx, ts.light_ctx, ts.counters, timed,
+                              densities[i], &firsts[i]);
+      if (!ts.counters.stopped.empty()) { // a runaway shader: the render stops (not counted)
+        halt.store(true);
+        return;
+      }
+      // Cancelled meanwhile: a shader may have been stopped in this sample (not counted).
       if (cancel && cancel->load(std::memory_order_relaxed)) return;
-      if (halt.load(std::memory_order_relaxed)) return;
-      uint64_t pixel = uint64_t(y) * width + x;
+      // A rare invalid sample must not poison the pixel (counted, then dropped).
+      if (!is_finite(r.L)) r.L = {};
       Accum& a = acc[pixel];
-      // The pixel's camera rays a packet at a time (Geometry::traverse_packet), then their
-      // paths one by one in sample order.
-      constexpr int kPacket = Geometry::kPacket;
-      Ray rays[kPacket];
-      float densities[kPacket];
-      Geometry::RawHit firsts[kPacket];
-      for (int s = s0; s < s1; ++s) {
-        const int k = (s - s0) % kPacket;
-        if (k == 0) {
-          const int n = std::min(kPacket, s1 - s);
-          for (int i = 0; i < n; ++i)
-            rays[i] = camera_ray(scene, opt, lens, x, y, Sampler(pixel, uint64_t(s + i), opt.seed),
-                                 densities[i]);
-          scene.geometry().traverse_packet(rays, n, firsts);
-        }
-        Sampler sampler(pixel, uint64_t(s), opt.seed);
-        const Ray& ray = rays[k];
-        const float film_density = densities[k];
-        bool timed = opt.profile && (pixel + uint64_t(s)) % kProfileEvery == 0;
-        PathResult r = pt.trace(ray, sampler, ts.ctx, ts.light_ctx, ts.counters, timed,
-                                film_density, &firsts[k]);
-        if (!ts.counters.stopped.empty()) { // a runaway shader: the render stops (not counted)
+      a.L += r.L;
+      a.albedo += r.albedo;
+      a.normal += r.normal;
+      a.depth += r.depth;
+      ++a.n;
+      if (film) {
+        auto l0 = opt.profile ? std::chrono::steady_clock::now()
+                              : std::chrono::steady_clock::time_point{};
+        trace_light_paths(pt, pixel, uint64_t(width) * height, s, opt, *film, ts);
+        if (opt.profile)
+          ts.counters.light_seconds +=
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - l0).count();
+        if (!ts.counters.stopped.empty()) {
           halt.store(true);
           return;
-        }
-        // Cancelled meanwhile: a shader may have been stopped in this sample (not counted).
-        if (cancel && cancel->load(std::memory_order_relaxed)) return;
-        // A rare invalid sample must not poison the pixel (counted, then dropped).
-        if (!is_finite(r.L)) r.L = {};
-        a.L += r.L;
-        a.albedo += r.albedo;
-        a.normal += r.normal;
-        a.depth += r.depth;
-        ++a.n;
-        if (film) {
-          auto l0 = opt.profile ? std::chrono::steady_clock::now()
-                                : std::chrono::steady_clock::time_point{};
-          trace_light_paths(pt, pixel, uint64_t(width) * height, s, opt, *film, ts);
-          if (opt.profile)
-            ts.counters.light_seconds +=
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - l0).count();
-          if (!ts.counters.stopped.empty()) {
-            halt.store(true);
-            return;
-          }
         }
       }
     }
