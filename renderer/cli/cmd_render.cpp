@@ -14,7 +14,10 @@
 #include "scene.h"
 
 #include <CLI/CLI.hpp>
+#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+
+#include <thread>
 
 #include <algorithm>
 #include <atomic>
@@ -207,13 +210,15 @@ int run_render(int argc, char** argv) {
 
   // OpenImageIO, needed to write the image (and by textures), loads on a thread of its own
   // meanwhile, from here on: reading a scene (a large mesh is parsed on one core) leaves the
-  // other core free for it. Joined on every return. Its dlopen holds the loader's lock for
-  // about half a second, so what this thread loads itself is loaded first: oneTBB's allocator
-  // and thread server, which its first arena dlopens (Embree's device, later, would otherwise
-  // wait for the lock; the JIT needs none, jit.cpp).
+  // other core free for it. Joined on every return. Its dlopen holds the loader's locks for
+  // about half a second, and this thread would wait for them wherever it loads a library or
+  // starts a thread: oneTBB's allocator and thread server, which its first arena dlopens, and
+  // its worker threads are made first (Embree's device and its first build would otherwise
+  // wait; the JIT needs neither, jit.cpp).
   {
     tbb::task_arena first;
     first.initialize();
+    first.execute([] { tbb::parallel_for(0, 1024, [](int) { std::this_thread::yield(); }); });
   }
   std::jthread image_io = lobe::image::prefetch_image_io();
 

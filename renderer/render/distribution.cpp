@@ -2,6 +2,8 @@
 // search, in double precision while building so long tables stay accurate.
 #include "distribution.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 
 namespace lobe::render {
@@ -81,7 +83,9 @@ Distribution2D::Distribution2D(const std::vector<float>& f, int w, int h) : w_(w
   std::vector<float> row_pdf(size_t(w) * h);
   cdf_.resize(size_t(w + 1) * h);
   guide_.resize(size_t(kRowGuide + 1) * h);
-  for (int y = 0; y < h; ++y) {
+  // Rows in parallel (each writes its own slices; a 2048x1024 background table's rows took
+  // 40 ms on one core).
+  tbb::parallel_for(0, h, [&](int y) {
     Distribution1D row(
         std::vector<float>(f.begin() + size_t(y) * w, f.begin() + size_t(y + 1) * w));
     // A row of zeros is uniform within itself but never chosen (Distribution1D's integral of
@@ -98,12 +102,13 @@ Distribution2D::Distribution2D(const std::vector<float>& f, int w, int h) : w_(w
       while (i + 1 < w && cdf[i + 1] <= u) ++i;
       guide[k] = i;
     }
-  }
+  });
   marginal_ = Distribution1D(marg);
   pdf_.resize(size_t(w) * h);
-  for (int y = 0; y < h; ++y)
+  tbb::parallel_for(0, h, [&](int y) {
     for (int x = 0; x < w; ++x)
       pdf_[size_t(y) * w + x] = marginal_.pdf(y) * row_pdf[size_t(y) * w + x];
+  });
 }
 
 // The cell find_interval gives over the row's CDF, searched between the guides around u:

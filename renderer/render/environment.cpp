@@ -16,31 +16,42 @@ EnvironmentLight::EnvironmentLight(std::vector<float> rgb, int w, int h, float r
   cos_r_ = std::cos(r), sin_r_ = std::sin(r);
   // Sampling weight: luminance times sin(theta) (the solid angle of a texel's row).
   std::vector<float> f(size_t(w) * h);
-  double lum_sum = 0, weight_sum = 0;
-  constant_ = true;
-  for (int y = 0; y < h; ++y) {
+  // Rows in parallel, their sums added in order after.
+  std::vector<double> row_lum(static_cast<size_t>(h)), row_weight(static_cast<size_t>(h));
+  std::vector<char> row_constant(static_cast<size_t>(h));
+  tbb::parallel_for(0, h, [&](int y) {
     float s = std::sin(kPi * (y + 0.5f) / float(h));
+    double lum = 0;
+    bool same = true;
     for (int x = 0; x < w; ++x) {
       const float* p = &rgb[(size_t(y) * w + x) * 3];
       float l = std::max(0.0f, luminance({p[0], p[1], p[2]}));
       // Keep a small floor so every direction with radiance can be sampled.
       f[size_t(y) * w + x] =
           (l > 0 || p[0] > 0 || p[1] > 0 || p[2] > 0) ? std::max(l, 1e-6f) * s : 0;
-      lum_sum += double(l) * s;
-      weight_sum += s;
-      constant_ &= p[0] == rgb[0] && p[1] == rgb[1] && p[2] == rgb[2];
+      lum += double(l) * s;
+      same &= p[0] == rgb[0] && p[1] == rgb[1] && p[2] == rgb[2];
     }
+    row_lum[size_t(y)] = lum, row_weight[size_t(y)] = double(s) * w;
+    row_constant[size_t(y)] = same;
+  });
+  double lum_sum = 0, weight_sum = 0;
+  constant_ = true;
+  for (int y = 0; y < h; ++y) {
+    lum_sum += row_lum[size_t(y)], weight_sum += row_weight[size_t(y)];
+    constant_ &= row_constant[size_t(y)] != 0;
   }
   avg_lum_ = weight_sum > 0 ? float(lum_sum / weight_sum) : 0;
   if (constant_ && !rgb.empty()) color_ = {rgb[0], rgb[1], rgb[2]};
   dist_ = Distribution2D(f, w, h);
   tex_.resize(size_t(w) * h * 4);
-  for (int y = 0; y < h; ++y)
+  tbb::parallel_for(0, h, [&](int y) {
     for (int x = 0; x < w; ++x) {
       size_t i = size_t(y) * w + x;
       for (int c = 0; c < 3; ++c) tex_[i * 4 + c] = rgb[i * 3 + c];
       tex_[i * 4 + 3] = dist_.pdf_cell(x, y);
     }
+  });
   if (!constant_) build_oriented();
 }
 

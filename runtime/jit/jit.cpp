@@ -82,10 +82,12 @@ public:
   }
 };
 
-// What went wrong while linking on this thread (ORC reports "Symbols not found: [...]" to the
-// session's error reporter and returns only "Failed to materialize symbols" to the lookup):
-// Jit::load puts it in front of the lookup's error. Lookups materialise on the calling thread.
-thread_local std::string t_session_error;
+// Where what goes wrong while linking on this thread is written (ORC reports "Symbols not found:
+// [...]" to the session's error reporter and returns only "Failed to materialize symbols" to
+// the lookup): Jit::load points it at its own string while it links, and puts that in front of
+// the lookup's error. Lookups materialise on the calling thread. A plain pointer: a
+// thread_local with a destructor registers it through the loader's lock on first use.
+thread_local std::string* t_session_error = nullptr;
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -172,8 +174,9 @@ std::unique_ptr<Jit> Jit::create(std::string& error) {
   }
   jit->s_->runtime = &rt;
   jit->s_->lljit->getExecutionSession().setErrorReporter([](llvm::Error err) {
-    if (!t_session_error.empty()) t_session_error += "; ";
-    t_session_error += llvm::toString(std::move(err));
+    if (!t_session_error) return llvm::consumeError(std::move(err));
+    if (!t_session_error->empty()) *t_session_error += "; ";
+    *t_session_error += llvm::toString(std::move(err));
   });
   return jit;
 }
@@ -331,11 +334,14 @@ bool Jit::load(const std::function<llvm::Error(llvm::orc::JITDylib&)>& fill,
     error = llvm::toString(jd.takeError());
     return false;
   }
-  t_session_error.clear();
+  std::string session_error;
+  t_session_error = &session_error;
+  struct Unset {
+    ~Unset() { t_session_error = nullptr; }
+  } unset;
   auto fail = [&](llvm::Error err) {
     error = llvm::toString(std::move(err));
-    if (!t_session_error.empty()) error = t_session_error + " (" + error + ")";
-    t_session_error.clear();
+    if (!session_error.empty()) error = session_error + " (" + error + ")";
     llvm::consumeError(lljit.getExecutionSession().removeJITDylib(*jd));
     return false;
   };
