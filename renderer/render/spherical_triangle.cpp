@@ -1,6 +1,8 @@
 // Solid angles of triangles and uniform directions over them (see spherical_triangle.h).
 #include "spherical_triangle.h"
 
+#include "sampling.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -94,7 +96,7 @@ SphericalRectangle::SphericalRectangle(const Vec3& o, const Vec3& corner, const 
     double m = std::max(std::abs(re), std::abs(im));
     if (!(m > 0)) return 0.0f;
     // Each angle is in (0, pi), so the sum is in (0, 2 pi): unwrap a negative argument.
-    float a = std::atan2(float(im / m), float(re / m));
+    float a = fast_atan2(float(im / m), float(re / m));
     return a < 0 ? a + 2 * std::numbers::pi_v<float> : a;
   };
   float g01 = pair_angle(double(y0) * x1, az * dist(x1, y0), -double(x1) * y1, az * dist(x1, y1));
