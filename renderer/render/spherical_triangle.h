@@ -33,7 +33,7 @@ bool sample_spherical_triangle(const Vec3& a, const Vec3& b, const Vec3& c, floa
 // 2013). One set-up per viewer (four angles between the planes through its edges), then a
 // point per (u, v): the first number picks the solid angle left of a line x = const, the
 // second the height along that line. In float, with the corner angles summed in pairs as
-// arguments of complex products (two atan2, accurate near 0 and pi): the solid angle's
+// arguments of complex products (two fast_atan2, sampling.h: within 3e-7 rad): the solid angle's
 // absolute error is a few 1e-7 sr (callers use it above 1e-3 sr). Cheaper than the quad's two
 // triangles by Arvo's method in double, though not by much: light sampling took ~26% of the
 // Cornell box's profile that way, ~21% this way.

@@ -174,7 +174,8 @@ std::unique_ptr<Jit> Jit::create(std::string& error) {
   }
   jit->s_->runtime = &rt;
   jit->s_->lljit->getExecutionSession().setErrorReporter([](llvm::Error err) {
-    if (!t_session_error) return llvm::consumeError(std::move(err));
+    if (!t_session_error) // not while Jit::load links: as LLJIT's default reporter does
+      return llvm::logAllUnhandledErrors(std::move(err), llvm::errs(), "JIT session error: ");
     if (!t_session_error->empty()) *t_session_error += "; ";
     *t_session_error += llvm::toString(std::move(err));
   });
