@@ -83,7 +83,7 @@ Distribution2D::Distribution2D(const std::vector<float>& f, int w, int h) : w_(w
   std::vector<float> row_pdf(size_t(w) * h);
   cdf_.resize(size_t(w + 1) * h);
   guide_.resize(size_t(kRowGuide + 1) * h);
-  // Rows in parallel (each writes its own slices; a 2048x1024 background table's rows took
+  // Rows in parallel (each writes its own slices; a 1448x724 background table's rows took
   // 40 ms on one core).
   tbb::parallel_for(0, h, [&](int y) {
     Distribution1D row(

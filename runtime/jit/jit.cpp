@@ -62,10 +62,11 @@ struct Jit::State {
 
 namespace {
 // What the runtime library does not define (a libc function LLVM emits a call to), looked up
-// in the process with dlsym when first needed. Not LLJIT's process-symbols dylib: that one
-// opens the process handle at start-up and sits first in every group's link order, so every
-// symbol a group links would go through dlsym, whose loader lock a concurrent dlopen (the
-// image library, loaded in the background while a scene loads) holds for a third of a second.
+// in the process with dlsym when first needed; the runtime library is LLJIT's process-symbols
+// dylib (Jit::create). LLJIT's own one opens the process handle at start-up, and it came
+// ahead of the runtime library in every group's link order, so every symbol a group linked
+// went through dlsym, whose loader lock a concurrent dlopen (the image library, loaded in the
+// background while a scene loads) holds for about half a second.
 class ProcessFallback : public llvm::orc::DefinitionGenerator {
 public:
   llvm::Error tryToGenerate(llvm::orc::LookupState&, llvm::orc::LookupKind, llvm::orc::JITDylib& jd,
