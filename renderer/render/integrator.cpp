@@ -7,28 +7,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#if defined(__x86_64__) || defined(__i386__)
-#include <x86intrin.h>
-#endif
-
 namespace lobe::render {
 namespace {
-
-uint64_t ticks() {
-#if defined(__x86_64__) || defined(__i386__)
-  return __rdtsc();
-#else
-  return uint64_t(std::chrono::steady_clock::now().time_since_epoch().count());
-#endif
-}
 
 // Attributes the time since the previous lap to a phase; does nothing for untimed paths.
 class Laps {
 public:
-  explicit Laps(PhaseTicks* p) : p_(p), t_(p ? ticks() : 0) {}
+  explicit Laps(PhaseTicks* p) : p_(p), t_(p ? phase_ticks() : 0) {}
   void operator()(uint64_t PhaseTicks::*phase) {
     if (!p_) return;
-    uint64_t n = ticks();
+    uint64_t n = phase_ticks();
     p_->*phase += n - t_;
     t_ = n;
   }
@@ -142,7 +130,8 @@ static void shade_into(const RenderScene& scene, const SurfaceHit& hit, const Ve
 
 PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, ShadingContext& ctx,
                              ShadingContext& light_ctx, TraceCounters& c, bool timed,
-                             float film_density, const Geometry::RawHit* first) const {
+                             float film_density, const Geometry::RawHit* first,
+                             uint64_t first_ticks) const {
   Laps lap(timed ? &c.phases : nullptr);
   using P = PhaseTicks;
   const LightSet& lights = scene_.lights();
@@ -180,6 +169,7 @@ PathResult PathTracer::trace(const Ray& camera_ray, const Sampler& sampler, Shad
     if (depth == 0 && first) {
       raw = *first;
       found = raw.geom != RTC_INVALID_GEOMETRY_ID;
+      if (timed) c.phases.traverse += first_ticks; // its share of the packet's traversal
     } else {
       found = geo.traverse(ray, raw);
     }

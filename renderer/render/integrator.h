@@ -29,7 +29,12 @@
 #include "sampling.h"
 #include "scene_setup.h"
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <x86intrin.h>
+#endif
+
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <vector>
 
@@ -47,6 +52,15 @@ struct PathResult {
 // Where a path's time goes (RenderOptions::profile, `lobe render --stats`): timestamp-counter
 // ticks per phase, summed over the paths traced with timing on (a fixed subset of samples, so
 // the clock reads cost next to nothing). Phases partition each timed path.
+// The clock of `--stats`' time split: the processor's time-stamp counter where there is one.
+inline uint64_t phase_ticks() {
+#if defined(__x86_64__) || defined(__i386__)
+  return __rdtsc();
+#else
+  return uint64_t(std::chrono::steady_clock::now().time_since_epoch().count());
+#endif
+}
+
 struct PhaseTicks {
   uint64_t traverse = 0; // Embree closest-hit and occlusion queries
   uint64_t hit = 0;      // surface data at each hit (position, normals, uv, tangents)
@@ -144,10 +158,12 @@ public:
 
   // `film_density`: the pixel filter's density at the camera ray's film position (the tent's
   // (1 - |dx|)(1 - |dy|), a box's 1), for the MIS weights of caustics.
-  // `first`: the camera ray's hit when already traced (Geometry::traverse_packet), else null.
+  // `first`: the camera ray's hit when already traced (Geometry::traverse_packet), else null;
+  // `first_ticks`: this ray's share of that traversal's phase_ticks(), for a timed path.
   PathResult trace(const Ray& camera_ray, const Sampler& sampler, ShadingContext& ctx,
                    ShadingContext& light_ctx, TraceCounters& counters, bool timed = false,
-                   float film_density = 1, const Geometry::RawHit* first = nullptr) const;
+                   float film_density = 1, const Geometry::RawHit* first = nullptr,
+                   uint64_t first_ticks = 0) const;
   // One light path from the environment (numbers from `rng`), its camera connections splatted
   // into `film`; the image adds film.sum(p) / (light paths traced). Needs caustics().
   // `ctx` holds the target being crossed, `link_ctx` shades the camera's connections.

@@ -105,14 +105,16 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
       rays[i] = camera_ray(scene, opt, lens, x, y,
                            Sampler(pixels[i], uint64_t(samples[i]), opt.seed), densities[i]);
     }
+    const uint64_t t0 = opt.profile ? phase_ticks() : 0;
     scene.geometry().traverse_packet(rays, n, firsts);
+    const uint64_t share = opt.profile ? (phase_ticks() - t0) / uint64_t(n) : 0;
     for (int i = 0; i < n; ++i) {
       const uint64_t pixel = pixels[i];
       const int s = samples[i];
       Sampler sampler(pixel, uint64_t(s), opt.seed);
       bool timed = opt.profile && (pixel + uint64_t(s)) % kProfileEvery == 0;
       PathResult r = pt.trace(rays[i], sampler, ts.ctx, ts.light_ctx, ts.counters, timed,
-                              densities[i], &firsts[i]);
+                              densities[i], &firsts[i], share);
       if (!ts.counters.stopped.empty()) { // a runaway shader: the render stops (not counted)
         halt.store(true);
         return;
