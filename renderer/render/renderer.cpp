@@ -13,6 +13,7 @@
 #include <cmath>
 #include <memory>
 #include <mutex>
+#include <optional>
 
 namespace lobe::render {
 namespace {
@@ -94,6 +95,7 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
   Geometry::RawHit firsts[kPacket];
   uint64_t pixels[kPacket];
   int samples[kPacket];
+  std::optional<Sampler> samplers[kPacket]; // each path's, made once for its camera ray and path
   for (int base = 0; base < total; base += kPacket) {
     if (cancel && cancel->load(std::memory_order_relaxed)) return;
     if (halt.load(std::memory_order_relaxed)) return;
@@ -102,8 +104,8 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
       const int at = (base + i) / per_pixel, x = x0 + at % tw, y = y0 + at / tw;
       pixels[i] = uint64_t(y) * width + x;
       samples[i] = s0 + (base + i) % per_pixel;
-      rays[i] = camera_ray(scene, opt, lens, x, y,
-                           Sampler(pixels[i], uint64_t(samples[i]), opt.seed), densities[i]);
+      samplers[i].emplace(pixels[i], uint64_t(samples[i]), opt.seed);
+      rays[i] = camera_ray(scene, opt, lens, x, y, *samplers[i], densities[i]);
     }
     const uint64_t t0 = opt.profile ? phase_ticks() : 0;
     scene.geometry().traverse_packet(rays, n, firsts);
@@ -111,9 +113,8 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
     for (int i = 0; i < n; ++i) {
       const uint64_t pixel = pixels[i];
       const int s = samples[i];
-      Sampler sampler(pixel, uint64_t(s), opt.seed);
       bool timed = opt.profile && (pixel + uint64_t(s)) % kProfileEvery == 0;
-      PathResult r = pt.trace(rays[i], sampler, ts.ctx, ts.light_ctx, ts.counters, timed,
+      PathResult r = pt.trace(rays[i], *samplers[i], ts.ctx, ts.light_ctx, ts.counters, timed,
                               densities[i], &firsts[i], share);
       if (!ts.counters.stopped.empty()) { // a runaway shader: the render stops (not counted)
         halt.store(true);

@@ -451,16 +451,19 @@ void RenderScene::find_caustic_targets(const std::vector<int>& specular) {
 // checked against this bound (and for finiteness) before anything is built, with its place named.
 constexpr float kMaxCoordinate = 1e15f;
 
-static std::string check_point(const Vec3& p, const std::string& where, const char* what) {
+static bool point_in_range(const Vec3& p) {
   for (float c : {p.x, p.y, p.z})
-    if (!std::isfinite(c) || std::fabs(c) > kMaxCoordinate) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf,
-                    "%s (%g, %g, %g) is not finite or lies farther than %g from the origin", what,
-                    p.x, p.y, p.z, kMaxCoordinate);
-      return where + ": " + buf;
-    }
-  return "";
+    if (!std::isfinite(c) || std::fabs(c) > kMaxCoordinate) return false;
+  return true;
+}
+
+static std::string check_point(const Vec3& p, const std::string& where, const char* what) {
+  if (point_in_range(p)) return "";
+  char buf[160];
+  std::snprintf(buf, sizeof buf,
+                "%s (%g, %g, %g) is not finite or lies farther than %g from the origin", what, p.x,
+                p.y, p.z, kMaxCoordinate);
+  return where + ": " + buf;
 }
 
 std::string check_scene_extent(const scene::SceneDesc& d) {
@@ -484,14 +487,9 @@ std::string check_scene_extent(const scene::SceneDesc& d) {
       if (e.empty()) e = check_point(s.edge_y, w, "edge");
       break;
     case scene::Shape::Kind::Mesh:
-      for (size_t i = 0; i < s.mesh.positions.size(); ++i) {
-        const Vec3& p = s.mesh.positions[i];
-        if (std::isfinite(p.x + p.y + p.z) &&
-            std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}) <= kMaxCoordinate)
-          continue; // the common case, without building the vertex's name
-        e = check_point(p, w, ("vertex " + std::to_string(i)).c_str());
-        if (!e.empty()) break;
-      }
+      for (size_t i = 0; i < s.mesh.positions.size() && e.empty(); ++i)
+        if (!point_in_range(s.mesh.positions[i])) // the vertex is named only when it is bad
+          e = check_point(s.mesh.positions[i], w, ("vertex " + std::to_string(i)).c_str());
       break;
     }
     if (!e.empty()) return e;
