@@ -9,6 +9,8 @@
 // Errors are values: each call returns an empty string on success, a message otherwise.
 #pragma once
 
+#include "lobe/memory.h"
+
 #include <string>
 #include <thread>
 #include <vector>
@@ -18,7 +20,7 @@ namespace lobe::image {
 struct Image {
   int width = 0, height = 0;
   std::vector<std::string> channels; // e.g. {"R","G","B"}; size = channels per pixel
-  std::vector<float> pixels;         // width * height * channels.size(), interleaved
+  LargeVector<float> pixels;         // width * height * channels.size(), interleaved
 
   Image() = default;
   Image(int w, int h, std::vector<std::string> names);

@@ -8,7 +8,8 @@
 
 namespace lobe::render {
 
-Distribution1D::Distribution1D(const std::vector<float>& f) : func_(f), cdf_(f.size() + 1) {
+Distribution1D::Distribution1D(std::span<const float> f)
+    : func_(f.begin(), f.end()), cdf_(f.size() + 1) {
   const size_t n = f.size();
   double sum = 0;
   cdf_[0] = 0;
@@ -34,7 +35,7 @@ Distribution1D::Distribution1D(const std::vector<float>& f) : func_(f), cdf_(f.s
   }
 }
 
-static int find_interval(const std::vector<float>& cdf, float u) {
+static int find_interval(const LargeVector<float>& cdf, float u) {
   // Last index i with cdf[i] <= u, clamped to a valid cell; skips zero-width cells.
   auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
   int i = static_cast<int>(it - cdf.begin()) - 1;
@@ -78,24 +79,23 @@ float Distribution1D::discrete_prob(int i) const { return cdf_[i + 1] - cdf_[i];
 
 float Distribution1D::pdf(int i) const { return integral_ > 0 ? func_[i] / integral_ : 0; }
 
-Distribution2D::Distribution2D(const std::vector<float>& f, int w, int h) : w_(w), h_(h) {
+Distribution2D::Distribution2D(std::span<const float> f, int w, int h) : w_(w), h_(h) {
   std::vector<float> marg(static_cast<size_t>(h));
-  std::vector<float> row_pdf(size_t(w) * h);
-  cdf_.resize(size_t(w + 1) * h);
+  cells_.resize(pdf_at() + size_t(w) * h);
   guide_.resize(size_t(kRowGuide + 1) * h);
   // Rows in parallel (each writes its own slices; a 1448x724 background table's rows took
   // 40 ms on one core).
   tbb::parallel_for(0, h, [&](int y) {
-    Distribution1D row(
-        std::vector<float>(f.begin() + size_t(y) * w, f.begin() + size_t(y + 1) * w));
+    Distribution1D row(f.subspan(size_t(y) * w, size_t(w)));
     // A row of zeros is uniform within itself but never chosen (Distribution1D's integral of
     // an all-zero function is that of the uniform one it becomes).
     bool zero = true;
     for (int x = 0; x < w && zero; ++x) zero = !(f[size_t(y) * w + x] > 0);
     marg[size_t(y)] = zero ? 0.0f : row.integral();
-    float* cdf = &cdf_[size_t(y) * (w + 1)];
+    float* cdf = &cells_[size_t(y) * (w + 1)];
     for (int i = 0; i <= w; ++i) cdf[i] = row.cdf(i);
-    for (int x = 0; x < w; ++x) row_pdf[size_t(y) * w + x] = row.pdf(x);
+    float* pdf = &cells_[pdf_at() + size_t(y) * w];
+    for (int x = 0; x < w; ++x) pdf[x] = row.pdf(x); // the marginal's factor comes below
     int* guide = &guide_[size_t(y) * (kRowGuide + 1)];
     for (int k = 0, i = 0; k <= kRowGuide; ++k) { // last cell i with cdf[i] <= k / kRowGuide
       float u = float(k) / float(kRowGuide);
@@ -104,17 +104,16 @@ Distribution2D::Distribution2D(const std::vector<float>& f, int w, int h) : w_(w
     }
   });
   marginal_ = Distribution1D(marg);
-  pdf_.resize(size_t(w) * h);
   tbb::parallel_for(0, h, [&](int y) {
-    for (int x = 0; x < w; ++x)
-      pdf_[size_t(y) * w + x] = marginal_.pdf(y) * row_pdf[size_t(y) * w + x];
+    float* pdf = &cells_[pdf_at() + size_t(y) * w];
+    for (int x = 0; x < w; ++x) pdf[x] = marginal_.pdf(y) * pdf[x];
   });
 }
 
 // The cell find_interval gives over the row's CDF, searched between the guides around u:
 // cdf[guide[k]] <= k/G <= u < (k+1)/G, and the cell of any such u is at most guide[k+1].
 int Distribution2D::find_in_row(int y, float u) const {
-  const float* cdf = &cdf_[size_t(y) * (w_ + 1)];
+  const float* cdf = cdf_row(y);
   if (!(u >= 0) || !(u < 1)) {
     int i = int(std::upper_bound(cdf, cdf + w_ + 1, u) - cdf) - 1;
     return std::clamp(i, 0, w_ - 1);
@@ -129,7 +128,7 @@ void Distribution2D::sample_cell(float u1, float u2, float& u, float& v, int& x,
   float pv;
   v = marginal_.sample_continuous(u2, pv, y);
   x = find_in_row(y, u1);
-  const float* cdf = &cdf_[size_t(y) * (w_ + 1)];
+  const float* cdf = cdf_row(y);
   float width = cdf[x + 1] - cdf[x];
   float du = width > 0 ? (u1 - cdf[x]) / width : 0.5f;
   u = std::min((float(x) + std::clamp(du, 0.0f, 1.0f)) / float(w_), 0x1.fffffep-1f);
@@ -143,7 +142,7 @@ void Distribution2D::sample(float u1, float u2, float& u, float& v, float& pdf) 
 
 float Distribution2D::pdf(float u, float v) const {
   int iu = std::clamp(int(u * w_), 0, w_ - 1), iv = std::clamp(int(v * h_), 0, h_ - 1);
-  return pdf_[size_t(iv) * w_ + iu];
+  return pdf_cell(iu, iv);
 }
 
 } // namespace lobe::render

@@ -3,6 +3,7 @@
 
 #include "sampling.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -10,12 +11,12 @@
 
 namespace lobe::render {
 
-EnvironmentLight::EnvironmentLight(std::vector<float> rgb, int w, int h, float rotation_deg)
+EnvironmentLight::EnvironmentLight(std::span<const float> rgb, int w, int h, float rotation_deg)
     : w_(w), h_(h) {
   float r = rotation_deg * kPi / 180.0f;
   cos_r_ = std::cos(r), sin_r_ = std::sin(r);
   // Sampling weight: luminance times sin(theta) (the solid angle of a texel's row).
-  std::vector<float> f(size_t(w) * h);
+  LargeVector<float> f(size_t(w) * h);
   // Rows in parallel, their sums added in order after.
   std::vector<double> row_lum(static_cast<size_t>(h)), row_weight(static_cast<size_t>(h));
   std::vector<char> row_constant(static_cast<size_t>(h));
@@ -133,6 +134,7 @@ void EnvironmentLight::build_oriented() {
   make(grids_[0], geo[0], std::min((w_ + 1) / 2, 1024), std::min((h_ + 1) / 2, 512));
   make(grids_[1], geo[1], std::min((w_ + 3) / 4, 512), std::min((h_ + 3) / 4, 256));
   oriented_.assign(kWideTables + kTightTables, Distribution2D());
+  tbb::enumerable_thread_specific<LargeVector<float>> weights; // one per thread, reused
   tbb::parallel_for(0, kWideTables + kTightTables, [&](int k) {
     if (k == kZeroDirection) return;
     const Grid& g = grids_[grid_of(k)];
@@ -140,7 +142,8 @@ void EnvironmentLight::build_oriented() {
     const float cone = k >= kWideTables ? kTightCone : kWideCone;
     const float ca = std::cos(cone), sa = std::sin(cone);
     const Vec3 d = table_direction(k);
-    std::vector<float> f(size_t(g.w) * g.h);
+    LargeVector<float>& f = weights.local();
+    f.resize(size_t(g.w) * g.h);
     for (int y = 0; y < g.h; ++y)
       for (int x = 0; x < g.w; ++x) {
         float c = dot(ge.centre[size_t(y) * g.w + x], d);
@@ -191,7 +194,7 @@ int EnvironmentLight::oriented_index(const Vec3& n) const {
 
 EnvironmentLight EnvironmentLight::from_function(const std::function<Color3(const Vec3&)>& radiance,
                                                  int w, int h, float rotation_deg, int per_axis) {
-  std::vector<float> rgb(size_t(w) * h * 3);
+  LargeVector<float> rgb(size_t(w) * h * 3);
   EnvironmentLight probe({0, 0, 0}, 1, 1, rotation_deg); // only for uv_to_dir
   const int n = std::max(1, per_axis);
   const float step = 1.0f / float(n), inv = 1.0f / float(n * n);
@@ -207,7 +210,7 @@ EnvironmentLight EnvironmentLight::from_function(const std::function<Color3(cons
       p[0] = sum.x * inv, p[1] = sum.y * inv, p[2] = sum.z * inv;
     }
   });
-  return EnvironmentLight(std::move(rgb), w, h, rotation_deg);
+  return EnvironmentLight(rgb, w, h, rotation_deg);
 }
 
 Vec3 EnvironmentLight::uv_to_dir(float u, float v) const {

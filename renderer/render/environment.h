@@ -33,6 +33,8 @@
 
 #include <algorithm>
 #include <functional>
+#include <initializer_list>
+#include <span>
 #include <vector>
 
 namespace lobe::render {
@@ -41,7 +43,9 @@ class EnvironmentLight {
 public:
   EnvironmentLight() = default;
   // `rgb`: w*h*3 linear radiance, rows from +Y down to -Y.
-  EnvironmentLight(std::vector<float> rgb, int w, int h, float rotation_deg);
+  EnvironmentLight(std::span<const float> rgb, int w, int h, float rotation_deg);
+  EnvironmentLight(std::initializer_list<float> rgb, int w, int h, float rotation_deg)
+      : EnvironmentLight(std::span<const float>(rgb.begin(), rgb.size()), w, h, rotation_deg) {}
   // Tabulates `radiance(direction)` at w x h, averaging per_axis^2 directions in each texel
   // (per_axis 1: the texel's centre). Rows are tabulated in parallel (oneTBB): `radiance` must
   // be safe to call from several threads at once.
@@ -76,7 +80,7 @@ private:
   // A grid of blocks of texels for the oriented tables: per block, its texels' densities summed.
   struct Grid {
     int w = 0, h = 0;
-    std::vector<float> sum;
+    LargeVector<float> sum;
   };
   void build_oriented();
   void block(const Grid& g, int cx, int cy, int& x0, int& x1, int& y0, int& y1) const;
@@ -100,7 +104,7 @@ private:
     return sin_theta > 0 ? p / (2 * kPi * kPi * sin_theta) : 0;
   }
 
-  std::vector<float> tex_; // w x h texels of 4 floats (see texel())
+  LargeVector<float> tex_; // w x h texels of 4 floats (see texel())
   int w_ = 0, h_ = 0;
   float cos_r_ = 1, sin_r_ = 0;
   float avg_lum_ = 0;

@@ -43,6 +43,8 @@ std::string Geometry::build(const std::vector<scene::Shape>& shapes) {
   static const scene::Mesh kNoMesh;
   mesh_of_.assign(shapes.size(), &kNoMesh);
   quads_.clear();
+  triangle_buffers_.clear();
+  triangle_buffers_.reserve(shapes.size());
   for (size_t i = 0; i < shapes.size(); ++i) {
     const scene::Shape& s = shapes[i];
     RTCGeometry g;
@@ -60,12 +62,15 @@ std::string Geometry::build(const std::vector<scene::Shape>& shapes) {
       }
       const scene::Mesh& m = *mesh_of_[i];
       g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-          g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, m.positions.size()));
-      std::memcpy(v, m.positions.data(), m.positions.size() * 12);
-      auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-          g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, m.indices.size() / 3));
-      std::memcpy(idx, m.indices.data(), m.indices.size() * 4);
+      TriangleBuffers& b = triangle_buffers_.emplace_back();
+      b.vertices.resize(m.positions.size() * 3 + 1);
+      std::memcpy(b.vertices.data(), m.positions.data(), m.positions.size() * 12);
+      b.indices.resize(m.indices.size() + 1);
+      std::memcpy(b.indices.data(), m.indices.data(), m.indices.size() * 4);
+      rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, b.vertices.data(),
+                                 0, 12, m.positions.size());
+      rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, b.indices.data(), 0,
+                                 12, m.indices.size() / 3);
     }
     rtcCommitGeometry(g);
     unsigned id = rtcAttachGeometry(scene_, g);

@@ -99,6 +99,14 @@ private:
   // two triangles (in quads_), or an empty mesh for a sphere.
   std::vector<const scene::Mesh*> mesh_of_;
   std::vector<std::unique_ptr<scene::Mesh>> quads_;
+  // The triangles' vertices and indices as Embree reads them (shared with it, in huge pages;
+  // each padded by one element: Embree reads the last with a 16-byte load). Destroyed after
+  // the scene that uses them.
+  struct TriangleBuffers {
+    LargeVector<float> vertices;
+    LargeVector<uint32_t> indices;
+  };
+  std::vector<TriangleBuffers> triangle_buffers_;
   std::vector<int> geom_to_shape_;
   std::vector<char> tangents_;
   bool packets_ = false; // Embree traces 8-wide packets natively here

@@ -78,7 +78,7 @@ Ray camera_ray(const RenderScene& scene, const RenderOptions& opt, bool lens, in
 // Renders samples [s0, s1) of every pixel in tile `t`.
 void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int height, int t,
                  int s0, int s1, const RenderOptions& opt, const std::atomic<bool>* cancel,
-                 std::atomic<bool>& halt, std::vector<Accum>& acc, LightFilm* film,
+                 std::atomic<bool>& halt, LargeVector<Accum>& acc, LightFilm* film,
                  ThreadState& ts) {
   ts.ctx.cancel = ts.light_ctx.cancel = cancel; // Ctrl-C reaches shaders in their loops
   int tiles_x = (width + kTile - 1) / kTile;
@@ -147,7 +147,7 @@ void render_tile(const RenderScene& scene, const PathTracer& pt, int width, int 
 }
 
 // The camera's samples averaged, plus the light paths' splats over their number.
-image::Image resolve(const std::vector<Accum>& acc, int width, int height, bool aovs,
+image::Image resolve(const LargeVector<Accum>& acc, int width, int height, bool aovs,
                      const LightFilm* film, uint64_t light_paths) {
   std::vector<std::string> ch = {"R", "G", "B"};
   if (aovs) ch.insert(ch.end(), {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z"});
@@ -188,7 +188,7 @@ image::Image render_image(const RenderScene& scene, int width, int height, const
                   uint64_t(pixels));
   std::unique_ptr<LightFilm> film;
   if (pt.caustics()) film = std::make_unique<LightFilm>(width, height, opt.pixel_filter);
-  std::vector<Accum> acc(size_t(width) * height);
+  LargeVector<Accum> acc(size_t(width) * height);
   tbb::enumerable_thread_specific<ThreadState> states;
   int tiles = ((width + kTile - 1) / kTile) * ((height + kTile - 1) / kTile);
   uint64_t total = uint64_t(width) * height * opt.spp;

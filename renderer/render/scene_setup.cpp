@@ -281,7 +281,7 @@ std::string RenderScene::build_environment() {
   case scene::Environment::Kind::Map: {
     image::Image img;
     if (std::string err = image::read_image(e.file, img); !err.empty()) return e.where + ": " + err;
-    std::vector<float> rgb(size_t(img.width) * img.height * 3);
+    LargeVector<float> rgb(size_t(img.width) * img.height * 3);
     size_t bad = 0; // NaN or infinite values (or ones the intensity makes infinite): read as 0
     for (size_t p = 0; p < size_t(img.width) * img.height; ++p)
       for (int c = 0; c < 3; ++c) {
@@ -293,7 +293,7 @@ std::string RenderScene::build_environment() {
       stats_.warnings.push_back(e.where + ": environment map '" + e.file +
                                 "': " + std::to_string(bad) +
                                 " values are not finite numbers (NaN or infinite); read as 0");
-    env_ = EnvironmentLight(std::move(rgb), img.width, img.height, e.rotation);
+    env_ = EnvironmentLight(rgb, img.width, img.height, e.rotation);
     return "";
   }
   case scene::Environment::Kind::Sky: {
@@ -412,7 +412,7 @@ void RenderScene::find_caustic_targets(const std::vector<int>& specular) {
     } else {
       // The centre of the bounding box and the farthest vertex from it (a quad's mesh is
       // Geometry's).
-      const std::vector<Vec3>& pts = geo_.mesh(i).positions;
+      const auto& pts = geo_.mesh(i).positions;
       if (pts.empty()) continue;
       Vec3 lo = pts[0], hi = pts[0];
       for (const Vec3& p : pts)

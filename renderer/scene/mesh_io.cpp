@@ -3,8 +3,6 @@
 
 #include <tiny_obj_loader.h>
 
-#include <sys/mman.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -40,30 +38,9 @@ struct Corner {
 
 // An OBJ file's attributes as read and its faces as triangle corners.
 struct ObjData {
-  std::vector<float> v, n, t; // xyz, xyz, uv
-  std::vector<Corner> corners;
+  LargeVector<float> v, n, t; // xyz, xyz, uv
+  LargeVector<Corner> corners;
 };
-
-// Asks for transparent huge pages on the whole 2 MB blocks inside [p, p + bytes) (Linux's
-// madvise; where the kernel's setting is "madvise", the default of many distributions, memory
-// is otherwise faulted in 4 kB at a time). A hint: nothing changes if it is refused.
-void advise_huge(const void* p, size_t bytes) {
-#ifdef MADV_HUGEPAGE
-  constexpr uintptr_t kHuge = uintptr_t(2) << 20;
-  uintptr_t lo = (reinterpret_cast<uintptr_t>(p) + kHuge - 1) & ~(kHuge - 1);
-  uintptr_t hi = (reinterpret_cast<uintptr_t>(p) + bytes) & ~(kHuge - 1);
-  if (hi > lo) madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);
-#else
-  (void)p, (void)bytes;
-#endif
-}
-
-// v.reserve(n), with the new storage advised into huge pages before anything touches it.
-template <class T> void reserve_huge(std::vector<T>& v, size_t n) {
-  if (n <= v.capacity()) return;
-  v.reserve(n);
-  advise_huge(v.data(), v.capacity() * sizeof(T));
-}
 
 // How many lines of each kind an OBJ file has (ok false when it cannot be read).
 struct ObjCounts {
@@ -122,8 +99,8 @@ void build_mesh(const ObjData& d, Mesh& mesh) {
   const size_t nv = d.v.size() / 3;
   mesh = Mesh{};
   constexpr uint32_t kNone = ~0u;
-  std::vector<uint32_t> first(nv, kNone);
-  std::vector<std::pair<int, int>> made; // (normal, uv) of each vertex made
+  LargeVector<uint32_t> first(nv, kNone);
+  LargeVector<std::pair<int, int>> made; // (normal, uv) of each vertex made
   struct KeyHash {
     size_t operator()(const std::tuple<int, int, int>& k) const {
       uint64_t h = uint64_t(uint32_t(std::get<0>(k))) * 0x9e3779b97f4a7c15ull;
@@ -133,11 +110,11 @@ void build_mesh(const ObjData& d, Mesh& mesh) {
     }
   };
   std::unordered_map<std::tuple<int, int, int>, uint32_t, KeyHash> others;
-  reserve_huge(mesh.indices, d.corners.size());
-  reserve_huge(mesh.positions, nv);
-  if (has_n) reserve_huge(mesh.normals, nv);
-  if (has_uv) reserve_huge(mesh.uvs, 2 * nv);
-  reserve_huge(made, nv);
+  mesh.indices.reserve(d.corners.size());
+  mesh.positions.reserve(nv);
+  if (has_n) mesh.normals.reserve(nv);
+  if (has_uv) mesh.uvs.reserve(2 * nv);
+  made.reserve(nv);
   for (const Corner& c : d.corners) {
     const int ni = has_n ? c.n : -1, ti = has_uv ? c.t : -1;
     uint32_t& f = first[size_t(c.v)];
@@ -186,7 +163,9 @@ std::string read_obj_polygons(const std::string& path, ObjData& d) {
   }
   const auto& a = reader.GetAttrib();
   d = ObjData{};
-  d.v = a.vertices, d.n = a.normals, d.t = a.texcoords;
+  d.v.assign(a.vertices.begin(), a.vertices.end());
+  d.n.assign(a.normals.begin(), a.normals.end());
+  d.t.assign(a.texcoords.begin(), a.texcoords.end());
   // tinyobjloader resolves relative (negative) indices but does not check the range.
   const size_t nv = d.v.size() / 3, nn = d.n.size() / 3, nt = d.t.size() / 2;
   auto bad = [&](const char* what, int i, size_t n, const char* plural) {
@@ -215,7 +194,7 @@ std::string read_obj_polygons(const std::string& path, ObjData& d) {
 // positive ones are checked once the whole file is read, as ObjReader's are.
 struct Streamed {
   ObjData* d;
-  std::vector<uint32_t> face_of; // per triangle, its face's number (1-based), for errors
+  LargeVector<uint32_t> face_of; // per triangle, its face's number (1-based), for errors
   std::string error;             // a relative index before the start, with its face
   uint32_t faces = 0;
   bool polygons = false;
@@ -301,16 +280,16 @@ std::string load_obj(const std::string& path, Mesh& mesh) {
   Streamed s{&d};
   {
     // The lines are counted by kind first (a pass over the file in 1 MB pieces) and the arrays
-    // reserved at once, in huge pages where the kernel gives them for the asking: grown by
-    // doubling, they were copied at every step and each 4 kB page of the new copy faulted in
-    // on first touch (a third of the load's time in a virtual machine, where faults are dear).
+    // reserved at once (LargeVectors: in huge pages): grown by doubling, they were copied at
+    // every step and each 4 kB page of the new copy faulted in on first touch (a third of the
+    // load's time in a virtual machine, where faults are dear).
     ObjCounts lines = count_lines(path);
     if (!lines.ok) return path + ": cannot read OBJ file";
-    reserve_huge(d.v, 3 * lines.v);
-    reserve_huge(d.n, 3 * lines.vn);
-    reserve_huge(d.t, 2 * lines.vt);
-    reserve_huge(d.corners, 3 * lines.f); // triangles; a file of quads grows it once
-    reserve_huge(s.face_of, lines.f);
+    d.v.reserve(3 * lines.v);
+    d.n.reserve(3 * lines.vn);
+    d.t.reserve(2 * lines.vt);
+    d.corners.reserve(3 * lines.f); // triangles; a file of quads grows it once
+    s.face_of.reserve(lines.f);
     std::ifstream in(path, std::ios::binary);
     if (!in) return path + ": cannot read OBJ file";
     tinyobj::callback_t cb;

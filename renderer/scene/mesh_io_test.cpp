@@ -49,7 +49,7 @@ TEST(MeshIo, ObjSharedPositionsSplitByNormalAndUv) {
   Mesh m;
   ASSERT_EQ(load_mesh(path, m), "");
   ASSERT_EQ(m.positions.size(), 5u);
-  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 1}));
+  EXPECT_EQ(m.indices, (LargeVector<uint32_t>{0, 1, 2, 3, 4, 1}));
   ASSERT_EQ(m.normals.size(), 5u);
   EXPECT_FLOAT_EQ(m.normals[3].z, -1.0f); // position 1 with normal 2
   EXPECT_FLOAT_EQ(m.positions[3].x, 0.0f);
@@ -175,14 +175,14 @@ TEST(MeshIo, ObjQuadsSplitAlongTheShorterDiagonal) {
   // vertices are numbered in order of first use (0 1 3 2), so 0 1 2 and 1 3 2.
   ASSERT_EQ(load_mesh(write_file("q13.obj", "v 0 0 0\nv 1 0 0\nv 3 1 0\nv 0 1 0\nf 1 2 3 4\n"), m),
             "");
-  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 1, 3, 2}));
+  EXPECT_EQ(m.indices, (LargeVector<uint32_t>{0, 1, 2, 1, 3, 2}));
   ASSERT_EQ(m.positions.size(), 4u);
   EXPECT_FLOAT_EQ(m.positions[2].y, 1.0f); // the file's fourth vertex, (0, 1, 0)
   EXPECT_FLOAT_EQ(m.positions[3].x, 3.0f); // its third, (3, 1, 0)
   // Diagonal 0-2 (2) shorter than 1-3 (13): 0 1 2 and 0 2 3.
   ASSERT_EQ(load_mesh(write_file("q02.obj", "v 0 0 0\nv 2 0 0\nv 1 1 0\nv 0 3 0\nf 1 2 3 4\n"), m),
             "");
-  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
+  EXPECT_EQ(m.indices, (LargeVector<uint32_t>{0, 1, 2, 0, 2, 3}));
 }
 
 TEST(MeshIo, ObjRelativeIndicesAndLateNormals) {
@@ -192,7 +192,7 @@ TEST(MeshIo, ObjRelativeIndicesAndLateNormals) {
                                             "v 0 0 1\nv 1 0 1\nv 0 1 1\nf -3 -2 -1\n"),
                       m),
             "");
-  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));
+  EXPECT_EQ(m.indices, (LargeVector<uint32_t>{0, 1, 2, 3, 4, 5}));
   EXPECT_FLOAT_EQ(m.positions[3].z, 1.0f);
   // A positive index may name a normal written after the face.
   ASSERT_EQ(load_mesh(write_file("late.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//1 2//1 3//1\n"

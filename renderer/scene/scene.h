@@ -8,6 +8,7 @@
 
 #include "transform.h"
 
+#include "lobe/memory.h"
 #include "lobe/shadingsys.h"
 #include "lobe/vec.h"
 
@@ -36,12 +37,13 @@ struct MaterialDesc {
   bool unknown_params_warn = false;
 };
 
-// Triangle mesh in world space (transforms are applied at load).
+// Triangle mesh in world space (transforms are applied at load). Its arrays are LargeVectors:
+// a large mesh's are on huge pages (lobe/memory.h).
 struct Mesh {
-  std::vector<Vec3> positions;
-  std::vector<Vec3> normals;     // per vertex, or empty
-  std::vector<float> uvs;        // 2 per vertex, or empty
-  std::vector<uint32_t> indices; // 3 per triangle
+  LargeVector<Vec3> positions;
+  LargeVector<Vec3> normals;     // per vertex, or empty
+  LargeVector<float> uvs;        // 2 per vertex, or empty
+  LargeVector<uint32_t> indices; // 3 per triangle
 };
 
 // A value a shape gives the shaders that shade it: user data of a `lockgeom = 0` parameter of

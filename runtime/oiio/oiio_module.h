@@ -14,6 +14,8 @@
 // same compiler against the same standard library, and kAbi is checked on load.
 #pragma once
 
+#include "lobe/memory.h"
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -30,7 +32,7 @@ enum class Pixel { Float, Half, UInt8, Int32 };
 struct ImageData {
   int width = 0, height = 0;
   std::vector<std::string> channels; // one name per channel
-  std::vector<float> pixels;         // interleaved, rows top to bottom
+  LargeVector<float> pixels;         // interleaved, rows top to bottom
   bool integer_file = false;         // the file held 8- or 16-bit integers
   std::string colorspace;            // the file's "oiio:ColorSpace" ("" if none)
 };
@@ -68,7 +70,9 @@ struct Api {
   std::string (*read)(const std::string& path, ImageData& out);
 };
 
-constexpr int kAbi = 3; // 2: TextureArgs::site; 3: texture_error's order, TextureArgs::subimage
+// 2: TextureArgs::site; 3: texture_error's order, TextureArgs::subimage; 4: ImageData::pixels a
+// LargeVector
+constexpr int kAbi = 4;
 inline constexpr const char* kNoExplanation = "\n";
 
 // The loaded module (loaded once, thread-safe), or null with `why` set.
