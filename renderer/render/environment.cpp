@@ -5,6 +5,7 @@
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -152,7 +153,9 @@ void EnvironmentLight::build_oriented() {
             c = std::max(c, dot(ge.corner[size_t(y + dy) * (g.w + 1) + x + dx], d));
         f[size_t(y) * g.w + x] = g.sum[size_t(y) * g.w + x] * cone_weight(c, ca, sa);
       }
-    oriented_[size_t(k)] = Distribution2D(f, g.w, g.h);
+    // Isolated: while this thread waits for Distribution2D's own parallel rows it must not
+    // start another table, which would take the same `f`.
+    tbb::this_task_arena::isolate([&] { oriented_[size_t(k)] = Distribution2D(f, g.w, g.h); });
   });
 }
 
