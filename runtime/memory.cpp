@@ -71,14 +71,7 @@ constexpr bool kMapLarge = true;
 #endif
 
 // Whether a block of `bytes` is mapped on its own (else it comes from operator new).
-bool mapped(std::size_t bytes) {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  return kMapLarge && bytes >= kHugePage;
-#else
-  (void)bytes;
-  return false;
-#endif
-}
+bool mapped(std::size_t bytes) { return large_blocks_mapped() && bytes >= kHugePage; }
 
 // The bytes a mapped block of `bytes` takes: whole 4 KiB pages.
 std::size_t mapped_size(std::size_t bytes) { return (bytes + kPage - 1) & ~(kPage - 1); }
@@ -103,6 +96,14 @@ void* allocate_large(std::size_t bytes) {
   return reinterpret_cast<void*>(aligned);
 #else
   return ::operator new(bytes);
+#endif
+}
+
+bool large_blocks_mapped() {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  return kMapLarge;
+#else
+  return false;
 #endif
 }
 

@@ -14,18 +14,6 @@ using namespace lobe;
 
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kMapped = false; // under AddressSanitizer every block comes from operator new
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kMapped = false;
-#else
-constexpr bool kMapped = true;
-#endif
-#else
-constexpr bool kMapped = true;
-#endif
-
 constexpr std::uintptr_t kHuge = std::uintptr_t(1) << 21;
 
 // The "THPeligible:" field of the mapping of /proc/self/smaps that holds `p` (-1: not found).
@@ -59,7 +47,7 @@ std::string thp_mode() {
 } // namespace
 
 TEST(LargeVector, BigBlocksStartOnAHugePageBoundaryAndAreMarkedForHugePages) {
-  if (!kMapped) GTEST_SKIP() << "built with AddressSanitizer: blocks come from operator new";
+  if (!large_blocks_mapped()) GTEST_SKIP() << "blocks come from operator new here (ASan build)";
   LargeVector<float> v(size_t(3) << 20, 1.5f); // 12 MiB
   EXPECT_EQ(reinterpret_cast<std::uintptr_t>(v.data()) % kHuge, 0u);
   for (size_t i = 0; i < v.size(); i += 4093) ASSERT_EQ(v[i], 1.5f) << i;
@@ -89,7 +77,7 @@ TEST(LargeVector, KeepsItsValuesThroughGrowthCopiesAndMoves) {
 }
 
 TEST(LargeVector, AnImpossibleSizeIsBadAlloc) {
-  if (!kMapped) GTEST_SKIP() << "built with AddressSanitizer: its allocator reports this itself";
+  if (!large_blocks_mapped()) GTEST_SKIP() << "operator new's: ASan reports this itself";
   EXPECT_THROW(allocate_large(std::size_t(1) << 62), std::bad_alloc);  // 4 EiB
   EXPECT_THROW(allocate_large(~std::size_t(0) - 100), std::bad_alloc); // rounding overflows
 }

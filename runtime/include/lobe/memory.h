@@ -38,6 +38,9 @@ std::string check_memory(const std::string& setting, double bytes, const char* w
 // its release (with the same `bytes`).
 void* allocate_large(std::size_t bytes);
 void release_large(void* p, std::size_t bytes) noexcept;
+// Whether blocks of 2 MiB and more get a mapping of their own here (false when built with
+// AddressSanitizer, and off Linux).
+bool large_blocks_mapped();
 
 template <class T> struct LargeAllocator {
   using value_type = T;
