@@ -32,7 +32,10 @@ enum class Pixel { Float, Half, UInt8, Int32 };
 struct ImageData {
   int width = 0, height = 0;
   std::vector<std::string> channels; // one name per channel
-  LargeVector<float> pixels;         // interleaved, rows top to bottom
+  // Interleaved, rows top to bottom. Allocated in the module and freed by the caller: both
+  // sides' LargeAllocator run the same code (memory.cpp is compiled into the module too, with
+  // the same flags, so the two agree on which blocks are mapped).
+  LargeVector<float> pixels;
   bool integer_file = false;         // the file held 8- or 16-bit integers
   std::string colorspace;            // the file's "oiio:ColorSpace" ("" if none)
 };
