@@ -36,8 +36,8 @@ struct ImageData {
   // sides' LargeAllocator run the same code (memory.cpp is compiled into the module too, with
   // the same flags, so the two agree on which blocks are mapped).
   LargeVector<float> pixels;
-  bool integer_file = false;         // the file held 8- or 16-bit integers
-  std::string colorspace;            // the file's "oiio:ColorSpace" ("" if none)
+  bool integer_file = false; // the file held 8- or 16-bit integers
+  std::string colorspace;    // the file's "oiio:ColorSpace" ("" if none)
 };
 
 struct Api {
