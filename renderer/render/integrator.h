@@ -49,9 +49,6 @@ struct PathResult {
   float depth = 0;
 };
 
-// Where a path's time goes (RenderOptions::profile, `lobe render --stats`): timestamp-counter
-// ticks per phase, summed over the paths traced with timing on (a fixed subset of samples, so
-// the clock reads cost next to nothing). Phases partition each timed path.
 // The clock of `--stats`' time split: the processor's time-stamp counter where there is one.
 inline uint64_t phase_ticks() {
 #if defined(__x86_64__) || defined(__i386__)
@@ -61,6 +58,9 @@ inline uint64_t phase_ticks() {
 #endif
 }
 
+// Where a path's time goes (RenderOptions::profile, `lobe render --stats`): timestamp-counter
+// ticks per phase, summed over the paths traced with timing on (a fixed subset of samples, so
+// the clock reads cost next to nothing). Phases partition each timed path.
 struct PhaseTicks {
   uint64_t traverse = 0; // Embree closest-hit and occlusion queries
   uint64_t hit = 0;      // surface data at each hit (position, normals, uv, tangents)
